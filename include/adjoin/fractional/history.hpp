@@ -1,0 +1,45 @@
+#pragma once
+// History sums: the non-local part of a discrete fractional derivative.
+//
+// A ConvolutionHistory holds a sequence y_0, y_1, ... pushed one value per time step and the
+// weights w_0..w_N of a convolution quadrature. After y_0..y_{m-1} have been pushed,
+//
+//     lag_sum() = sum_{j=1}^{m} w_j y_{m-j}
+//
+// is the part of step m's convolution that does not involve the still unknown y_m; a scheme
+// adds w_0 y_m itself (implicitly or explicitly). At most N + 1 values (y_0..y_N) may be
+// pushed; lag sums past step N are zero.
+//
+// Engines:
+//  - direct: the sum as written, O(m) per step, O(N^2) in all. The reference.
+//  - fft: blocked FFT convolution after Hairer, Lubich and Schlichte (1985): the same sums,
+//    O(N log^2 N) in all and O(N) memory, equal to direct to rounding.
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace adjoin {
+
+enum class HistoryEngine { direct, fft };
+
+// "direct" / "fft"; parse returns false on an unknown name.
+std::string to_string(HistoryEngine engine);
+bool parse_history_engine(const std::string& name, HistoryEngine* engine);
+
+class ConvolutionHistory {
+ public:
+  virtual ~ConvolutionHistory() = default;
+  // sum_{j=1}^{m} w_j y_{m-j} with m = size().
+  virtual double lag_sum() const = 0;
+  // Appends y_m (m = size()) and prepares the next lag sum.
+  virtual void push(double y) = 0;
+  virtual std::size_t size() const = 0;
+  // Bytes held by the engine (for the memory benchmarks).
+  virtual std::size_t bytes() const = 0;
+};
+
+// `weights` holds w_0..w_N; the history accepts N + 1 pushes.
+std::unique_ptr<ConvolutionHistory> make_history(HistoryEngine engine, std::vector<double> weights);
+
+}  // namespace adjoin

@@ -1,0 +1,17 @@
+#pragma once
+// Convolution weights for fractional derivatives on a uniform grid t_m = m h:
+//
+//     D^gamma z(t_m) ~ h^{-gamma} sum_{j=0}^{m} w_j z_{m-j}
+//
+// Grünwald–Letnikov (first order): the coefficients of (1 - zeta)^gamma, by the paper's
+// recurrence w_0 = 1, w_j = (1 - (gamma + 1)/j) w_{j-1}; in closed form
+// w_j = Gamma(j - gamma) / (Gamma(-gamma) Gamma(j + 1)).
+#include <cstddef>
+#include <vector>
+
+namespace adjoin {
+
+// w_0 .. w_{count-1} of the Grünwald–Letnikov generating function (1 - zeta)^order.
+std::vector<double> grunwald_letnikov_weights(double order, std::size_t count);
+
+}  // namespace adjoin

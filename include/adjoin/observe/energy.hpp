@@ -1,0 +1,45 @@
+#pragma once
+// The energy balance per unit mass m1 (dimensionless; SI scenes scale it to joules).
+//
+// Multiplying the equations of motion by x1' and x2'/rho and integrating from 0 to t:
+//
+//     input    = int a_g (x1' + x2'/rho) dt          work of the ground on the blocks
+//     kinetic  = x1'^2/2 + x2'^2/(2 rho)             (relative to the moving base)
+//     rod1     = int f1 x1' dt,  rod2 = int f2 x2' dt   (stored plus dissipated in the rods)
+//     friction = int q (x1' - x2') dt                dissipated in the damper (>= 0)
+//     residual = input - (kinetic + rod1 + rod2 + friction)
+//
+// The exact solution has residual 0; the discrete one goes to zero with the step. Integrals
+// use the trapezoidal rule on the grid samples.
+#include <vector>
+
+#include "adjoin/observe/observer.hpp"
+
+namespace adjoin {
+
+struct EnergyBalance {
+  double t = 0.0;
+  double input = 0.0, kinetic = 0.0, rod1 = 0.0, rod2 = 0.0, friction = 0.0, residual = 0.0;
+};
+
+class EnergyObserver final : public Observer {
+ public:
+  // keep_history: also keep the balance at every `every`-th grid point.
+  explicit EnergyObserver(bool keep_history = false, std::size_t every = 1)
+      : keep_history_(keep_history), every_(every == 0 ? 1 : every) {}
+  void begin(const RunInfo& info) override;
+  void observe(const State& s) override;
+  const EnergyBalance& balance() const { return balance_; }
+  const std::vector<EnergyBalance>& history() const { return history_; }
+
+ private:
+  bool keep_history_;
+  std::size_t every_;
+  double rho_ = 1.0;
+  std::size_t count_ = 0;
+  State previous_;
+  EnergyBalance balance_;
+  std::vector<EnergyBalance> history_;
+};
+
+}  // namespace adjoin

@@ -1,0 +1,43 @@
+#pragma once
+// Observers receive the solution as the solver produces it, one grid point at a time, so a
+// long run need not keep its whole history: each observer keeps only what it reports.
+//
+// Call order: begin(info) once, observe(state) for t_0 = 0, t_1, ..., t_N in order, then
+// end() once. States are in the solver's dimensionless units.
+#include <cstddef>
+#include <vector>
+
+#include "adjoin/model/parameters.hpp"
+#include "adjoin/observe/state.hpp"
+
+namespace adjoin {
+
+struct RunInfo {
+  Model model;
+  double h = 0.0;
+  std::size_t steps = 0;  // N: grid points t_0..t_N are observed
+};
+
+class Observer {
+ public:
+  virtual ~Observer() = default;
+  virtual void begin(const RunInfo& /*info*/) {}
+  virtual void observe(const State& state) = 0;
+  virtual void end() {}
+};
+
+// Fans every call out to a list of observers (not owned), in order.
+class ObserverList final : public Observer {
+ public:
+  ObserverList() = default;
+  explicit ObserverList(std::vector<Observer*> observers) : observers_(std::move(observers)) {}
+  void add(Observer* observer) { observers_.push_back(observer); }
+  void begin(const RunInfo& info) override { for (auto* o : observers_) o->begin(info); }
+  void observe(const State& state) override { for (auto* o : observers_) o->observe(state); }
+  void end() override { for (auto* o : observers_) o->end(); }
+
+ private:
+  std::vector<Observer*> observers_;
+};
+
+}  // namespace adjoin

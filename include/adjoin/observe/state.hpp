@@ -1,0 +1,23 @@
+#pragma once
+// What the solver reports at each grid point t_m = m h, in dimensionless units.
+#include <string>
+
+namespace adjoin {
+
+enum class Phase { stick, slip_right, slip_left };
+
+// "stick", "slip_right", "slip_left" (the words of SPEC §3).
+const char* to_string(Phase phase);
+
+struct State {
+  double t = 0.0;
+  double x1 = 0.0, x2 = 0.0;  // displacements relative to the base
+  double v1 = 0.0, v2 = 0.0;  // velocities relative to the base
+  double a1 = 0.0, a2 = 0.0;  // absolute accelerations x'' + u'' = x'' - a_g
+  double f1 = 0.0, f2 = 0.0;  // rod forces
+  double q = 0.0;             // damper force
+  double ag = 0.0;            // forcing a_g = -u''
+  Phase phase = Phase::stick;
+};
+
+}  // namespace adjoin

@@ -1,0 +1,36 @@
+#pragma once
+// The one entry point of the solver:
+//
+//     SolverSummary summary = simulate(options, model, ground, observer);
+//
+// integrates the model of SPEC §1 from rest at t = 0 to options.t_end on the grid
+// t_m = m h, and reports every grid point to `observer` as it goes. The model and the
+// options must be valid (IsValid); an invalid one is an InputError.
+//
+// Numerical trouble (a non-finite value, an explicit scheme beyond its stability bound)
+// throws NumericalError with the time and what to change; no non-finite value is ever
+// passed to an observer.
+//
+// The solver never reads files and never prints.
+#include <cstddef>
+#include <string>
+
+#include "adjoin/ground/ground_motion.hpp"
+#include "adjoin/model/parameters.hpp"
+#include "adjoin/observe/observer.hpp"
+#include "adjoin/solver/options.hpp"
+
+namespace adjoin {
+
+struct SolverSummary {
+  std::string scheme;
+  std::string history;
+  double h = 0.0;
+  std::size_t steps = 0;
+  double wall_seconds = 0.0;
+};
+
+SolverSummary simulate(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                       Observer& observer);
+
+}  // namespace adjoin

@@ -1,0 +1,68 @@
+// adjoin: the command-line program. Parses the command line, dispatches to a command and maps
+// failures to exit statuses: 0 success, 2 bad input, 3 numerical failure.
+#include <algorithm>
+#include <exception>
+#include <iostream>
+
+#include "adjoin/errors.hpp"
+#include "command.hpp"
+
+namespace adjoin::cli {
+
+std::vector<RegisteredCommand>& registry() {
+  static std::vector<RegisteredCommand> commands;
+  return commands;
+}
+
+Registration::Registration(int order, Setup setup) {
+  registry().push_back(RegisteredCommand{order, std::move(setup)});
+}
+
+}  // namespace adjoin::cli
+
+int main(int argc, char** argv) {
+  using namespace adjoin;
+  CLI::App app{"adjoin: earthquake response of two adjacent structures joined by a friction damper "
+               "and held by fractional viscoelastic rods"};
+  app.set_version_flag("--version", std::string("adjoin ") + ADJOIN_VERSION);
+  app.require_subcommand(1);
+
+  auto commands = cli::registry();
+  std::sort(commands.begin(), commands.end(),
+            [](const auto& a, const auto& b) { return a.order < b.order; });
+  std::vector<std::pair<CLI::App*, cli::Runner>> runners;
+  for (auto& command : commands) {
+    const std::size_t before = app.get_subcommands({}).size();
+    cli::Runner runner = command.setup(app);
+    auto subcommands = app.get_subcommands({});
+    if (subcommands.size() > before) runners.emplace_back(subcommands.back(), std::move(runner));
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "error: " << e.what() << " (see adjoin --help)\n";
+    return kExitInputError;
+  }
+
+  try {
+    for (auto& [sub, runner] : runners)
+      if (sub->parsed()) return runner();
+    return 0;
+  } catch (const InputError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return kExitInputError;
+  } catch (const NumericalError& e) {
+    std::cerr << "error: numerical failure: " << e.what() << "\n";
+    return kExitNumericalError;
+  } catch (const std::exception& e) {
+    std::cerr << "error: internal: " << e.what() << "\n";
+    return 1;
+  }
+}

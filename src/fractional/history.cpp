@@ -1,0 +1,24 @@
+#include "adjoin/fractional/history.hpp"
+
+#include "adjoin/fractional/direct_history.hpp"
+#include "adjoin/errors.hpp"
+
+namespace adjoin {
+
+std::string to_string(HistoryEngine engine) {
+  return engine == HistoryEngine::direct ? "direct" : "fft";
+}
+
+bool parse_history_engine(const std::string& name, HistoryEngine* engine) {
+  if (name == "direct") { *engine = HistoryEngine::direct; return true; }
+  if (name == "fft") { *engine = HistoryEngine::fft; return true; }
+  return false;
+}
+
+std::unique_ptr<ConvolutionHistory> make_history(HistoryEngine engine, std::vector<double> weights) {
+  if (engine == HistoryEngine::fft)
+    throw InputError("solver.history = \"fft\" is not available yet; use \"direct\"");
+  return std::make_unique<DirectHistory>(std::move(weights));
+}
+
+}  // namespace adjoin

@@ -1,0 +1,57 @@
+#include "adjoin/model/parameters.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace adjoin {
+namespace {
+
+std::string format(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
+
+bool fail(std::string* error, const std::string& message) {
+  if (error) *error = message;
+  return false;
+}
+
+}  // namespace
+
+bool Rod::IsValid(const std::string& prefix, std::string* error) const {
+  if (elastic) return true;
+  for (auto [key, value] : {std::pair{"order", order}, {"tau_x", tau_x}, {"tau_f", tau_f}})
+    if (!std::isfinite(value))
+      return fail(error, prefix + "." + key + " = " + format(value) + " must be a finite number");
+  if (!(order > 0.0 && order < 1.0))
+    return fail(error, prefix + ".order = " + format(order) +
+                           " must lie strictly between 0 and 1 (fractional Zener rod)");
+  if (!(tau_f > 0.0))
+    return fail(error, prefix + ".tau_f = " + format(tau_f) + " must be positive (second law)");
+  if (tau_x == tau_f)
+    return fail(error, prefix + ".tau_x = " + format(tau_x) + " equals tau_f = " + format(tau_f) +
+                           ": that rod is purely elastic; say so with " + prefix +
+                           ".elastic = true");
+  if (!(tau_x > tau_f))
+    return fail(error, prefix + ".tau_x = " + format(tau_x) + " must be greater than tau_f = " +
+                           format(tau_f) + " (second law)");
+  return true;
+}
+
+bool Model::IsValid(std::string* error) const {
+  for (auto [key, value] : {std::pair{"rho", rho}, {"eps", eps}, {"mu", mu}, {"gap0", gap0}})
+    if (!std::isfinite(value))
+      return fail(error, std::string("model.") + key + " = " + format(value) +
+                             " must be a finite number");
+  if (!(rho > 0.0))
+    return fail(error, "model.rho = " + format(rho) + " must be positive (mass ratio m1/m2)");
+  if (!(eps > 0.0))
+    return fail(error, "model.eps = " + format(eps) + " must be positive (stiffness ratio k2/k1)");
+  if (!(mu >= 0.0))
+    return fail(error, "model.mu = " + format(mu) + " must be zero or positive (slip force)");
+  return rod1.IsValid("model.rod1", error) && rod2.IsValid("model.rod2", error);
+}
+
+}  // namespace adjoin

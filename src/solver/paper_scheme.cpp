@@ -1,0 +1,155 @@
+// The paper's scheme, (3.1)/(3.2) of the seed paper with the misprint in (3.1) fixed
+// (the factor before f2's brace is 1/(1 + tau_f2 h^{-beta})).
+//
+// At each grid point t_m:
+//   1. rod forces f_m from x_m and the Grünwald–Letnikov history (3.1)_{1,2};
+//   2. the damper phase for the step from t_m to t_{m+1}, decided on the grid:
+//        stick : stays while |q_stick| < mu, q = q_stick; otherwise slip towards sign(q_stick);
+//        slip  : continues while the relative velocity keeps its sign; when it reaches zero or
+//                changes sign, sticks if |q_stick| <= mu (c = x1 - x2 frozen), otherwise slips
+//                towards sign(q_stick);
+//   3. explicit central differences: (3.1)_{3,4} in slip, (3.2) in stick.
+// The history runs from t = 0 across every phase change.
+//
+// Start: x_0 = 0 and x_1 = h^2 a_0 / 2 (central differences from rest). For the decaying sine
+// a_0 = 0, so x_1 = 0 as in the paper.
+#include <cmath>
+#include <sstream>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/fractional/weights.hpp"
+#include "rod_law.hpp"
+#include "schemes.hpp"
+
+namespace adjoin::detail {
+namespace {
+
+// Largest squared natural frequency the explicit step sees, at step h: each block on its own
+// rod (slip) and the two blocks together (stick), with the rods' instantaneous stiffness.
+double max_omega_squared(const Model& model, double h, HistoryEngine engine) {
+  auto stiffness = [&](const Rod& rod, double k) {
+    return RodLaw(rod, k, h, engine, {1.0}).stiffness();
+  };
+  const double k1 = stiffness(model.rod1, 1.0);
+  const double k2 = stiffness(model.rod2, model.eps);
+  double w2 = std::max(k1, model.rho * k2);
+  if (model.mu > 0.0) w2 = std::max(w2, model.rho / (model.rho + 1.0) * (k1 + k2));
+  return w2;
+}
+
+// Central differences are stable for h^2 omega^2 < 4; the rods stiffen as h shrinks, so the
+// bound is found by bisection on h.
+void check_stability(const SolverOptions& options, const Model& model) {
+  auto stable = [&](double h) { return h * h * max_omega_squared(model, h, options.history) < 4.0; };
+  if (stable(options.h)) return;
+  double lo = options.h, hi = options.h;
+  while (!stable(lo) && lo > 1e-300) lo *= 0.5;
+  for (int i = 0; i < 60; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (stable(mid) ? lo : hi) = mid;
+  }
+  std::ostringstream s;
+  s.precision(4);
+  s << "the paper scheme is unstable at solver.h = " << options.h
+    << ": explicit central differences need h < " << lo
+    << " for these rods and masses (h^2 omega_max^2 < 4); set solver.h below " << 0.9 * lo;
+  throw NumericalError(s.str(), 0.0);
+}
+
+}  // namespace
+
+void run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                      Observer& observer) {
+  check_stability(options, model);
+  const double h = options.h, h2 = h * h;
+  const std::size_t n = options.steps();
+  const double rho = model.rho, mu = model.mu;
+  const bool damper = mu > 0.0;
+
+  RodLaw rod1(model.rod1, 1.0, h, options.history,
+              model.rod1.elastic ? std::vector<double>{} : grunwald_letnikov_weights(model.rod1.order, n + 2));
+  RodLaw rod2(model.rod2, model.eps, h, options.history,
+              model.rod2.elastic ? std::vector<double>{} : grunwald_letnikov_weights(model.rod2.order, n + 2));
+
+  observer.begin(RunInfo{model, h, n});
+
+  // x_{m-1}, x_m, and the first step from rest.
+  double x1_prev = 0.0, x2_prev = 0.0, x1 = 0.0, x2 = 0.0;
+  Phase phase = Phase::stick;
+  double c = 0.0;  // x1 - x2, frozen while stuck
+  bool first = true;
+
+  for (std::size_t m = 0; m <= n; ++m) {
+    const double t = static_cast<double>(m) * h;
+    const double ag = ground.ag(t);
+    const double f1 = rod1.force(x1);
+    const double f2 = rod2.force(x2);
+    rod1.commit(x1, f1);
+    rod2.commit(x2, f2);
+
+    // The damper: decide the phase of the step t_m -> t_{m+1} and its force q_m.
+    double q = 0.0;
+    if (damper) {
+      const double q_stick = stick_force(model, f1, f2);
+      const Phase towards = q_stick > 0.0 ? Phase::slip_right : Phase::slip_left;
+      if (phase == Phase::stick) {
+        if (std::abs(q_stick) >= mu) phase = towards;
+      } else {
+        const double w = (x1 - x1_prev) - (x2 - x2_prev);  // relative velocity times h
+        const bool still_sliding = phase == Phase::slip_right ? w > 0.0 : w < 0.0;
+        if (!still_sliding && !first) {
+          if (std::abs(q_stick) <= mu) {
+            phase = Phase::stick;
+            c = x1 - x2;
+          } else {
+            phase = towards;
+          }
+        }
+      }
+      q = phase == Phase::stick ? q_stick : (phase == Phase::slip_right ? mu : -mu);
+    }
+
+    // Explicit central differences.
+    double a1, a2;  // absolute accelerations x'' - a_g
+    double x1_next, x2_next;
+    if (damper && phase == Phase::stick) {
+      a1 = a2 = -rho / (rho + 1.0) * (f1 + f2);
+      x1_next = (first ? x1 + 0.5 * h2 * (ag + a1) : 2.0 * x1 - x1_prev + h2 * (ag + a1));
+      x2_next = x1_next - c;
+    } else {
+      a1 = -f1 - q;
+      a2 = rho * (q - f2);
+      x1_next = first ? x1 + 0.5 * h2 * (ag + a1) : 2.0 * x1 - x1_prev + h2 * (ag + a1);
+      x2_next = first ? x2 + 0.5 * h2 * (ag + a2) : 2.0 * x2 - x2_prev + h2 * (ag + a2);
+    }
+    if (!std::isfinite(x1_next) || !std::isfinite(x2_next)) {
+      std::ostringstream s;
+      s << "non-finite displacement at t = " << t + h << " with the paper scheme at solver.h = " << h
+        << "; reduce solver.h";
+      throw NumericalError(s.str(), t + h);
+    }
+    if (first) { x1_prev = x1_next; x2_prev = x2_next; }  // x_{-1} = x_1 (at rest at t = 0)
+
+    State s;
+    s.t = t;
+    s.x1 = x1; s.x2 = x2;
+    s.v1 = (x1_next - x1_prev) / (2.0 * h);
+    s.v2 = (x2_next - x2_prev) / (2.0 * h);
+    s.a1 = a1; s.a2 = a2;
+    s.f1 = f1; s.f2 = f2; s.q = q; s.ag = ag;
+    if (damper) {
+      s.phase = phase;
+    } else {
+      const double w = s.v1 - s.v2;
+      s.phase = w > 0.0 ? Phase::slip_right : (w < 0.0 ? Phase::slip_left : Phase::stick);
+    }
+    observer.observe(s);
+
+    x1_prev = x1; x2_prev = x2;
+    x1 = x1_next; x2 = x2_next;
+    first = false;
+  }
+  observer.end();
+}
+
+}  // namespace adjoin::detail

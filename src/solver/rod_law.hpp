@@ -1,0 +1,58 @@
+#pragma once
+// A rod's constitutive law discretised by a convolution quadrature (internal to the solver).
+//
+//     f + tau_f D^g f = k (x + tau_x D^g x),   D^g z(t_m) ~ h^{-g} sum_j w_j z_{m-j}
+//
+// solved for the current force: with y = k tau_x x - tau_f f (one history channel),
+//
+//     f_m = [k (1 + tau_x w_0 h^{-g}) x_m + h^{-g} (sum_{j>=1} w_j y_{m-j} + extra)] /
+//           (1 + tau_f w_0 h^{-g})
+//
+// so f_m = stiffness() * x_m + offset(extra): affine in x_m, which lets implicit schemes fold
+// the rod into an effective stiffness. An elastic rod is f = k x with no history at all.
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "adjoin/fractional/history.hpp"
+#include "adjoin/model/parameters.hpp"
+
+namespace adjoin::detail {
+
+class RodLaw {
+ public:
+  // `weights` w_0..w_N of the quadrature for this rod's order (ignored for elastic rods).
+  RodLaw(const Rod& rod, double k, double h, HistoryEngine engine, std::vector<double> weights)
+      : k_(k), elastic_(rod.elastic), tau_x_(rod.tau_x), tau_f_(rod.tau_f) {
+    if (elastic_) { stiffness_ = k; return; }
+    const double hg = std::pow(h, -rod.order);
+    const double w0 = weights.empty() ? 1.0 : weights[0];
+    denominator_ = 1.0 + tau_f_ * w0 * hg;
+    stiffness_ = k * (1.0 + tau_x_ * w0 * hg) / denominator_;
+    history_scale_ = hg / denominator_;
+    history_ = make_history(engine, std::move(weights));
+  }
+
+  bool elastic() const { return elastic_; }
+  // df_m/dx_m: the instantaneous (effective) stiffness at this step size.
+  double stiffness() const { return stiffness_; }
+  // f_m - stiffness() x_m, given any extra history terms (starting corrections).
+  double offset(double extra = 0.0) const {
+    return elastic_ ? 0.0 : history_scale_ * (history_->lag_sum() + extra);
+  }
+  double force(double x, double extra = 0.0) const { return stiffness_ * x + offset(extra); }
+  // Records (x_m, f_m) in the history; call once per step, in order.
+  void commit(double x, double f) {
+    if (!elastic_) history_->push(k_ * tau_x_ * x - tau_f_ * f);
+  }
+  std::size_t bytes() const { return elastic_ ? 0 : history_->bytes(); }
+
+ private:
+  double k_;
+  bool elastic_;
+  double tau_x_, tau_f_;
+  double stiffness_ = 0.0, denominator_ = 1.0, history_scale_ = 0.0;
+  std::unique_ptr<ConvolutionHistory> history_;
+};
+
+}  // namespace adjoin::detail

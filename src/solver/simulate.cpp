@@ -1,0 +1,30 @@
+#include "adjoin/solver/simulate.hpp"
+
+#include <chrono>
+
+#include "adjoin/errors.hpp"
+#include "schemes.hpp"
+
+namespace adjoin {
+
+SolverSummary simulate(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                       Observer& observer) {
+  std::string error;
+  if (!model.IsValid(&error) || !options.IsValid(&error)) throw InputError(error);
+
+  const auto start = std::chrono::steady_clock::now();
+  switch (options.scheme) {
+    case Scheme::paper: detail::run_paper_scheme(options, model, ground, observer); break;
+  }
+  const auto stop = std::chrono::steady_clock::now();
+
+  SolverSummary summary;
+  summary.scheme = to_string(options.scheme);
+  summary.history = to_string(options.history);
+  summary.h = options.h;
+  summary.steps = options.steps();
+  summary.wall_seconds = std::chrono::duration<double>(stop - start).count();
+  return summary;
+}
+
+}  // namespace adjoin
