@@ -1,0 +1,397 @@
+#include "adjoin/io/scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <toml++/toml.h>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/ground/decaying_sine.hpp"
+
+namespace adjoin {
+namespace {
+
+enum class Kind { number, integer, string, boolean };
+
+struct KeySpec {
+  const char* path;
+  Kind kind;
+};
+
+// The scene schema. Ground keys are checked again against the chosen source.
+const std::vector<KeySpec>& schema() {
+  static const std::vector<KeySpec> keys = {
+      {"name", Kind::string},
+      {"model.units", Kind::string},
+      {"model.rho", Kind::number},        {"model.eps", Kind::number},
+      {"model.mu", Kind::number},         {"model.gap0", Kind::number},
+      {"model.m1", Kind::number},         {"model.m2", Kind::number},
+      {"model.k1", Kind::number},         {"model.k2", Kind::number},
+      {"model.slip_force", Kind::number},
+      {"model.rod1.order", Kind::number}, {"model.rod1.tau_x", Kind::number},
+      {"model.rod1.tau_f", Kind::number}, {"model.rod1.elastic", Kind::boolean},
+      {"model.rod2.order", Kind::number}, {"model.rod2.tau_x", Kind::number},
+      {"model.rod2.tau_f", Kind::number}, {"model.rod2.elastic", Kind::boolean},
+      {"ground.source", Kind::string},
+      {"ground.u0", Kind::number},        {"ground.omega", Kind::number},
+      {"ground.k", Kind::number},
+      {"solver.scheme", Kind::string},    {"solver.history", Kind::string},
+      {"solver.h", Kind::number},         {"solver.t_end", Kind::number},
+      {"output.timeseries", Kind::boolean}, {"output.every", Kind::integer},
+  };
+  return keys;
+}
+
+const std::vector<std::string> kTables = {"model", "model.rod1", "model.rod2", "ground", "solver",
+                                          "output"};
+
+// Which ground keys each source takes.
+const std::map<std::string, std::vector<std::string>>& ground_keys() {
+  static const std::map<std::string, std::vector<std::string>> keys = {
+      {"decaying-sine", {"u0", "omega", "k"}},
+  };
+  return keys;
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+std::string nearest(const std::string& key, const std::vector<std::string>& candidates) {
+  std::string best;
+  std::size_t best_distance = std::string::npos;
+  for (const auto& c : candidates) {
+    const std::size_t d = edit_distance(key, c);
+    if (d < best_distance) { best_distance = d; best = c; }
+  }
+  return best;
+}
+
+const char* kind_name(Kind kind) {
+  switch (kind) {
+    case Kind::number: return "a number";
+    case Kind::integer: return "an integer";
+    case Kind::string: return "a string";
+    case Kind::boolean: return "true or false";
+  }
+  return "?";
+}
+
+std::string format_number(double v) {
+  std::ostringstream s;
+  s.precision(12);
+  s << v;
+  return s.str();
+}
+
+// Reads typed values out of the parsed (and overridden) TOML, and words errors with the file
+// and line of the key, or the --set option that put it there.
+class SceneReader {
+ public:
+  SceneReader(toml::table table, std::string name, std::map<std::string, std::string> origins)
+      : table_(std::move(table)), name_(std::move(name)), origins_(std::move(origins)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+    throw InputError(where(key) + message);
+  }
+
+  // "FILE:LINE: " for the key (or its nearest existing parent), or "--set K=V: ".
+  std::string where(const std::string& key) const {
+    for (std::string k = key; !k.empty();) {
+      if (auto it = origins_.find(k); it != origins_.end()) return it->second + ": ";
+      if (auto node = table_.at_path(k); node) {
+        const auto& source = node.node()->source();
+        if (source.begin.line > 0) return name_ + ":" + std::to_string(source.begin.line) + ": ";
+      }
+      const auto dot = k.rfind('.');
+      k = dot == std::string::npos ? std::string() : k.substr(0, dot);
+    }
+    return name_ + ": ";
+  }
+
+  bool has(const std::string& key) const { return static_cast<bool>(table_.at_path(key)); }
+
+  double number(const std::string& key) const {
+    auto node = table_.at_path(key);
+    if (!node) fail(key, "missing key " + key + " (a number)");
+    return *node.value<double>();  // types were checked against the schema
+  }
+  double number(const std::string& key, double fallback) const {
+    return has(key) ? number(key) : fallback;
+  }
+  std::string string(const std::string& key, const std::string& fallback) const {
+    auto node = table_.at_path(key);
+    return node ? *node.value<std::string>() : fallback;
+  }
+  bool boolean(const std::string& key, bool fallback) const {
+    auto node = table_.at_path(key);
+    return node ? *node.value<bool>() : fallback;
+  }
+  std::int64_t integer(const std::string& key, std::int64_t fallback) const {
+    auto node = table_.at_path(key);
+    return node ? *node.value<std::int64_t>() : fallback;
+  }
+  const toml::table& table() const { return table_; }
+
+ private:
+  toml::table table_;
+  std::string name_;
+  std::map<std::string, std::string> origins_;
+};
+
+std::vector<std::string> all_known_keys() {
+  std::vector<std::string> keys;
+  for (const auto& k : schema()) keys.emplace_back(k.path);
+  return keys;
+}
+
+// Every key must be known and of the expected type.
+void check_keys(const SceneReader& reader, const toml::table& table, const std::string& prefix) {
+  for (const auto& [key, node] : table) {
+    const std::string path = prefix.empty() ? std::string(key.str()) : prefix + "." + std::string(key.str());
+    if (node.is_table()) {
+      if (std::find(kTables.begin(), kTables.end(), path) == kTables.end()) {
+        std::vector<std::string> candidates = kTables;
+        for (const auto& k : schema()) candidates.emplace_back(k.path);
+        reader.fail(path, "unknown section [" + path + "]; did you mean " + nearest(path, candidates) + "?");
+      }
+      check_keys(reader, *node.as_table(), path);
+      continue;
+    }
+    auto spec = std::find_if(schema().begin(), schema().end(),
+                             [&](const KeySpec& s) { return path == s.path; });
+    if (spec == schema().end()) {
+      if (std::find(kTables.begin(), kTables.end(), path) != kTables.end())
+        reader.fail(path, path + " must be a table ([" + path + "])");
+      reader.fail(path, "unknown key " + path + "; did you mean " + nearest(path, all_known_keys()) + "?");
+    }
+    bool ok = false;
+    switch (spec->kind) {
+      case Kind::number: ok = node.is_floating_point() || node.is_integer(); break;
+      case Kind::integer: ok = node.is_integer(); break;
+      case Kind::string: ok = node.is_string(); break;
+      case Kind::boolean: ok = node.is_boolean(); break;
+    }
+    if (!ok) reader.fail(path, path + " must be " + kind_name(spec->kind));
+  }
+}
+
+// Splits "a.b.c=value" and puts the TOML value (or a bare string) at that path.
+void apply_override(toml::table& table, const std::string& text, std::map<std::string, std::string>& origins) {
+  const auto eq = text.find('=');
+  const std::string origin = "--set " + text;
+  if (eq == std::string::npos || eq == 0)
+    throw InputError(origin + ": expected KEY=VALUE with a dotted key, e.g. solver.h=0.001");
+  std::string key = text.substr(0, eq);
+  const std::string value = text.substr(eq + 1);
+  toml::table holder;
+  try {
+    holder = toml::parse("v = " + value);
+  } catch (const toml::parse_error&) {
+    holder = toml::table{};
+    holder.insert("v", value);  // a bare word: a string
+  }
+  std::vector<std::string> parts;
+  std::stringstream stream(key);
+  for (std::string part; std::getline(stream, part, '.');) {
+    if (part.empty()) throw InputError(origin + ": empty component in key '" + key + "'");
+    parts.push_back(part);
+  }
+  toml::table* current = &table;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    auto* next = current->get(parts[i]);
+    if (!next) {
+      current->insert(parts[i], toml::table{});
+      next = current->get(parts[i]);
+    }
+    if (!next->is_table()) throw InputError(origin + ": " + parts[i] + " is not a table");
+    current = next->as_table();
+  }
+  current->insert_or_assign(parts.back(), *holder.get("v"));
+  origins[key] = origin;
+}
+
+Rod read_rod(const SceneReader& r, const std::string& prefix, double time_scale) {
+  Rod rod;
+  rod.elastic = r.boolean(prefix + ".elastic", false);
+  if (rod.elastic) {
+    for (const char* k : {".order", ".tau_x", ".tau_f"})
+      if (r.has(prefix + k))
+        r.fail(prefix + k, prefix + k + " is not used by an elastic rod (" + prefix +
+                               ".elastic = true); remove it");
+    return rod;
+  }
+  rod.order = r.number(prefix + ".order");
+  rod.tau_x = r.number(prefix + ".tau_x");
+  rod.tau_f = r.number(prefix + ".tau_f");
+  // SI relaxation times [s^order] -> dimensionless: tau T0^{-order} (one time scale for both rods).
+  if (time_scale != 1.0 && rod.order > 0.0 && rod.order < 1.0) {
+    const double factor = std::pow(time_scale, -rod.order);
+    rod.tau_x *= factor;
+    rod.tau_f *= factor;
+  }
+  return rod;
+}
+
+std::string rod_key_of(const std::string& message) {
+  for (const char* key : {"model.rod1.order", "model.rod1.tau_x", "model.rod1.tau_f",
+                          "model.rod2.order", "model.rod2.tau_x", "model.rod2.tau_f", "model.rho",
+                          "model.eps", "model.mu", "model.gap0"})
+    if (message.rfind(key, 0) == 0) return key;
+  return "model";
+}
+
+Scene build_scene(const SceneReader& r, const std::string& name) {
+  Scene scene;
+  scene.name = r.string("name", "");
+  if (scene.name.empty()) {
+    scene.name = std::filesystem::path(name).stem().string();
+    if (scene.name.empty()) scene.name = "scene";
+  }
+  for (const auto& table : {"model", "ground", "solver"})
+    if (!r.has(table)) r.fail(table, std::string("missing section [") + table + "]");
+
+  // ---- model, in the scene's units ----
+  const std::string units = r.string("model.units", "dimensionless");
+  const std::vector<std::string> dimensionless_only = {"model.rho", "model.eps", "model.mu"};
+  const std::vector<std::string> si_only = {"model.m1", "model.m2", "model.k1", "model.k2",
+                                            "model.slip_force"};
+  Model& m = scene.model;
+  if (units == "dimensionless") {
+    for (const auto& k : si_only)
+      if (r.has(k)) r.fail(k, k + " belongs to SI scenes; this scene has model.units = \"dimensionless\" (use model.rho, model.eps, model.mu)");
+    scene.scales = Scales::Dimensionless();
+    m.rho = r.number("model.rho");
+    m.eps = r.number("model.eps");
+    m.mu = r.number("model.mu");
+    m.gap0 = r.number("model.gap0");
+  } else if (units == "SI") {
+    for (const auto& k : dimensionless_only)
+      if (r.has(k)) r.fail(k, k + " belongs to dimensionless scenes; an SI scene gives model.m1, m2, k1, k2 and slip_force");
+    const double m1 = r.number("model.m1"), m2 = r.number("model.m2");
+    const double k1 = r.number("model.k1"), k2 = r.number("model.k2");
+    const double slip = r.number("model.slip_force");
+    for (auto [key, value] : {std::pair{"model.m1", m1}, {"model.m2", m2}, {"model.k1", k1}, {"model.k2", k2}})
+      if (!(std::isfinite(value) && value > 0.0))
+        r.fail(key, std::string(key) + " = " + format_number(value) + " must be positive");
+    if (!(std::isfinite(slip) && slip >= 0.0))
+      r.fail("model.slip_force", "model.slip_force = " + format_number(slip) + " must be zero or positive [N]");
+    scene.scales = Scales::SI(m1, k1);
+    m.rho = m1 / m2;
+    m.eps = k2 / k1;
+    m.mu = slip / (m1 * kStandardGravity);
+    m.gap0 = r.number("model.gap0") / scene.scales.length;
+  } else {
+    r.fail("model.units", "model.units = \"" + units + "\" must be \"dimensionless\" or \"SI\"");
+  }
+  for (const char* rod : {"model.rod1", "model.rod2"})
+    if (!r.has(rod)) r.fail(rod, std::string("missing section [") + rod + "]");
+  m.rod1 = read_rod(r, "model.rod1", scene.scales.time);
+  m.rod2 = read_rod(r, "model.rod2", scene.scales.time);
+  std::string error;
+  if (!m.IsValid(&error)) {
+    // Word SI relaxation times back in the user's units by re-checking the raw values.
+    const std::string key = rod_key_of(error);
+    if (scene.scales.si && key.find(".tau_") != std::string::npos) {
+      const std::string prefix = key.substr(0, key.rfind('.'));
+      error = prefix + ".tau_x = " + format_number(r.number(prefix + ".tau_x")) +
+              " must be greater than tau_f = " + format_number(r.number(prefix + ".tau_f")) +
+              " (second law)";
+      if (!(r.number(prefix + ".tau_f") > 0.0))
+        error = prefix + ".tau_f = " + format_number(r.number(prefix + ".tau_f")) + " must be positive (second law)";
+    }
+    r.fail(key, error);
+  }
+
+  // ---- ground motion ----
+  const std::string source = r.string("ground.source", "");
+  if (source.empty()) r.fail("ground", "missing key ground.source (\"decaying-sine\", \"record\" or \"filtered-noise\")");
+  auto allowed = ground_keys().find(source);
+  if (allowed == ground_keys().end()) {
+    std::vector<std::string> names;
+    for (const auto& [n, keys] : ground_keys()) names.push_back(n);
+    r.fail("ground.source", "ground.source = \"" + source + "\" is not a known source; did you mean \"" +
+                                nearest(source, names) + "\"?");
+  }
+  for (const auto& [key, node] : *r.table()["ground"].as_table()) {
+    const std::string k(key.str());
+    if (k != "source" && std::find(allowed->second.begin(), allowed->second.end(), k) == allowed->second.end())
+      r.fail("ground." + k, "ground." + k + " is not a key of source \"" + source + "\"");
+  }
+  if (source == "decaying-sine") {
+    const double u0 = r.number("ground.u0"), omega = r.number("ground.omega"), k = r.number("ground.k");
+    for (auto [key, value] : {std::pair{"ground.u0", u0}, {"ground.omega", omega}, {"ground.k", k}})
+      if (!std::isfinite(value)) r.fail(key, std::string(key) + " must be a finite number");
+    if (!(k >= 0.0)) r.fail("ground.k", "ground.k = " + format_number(k) + " must be zero or positive (decay rate)");
+    const Scales& s = scene.scales;  // SI: u0 [m], omega [rad/s], k [1/s]
+    scene.ground = std::make_shared<DecayingSine>(u0 / s.length, omega * s.time, k * s.time);
+  }
+
+  // ---- solver ----
+  SolverOptions& o = scene.solver;
+  const std::string scheme = r.string("solver.scheme", to_string(o.scheme));
+  if (!parse_scheme(scheme, &o.scheme))
+    r.fail("solver.scheme", "solver.scheme = \"" + scheme + "\" is not a scheme; expected one of " + scheme_names());
+  const std::string history = r.string("solver.history", to_string(o.history));
+  if (!parse_history_engine(history, &o.history))
+    r.fail("solver.history", "solver.history = \"" + history + "\" must be \"direct\" or \"fft\"");
+  o.h = r.number("solver.h") / scene.scales.time;
+  o.t_end = r.number("solver.t_end") / scene.scales.time;
+  if (!o.IsValid(&error)) r.fail(error.substr(0, error.find(' ')), error);
+
+  // ---- output ----
+  scene.output.timeseries = r.boolean("output.timeseries", false);
+  const std::int64_t every = r.integer("output.every", 1);
+  if (every < 1) r.fail("output.every", "output.every = " + std::to_string(every) + " must be 1 or more");
+  scene.output.every = static_cast<std::size_t>(every);
+  return scene;
+}
+
+}  // namespace
+
+const std::vector<std::string>& known_scene_keys() {
+  static const std::vector<std::string> keys = all_known_keys();
+  return keys;
+}
+
+Scene parse_scene(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
+  toml::table table;
+  try {
+    table = toml::parse(text, name);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream s;
+    s << name << ":" << e.source().begin.line << ": not valid TOML: " << e.description();
+    throw InputError(s.str());
+  }
+  std::map<std::string, std::string> origins;
+  for (const auto& o : overrides) apply_override(table, o, origins);
+  SceneReader reader(std::move(table), name, std::move(origins));
+  check_keys(reader, reader.table(), "");
+  return build_scene(reader, name);
+}
+
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string() + ": cannot open the scene file");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  Scene scene = parse_scene(buffer.str(), file.string(), overrides);
+  scene.file = file;
+  return scene;
+}
+
+}  // namespace adjoin

@@ -1,0 +1,44 @@
+#include "adjoin/io/timeseries_csv.hpp"
+
+#include <charconv>
+
+namespace adjoin {
+
+TimeSeriesCsvWriter::TimeSeriesCsvWriter(std::ostream& out, const Scales& scales, std::size_t every)
+    : out_(out), scales_(scales), every_(every == 0 ? 1 : every) {}
+
+void TimeSeriesCsvWriter::begin(const RunInfo& info) {
+  steps_ = info.steps;
+  count_ = 0;
+  gap0_ = info.model.gap0;
+  buffer_.clear();
+  buffer_.reserve(1 << 16);
+  out_ << "t,x1,x2,v1,v2,f1,f2,q,ag,gap,phase\n";
+}
+
+void TimeSeriesCsvWriter::observe(const State& s) {
+  const std::size_t index = count_++;
+  if (index % every_ != 0 && index != steps_) return;
+  const Scales& k = scales_;
+  const double values[] = {s.t * k.time,     s.x1 * k.length,   s.x2 * k.length,
+                           s.v1 * k.velocity, s.v2 * k.velocity, s.f1 * k.force,
+                           s.f2 * k.force,   s.q * k.force,     s.ag * k.acceleration,
+                           (gap0_ + s.x2 - s.x1) * k.length};
+  char number[32];
+  for (double v : values) {
+    auto [end, ec] = std::to_chars(number, number + sizeof number, v);
+    buffer_.append(number, end);
+    buffer_.push_back(',');
+  }
+  buffer_.append(to_string(s.phase));
+  buffer_.push_back('\n');
+  if (buffer_.size() > (1 << 16) - 512) { out_ << buffer_; buffer_.clear(); }
+}
+
+void TimeSeriesCsvWriter::end() {
+  out_ << buffer_;
+  buffer_.clear();
+  out_.flush();
+}
+
+}  // namespace adjoin
