@@ -24,6 +24,10 @@ struct SolverOptions {
   HistoryEngine history = HistoryEngine::direct;
   double h = 0.002;      // dimensionless time step
   double t_end = 16.0;   // dimensionless horizon
+  // Explicit schemes refuse a step beyond their stability bound before they start. Turning
+  // this off is for verifying the bound itself (the run then blows up or stops on a
+  // non-finite value); not settable from scenes.
+  bool stability_check = true;
 
   // Number of steps N: the smallest with N h >= t_end. The grid is t_m = m h, m = 0..N.
   std::size_t steps() const;
