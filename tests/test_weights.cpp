@@ -1,0 +1,95 @@
+// Grünwald–Letnikov weights against their closed form, and the GL derivative of t^p against
+// the exact fractional derivative: error small and first order in h.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <initializer_list>
+#include <vector>
+
+#include "adjoin/fractional/weights.hpp"
+
+using adjoin::grunwald_letnikov_weights;
+
+namespace {
+
+// ln Gamma(j - g) - ln Gamma(j + 1) for an integer j, accurate in the difference itself:
+// lgamma of each would lose ~1e-10 relative at j = 1e5 because both values are ~1e6. Small j
+// by tgamma directly; large j by Stirling's series with the logarithms combined so that
+// nothing large cancels:
+//   (z1 - 1/2) ln z1 - (z2 - 1/2) ln z2 - (z1 - z2) = (z1 - 1/2) log1p(d/z2) + d ln z2 - d
+// with z1 = j - g, z2 = j + 1, d = z1 - z2 = -(1 + g).
+long double log_gamma_ratio(std::size_t j, long double g) {
+  const long double jj = static_cast<long double>(j);
+  if (j < 30) return std::log(std::abs(std::tgamma(jj - g) / std::tgamma(jj + 1.0L)));
+  const long double d = -(1.0L + g);
+  const long double z1 = jj - g, z2 = jj + 1.0L;
+  auto stirling_tail = [](long double z) {  // sum B_2k / (2k (2k-1) z^{2k-1}), k = 1..5
+    const long double r = 1.0L / (z * z);
+    return (1.0L / 12 - r * (1.0L / 360 - r * (1.0L / 1260 - r * (1.0L / 1680 - r / 1188)))) / z;
+  };
+  return (z1 - 0.5L) * std::log1p(d / z2) + d * std::log(z2) - d + stirling_tail(z1) -
+         stirling_tail(z2);
+}
+
+// w_j = Gamma(j - g) / (Gamma(-g) Gamma(j + 1)), in long double; 0 < g < 1, so only
+// Gamma(-g) < 0 carries a sign.
+double closed_form_weight(std::size_t j, double g) {
+  if (j == 0) return 1.0;
+  const long double lg = g;
+  return static_cast<double>(std::exp(log_gamma_ratio(j, lg)) / std::tgamma(-lg));
+}
+
+}  // namespace
+
+TEST_CASE("GL weights match Gamma(j-g)/(Gamma(-g) Gamma(j+1)) up to j = 1e5", "[weights]") {
+  constexpr std::size_t count = 100001;
+  for (double g : {0.01, 0.23, 0.5, 0.53, 0.99}) {
+    const std::vector<double> w = grunwald_letnikov_weights(g, count);
+    REQUIRE(w.size() == count);
+    CHECK(w[0] == 1.0);
+    CHECK(w[1] == Approx(-g).epsilon(1e-15));
+    double worst = 0.0;
+    for (std::size_t j = 1; j < count; ++j)
+      worst = std::max(worst, std::abs(w[j] / closed_form_weight(j, g) - 1.0));
+    INFO("order " << g << ": max relative error " << worst);
+    CHECK(worst < 1e-13);
+    // Every weight past w_0 has the sign of -g (the recurrence never crosses zero).
+    CHECK(*std::max_element(w.begin() + 1, w.end()) < 0.0);
+  }
+}
+
+TEST_CASE("GL weights: degenerate counts and integer order", "[weights]") {
+  CHECK(grunwald_letnikov_weights(0.5, 0).empty());
+  CHECK(grunwald_letnikov_weights(0.5, 1) == std::vector<double>{1.0});
+  // Order 1: (1 - zeta)^1 = 1 - zeta, the backward difference.
+  const auto w = grunwald_letnikov_weights(1.0, 5);
+  CHECK(w == std::vector<double>{1.0, -1.0, 0.0, 0.0, 0.0});
+}
+
+TEST_CASE("GL derivative of t^p converges at first order", "[weights]") {
+  struct Case { double g, p; };
+  for (const Case c : {Case{0.5, 1.0}, Case{0.23, 2.0}, Case{0.53, 1.5}, Case{0.9, 3.0}}) {
+    // D^g t^p = Gamma(p + 1) / Gamma(p + 1 - g) t^{p - g}; evaluated at t = 1.
+    const double exact = std::tgamma(c.p + 1.0) / std::tgamma(c.p + 1.0 - c.g);
+    std::vector<double> errors;
+    for (std::size_t m : {100u, 200u, 400u, 800u, 1600u, 3200u, 6400u}) {
+      const double h = 1.0 / static_cast<double>(m);
+      const std::vector<double> w = grunwald_letnikov_weights(c.g, m + 1);
+      double sum = 0.0;
+      for (std::size_t j = 0; j <= m; ++j)
+        sum += w[j] * std::pow(static_cast<double>(m - j) * h, c.p);
+      errors.push_back(std::abs(std::pow(h, -c.g) * sum - exact));
+    }
+    for (std::size_t i = 1; i < errors.size(); ++i) {
+      const double order = std::log2(errors[i - 1] / errors[i]);
+      INFO("g = " << c.g << ", p = " << c.p << ", h = 1/" << (100u << i) << ": error "
+                  << errors[i] << ", observed order " << order);
+      CHECK(order > 0.9);
+      CHECK(order < 1.1);
+    }
+    // First order with a modest constant: the finest error is at most a few times h.
+    CHECK(errors.back() < 2.0 / 6400.0);
+  }
+}
