@@ -1,0 +1,70 @@
+#pragma once
+// Readers for recorded accelerograms: files in, Record (accelerations in m/s^2) out.
+//
+// Formats
+//  - at2: PEER AT2, every header generation: any number of free-text header lines, then a
+//    line with NPTS and DT ("NPTS=  7814, DT=   .0050 SEC," with or without the trailing comma,
+//    or the older "  2000   0.0200   NPTS, DT"), then NPTS values in any fixed or free layout
+//    (5E15.7, 8F10.5, ...; F-format values that touch, "-0.12345-0.23456", are split at the
+//    sign). Units come from the header ("... IN UNITS OF G", "CM/SEC/SEC", or a unit word on
+//    an acceleration line such as "Acceleration (g)"). If `units` is given too, it must agree.
+//  - one_column: one value per line; the step `dt` must be given.
+//  - two_column: time and acceleration per line, separated by blanks/tabs (or by ',' or ';'
+//    when the first data line uses one; `delimiter` forces it). dt comes from the time column.
+//  - delimited: a header line of column names, then rows (CSV, ';', tab or blank separated;
+//    `delimiter` 0 guesses from the header: ',' then ';' then tab then blanks). Columns are
+//    chosen by name (case-insensitive) or 1-based index in time_column / accel_column.
+//    Defaults: time = a column named t, time... (or column 1 of two); acceleration = the
+//    other of two columns, or one whose name starts with "acc" or is "a". If `dt` is given
+//    and time_column is not, no time column is used. Units may be written in the
+//    acceleration column's name: "acc [g]", "a (m/s2)".
+//  - automatic: at2 if "NPTS" appears in the first ten lines (or the name ends in .at2);
+//    otherwise the first data line decides: one number -> one_column, two -> two_column,
+//    anything that is not a number -> delimited with a header.
+//
+// Everywhere except inside AT2 headers, blank lines and lines starting with '#' or '%' are
+// skipped; CRLF line ends and a UTF-8 byte-order mark are accepted. Numbers are parsed with
+// std::from_chars (Fortran 'D' exponents accepted).
+//
+// Time columns: dt = (t_last - t_first) / (n - 1). Times must increase strictly, and every
+// step must equal the median step within 1e-6 of it plus the rounding of the two printed
+// times (half a unit in the last printed decimal of each: "0.02000" -> 0.5e-5; at most a
+// quarter step), so rounding in print is accepted but a missing or repeated sample is not. A time column that does not start at 0
+// is shifted: the Record starts at the first sample (noted in the description).
+//
+// Units: two-column, one-column and delimited files carry none unless the column name says
+// them; the caller must give `units` (error otherwise).
+//
+// Every defect is an InputError "FILE:LINE: what was found (what was expected)": non-numeric
+// tokens, NaN or infinite values, times not increasing or not uniform, NPTS different from
+// the number of values, empty or truncated files, missing units or dt.
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "adjoin/ground/record.hpp"
+
+namespace adjoin {
+
+struct RecordFormat {
+  enum class Kind { automatic, at2, one_column, two_column, delimited };
+  Kind kind = Kind::automatic;
+  std::optional<AccelUnit> units;  // required unless the file says them
+  std::optional<double> dt;        // s; one column (and delimited files without a time column)
+  std::string time_column, accel_column;  // delimited: header name or 1-based index
+  char delimiter = 0;                     // 0: guess
+};
+
+// "auto", "at2", "one-column", "two-column", "delimited" (also "csv"); false if unknown.
+bool parse_record_kind(const std::string& name, RecordFormat::Kind* kind);
+std::string to_string(RecordFormat::Kind kind);
+
+// Reads a file (InputError if it cannot be read or is malformed). Record::source is the path.
+Record read_record(const std::filesystem::path& path, const RecordFormat& format = {});
+
+// Parses text already in memory; `name` is used as the file name in messages and as source.
+// The automatic format looks at `name`'s extension like read_record does.
+Record parse_record(std::string_view text, const std::string& name, const RecordFormat& format = {});
+
+}  // namespace adjoin
