@@ -71,7 +71,7 @@ TEST_CASE("the paper-strong scene reads back as the paper's parameters", "[scene
   CHECK(sine->k() == 0.5);
 }
 
-TEST_CASE("--set overrides any key by dotted path, with TOML values", "[scene]") {
+TEST_CASE("overrides (--set) replace any key by dotted path, with TOML values", "[scene]") {
   const Scene s = parse_scene(kStrong, "x.toml",
                               {"solver.h=0.001", "model.rod2.tau_f=0.25", "name=renamed", "output.timeseries=false"});
   CHECK(s.solver.h == 0.001);
