@@ -1,0 +1,306 @@
+// adjoin spectrum RECORD [--units g|m/s2|cm/s2|mm/s2] [--format KIND] [--dt S]
+//                        [--damping 0.05[,0.02...]] [--periods LIST | --range T0:T1:N[:log|lin]]
+//                        [--free-vibration] [--threads N] [--out FILE] [--plot FILE.png|.svg]
+//
+// Elastic response spectra of a recorded accelerogram (SPEC §3): CSV with header
+// `period,damping,sd,sv,sa,psv,psa` (s, ratio, m, m/s, g, m/s, g), one row per damping and
+// period, to FILE (temporary file and rename) or stdout. --plot draws PSA and SD against
+// period with gnuplot. Without gnuplot on PATH the CSV is still written and the command
+// fails (exit 1) with a message saying so.
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/ground/record_file.hpp"
+#include "adjoin/io/atomic_file.hpp"
+#include "adjoin/post/spectrum.hpp"
+#include "command.hpp"
+
+extern char** environ;
+
+namespace adjoin::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct SpectrumArgs {
+  std::string record;
+  std::string units;
+  std::string format;
+  double dt = 0.0;
+  std::string damping = "0.05";
+  std::string periods;
+  std::string range;
+  bool free_vibration = false;
+  unsigned threads = 0;
+  std::string out;
+  std::string plot;
+};
+
+std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(text);
+  while (std::getline(in, part, separator)) parts.push_back(part);
+  if (!text.empty() && text.back() == separator) parts.emplace_back();
+  return parts;
+}
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t");
+  return s.substr(b, e - b + 1);
+}
+
+bool parse_number(const std::string& token, double* value) {
+  const std::string t = trim(token);
+  if (t.empty()) return false;
+  const char* first = t.data();
+  if (*first == '+') ++first;
+  const auto [ptr, ec] = std::from_chars(first, t.data() + t.size(), *value);
+  return ec == std::errc() && ptr == t.data() + t.size() && std::isfinite(*value);
+}
+
+std::vector<double> parse_list(const std::string& option, const std::string& text, const std::string& expected) {
+  std::vector<double> values;
+  for (const std::string& token : split(text, ',')) {
+    double v = 0.0;
+    if (!parse_number(token, &v))
+      throw InputError(option + " " + text + ": '" + trim(token) + "' is not a number (expected " + expected + ")");
+    values.push_back(v);
+  }
+  if (values.empty()) throw InputError(option + ": empty list (expected " + expected + ")");
+  return values;
+}
+
+std::vector<double> parse_range(const std::string& text) {
+  const std::string expected = "T0:T1:N[:log|lin], e.g. 0.02:5:100:log, with 0 <= T0 < T1 (T0 > 0 for log) and N >= 2";
+  const std::vector<std::string> parts = split(text, ':');
+  if (parts.size() != 3 && parts.size() != 4) throw InputError("--range " + text + ": expected " + expected);
+  double first = 0.0, last = 0.0, count = 0.0;
+  if (!parse_number(parts[0], &first) || !parse_number(parts[1], &last) || !parse_number(parts[2], &count))
+    throw InputError("--range " + text + ": not numbers (expected " + expected + ")");
+  PeriodSpacing spacing = PeriodSpacing::log;
+  if (parts.size() == 4) {
+    const std::string s = trim(parts[3]);
+    if (s == "log") spacing = PeriodSpacing::log;
+    else if (s == "lin" || s == "linear") spacing = PeriodSpacing::linear;
+    else throw InputError("--range " + text + ": unknown spacing '" + s + "' (expected log or lin)");
+  }
+  if (!(first >= 0.0 && first < last) || count < 2.0 || count != std::floor(count) || count > 1e6 ||
+      (spacing == PeriodSpacing::log && first <= 0.0))
+    throw InputError("--range " + text + ": expected " + expected);
+  return period_range(first, last, static_cast<std::size_t>(count), spacing);
+}
+
+void write_csv(std::ostream& out, const ResponseSpectrum& spectrum) {
+  out << "period,damping,sd,sv,sa,psv,psa\n";
+  char line[256];
+  for (const SpectralValues& v : spectrum.values) {
+    std::snprintf(line, sizeof line, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", v.period, v.damping, v.sd,
+                  v.sv, v.sa, v.psv, v.psa);
+    out << line;
+  }
+}
+
+// A temporary file removed when it goes out of scope.
+struct TempFile {
+  fs::path path;
+  ~TempFile() {
+    std::error_code ignored;
+    if (!path.empty()) fs::remove(path, ignored);
+  }
+};
+
+fs::path temporary_beside(const fs::path& target, const std::string& suffix) {
+  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
+  return dir / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()) + suffix);
+}
+
+std::string gnuplot_quote(const std::string& s) {
+  std::string out = "'";
+  for (char c : s) {
+    if (c == '\'') out += "''";
+    else out += c;
+  }
+  return out + "'";
+}
+
+// Draws PSA and SD against period. Returns 0, or 1 after printing why (gnuplot missing/failed).
+int plot_spectrum(const ResponseSpectrum& spectrum, const fs::path& target, const std::string& title,
+                  const std::string& csv_note) {
+  const bool svg = target.extension() == ".svg";
+  TempFile data{temporary_beside(target, ".dat")};
+  TempFile script{temporary_beside(target, ".gp")};
+  TempFile image{temporary_beside(target, svg ? ".svg" : ".png")};
+  {
+    std::ofstream out(data.path);
+    const std::size_t np = spectrum.periods.size();
+    for (std::size_t d = 0; d < spectrum.dampings.size(); ++d) {
+      if (d > 0) out << "\n\n";
+      out << "# damping " << spectrum.dampings[d] << ": period[s] psa[g] sd[m]\n";
+      for (std::size_t i = 0; i < np; ++i) {
+        const SpectralValues& v = spectrum.at(d, i);
+        if (v.period > 0.0) out << v.period << ' ' << v.psa << ' ' << v.sd << '\n';
+      }
+    }
+    if (!out) throw InputError(data.path.string() + ": cannot write the plot's data file");
+  }
+  {
+    std::ofstream out(script.path);
+    if (svg) {
+      out << "set terminal svg size 900,900 dynamic enhanced font 'Sans,11'\n";
+    } else {
+      out << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900,900 enhanced "
+             "font 'Sans,10' } else { set terminal png size 900,900 }\n";
+    }
+    out << "set output " << gnuplot_quote(image.path.string()) << "\n"
+        << "set datafile commentschars '#'\n"
+        << "set multiplot layout 2,1 title " << gnuplot_quote("Elastic response spectra: " + title) << " noenhanced\n"
+        << "set logscale x\nset grid xtics mxtics ytics\nset format x '%g'\nset key top right\n"
+        << "set xlabel 'Period T [s]'\n";
+    auto plot_command = [&](int column) {
+      out << "plot ";
+      for (std::size_t d = 0; d < spectrum.dampings.size(); ++d) {
+        char label[64];
+        std::snprintf(label, sizeof label, "damping %g %%", spectrum.dampings[d] * 100.0);
+        out << (d ? ", " : "") << gnuplot_quote(data.path.string()) << " index " << d << " using 1:" << column
+            << " with lines linewidth 2 title " << gnuplot_quote(label);
+      }
+      out << "\n";
+    };
+    out << "set ylabel 'Pseudo-spectral acceleration PSA [g]'\n";
+    plot_command(2);
+    out << "set ylabel 'Spectral displacement SD [m]'\n";
+    plot_command(3);
+    out << "unset multiplot\nset output\n";
+    if (!out) throw InputError(script.path.string() + ": cannot write the plot's gnuplot script");
+  }
+
+  std::string program = "gnuplot";
+  std::string script_arg = script.path.string();
+  char* argv[] = {program.data(), script_arg.data(), nullptr};
+  pid_t pid = 0;
+  const int spawn_error = ::posix_spawnp(&pid, "gnuplot", nullptr, nullptr, argv, environ);
+  if (spawn_error != 0) {
+    std::cerr << "error: --plot " << target.string() << ": cannot run gnuplot ("
+              << (spawn_error == ENOENT ? "not found on PATH; install gnuplot or drop --plot"
+                                        : std::strerror(spawn_error))
+              << ")" << csv_note << "\n";
+    return 1;
+  }
+  int status = 0;
+  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::exists(image.path)) {
+    std::cerr << "error: --plot " << target.string() << ": gnuplot failed"
+              << (WIFEXITED(status) ? " with exit status " + std::to_string(WEXITSTATUS(status)) : std::string())
+              << csv_note << "\n";
+    return 1;
+  }
+  std::error_code error;
+  fs::rename(image.path, target, error);
+  if (error) throw InputError(target.string() + ": cannot write the plot: " + error.message());
+  image.path.clear();
+  return 0;
+}
+
+int spectrum_command(const SpectrumArgs& args) {
+  RecordFormat format;
+  if (!args.units.empty()) {
+    AccelUnit unit;
+    if (!parse_accel_unit(args.units, &unit))
+      throw InputError("--units " + args.units + ": unknown unit (expected g, m/s2, cm/s2 (or gal) or mm/s2)");
+    format.units = unit;
+  }
+  if (!args.format.empty() && !parse_record_kind(args.format, &format.kind))
+    throw InputError("--format " + args.format + ": unknown format (expected auto, at2, one-column, two-column or delimited)");
+  if (args.dt != 0.0) {
+    if (!(args.dt > 0.0)) throw InputError("--dt " + std::to_string(args.dt) + ": expected a time step > 0 s");
+    format.dt = args.dt;
+  }
+
+  SpectrumOptions options;
+  options.dampings = parse_list("--damping", args.damping, "damping ratios in [0, 1) separated by commas, e.g. 0.05,0.02");
+  for (double z : options.dampings)
+    if (!(z >= 0.0 && z < 1.0))
+      throw InputError("--damping " + args.damping + ": damping ratios must be in [0, 1) (0.05 is 5 %)");
+  if (!args.periods.empty()) {
+    options.periods = parse_list("--periods", args.periods, "periods in s, >= 0, separated by commas");
+    for (double t : options.periods)
+      if (!(t >= 0.0)) throw InputError("--periods " + args.periods + ": periods must be >= 0 s");
+  } else if (!args.range.empty()) {
+    options.periods = parse_range(args.range);
+  }
+  options.free_vibration = args.free_vibration;
+  options.threads = args.threads;
+  if (!args.plot.empty()) {
+    const std::string ext = fs::path(args.plot).extension().string();
+    if (ext != ".png" && ext != ".svg")
+      throw InputError("--plot " + args.plot + ": expected a file name ending in .png or .svg");
+  }
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError(error);
+
+  const Record record = read_record(args.record, format);
+  const ResponseSpectrum spectrum = response_spectrum(record, options);
+
+  if (!args.out.empty()) {
+    AtomicFile file(args.out);
+    write_csv(file.stream(), spectrum);
+    file.commit();
+  } else {
+    write_csv(std::cout, spectrum);
+    std::cout.flush();
+  }
+
+  if (!args.plot.empty()) {
+    bool any_positive = false;
+    for (double t : spectrum.periods) any_positive = any_positive || t > 0.0;
+    if (!any_positive) throw InputError("--plot " + args.plot + ": needs at least one period > 0 s");
+    const std::string note = args.out.empty() ? std::string("; the spectrum was printed")
+                                              : "; the spectrum was written to " + args.out;
+    return plot_spectrum(spectrum, args.plot, fs::path(args.record).filename().string(), note);
+  }
+  return 0;
+}
+
+const Registration registration(20, [](CLI::App& app) -> Runner {
+  auto args = std::make_shared<SpectrumArgs>();
+  auto* sub = app.add_subcommand(
+      "spectrum",
+      "Elastic response spectra of a record: CSV period,damping,sd,sv,sa,psv,psa (s, -, m, m/s, g, m/s, g)");
+  sub->add_option("record", args->record, "Accelerogram (PEER AT2, one/two-column text, CSV)")->required();
+  sub->add_option("--units", args->units, "Acceleration units of the file: g, m/s2, cm/s2 (gal), mm/s2 "
+                                          "(required unless the file says them)");
+  sub->add_option("--format", args->format, "auto (default), at2, one-column, two-column, delimited");
+  sub->add_option("--dt", args->dt, "Time step [s] of a one-column file");
+  sub->add_option("--damping", args->damping, "Damping ratios, comma separated (default 0.05)");
+  auto* periods = sub->add_option("--periods", args->periods, "Periods [s], comma separated (0: rigid, SA = PGA)");
+  auto* range = sub->add_option("--range", args->range,
+                                "Periods T0:T1:N[:log|lin] (default 0.01:10:100:log)");
+  periods->excludes(range);
+  sub->add_flag("--free-vibration", args->free_vibration,
+                "Also look for peaks in one period of free vibration after the record");
+  sub->add_option("--threads", args->threads, "Worker threads (default 0: all cores)");
+  sub->add_option("--out", args->out, "CSV file (default: stdout)");
+  sub->add_option("--plot", args->plot, "Also draw PSA and SD against period with gnuplot (.png or .svg)");
+  return [args]() { return spectrum_command(*args); };
+});
+
+}  // namespace
+}  // namespace adjoin::cli
