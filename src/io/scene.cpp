@@ -40,6 +40,7 @@ const std::vector<KeySpec>& schema() {
       {"ground.k", Kind::number},
       {"solver.scheme", Kind::string},    {"solver.history", Kind::string},
       {"solver.h", Kind::number},         {"solver.t_end", Kind::number},
+      {"solver.locate_switches", Kind::boolean},
       {"output.timeseries", Kind::boolean}, {"output.every", Kind::integer},
   };
   return keys;
@@ -349,6 +350,7 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
   const std::string history = r.string("solver.history", to_string(o.history));
   if (!parse_history_engine(history, &o.history))
     r.fail("solver.history", "solver.history = \"" + history + "\" must be \"direct\" or \"fft\"");
+  o.locate_switches = r.boolean("solver.locate_switches", o.locate_switches);
   o.h = r.number("solver.h") / scene.scales.time;
   o.t_end = r.number("solver.t_end") / scene.scales.time;
   if (!o.IsValid(&error)) r.fail(error.substr(0, error.find(' ')), error);

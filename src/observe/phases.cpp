@@ -1,5 +1,7 @@
 #include "adjoin/observe/phases.hpp"
 
+#include <cmath>
+
 namespace adjoin {
 
 const char* to_string(Phase phase) {
@@ -13,8 +15,9 @@ const char* to_string(Phase phase) {
 
 void PhaseObserver::observe(const State& s) {
   if (intervals_.empty() || intervals_.back().state != s.phase) {
-    if (!intervals_.empty()) intervals_.back().t_end = s.t;
-    intervals_.push_back(PhaseInterval{s.phase, s.t, s.t});
+    const double t = std::isnan(s.t_switch) || intervals_.empty() ? s.t : s.t_switch;
+    if (!intervals_.empty()) intervals_.back().t_end = t;
+    intervals_.push_back(PhaseInterval{s.phase, t, s.t});
   } else {
     intervals_.back().t_end = s.t;
   }

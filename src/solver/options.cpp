@@ -8,16 +8,20 @@ namespace adjoin {
 std::string to_string(Scheme scheme) {
   switch (scheme) {
     case Scheme::paper: return "paper";
+    case Scheme::implicit: return "implicit";
+    case Scheme::implicit_gl: return "implicit-gl";
   }
   return "?";
 }
 
 bool parse_scheme(const std::string& name, Scheme* scheme) {
   if (name == "paper") { *scheme = Scheme::paper; return true; }
+  if (name == "implicit") { *scheme = Scheme::implicit; return true; }
+  if (name == "implicit-gl") { *scheme = Scheme::implicit_gl; return true; }
   return false;
 }
 
-std::string scheme_names() { return "\"paper\""; }
+std::string scheme_names() { return "\"implicit\" (default), \"implicit-gl\", \"paper\""; }
 
 std::size_t SolverOptions::steps() const {
   // The smallest N with N h >= t_end, forgiving the rounding in t_end / h.

@@ -11,6 +11,10 @@ namespace adjoin::detail {
 void run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                       Observer& observer);
 
+// "implicit" and "implicit-gl".
+void run_implicit_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                         Observer& observer);
+
 // The friction force a stuck damper must carry: q = (rho f2 - f1) / (rho + 1).
 inline double stick_force(const Model& model, double f1, double f2) {
   return (model.rho * f2 - f1) / (model.rho + 1.0);

@@ -15,6 +15,8 @@ SolverSummary simulate(const SolverOptions& options, const Model& model, const G
   const auto start = std::chrono::steady_clock::now();
   switch (options.scheme) {
     case Scheme::paper: detail::run_paper_scheme(options, model, ground, observer); break;
+    case Scheme::implicit:
+    case Scheme::implicit_gl: detail::run_implicit_scheme(options, model, ground, observer); break;
   }
   const auto stop = std::chrono::steady_clock::now();
 

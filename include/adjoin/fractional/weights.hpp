@@ -14,4 +14,11 @@ namespace adjoin {
 // w_0 .. w_{count-1} of the Grünwald–Letnikov generating function (1 - zeta)^order.
 std::vector<double> grunwald_letnikov_weights(double order, std::size_t count);
 
+// w_0 .. w_{count-1} of the second-order convolution quadrature built on BDF2 (Lubich 1986):
+// the coefficients of (3/2 - 2 zeta + zeta^2/2)^order, by J.C.P. Miller's recurrence for a
+// power of a polynomial (O(count)). Second order for functions that vanish at t = 0 with
+// their first derivative (the solver's case: it starts from rest); otherwise the error near
+// t = 0 is O(h^{1+p}) for a t^p leading term.
+std::vector<double> bdf2_weights(double order, std::size_t count);
+
 }  // namespace adjoin

@@ -1,5 +1,6 @@
 #pragma once
 // What the solver reports at each grid point t_m = m h, in dimensionless units.
+#include <limits>
 #include <string>
 
 namespace adjoin {
@@ -17,7 +18,12 @@ struct State {
   double f1 = 0.0, f2 = 0.0;  // rod forces
   double q = 0.0;             // damper force
   double ag = 0.0;            // forcing a_g = -u''
+  // The damper's phase: implicit schemes give the phase over the step that ends at t; the
+  // paper scheme the phase it decided at t for the step that starts there.
   Phase phase = Phase::stick;
+  // If the phase changed during the step that ends at t and the scheme located the switch:
+  // its time (t - h < t_switch <= t). Otherwise NaN: the switch is taken at t.
+  double t_switch = std::numeric_limits<double>::quiet_NaN();
 };
 
 }  // namespace adjoin
