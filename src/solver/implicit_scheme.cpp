@@ -8,20 +8,22 @@
 //               v2_{n+1} = v2_n + h/2 (ag_n + ag_{n+1}) - rho h/2 (f2_n + f2_{n+1}) + rho h Q
 //   damper:     Q in mu Sign(v1_{n+1} - v2_{n+1})                       (relay)
 //
-// Q is the damper force averaged over the step (an impulse / h, as in Moreau's time-stepping),
-// so a phase change inside the step needs no special treatment. Eliminating x and f, each
-// velocity is affine in Q: v1 = A1 - B1 Q, v2 = A2 + B2 Q with B1, B2 > 0, hence the relative
-// velocity w = w0 - S Q with S = B1 + B2, and the relay has the closed-form solution
+// Q is the damper force averaged over the step (an impulse / h, as in Moreau's time-stepping).
+// Eliminating x and f, each velocity is affine in Q: v1 = A1 - B1 Q, v2 = A2 + B2 Q with
+// B1, B2 > 0, hence the relative velocity w = w0 - S Q with S = B1 + B2, and the relay has a
+// closed-form solution (resolve_relay below): in its simplest form
 //
 //     |w0| <= mu S :  Q = w0 / S, w = 0            (stick: exactly, both blocks one velocity)
 //     otherwise    :  Q = mu sign(w0), w = w0 - S Q  (slip in the direction of w0)
 //
+// refined for a slip whose relative velocity reaches zero inside the step, where the impulse
+// is split at the located zero crossing.
+//
 // Trapezoidal mechanics is A-stable and the rods are implicit, so the step is stable for any
-// h (no explicit stability bound). Reported q at t_{n+1} is the step's Q; in the one step of
-// a slip reversal it is the average of the force that flips from one limit to the other.
+// h (no explicit stability bound). Reported q at t_{n+1} is the step's Q; in the step of a
+// slip reversal it is the average of the force that flips from one limit to the other.
 #include <cmath>
 #include <limits>
-#include <optional>
 #include <sstream>
 
 #include "adjoin/errors.hpp"
@@ -37,6 +39,36 @@ constexpr double kRunaway = 1e12;
 Phase slip_towards(double w) { return w > 0.0 ? Phase::slip_right : Phase::slip_left; }
 
 double clamp01(double x) { return x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x); }
+
+struct Relay {
+  double q;      // the damper force averaged over the step
+  Phase phase;   // at the end of the step
+  double theta;  // fraction of the step before the phase changed (1 if it did not)
+};
+
+// The damper over one step, given the free relative velocity w0 (what w_{n+1} would be with
+// Q = 0) and w_{n+1} = w0 - s Q.
+//
+// From stick: the closed-form relay (stick if |w0| <= mu s).
+// From slip in direction d: if slipping on would not bring w to zero, Q = mu d. Otherwise w
+// reaches zero at the fraction theta of the step (linear in time), and for the rest of the
+// step the blocks stick if the force that takes, (w0/s - mu d theta)/(1 - theta), is within
+// the cone, or slip the other way. Splitting the step's impulse at theta (instead of giving
+// the whole step one limit) keeps reversals second order.
+Relay resolve_relay(double w0, double s, double mu, Phase before, double w_before, double q_before, bool first) {
+  if (before == Phase::stick || first) {
+    if (std::abs(w0) <= mu * s) return {w0 / s, Phase::stick, 1.0};
+    const double target = w0 > 0.0 ? mu : -mu, needed = w0 / s;
+    // The force needed to stick went from q_before (inside the cone) to `needed` (outside).
+    return {target, slip_towards(w0), clamp01((target - q_before) / (needed - q_before))};
+  }
+  const double d = before == Phase::slip_right ? 1.0 : -1.0;
+  const double w_end = w0 - s * mu * d;  // slipping on for the whole step
+  if (w_end * d > 0.0) return {mu * d, before, 1.0};
+  const double theta = w_before != w_end ? clamp01(w_before / (w_before - w_end)) : 1.0;
+  if (std::abs(w0 / s - mu * d * theta) <= mu * (1.0 - theta)) return {w0 / s, Phase::stick, theta};
+  return {mu * d * (2.0 * theta - 1.0), d > 0.0 ? Phase::slip_left : Phase::slip_right, theta};
+}
 
 }  // namespace
 
@@ -67,8 +99,6 @@ void run_implicit_scheme(const SolverOptions& options, const Model& model, const
   rod1.commit(0.0, 0.0);
   rod2.commit(0.0, 0.0);
   observer.observe(now);
-  std::optional<State> pending;  // the last state computed, not yet reported
-  Phase emitted_phase = now.phase;
 
   for (std::size_t n = 0; n < n_steps; ++n) {
     State next;
@@ -84,33 +114,16 @@ void run_implicit_scheme(const SolverOptions& options, const Model& model, const
 
     double q = 0.0;
     if (damper) {
-      const double w0 = a1 - a2;
-      if (std::abs(w0) <= mu * s) {
-        q = w0 / s;
-        next.phase = Phase::stick;
+      const Relay r = resolve_relay(a1 - a2, s, mu, now.phase, now.v1 - now.v2, now.q, n == 0);
+      q = r.q;
+      next.phase = r.phase;
+      if (r.phase == Phase::stick) {
         next.v1 = next.v2 = (a1 * b2 + a2 * b1) / s;  // exactly one velocity
       } else {
-        q = w0 > 0.0 ? mu : -mu;
-        next.phase = slip_towards(w0);
         next.v1 = a1 - b1 * q;
         next.v2 = a2 + b2 * q;
       }
-      // Where inside the step did the phase change? Linear interpolation of what crossed.
-      if (options.locate_switches && next.phase != now.phase && n > 0) {
-        double theta = 1.0;
-        const double w_now = now.v1 - now.v2;
-        if (now.phase == Phase::stick) {
-          // The force needed to stick went from now.q (inside the cone) to w0/s (outside).
-          const double target = w0 > 0.0 ? mu : -mu, needed = w0 / s;
-          theta = clamp01((target - now.q) / (needed - now.q));
-        } else {
-          // The relative velocity went from w_now to zero: towards its slip-continued value
-          // (slip -> stick) or to its new value (slip reversal).
-          const double w_end = next.phase == Phase::stick ? w0 - s * (w_now > 0.0 ? mu : -mu) : next.v1 - next.v2;
-          theta = w_now != w_end ? clamp01(w_now / (w_now - w_end)) : 1.0;
-        }
-        next.t_switch = now.t + theta * h;
-      }
+      if (options.locate_switches && next.phase != now.phase && n > 0) next.t_switch = now.t + r.theta * h;
     } else {
       next.v1 = a1;
       next.v2 = a2;
@@ -136,23 +149,9 @@ void run_implicit_scheme(const SolverOptions& options, const Model& model, const
     rod1.commit(next.x1, next.f1);
     rod2.commit(next.x2, next.f2);
 
-    // A slip reversal passes through w = 0, and the relay may hold the blocks for the one step
-    // in which w crosses zero even though the stick force is already beyond mu (the next step
-    // slips the other way). That is not a stick phase: relabel such a single step as part of
-    // the reversal, switching at the located zero crossing. Hence one step of delay.
-    if (pending && pending->phase == Phase::stick && emitted_phase != Phase::stick &&
-        next.phase != Phase::stick && next.phase != emitted_phase && n >= 2) {
-      pending->phase = next.phase;
-      next.t_switch = std::numeric_limits<double>::quiet_NaN();
-    }
-    if (pending) {
-      observer.observe(*pending);
-      emitted_phase = pending->phase;
-    }
-    pending = next;
+    observer.observe(next);
     now = next;
   }
-  if (pending) observer.observe(*pending);
   observer.end();
 }
 
