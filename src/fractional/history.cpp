@@ -1,7 +1,7 @@
 #include "adjoin/fractional/history.hpp"
 
 #include "adjoin/fractional/direct_history.hpp"
-#include "adjoin/errors.hpp"
+#include "adjoin/fractional/fft_history.hpp"
 
 namespace adjoin {
 
@@ -16,8 +16,7 @@ bool parse_history_engine(const std::string& name, HistoryEngine* engine) {
 }
 
 std::unique_ptr<ConvolutionHistory> make_history(HistoryEngine engine, std::vector<double> weights) {
-  if (engine == HistoryEngine::fft)
-    throw InputError("solver.history = \"fft\" is not available yet; use \"direct\"");
+  if (engine == HistoryEngine::fft) return std::make_unique<FftHistory>(std::move(weights));
   return std::make_unique<DirectHistory>(std::move(weights));
 }
 

@@ -293,7 +293,13 @@ double uniform_step(const Samples& s, const std::string& name) {
            "time " + fmt(s.time[i]) + " is " + fmt(step) + " s after the previous one, but the record's step is " +
                fmt(reference) + " s (expected uniformly spaced times)");
   }
-  return (s.time.back() - s.time.front()) / static_cast<double>(n - 1);
+  // Rounded to 12 significant digits, so times printed as 24.979999999999997 give dt = 0.02.
+  const double dt = (s.time.back() - s.time.front()) / static_cast<double>(n - 1);
+  std::array<char, 32> buffer{};
+  const auto printed = std::to_chars(buffer.data(), buffer.data() + buffer.size(), dt, std::chars_format::general, 12);
+  double rounded = dt;
+  std::from_chars(buffer.data(), printed.ptr, rounded);
+  return rounded;
 }
 
 AccelUnit require_units(const RecordFormat& format, const std::optional<AccelUnit>& from_file, const std::string& name,

@@ -66,10 +66,21 @@ Mat4 expm(Mat4 a) {
   return result;
 }
 
-// sum_{m < terms} c[m] s^m / m!  (Horner).
+constexpr std::array<double, kMaxTerms + 4> inverse_factorials() {
+  std::array<double, kMaxTerms + 4> f{};
+  double x = 1.0;
+  for (std::size_t m = 0; m < f.size(); ++m) {
+    if (m > 0) x /= static_cast<double>(m);
+    f[m] = x;
+  }
+  return f;
+}
+constexpr std::array<double, kMaxTerms + 4> kInverseFactorial = inverse_factorials();
+
+// sum_{m < terms} c[m] s^m / m!  (Horner, multiplications only).
 inline double taylor(const double* c, int terms, double s) {
-  double r = c[terms - 1];
-  for (int m = terms - 1; m >= 1; --m) r = c[m - 1] + r * s / static_cast<double>(m);
+  double r = c[terms - 1] * kInverseFactorial[static_cast<std::size_t>(terms - 1)];
+  for (int m = terms - 2; m >= 0; --m) r = r * s + c[m] * kInverseFactorial[static_cast<std::size_t>(m)];
   return r;
 }
 
@@ -110,52 +121,56 @@ struct Peaks {
   double a = 0.0;
 };
 
+// Bounds on the excitation p = -a_g over the record, for the turning-point filter.
+struct ExcitationBounds {
+  double p = 0.0;      // max |p|
+  double slope = 0.0;  // max |dp/dt|
+};
+
+ExcitationBounds excitation_bounds(double dt, std::span<const double> accel) {
+  ExcitationBounds b;
+  for (std::size_t i = 0; i < accel.size(); ++i) {
+    b.p = std::max(b.p, std::abs(accel[i]));
+    if (i > 0) b.slope = std::max(b.slope, std::abs(accel[i] - accel[i - 1]) / dt);
+  }
+  return b;
+}
+
 // One oscillator, advanced over sub-steps of length h with p = -a_g linear on each.
+//
+// Peaks between sub-step points: a quantity q (u, v or a_abs) can exceed its end values inside
+// a sub-step only where q' changes sign, and then by at most h^2/8 max|q''|. Every step checks,
+// branch-free and cheaply, whether an end value comes within a margin m_q = h^2/4 B_q of the
+// running peak, where B_q bounds |q''| from the excitation bounds and the running peaks
+// (u'' = p + a_abs, v'' = p' - c u'' - w2 v, a_abs'' = -(c v'' + w2 u'')). Only then (rarely,
+// and always when a peak grows) does the slow path look for sign changes, tighten the bound
+// with the end values and locate the turning point exactly.
 class Oscillator {
  public:
-  Oscillator(double omega, double zeta, double h, bool refine)
+  Oscillator() = default;
+  Oscillator(double omega, double zeta, double h, bool refine, const ExcitationBounds& bounds)
       : k_(step_coefficients(omega, zeta, h)),
         h_(h),
         c_(2.0 * zeta * omega),
         w2_(omega * omega),
         terms_(taylor_terms(omega * h)),
-        refine_(refine && omega * h <= kMaxRefineTheta) {}
+        refine_(refine && omega * h <= kMaxRefineTheta),
+        bounds_(bounds) {
+    update_thresholds();
+  }
 
   // Advance one sub-step from p0 to p1 and update the peaks.
-  inline void step(double p0, double p1) {
+  [[gnu::always_inline]] inline void step(double p0, double p1) {
     const double u1 = k_.a_uu * u_ + k_.a_uv * v_ + k_.b_u0 * p0 + k_.b_u1 * p1;
     const double v1 = k_.a_vu * u_ + k_.a_vv * v_ + k_.b_v0 * p0 + k_.b_v1 * p1;
     const double a1 = -(c_ * v1 + w2_ * u1);  // absolute acceleration u'' + a_g
-    if (refine_) {
-      // Turning points: u turns where v changes sign, v where u'' = p + a_abs does, and
-      // a_abs where its derivative -(c u'' + w2 v) does. Searched only when the turn could
-      // beat the running peak: overshoot over the end values <= h^2/8 max|q''| (x2 margin).
-      const double r0 = p0 + a_, r1 = p1 + a1;  // relative accelerations u''
-      if (v_ * v1 < 0.0) {
-        const double bound = 0.25 * h_ * h_ * std::max(std::abs(r0), std::abs(r1));
-        if (std::max(std::abs(u_), std::abs(u1)) + bound >= peaks_.u) refine(p0, p1, 0, v_, v1);
-      }
-      if (r0 * r1 < 0.0) {
-        const double slope = (p1 - p0) / h_;
-        const double j0 = slope - c_ * r0 - w2_ * v_, j1 = slope - c_ * r1 - w2_ * v1;
-        const double bound = 0.25 * h_ * h_ * std::max(std::abs(j0), std::abs(j1));
-        if (std::max(std::abs(v_), std::abs(v1)) + bound >= peaks_.v) refine(p0, p1, 1, r0, r1);
-      }
-      const double g0 = -(c_ * r0 + w2_ * v_), g1 = -(c_ * r1 + w2_ * v1);
-      if (g0 * g1 < 0.0) {
-        const double slope = (p1 - p0) / h_;
-        const double j0 = slope - c_ * r0 - w2_ * v_, j1 = slope - c_ * r1 - w2_ * v1;
-        const double q0 = -(c_ * j0 + w2_ * r0), q1 = -(c_ * j1 + w2_ * r1);
-        const double bound = 0.25 * h_ * h_ * std::max(std::abs(q0), std::abs(q1));
-        if (std::max(std::abs(a_), std::abs(a1)) + bound >= peaks_.a) refine(p0, p1, 2, g0, g1);
-      }
-    }
+    if ((std::max(std::abs(u_), std::abs(u1)) >= threshold_u_) |
+        (std::max(std::abs(v_), std::abs(v1)) >= threshold_v_) |
+        (std::max(std::abs(a_), std::abs(a1)) >= threshold_a_))
+      near_peak(p0, p1, u1, v1, a1);
     u_ = u1;
     v_ = v1;
     a_ = a1;
-    peaks_.u = std::max(peaks_.u, std::abs(u1));
-    peaks_.v = std::max(peaks_.v, std::abs(v1));
-    peaks_.a = std::max(peaks_.a, std::abs(a1));
   }
 
   const Peaks& peaks() const { return peaks_; }
@@ -164,6 +179,48 @@ class Oscillator {
   double a_abs() const { return a_; }
 
  private:
+  void update_thresholds() {
+    if (!refine_) {  // peaks at the sub-step points only
+      threshold_u_ = peaks_.u;
+      threshold_v_ = peaks_.v;
+      threshold_a_ = peaks_.a;
+      return;
+    }
+    const double hh = 0.25 * h_ * h_;
+    const double b_u = bounds_.p + peaks_.a;                         // |u''|
+    const double b_v = bounds_.slope + c_ * b_u + w2_ * peaks_.v;    // |u'''|
+    const double b_a = c_ * b_v + w2_ * b_u;                         // |a_abs''|
+    threshold_u_ = peaks_.u - hh * b_u;
+    threshold_v_ = peaks_.v - hh * b_v;
+    threshold_a_ = peaks_.a - hh * b_a;
+  }
+
+  // An end value is near its running peak: look for turning points, update peaks and margins.
+  [[gnu::noinline]] void near_peak(double p0, double p1, double u1, double v1, double a1) {
+    if (refine_) {
+      const double hh = 0.25 * h_ * h_;
+      const double slope = (p1 - p0) / h_;
+      const double r0 = p0 + a_, r1 = p1 + a1;                                        // u''
+      const double j0 = slope - c_ * r0 - w2_ * v_, j1 = slope - c_ * r1 - w2_ * v1;  // u'''
+      const double g0 = -(c_ * r0 + w2_ * v_), g1 = -(c_ * r1 + w2_ * v1);            // a_abs'
+      if (v_ * v1 < 0.0 &&
+          std::max(std::abs(u_), std::abs(u1)) + hh * std::max(std::abs(r0), std::abs(r1)) >= peaks_.u)
+        refine(p0, p1, 0, v_, v1);
+      if (r0 * r1 < 0.0 &&
+          std::max(std::abs(v_), std::abs(v1)) + hh * std::max(std::abs(j0), std::abs(j1)) >= peaks_.v)
+        refine(p0, p1, 1, r0, r1);
+      if (g0 * g1 < 0.0) {
+        const double q0 = -(c_ * j0 + w2_ * r0), q1 = -(c_ * j1 + w2_ * r1);
+        if (std::max(std::abs(a_), std::abs(a1)) + hh * std::max(std::abs(q0), std::abs(q1)) >= peaks_.a)
+          refine(p0, p1, 2, g0, g1);
+      }
+    }
+    peaks_.u = std::max(peaks_.u, std::abs(u1));
+    peaks_.v = std::max(peaks_.v, std::abs(v1));
+    peaks_.a = std::max(peaks_.a, std::abs(a1));
+    update_thresholds();
+  }
+
   // Exact turning value of quantity `which` (0: u, 1: v, 2: a_abs) inside the current sub-step.
   void refine(double p0, double p1, int which, double f0, double f1) {
     // Derivatives of u at the start of the sub-step, from the equation of motion; p'' = 0.
@@ -192,10 +249,12 @@ class Oscillator {
     }
   }
 
-  StepCoefficients k_;
-  double h_, c_, w2_;
-  int terms_;
-  bool refine_;
+  StepCoefficients k_{};
+  double h_ = 0.0, c_ = 0.0, w2_ = 0.0;
+  int terms_ = 0;
+  bool refine_ = false;
+  ExcitationBounds bounds_;
+  double threshold_u_ = 0.0, threshold_v_ = 0.0, threshold_a_ = 0.0;
   double u_ = 0.0, v_ = 0.0, a_ = 0.0;
   Peaks peaks_;
 };
@@ -229,49 +288,85 @@ void check_oscillator(double period, double damping) {
   }
 }
 
-SpectralValues compute(double dt, std::span<const double> accel, double period, double damping,
-                       const SpectrumOptions& options) {
+struct Task {
+  double period;
+  double damping;
+  std::size_t index;  // into the output
+};
+
+SpectralValues rigid(std::span<const double> accel, double damping) {
   SpectralValues out;
-  out.period = period;
   out.damping = damping;
-  if (period == 0.0) {  // rigid: moves with the ground
-    double pga = 0.0;
-    for (double a : accel) pga = std::max(pga, std::abs(a));
-    out.sa = out.psa = pga / kStandardGravity;
-    return out;
-  }
-  const double omega = kTwoPi / period;
-  const std::size_t n = spectrum_substeps(dt, period, options);
+  double pga = 0.0;
+  for (double a : accel) pga = std::max(pga, std::abs(a));
+  out.sa = out.psa = pga / kStandardGravity;
+  return out;
+}
+
+// K oscillators (periods > 0) sharing one sub-step count n, advanced together: their
+// recursions are independent, so the processor overlaps them instead of waiting on one chain.
+template <int K>
+void compute_group(double dt, std::span<const double> accel, const Task* tasks, std::size_t n,
+                   const SpectrumOptions& options, SpectralValues* out) {
   const double h = dt / static_cast<double>(n);
-  Oscillator oscillator(omega, damping, h, options.refine_peaks);
+  const ExcitationBounds bounds = excitation_bounds(dt, accel);
+  std::array<Oscillator, K> oscillators;
+  for (int k = 0; k < K; ++k)
+    oscillators[static_cast<std::size_t>(k)] =
+        Oscillator(kTwoPi / tasks[k].period, tasks[k].damping, h, options.refine_peaks, bounds);
+  const std::size_t samples = accel.size();
   if (n == 1) {
-    for (std::size_t i = 0; i + 1 < accel.size(); ++i) oscillator.step(-accel[i], -accel[i + 1]);
+    double p0 = -accel[0];
+    for (std::size_t i = 1; i < samples; ++i) {
+      const double p1 = -accel[i];
+      for (auto& oscillator : oscillators) oscillator.step(p0, p1);
+      p0 = p1;
+    }
   } else {
     const double inv_n = 1.0 / static_cast<double>(n);
-    for (std::size_t i = 0; i + 1 < accel.size(); ++i) {
+    for (std::size_t i = 0; i + 1 < samples; ++i) {
       const double p0 = -accel[i];
       const double dp = (-accel[i + 1] - p0) * inv_n;
       double pa = p0;
-      for (std::size_t k = 1; k <= n; ++k) {
-        const double pb = k == n ? -accel[i + 1] : p0 + dp * static_cast<double>(k);
-        oscillator.step(pa, pb);
+      for (std::size_t j = 1; j <= n; ++j) {
+        const double pb = j == n ? -accel[i + 1] : p0 + dp * static_cast<double>(j);
+        for (auto& oscillator : oscillators) oscillator.step(pa, pb);
         pa = pb;
       }
     }
   }
-  if (options.free_vibration) {
-    // Extremes of a damped free vibration shrink, so one damped period holds its largest.
-    const double damped_period = period / std::sqrt(1.0 - damping * damping);
-    const auto steps = static_cast<std::size_t>(std::ceil(damped_period / h)) + 1;
-    for (std::size_t k = 0; k < steps; ++k) oscillator.step(0.0, 0.0);
+  for (int k = 0; k < K; ++k) {
+    Oscillator& oscillator = oscillators[static_cast<std::size_t>(k)];
+    const double period = tasks[k].period, damping = tasks[k].damping;
+    if (options.free_vibration) {
+      // Extremes of a damped free vibration shrink, so one damped period holds its largest.
+      const double damped_period = period / std::sqrt(1.0 - damping * damping);
+      const auto steps = static_cast<std::size_t>(std::ceil(damped_period / h)) + 1;
+      for (std::size_t j = 0; j < steps; ++j) oscillator.step(0.0, 0.0);
+    }
+    const double omega = kTwoPi / period;
+    const Peaks& peaks = oscillator.peaks();
+    SpectralValues& v = out[tasks[k].index];
+    v.period = period;
+    v.damping = damping;
+    v.sd = peaks.u;
+    v.sv = peaks.v;
+    v.sa = peaks.a / kStandardGravity;
+    v.psv = omega * peaks.u;
+    v.psa = omega * omega * peaks.u / kStandardGravity;
   }
-  const Peaks& peaks = oscillator.peaks();
-  out.sd = peaks.u;
-  out.sv = peaks.v;
-  out.sa = peaks.a / kStandardGravity;
-  out.psv = omega * peaks.u;
-  out.psa = omega * omega * peaks.u / kStandardGravity;
-  return out;
+}
+
+constexpr std::size_t kGroup = 4;
+
+void compute_tasks(double dt, std::span<const double> accel, const Task* tasks, std::size_t count,
+                   std::size_t n, const SpectrumOptions& options, SpectralValues* out) {
+  switch (count) {
+    case 1: compute_group<1>(dt, accel, tasks, n, options, out); break;
+    case 2: compute_group<2>(dt, accel, tasks, n, options, out); break;
+    case 3: compute_group<3>(dt, accel, tasks, n, options, out); break;
+    default: compute_group<4>(dt, accel, tasks, n, options, out); break;
+  }
 }
 
 }  // namespace
@@ -373,7 +468,11 @@ SpectralValues spectral_values(double dt, std::span<const double> accel, double 
   if (!options.IsValid(&error)) throw InputError(error);
   check_history(dt, accel);
   check_oscillator(period, damping);
-  return compute(dt, accel, period, damping, options);
+  if (period == 0.0) return rigid(accel, damping);
+  SpectralValues out;
+  const Task task{period, damping, 0};
+  compute_tasks(dt, accel, &task, 1, spectrum_substeps(dt, period, options), options, &out);
+  return out;
 }
 
 ResponseSpectrum response_spectrum(double dt, std::span<const double> accel,
@@ -388,22 +487,47 @@ ResponseSpectrum response_spectrum(double dt, std::span<const double> accel,
   const std::size_t total = np * spectrum.dampings.size();
   spectrum.values.resize(total);
 
-  // Largest cost first, so the last tasks handed out are short ones.
-  std::vector<std::size_t> order(total);
-  for (std::size_t k = 0; k < total; ++k) order[k] = k;
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) {
-    return spectrum_substeps(dt, spectrum.periods[x % np], options) >
-           spectrum_substeps(dt, spectrum.periods[y % np], options);
-  });
+  // Oscillators grouped by sub-step count, K at a time; largest cost first, so the last
+  // groups handed out are short ones.
+  std::vector<Task> tasks;
+  tasks.reserve(total);
+  for (std::size_t k = 0; k < total; ++k) {
+    const double period = spectrum.periods[k % np], damping = spectrum.dampings[k / np];
+    if (period == 0.0) {
+      spectrum.values[k] = rigid(accel, damping);
+      spectrum.values[k].period = 0.0;
+    } else {
+      tasks.push_back(Task{period, damping, k});
+    }
+  }
+  std::vector<std::size_t> substeps(tasks.size());
+  std::vector<std::size_t> order(tasks.size());
+  for (std::size_t k = 0; k < tasks.size(); ++k) {
+    substeps[k] = spectrum_substeps(dt, tasks[k].period, options);
+    order[k] = k;
+  }
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return substeps[x] > substeps[y]; });
+  std::vector<Task> sorted(tasks.size());
+  for (std::size_t k = 0; k < tasks.size(); ++k) sorted[k] = tasks[order[k]];
+  struct Group {
+    std::size_t first, count, n;
+  };
+  std::vector<Group> groups;
+  for (std::size_t k = 0; k < sorted.size();) {
+    const std::size_t n = substeps[order[k]];
+    std::size_t count = 1;
+    while (count < kGroup && k + count < sorted.size() && substeps[order[k + count]] == n) ++count;
+    groups.push_back(Group{k, count, n});
+    k += count;
+  }
   std::atomic<std::size_t> next{0};
   auto work = [&]() {
-    for (std::size_t i = next.fetch_add(1); i < total; i = next.fetch_add(1)) {
-      const std::size_t k = order[i];
-      spectrum.values[k] = compute(dt, accel, spectrum.periods[k % np], spectrum.dampings[k / np], options);
-    }
+    for (std::size_t g = next.fetch_add(1); g < groups.size(); g = next.fetch_add(1))
+      compute_tasks(dt, accel, sorted.data() + groups[g].first, groups[g].count, groups[g].n, options,
+                    spectrum.values.data());
   };
   unsigned threads = options.threads != 0 ? options.threads : std::thread::hardware_concurrency();
-  threads = static_cast<unsigned>(std::min<std::size_t>(std::max(threads, 1u), total));
+  threads = static_cast<unsigned>(std::min<std::size_t>(std::max(threads, 1u), std::max<std::size_t>(groups.size(), 1)));
   if (threads <= 1) {
     work();
   } else {
@@ -426,7 +550,7 @@ OscillatorHistory oscillator_response(double dt, std::span<const double> accel, 
   check_oscillator(period, damping);
   if (period == 0.0) throw InputError("oscillator response: period must be > 0 s");
   const double omega = kTwoPi / period;
-  Oscillator oscillator(omega, damping, dt, false);
+  Oscillator oscillator(omega, damping, dt, false, excitation_bounds(dt, accel));
   OscillatorHistory history;
   history.u.reserve(accel.size());
   history.v.reserve(accel.size());

@@ -60,7 +60,9 @@ Relay resolve_relay(double w0, double s, double mu, Phase before, double w_befor
     if (std::abs(w0) <= mu * s) return {w0 / s, Phase::stick, 1.0};
     const double target = w0 > 0.0 ? mu : -mu, needed = w0 / s;
     // The force needed to stick went from q_before (inside the cone) to `needed` (outside).
-    return {target, slip_towards(w0), clamp01((target - q_before) / (needed - q_before))};
+    // Both are step averages, i.e. values at the middle of their steps, half a step apart.
+    const double crossing = clamp01((target - q_before) / (needed - q_before));
+    return {target, slip_towards(w0), clamp01(crossing - 0.5)};
   }
   const double d = before == Phase::slip_right ? 1.0 : -1.0;
   const double w_end = w0 - s * mu * d;  // slipping on for the whole step

@@ -26,7 +26,8 @@
 // skipped; CRLF line ends and a UTF-8 byte-order mark are accepted. Numbers are parsed with
 // std::from_chars (Fortran 'D' exponents accepted).
 //
-// Time columns: dt = (t_last - t_first) / (n - 1). Times must increase strictly, and every
+// Time columns: dt = (t_last - t_first) / (n - 1), rounded to 12 significant digits (so that
+// times printed as 24.979999999999997 give dt = 0.02 exactly). Times must increase strictly, and every
 // step must equal the median step within 1e-6 of it plus the rounding of the two printed
 // times (half a unit in the last printed decimal of each: "0.02000" -> 0.5e-5; at most a
 // quarter step), so rounding in print is accepted but a missing or repeated sample is not. A time column that does not start at 0
