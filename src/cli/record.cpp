@@ -1,0 +1,165 @@
+// adjoin record info FILE... [--units U] [--dt DT] [--format F] [--time-column C]
+//                            [--accel-column C] [--delimiter D] [--json] [--out FILE]
+//
+// Reads accelerograms and prints their intensity measures: npts, dt, duration, PGA [g],
+// PGV [m/s], PGD [m] (trapezoid integrals, no baseline correction), Arias intensity [m/s],
+// CAV [m/s], significant duration D5-95 [s], predominant period [s] (peak of the Fourier
+// amplitude spectrum). As a table (one block per file) or JSON (an object, or an array for
+// several files), to stdout or to FILE (temporary file and rename).
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/ground/record_file.hpp"
+#include "adjoin/io/atomic_file.hpp"
+#include "adjoin/post/intensity.hpp"
+#include "command.hpp"
+
+namespace adjoin::cli {
+namespace {
+
+struct RecordArgs {
+  std::vector<std::string> files;
+  std::string units, format, time_column, accel_column, delimiter;
+  double dt = 0.0;
+  bool json = false;
+  std::string out;
+};
+
+RecordFormat format_from(const RecordArgs& args) {
+  RecordFormat f;
+  if (!args.format.empty() && !parse_record_kind(args.format, &f.kind))
+    throw InputError("--format " + args.format + ": unknown format (expected auto, at2, one-column, two-column or delimited)");
+  if (!args.units.empty()) {
+    AccelUnit unit;
+    if (!parse_accel_unit(args.units, &unit))
+      throw InputError("--units " + args.units + ": unknown unit (expected g, m/s2, cm/s2 (gal) or mm/s2)");
+    f.units = unit;
+  }
+  if (args.dt != 0.0) {
+    if (!(args.dt > 0.0) || !std::isfinite(args.dt)) throw InputError("--dt: expected a positive step in s");
+    f.dt = args.dt;
+  }
+  f.time_column = args.time_column;
+  f.accel_column = args.accel_column;
+  const std::string& d = args.delimiter;
+  if (d.empty())
+    f.delimiter = 0;
+  else if (d == "tab" || d == "\\t")
+    f.delimiter = '\t';
+  else if (d == "comma")
+    f.delimiter = ',';
+  else if (d == "semicolon")
+    f.delimiter = ';';
+  else if (d == "space" || d == "blank")
+    f.delimiter = ' ';
+  else if (d.size() == 1)
+    f.delimiter = d[0];
+  else
+    throw InputError("--delimiter " + d + ": expected one character, or tab, comma, semicolon, space");
+  return f;
+}
+
+std::string number(double x, int precision = 6) {
+  std::ostringstream s;
+  s << std::setprecision(precision) << x;
+  return s.str();
+}
+
+nlohmann::json to_json(const Record& record, const IntensityMeasures& m) {
+  return nlohmann::json{{"file", record.source},
+                        {"description", record.description},
+                        {"npts", m.npts},
+                        {"dt_s", m.dt},
+                        {"duration_s", m.duration},
+                        {"pga_g", m.pga},
+                        {"pga_m_s2", m.pga_m_s2},
+                        {"t_pga_s", m.t_pga},
+                        {"pgv_m_s", m.pgv},
+                        {"pgd_m", m.pgd},
+                        {"arias_m_s", m.arias},
+                        {"cav_m_s", m.cav},
+                        {"t5_s", m.t5},
+                        {"t95_s", m.t95},
+                        {"d5_95_s", m.d5_95},
+                        {"predominant_period_s", m.predominant_period}};
+}
+
+std::string table(const Record& record, const IntensityMeasures& m) {
+  std::ostringstream s;
+  auto row = [&](const std::string& name, const std::string& value, const std::string& unit, const std::string& note = "") {
+    s << "  " << std::left << std::setw(20) << name << std::right << std::setw(12) << value << "  " << std::left
+      << std::setw(4) << unit << note << "\n";
+  };
+  s << record.source << "\n";
+  if (!record.description.empty()) s << "  " << record.description << "\n";
+  row("npts", std::to_string(m.npts), "");
+  row("dt", number(m.dt), "s");
+  row("duration", number(m.duration), "s");
+  row("PGA", number(m.pga, 4), "g", "  at t = " + number(m.t_pga, 6) + " s");
+  row("PGV", number(m.pgv, 4), "m/s");
+  row("PGD", number(m.pgd, 4), "m", "  (no baseline correction)");
+  row("Arias intensity", number(m.arias, 4), "m/s");
+  row("CAV", number(m.cav, 4), "m/s");
+  row("D5-95", number(m.d5_95, 4), "s", "  from " + number(m.t5, 5) + " to " + number(m.t95, 5) + " s");
+  row("predominant period", number(m.predominant_period, 4), "s");
+  return s.str();
+}
+
+int info_command(const RecordArgs& args) {
+  const RecordFormat format = format_from(args);
+  std::string text;
+  nlohmann::json all = nlohmann::json::array();
+  for (std::size_t i = 0; i < args.files.size(); ++i) {
+    const Record record = read_record(args.files[i], format);
+    const IntensityMeasures m = intensity_measures(record);
+    if (args.json)
+      all.push_back(to_json(record, m));
+    else
+      text += (i ? "\n" : "") + table(record, m);
+  }
+  if (args.json) text = (all.size() == 1 ? all[0] : all).dump(2) + "\n";
+  if (args.out.empty()) {
+    std::cout << text;
+    std::cout.flush();
+    if (!std::cout) throw InputError("cannot write to standard output");
+  } else {
+    AtomicFile out(args.out);
+    out.stream() << text;
+    out.commit();
+  }
+  return 0;
+}
+
+const Registration registration(30, [](CLI::App& app) -> Runner {
+  auto args = std::make_shared<RecordArgs>();
+  auto* record = app.add_subcommand("record", "Recorded accelerograms: information and intensity measures");
+  record->require_subcommand(1);
+  auto* info = record->add_subcommand(
+      "info", "npts, dt, duration, PGA [g], PGV [m/s], PGD [m], Arias [m/s], CAV [m/s], D5-95 [s], predominant period [s]");
+  info->add_option("files", args->files, "Accelerogram(s): PEER AT2, one/two-column text, delimited text with a header")
+      ->required();
+  info->add_option("--units", args->units,
+                   "Acceleration units of the file: g, m/s2, cm/s2 (gal), mm/s2 (required unless the file says them)");
+  info->add_option("--format", args->format, "auto (default), at2, one-column, two-column, delimited");
+  info->add_option("--dt", args->dt, "Time step [s] of a one-column file (or a delimited file without a time column)");
+  info->add_option("--time-column", args->time_column, "Delimited files: time column, by header name or 1-based index");
+  info->add_option("--accel-column", args->accel_column,
+                   "Delimited files: acceleration column, by header name or 1-based index");
+  info->add_option("--delimiter", args->delimiter, "Delimited files: one character, or tab, comma, semicolon, space");
+  info->add_flag("--json", args->json, "Print JSON instead of a table");
+  info->add_option("--out", args->out, "Write to this file instead of stdout");
+  return [args, info]() -> int {
+    if (info->parsed()) return info_command(*args);
+    return 0;
+  };
+});
+
+}  // namespace
+}  // namespace adjoin::cli
