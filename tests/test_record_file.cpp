@@ -1,6 +1,8 @@
 // Record readers: every AT2 header variant, one/two columns, delimited text, and every defect
 // reported as an InputError naming the file and line.
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
 #include <string>
 
 #include "adjoin/errors.hpp"
@@ -295,4 +297,47 @@ TEST_CASE("record kinds by name", "[record_file]") {
 TEST_CASE("missing file and folder", "[record_file]") {
   CHECK_THROWS_AS(read_record(records + "/no-such-file.AT2"), InputError);
   CHECK_THROWS_AS(read_record(records), InputError);
+}
+
+TEST_CASE("random corruptions parse or throw InputError, nothing else", "[record_file]") {
+  const std::string seeds[] = {
+      "PEER\nEvent\nACCELERATION TIME SERIES IN UNITS OF G\nNPTS=  6, DT=   .0100 SEC,\n  .1E-01  -.2E+00  .3\n 4.  5. -6.\n",
+      "# c\n0.00\t1.5\n0.01\t-2e-3\n0.02\t3\n0.03\t4\n",
+      "t [s],acc [g]\n0,1\n0.5,2\n1.0,3\n",
+  };
+  std::uint64_t state = 12345;
+  auto next = [&]() {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<std::size_t>(state >> 33);
+  };
+  const std::string alphabet = "0123456789.-+eEdD,; \t\n\r#%NPTSDT=nanifx";
+  std::size_t parsed = 0, rejected = 0;
+  for (const std::string& seed : seeds) {
+    for (int trial = 0; trial < 3000; ++trial) {
+      std::string text = seed;
+      const std::size_t edits = 1 + next() % 3;
+      for (std::size_t e = 0; e < edits && !text.empty(); ++e) {
+        const std::size_t at = next() % text.size();
+        switch (next() % 3) {
+          case 0: text[at] = alphabet[next() % alphabet.size()]; break;
+          case 1: text.erase(at, 1 + next() % 4); break;
+          default: text.insert(at, 1, alphabet[next() % alphabet.size()]); break;
+        }
+      }
+      RecordFormat f;
+      f.units = AccelUnit::g;
+      try {
+        const Record r = parse_record(text, "fuzz", f);
+        CHECK(r.dt > 0.0);
+        CHECK(!r.accel.empty());
+        for (double a : r.accel) REQUIRE(std::isfinite(a));
+        ++parsed;
+      } catch (const InputError& e) {
+        REQUIRE(std::string(e.what()).rfind("fuzz", 0) == 0);
+        ++rejected;
+      }
+    }
+  }
+  CHECK(parsed > 0);
+  CHECK(rejected > 0);
 }
