@@ -1,7 +1,8 @@
 #pragma once
 // The pounding margin: the gap xi(t) = gap0 + x2 - x1 between the blocks. xi <= 0 means the
-// structures pound, where the model no longer holds. The first contact time is interpolated
-// linearly between the grid points that bracket it.
+// structures pound, where the model no longer holds. The minimum is refined between samples
+// by a parabola through the three samples around it (extremum.hpp); the first contact time
+// is interpolated linearly between the grid points that bracket it.
 #include <optional>
 
 #include "adjoin/observe/observer.hpp"
@@ -24,7 +25,8 @@ class PoundingObserver final : public Observer {
  private:
   double gap0_ = 0.0;
   bool started_ = false;
-  double previous_gap_ = 0.0, previous_t_ = 0.0;
+  double previous_gap_ = 0.0, before_previous_gap_ = 0.0, previous_t_ = 0.0;
+  std::size_t samples_ = 0;
   PoundingMargin margin_;
 };
 
