@@ -142,9 +142,11 @@ ExcitationBounds excitation_bounds(double dt, std::span<const double> accel) {
 // a sub-step only where q' changes sign, and then by at most h^2/8 max|q''|. Every step checks,
 // branch-free and cheaply, whether an end value comes within a margin m_q = h^2/4 B_q of the
 // running peak, where B_q bounds |q''| from the excitation bounds and the running peaks
-// (u'' = p + a_abs, v'' = p' - c u'' - w2 v, a_abs'' = -(c v'' + w2 u'')). Only then (rarely,
-// and always when a peak grows) does the slow path look for sign changes, tighten the bound
-// with the end values and locate the turning point exactly.
+// (u'' = p + a_abs, v'' = p' - c u'' - w2 v, a_abs'' = -(c v'' + w2 u'')). Only then does the
+// slow path look for sign changes, tighten the bound with the end values and locate the
+// turning point exactly. A first, cheaper pass at the samples (step_sampled) gives lower
+// bounds of the peaks (the floor), so the slow path is not taken at every step while the
+// response is still growing: a turn below the floor cannot be the peak.
 class Oscillator {
  public:
   Oscillator() = default;
@@ -173,6 +175,25 @@ class Oscillator {
     a_ = a1;
   }
 
+  // Advance one sub-step, peaks at the end points only (branch-free).
+  [[gnu::always_inline]] inline void step_sampled(double p0, double p1) {
+    const double u1 = k_.a_uu * u_ + k_.a_uv * v_ + k_.b_u0 * p0 + k_.b_u1 * p1;
+    const double v1 = k_.a_vu * u_ + k_.a_vv * v_ + k_.b_v0 * p0 + k_.b_v1 * p1;
+    const double a1 = -(c_ * v1 + w2_ * u1);
+    peaks_.u = std::max(peaks_.u, std::abs(u1));
+    peaks_.v = std::max(peaks_.v, std::abs(v1));
+    peaks_.a = std::max(peaks_.a, std::abs(a1));
+    u_ = u1;
+    v_ = v1;
+    a_ = a1;
+  }
+
+  // Lower bounds of the final peaks (from a sampled pass over the same record).
+  void set_floor(const Peaks& floor) {
+    floor_ = floor;
+    update_thresholds();
+  }
+
   const Peaks& peaks() const { return peaks_; }
   double u() const { return u_; }
   double v() const { return v_; }
@@ -186,13 +207,17 @@ class Oscillator {
       threshold_a_ = peaks_.a;
       return;
     }
+    // Below max(peak, floor) an end value neither sets the peak nor bounds a turn that could.
+    // Any end value that skips the slow path is below it, so these bound |q''| there.
     const double hh = 0.25 * h_ * h_;
-    const double b_u = bounds_.p + peaks_.a;                         // |u''|
-    const double b_v = bounds_.slope + c_ * b_u + w2_ * peaks_.v;    // |u'''|
-    const double b_a = c_ * b_v + w2_ * b_u;                         // |a_abs''|
-    threshold_u_ = peaks_.u - hh * b_u;
-    threshold_v_ = peaks_.v - hh * b_v;
-    threshold_a_ = peaks_.a - hh * b_a;
+    const double eu = std::max(peaks_.u, floor_.u), ev = std::max(peaks_.v, floor_.v),
+                 ea = std::max(peaks_.a, floor_.a);
+    const double b_u = bounds_.p + ea;                         // |u''|
+    const double b_v = bounds_.slope + c_ * b_u + w2_ * ev;    // |u'''|
+    const double b_a = c_ * b_v + w2_ * b_u;                   // |a_abs''|
+    threshold_u_ = eu - hh * b_u;
+    threshold_v_ = ev - hh * b_v;
+    threshold_a_ = ea - hh * b_a;
   }
 
   // An end value is near its running peak: look for turning points, update peaks and margins.
@@ -203,15 +228,16 @@ class Oscillator {
       const double r0 = p0 + a_, r1 = p1 + a1;                                        // u''
       const double j0 = slope - c_ * r0 - w2_ * v_, j1 = slope - c_ * r1 - w2_ * v1;  // u'''
       const double g0 = -(c_ * r0 + w2_ * v_), g1 = -(c_ * r1 + w2_ * v1);            // a_abs'
-      if (v_ * v1 < 0.0 &&
-          std::max(std::abs(u_), std::abs(u1)) + hh * std::max(std::abs(r0), std::abs(r1)) >= peaks_.u)
+      if (v_ * v1 < 0.0 && std::max(std::abs(u_), std::abs(u1)) + hh * std::max(std::abs(r0), std::abs(r1)) >=
+                               std::max(peaks_.u, floor_.u))
         refine(p0, p1, 0, v_, v1);
-      if (r0 * r1 < 0.0 &&
-          std::max(std::abs(v_), std::abs(v1)) + hh * std::max(std::abs(j0), std::abs(j1)) >= peaks_.v)
+      if (r0 * r1 < 0.0 && std::max(std::abs(v_), std::abs(v1)) + hh * std::max(std::abs(j0), std::abs(j1)) >=
+                               std::max(peaks_.v, floor_.v))
         refine(p0, p1, 1, r0, r1);
       if (g0 * g1 < 0.0) {
         const double q0 = -(c_ * j0 + w2_ * r0), q1 = -(c_ * j1 + w2_ * r1);
-        if (std::max(std::abs(a_), std::abs(a1)) + hh * std::max(std::abs(q0), std::abs(q1)) >= peaks_.a)
+        if (std::max(std::abs(a_), std::abs(a1)) + hh * std::max(std::abs(q0), std::abs(q1)) >=
+            std::max(peaks_.a, floor_.a))
           refine(p0, p1, 2, g0, g1);
       }
     }
@@ -254,6 +280,7 @@ class Oscillator {
   int terms_ = 0;
   bool refine_ = false;
   ExcitationBounds bounds_;
+  Peaks floor_;
   double threshold_u_ = 0.0, threshold_v_ = 0.0, threshold_a_ = 0.0;
   double u_ = 0.0, v_ = 0.0, a_ = 0.0;
   Peaks peaks_;
@@ -303,6 +330,35 @@ SpectralValues rigid(std::span<const double> accel, double damping) {
   return out;
 }
 
+// Steps K oscillators together over the record, n sub-steps per interval.
+template <int K, bool Sampled>
+void advance(std::array<Oscillator, K>& oscillators, std::span<const double> accel, std::size_t n) {
+  const std::size_t samples = accel.size();
+  auto step = [](Oscillator& oscillator, double p0, double p1) {
+    if constexpr (Sampled) oscillator.step_sampled(p0, p1); else oscillator.step(p0, p1);
+  };
+  if (n == 1) {
+    double p0 = -accel[0];
+    for (std::size_t i = 1; i < samples; ++i) {
+      const double p1 = -accel[i];
+      for (auto& oscillator : oscillators) step(oscillator, p0, p1);
+      p0 = p1;
+    }
+    return;
+  }
+  const double inv_n = 1.0 / static_cast<double>(n);
+  for (std::size_t i = 0; i + 1 < samples; ++i) {
+    const double p0 = -accel[i];
+    const double dp = (-accel[i + 1] - p0) * inv_n;
+    double pa = p0;
+    for (std::size_t j = 1; j <= n; ++j) {
+      const double pb = j == n ? -accel[i + 1] : p0 + dp * static_cast<double>(j);
+      for (auto& oscillator : oscillators) step(oscillator, pa, pb);
+      pa = pb;
+    }
+  }
+}
+
 // K oscillators (periods > 0) sharing one sub-step count n, advanced together: their
 // recursions are independent, so the processor overlaps them instead of waiting on one chain.
 template <int K>
@@ -314,26 +370,16 @@ void compute_group(double dt, std::span<const double> accel, const Task* tasks, 
   for (int k = 0; k < K; ++k)
     oscillators[static_cast<std::size_t>(k)] =
         Oscillator(kTwoPi / tasks[k].period, tasks[k].damping, h, options.refine_peaks, bounds);
-  const std::size_t samples = accel.size();
-  if (n == 1) {
-    double p0 = -accel[0];
-    for (std::size_t i = 1; i < samples; ++i) {
-      const double p1 = -accel[i];
-      for (auto& oscillator : oscillators) oscillator.step(p0, p1);
-      p0 = p1;
-    }
+  if (options.refine_peaks) {
+    // Floors: peaks at the samples, one step per record interval.
+    std::array<Oscillator, K> sampled;
+    for (int k = 0; k < K; ++k)
+      sampled[static_cast<std::size_t>(k)] = Oscillator(kTwoPi / tasks[k].period, tasks[k].damping, dt, false, bounds);
+    advance<K, true>(sampled, accel, 1);
+    for (std::size_t k = 0; k < static_cast<std::size_t>(K); ++k) oscillators[k].set_floor(sampled[k].peaks());
+    advance<K, false>(oscillators, accel, n);
   } else {
-    const double inv_n = 1.0 / static_cast<double>(n);
-    for (std::size_t i = 0; i + 1 < samples; ++i) {
-      const double p0 = -accel[i];
-      const double dp = (-accel[i + 1] - p0) * inv_n;
-      double pa = p0;
-      for (std::size_t j = 1; j <= n; ++j) {
-        const double pb = j == n ? -accel[i + 1] : p0 + dp * static_cast<double>(j);
-        for (auto& oscillator : oscillators) oscillator.step(pa, pb);
-        pa = pb;
-      }
-    }
+    advance<K, true>(oscillators, accel, n);
   }
   for (int k = 0; k < K; ++k) {
     Oscillator& oscillator = oscillators[static_cast<std::size_t>(k)];
