@@ -10,6 +10,9 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
+#include "adjoin/ground/processing.hpp"
+#include "adjoin/ground/record_file.hpp"
+#include "adjoin/ground/record_motion.hpp"
 
 namespace adjoin {
 namespace {
@@ -38,6 +41,16 @@ const std::vector<KeySpec>& schema() {
       {"ground.source", Kind::string},
       {"ground.u0", Kind::number},        {"ground.omega", Kind::number},
       {"ground.k", Kind::number},
+      {"ground.file", Kind::string},        {"ground.format", Kind::string},
+      {"ground.units", Kind::string},       {"ground.dt", Kind::number},
+      {"ground.time_column", Kind::string}, {"ground.accel_column", Kind::string},
+      {"ground.time_scale", Kind::number},
+      {"ground.window_start", Kind::number}, {"ground.window_end", Kind::number},
+      {"ground.baseline", Kind::integer},
+      {"ground.pad_before", Kind::number},  {"ground.pad_after", Kind::number},
+      {"ground.filter", Kind::string},      {"ground.f_low", Kind::number},
+      {"ground.f_high", Kind::number},      {"ground.filter_order", Kind::integer},
+      {"ground.resample_dt", Kind::number}, {"ground.scale_pga", Kind::number},
       {"solver.scheme", Kind::string},    {"solver.history", Kind::string},
       {"solver.h", Kind::number},         {"solver.t_end", Kind::number},
       {"solver.locate_switches", Kind::boolean},
@@ -53,6 +66,9 @@ const std::vector<std::string> kTables = {"model", "model.rod1", "model.rod2", "
 const std::map<std::string, std::vector<std::string>>& ground_keys() {
   static const std::map<std::string, std::vector<std::string>> keys = {
       {"decaying-sine", {"u0", "omega", "k"}},
+      {"record", {"file", "format", "units", "dt", "time_column", "accel_column", "time_scale",
+                  "window_start", "window_end", "baseline", "pad_before", "pad_after", "filter",
+                  "f_low", "f_high", "filter_order", "resample_dt", "scale_pga"}},
   };
   return keys;
 }
@@ -125,6 +141,8 @@ class SceneReader {
   }
 
   bool has(const std::string& key) const { return static_cast<bool>(table_.at_path(key)); }
+  bool overridden(const std::string& key) const { return origins_.count(key) > 0; }
+  const std::string& name() const { return name_; }
 
   double number(const std::string& key) const {
     auto node = table_.at_path(key);
@@ -256,6 +274,73 @@ std::string rod_key_of(const std::string& message) {
   return "model";
 }
 
+// source = "record": read, process, and scale to the solver's units. A dimensionless scene
+// says what one unit of its time is in seconds (ground.time_scale, default 1 s); its
+// accelerations are in g. An SI scene uses T0 = sqrt(m1/k1).
+std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, const Scales& scales) {
+  if (!r.has("ground.file")) r.fail("ground", "missing key ground.file (the accelerogram to read)");
+  std::filesystem::path file = r.string("ground.file", "");
+  // Paths in a scene file are relative to that file's folder; a --set path to the working folder.
+  if (file.is_relative() && !r.overridden("ground.file"))
+    file = std::filesystem::path(r.name()).parent_path() / file;
+
+  RecordFormat format;
+  const std::string kind = r.string("ground.format", "auto");
+  if (!parse_record_kind(kind, &format.kind))
+    r.fail("ground.format", "ground.format = \"" + kind + "\" must be one of \"auto\", \"at2\", \"one-column\", \"two-column\", \"delimited\"");
+  if (r.has("ground.units")) {
+    AccelUnit unit;
+    const std::string units = r.string("ground.units", "");
+    if (!parse_accel_unit(units, &unit))
+      r.fail("ground.units", "ground.units = \"" + units + "\" must be \"g\", \"m/s2\", \"cm/s2\" (or \"gal\") or \"mm/s2\"");
+    format.units = unit;
+  }
+  if (r.has("ground.dt")) format.dt = r.number("ground.dt");
+  format.time_column = r.string("ground.time_column", "");
+  format.accel_column = r.string("ground.accel_column", "");
+
+  Processing processing;
+  if (r.has("ground.window_start")) processing.window_t0 = r.number("ground.window_start");
+  if (r.has("ground.window_end")) processing.window_t1 = r.number("ground.window_end");
+  if (r.has("ground.baseline")) {
+    const auto order = r.integer("ground.baseline", 0);
+    if (order < 0 || order > 10) r.fail("ground.baseline", "ground.baseline = " + std::to_string(order) + " must be a polynomial order from 0 (mean) to 10");
+    processing.baseline_order = static_cast<int>(order);
+  }
+  processing.pad_before = r.number("ground.pad_before", 0.0);
+  processing.pad_after = r.number("ground.pad_after", 0.0);
+  if (r.has("ground.filter")) {
+    ButterworthFilter filter;
+    const std::string type = r.string("ground.filter", "");
+    if (type == "bandpass") filter.type = ButterworthFilter::Type::bandpass;
+    else if (type == "highpass") filter.type = ButterworthFilter::Type::highpass;
+    else if (type == "lowpass") filter.type = ButterworthFilter::Type::lowpass;
+    else r.fail("ground.filter", "ground.filter = \"" + type + "\" must be \"bandpass\", \"highpass\" or \"lowpass\"");
+    filter.f_low = r.number("ground.f_low", 0.0);
+    filter.f_high = r.number("ground.f_high", 0.0);
+    filter.order = static_cast<int>(r.integer("ground.filter_order", 4));
+    processing.filter = filter;
+  }
+  if (r.has("ground.resample_dt")) processing.dt = r.number("ground.resample_dt");
+  if (r.has("ground.scale_pga")) processing.target_pga = r.number("ground.scale_pga") * kStandardGravity;
+
+  double time_scale = scales.time;
+  if (!scales.si) {
+    time_scale = r.number("ground.time_scale", 1.0);
+    if (!(std::isfinite(time_scale) && time_scale > 0.0))
+      r.fail("ground.time_scale", "ground.time_scale = " + format_number(time_scale) + " must be a positive number of seconds");
+  } else if (r.has("ground.time_scale")) {
+    r.fail("ground.time_scale", "ground.time_scale is set by m1 and k1 in an SI scene; remove it");
+  }
+  Record record = read_record(file, format);  // InputError names the file and line
+  try {
+    record = process(record, processing);
+  } catch (const InputError& e) {
+    r.fail("ground", e.what());
+  }
+  return std::make_shared<RecordMotion>(std::move(record), time_scale, kStandardGravity);
+}
+
 Scene build_scene(const SceneReader& r, const std::string& name) {
   Scene scene;
   scene.name = r.string("name", "");
@@ -340,6 +425,8 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
     if (!(k >= 0.0)) r.fail("ground.k", "ground.k = " + format_number(k) + " must be zero or positive (decay rate)");
     const Scales& s = scene.scales;  // SI: u0 [m], omega [rad/s], k [1/s]
     scene.ground = std::make_shared<DecayingSine>(u0 / s.length, omega * s.time, k * s.time);
+  } else if (source == "record") {
+    scene.ground = read_record_source(r, scene.scales);
   }
 
   // ---- solver ----
