@@ -1,0 +1,141 @@
+// adjoin converge SCENE [--set K=V]... [--schemes LIST] [--history LIST] [--steps LIST]
+//                       [--out DIR] [--plot FILE | --no-plot]
+//
+// Error against run time for each scheme and history engine on a ladder of steps: prints a
+// table, writes DIR/convergence.csv and draws DIR/work-precision.png (gnuplot).
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <sstream>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/io/atomic_file.hpp"
+#include "adjoin/io/gnuplot.hpp"
+#include "adjoin/io/scene.hpp"
+#include "adjoin/study/convergence.hpp"
+#include "command.hpp"
+
+namespace adjoin::cli {
+namespace {
+
+struct ConvergeArgs {
+  std::string scene, out, plot;
+  std::vector<std::string> overrides, schemes, engines;
+  std::vector<double> steps;
+  bool no_plot = false;
+};
+
+std::string cell(double v, const char* format = "%.3e") {
+  if (std::isnan(v)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, format, v);
+  return text;
+}
+
+void plot(const ConvergenceResult& result, const std::filesystem::path& csv, const std::filesystem::path& image,
+          const std::string& title) {
+  std::ostringstream script;
+  script << "set datafile separator ','\nset logscale xy\nset grid\nset key outside right\n"
+         << "set title " << gnuplot_quote("Work-precision: " + title + " (reference: " + result.reference + ")") << "\n"
+         << "set xlabel 'wall time of the run [s]'\nset ylabel 'relative max-norm error in x1, x2 [-]'\nplot ";
+  std::vector<std::pair<std::string, std::string>> series;
+  for (const auto& row : result.rows) {
+    const std::pair<std::string, std::string> key{row.scheme, row.history};
+    if (std::find(series.begin(), series.end(), key) == series.end()) series.push_back(key);
+  }
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    const auto& [scheme, history] = series[i];
+    script << (i ? ", " : "") << gnuplot_quote(csv.string())
+           << " using (strcol(1) eq '" << scheme << "' && strcol(2) eq '" << history << "' ? $5 : 1/0):6"
+           << " with linespoints linewidth 2 pointtype 7 title " << gnuplot_quote(scheme + "/" + history);
+  }
+  script << "\n";
+  run_gnuplot(script.str(), image);
+}
+
+int converge_command(const ConvergeArgs& args) {
+  const Scene scene = load_scene(args.scene, args.overrides);
+  ConvergenceOptions options;
+  if (!args.schemes.empty()) {
+    options.schemes.clear();
+    for (const auto& name : args.schemes) {
+      Scheme s;
+      if (!parse_scheme(name, &s)) throw InputError("--schemes: \"" + name + "\" is not a scheme; expected " + scheme_names());
+      options.schemes.push_back(s);
+    }
+  }
+  if (!args.engines.empty()) {
+    options.engines.clear();
+    for (const auto& name : args.engines) {
+      HistoryEngine e;
+      if (!parse_history_engine(name, &e)) throw InputError("--history: \"" + name + "\" must be direct or fft");
+      options.engines.push_back(e);
+    }
+  }
+  for (double h : args.steps) options.steps.push_back(h / scene.scales.time);
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError("--steps/--schemes/--history: " + error);
+
+  const ConvergenceResult result = run_convergence(scene, options);
+
+  const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args.out);
+  std::filesystem::create_directories(dir);
+  const auto csv_path = dir / "convergence.csv";
+  {
+    AtomicFile csv(csv_path);
+    csv.stream() << "scheme,history,h,steps,wall_seconds,error,order,err_peak_x1,err_min_gap,err_friction\n";
+    csv.stream().precision(10);
+    for (const auto& r : result.rows) {
+      auto v = [](double x) { return std::isnan(x) ? std::string() : std::to_string(x); };
+      char h[32];
+      std::snprintf(h, sizeof h, "%.10g", r.h * scene.scales.time);
+      csv.stream() << r.scheme << "," << r.history << "," << h << "," << r.steps << "," << v(r.wall_seconds) << ","
+                   << (std::isnan(r.error) ? "" : cell(r.error, "%.6e")) << "," << v(r.order) << ","
+                   << (std::isnan(r.peak_x1) ? "" : cell(r.peak_x1, "%.6e")) << ","
+                   << (std::isnan(r.min_gap) ? "" : cell(r.min_gap, "%.6e")) << ","
+                   << (std::isnan(r.friction) ? "" : cell(r.friction, "%.6e")) << "\n";
+    }
+    csv.commit();
+  }
+
+  std::printf("convergence of %s; errors against %s\n", scene.name.c_str(), result.reference.c_str());
+  std::printf("%-12s %-7s %10s %8s %10s %10s %6s %10s %10s %10s\n", "scheme", "history", "h", "steps", "wall [s]",
+              "error", "order", "peak x1", "min gap", "friction");
+  for (const auto& r : result.rows) {
+    if (r.failed) {
+      std::printf("%-12s %-7s %10.4g %8zu   stopped: %s\n", r.scheme.c_str(), r.history.c_str(), r.h * scene.scales.time,
+                  r.steps, r.message.c_str());
+      continue;
+    }
+    std::printf("%-12s %-7s %10.4g %8zu %10.4g %10s %6s %10s %10s %10s\n", r.scheme.c_str(), r.history.c_str(),
+                r.h * scene.scales.time, r.steps, r.wall_seconds, cell(r.error).c_str(), cell(r.order, "%.2f").c_str(),
+                cell(r.peak_x1).c_str(), cell(r.min_gap).c_str(), cell(r.friction).c_str());
+  }
+  std::printf("wrote %s", csv_path.string().c_str());
+  if (!args.no_plot) {
+    const std::filesystem::path image = args.plot.empty() ? dir / "work-precision.png" : std::filesystem::path(args.plot);
+    plot(result, csv_path, image, scene.name);
+    std::printf(", %s", image.string().c_str());
+  }
+  std::printf("\n");
+  return 0;
+}
+
+const Registration registration(40, [](CLI::App& app) -> Runner {
+  auto args = std::make_shared<ConvergeArgs>();
+  auto* sub = app.add_subcommand("converge", "Error against run time for each scheme and history engine on a ladder of steps");
+  sub->add_option("scene", args->scene, "Scene file (TOML)")->required();
+  sub->add_option("--set", args->overrides, "Override a scene key by dotted path")->allow_extra_args(false);
+  sub->add_option("--schemes", args->schemes, "Schemes to compare (default paper,implicit-gl,implicit)")->delimiter(',');
+  sub->add_option("--history", args->engines, "History engines (default direct)")->delimiter(',');
+  sub->add_option("--steps", args->steps, "Steps h in the scene's time unit (default: the scene's h times 4,2,1,1/2,1/4)")
+      ->delimiter(',');
+  sub->add_option("--out", args->out, "Output folder (default out/<scene name>/)");
+  sub->add_option("--plot", args->plot, "Work-precision plot file (.png or .svg; default DIR/work-precision.png)");
+  sub->add_flag("--no-plot", args->no_plot, "Do not draw the plot");
+  return [args]() { return converge_command(*args); };
+});
+
+}  // namespace
+}  // namespace adjoin::cli
