@@ -1,0 +1,70 @@
+// History engines: a whole run of N + 1 steps (construction, then push and lag_sum each step)
+// for GL weights of order 0.53, direct against fft.
+//
+//   build/bench/bench_history                              all sizes (direct up to 2^17)
+//   build/bench/bench_history --benchmark_filter=fft       the fast engine only
+//
+// Counters: time_per_step (s) = run time / N; bytes_per_step = bytes() / N. The direct engine
+// is quadratic (2^20 steps take over ten minutes), so it is registered up to 2^17 only; set
+// ADJOIN_BENCH_DIRECT_2E20=1 to add one direct run of 2^20 steps.
+#include <benchmark/benchmark.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "adjoin/fractional/history.hpp"
+#include "adjoin/fractional/weights.hpp"
+
+namespace {
+
+void run(benchmark::State& state, adjoin::HistoryEngine engine) {
+  const auto steps = static_cast<std::size_t>(state.range(0));
+  const std::vector<double> weights = adjoin::grunwald_letnikov_weights(0.53, steps + 1);
+  std::size_t bytes = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    std::vector<double> w = weights;  // the engine takes ownership; copying is not timed
+    state.ResumeTiming();
+    auto history = adjoin::make_history(engine, std::move(w));
+    // A feedback loop, like a rod: each value depends on the previous lag sum.
+    double y = 0.0;
+    for (std::size_t m = 0; m <= steps; ++m) {
+      y = std::sin(1e-3 * static_cast<double>(m)) - 0.1 * history->lag_sum();
+      history->push(y);
+    }
+    benchmark::DoNotOptimize(y);
+    bytes = history->bytes();
+    state.PauseTiming();
+    history.reset();  // freeing is not timed
+    state.ResumeTiming();
+  }
+  state.counters["time_per_step"] = benchmark::Counter(
+      static_cast<double>(steps), benchmark::Counter::kIsIterationInvariantRate |
+                                      benchmark::Counter::kInvert);
+  state.counters["bytes_per_step"] =
+      static_cast<double>(bytes) / static_cast<double>(steps);
+}
+
+void BM_direct(benchmark::State& state) { run(state, adjoin::HistoryEngine::direct); }
+void BM_fft(benchmark::State& state) { run(state, adjoin::HistoryEngine::fft); }
+
+}  // namespace
+
+BENCHMARK(BM_direct)->RangeMultiplier(2)->Range(1 << 12, 1 << 17)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_fft)->RangeMultiplier(2)->Range(1 << 12, 1 << 22)->Unit(benchmark::kMillisecond);
+
+int main(int argc, char** argv) {
+  if (const char* flag = std::getenv("ADJOIN_BENCH_DIRECT_2E20"); flag != nullptr && *flag == '1')
+    benchmark::RegisterBenchmark("BM_direct/1048576", BM_direct)
+        ->Arg(1 << 20)
+        ->Iterations(1)
+        ->Unit(benchmark::kSecond);
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
