@@ -38,7 +38,7 @@ void plot(const ConvergenceResult& result, const std::filesystem::path& csv, con
   std::ostringstream script;
   script << "set datafile separator ','\nset logscale xy\nset grid\nset key outside right\n"
          << "set title " << gnuplot_quote("Work-precision: " + title + " (reference: " + result.reference + ")") << "\n"
-         << "set xlabel 'wall time of the run [s]'\nset ylabel 'relative max-norm error in x1, x2 [-]'\nplot ";
+         << "set format y '%.0e'\nset xlabel 'wall time of the run [s]'\nset ylabel 'relative max-norm error in x1, x2 [-]'\nplot ";
   std::vector<std::pair<std::string, std::string>> series;
   for (const auto& row : result.rows) {
     const std::pair<std::string, std::string> key{row.scheme, row.history};

@@ -1,0 +1,86 @@
+// The convergence study: which reference it picks, and the observed orders it reports.
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "adjoin/io/scene.hpp"
+#include "adjoin/study/convergence.hpp"
+#include "cli_helpers.hpp"
+
+using namespace adjoin;
+
+namespace {
+
+Scene paper_scene(const char* which, std::vector<std::string> overrides = {}) {
+  return load_scene(std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/paper-" + which + ".toml", overrides);
+}
+
+double last_order(const ConvergenceResult& r, const std::string& scheme) {
+  double order = std::nan("");
+  for (const auto& row : r.rows)
+    if (row.scheme == scheme) order = row.order;
+  return order;
+}
+
+}  // namespace
+
+TEST_CASE("weak scene: analytic reference, orders 1 (paper, implicit-gl) and 2 (implicit)", "[convergence]") {
+  ConvergenceOptions o;
+  o.steps = {0.008, 0.004, 0.002};
+  const auto r = run_convergence(paper_scene("weak"), o);
+  CHECK(r.reference.rfind("analytic", 0) == 0);
+  CHECK(r.reference.find("stuck") != std::string::npos);
+  REQUIRE(r.rows.size() == 9);
+  CHECK(last_order(r, "paper") == Approx(1.0).margin(0.05));
+  CHECK(last_order(r, "implicit-gl") == Approx(1.0).margin(0.05));
+  CHECK(last_order(r, "implicit") == Approx(2.0).margin(0.05));
+  for (const auto& row : r.rows) {
+    CHECK(row.wall_seconds > 0.0);
+    CHECK(std::isnan(row.peak_x1));  // the exact solution gives trajectories only
+  }
+}
+
+TEST_CASE("no damper: the analytic reference of two free fractional oscillators", "[convergence]") {
+  ConvergenceOptions o;
+  o.schemes = {Scheme::implicit};
+  o.steps = {0.008, 0.004, 0.002};
+  const auto r = run_convergence(paper_scene("strong", {"model.mu=0"}), o);
+  CHECK(r.reference.find("without damper") != std::string::npos);
+  CHECK(last_order(r, "implicit") == Approx(2.0).margin(0.1));
+  CHECK(r.rows.back().error < 1e-5);
+}
+
+TEST_CASE("strong scene: a fine reference run, and the summary errors too", "[convergence]") {
+  ConvergenceOptions o;
+  o.schemes = {Scheme::implicit, Scheme::paper};
+  o.steps = {0.008, 0.004, 0.002};
+  const auto r = run_convergence(paper_scene("strong"), o);
+  CHECK(r.reference.find("finer run") != std::string::npos);
+  CHECK(last_order(r, "implicit") == Approx(2.0).margin(0.2));
+  for (const auto& row : r.rows) {
+    CHECK(std::isfinite(row.peak_x1));
+    CHECK(std::isfinite(row.friction));
+    if (row.scheme == "implicit") CHECK(row.friction < 1e-4);  // converged within 1e-4 already at h = 0.008
+  }
+}
+
+TEST_CASE("adjoin converge writes the table, the CSV and the plot", "[convergence][cli]") {
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "converge";
+  std::filesystem::remove_all(dir);
+  const auto r = test::run_cli(std::string("converge ") + ADJOIN_SOURCE_DIR +
+                               "/records/scenes/paper-weak.toml --schemes implicit,paper --steps 0.008,0.004 --out '" +
+                               dir.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("analytic") != std::string::npos);
+  const std::string csv = test::slurp(dir / "convergence.csv");
+  CHECK(csv.rfind("scheme,history,h,steps,wall_seconds,error,order,err_peak_x1,err_min_gap,err_friction\n", 0) == 0);
+  CHECK(std::count(csv.begin(), csv.end(), '\n') == 5);
+  CHECK(std::filesystem::file_size(dir / "work-precision.png") > 1000);
+
+  const auto bad = test::run_cli(std::string("converge ") + ADJOIN_SOURCE_DIR + "/records/scenes/paper-weak.toml --schemes fast");
+  CHECK(bad.status == 2);
+  CHECK(bad.err.find("--schemes") != std::string::npos);
+  const auto uneven = test::run_cli(std::string("converge ") + ADJOIN_SOURCE_DIR + "/records/scenes/paper-weak.toml --steps 0.004,0.003 --no-plot");
+  CHECK(uneven.status == 2);
+  CHECK(uneven.err.find("integer") != std::string::npos);
+}
