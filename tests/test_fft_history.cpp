@@ -14,6 +14,7 @@
 #include <memory>
 #include <random>
 #include <stdexcept>
+#include <thread>
 #include <vector>
 
 #include "adjoin/fractional/direct_history.hpp"
@@ -176,6 +177,33 @@ TEST_CASE("FftHistory: arbitrary weights and exact small cases", "[fft_history]"
   FftHistory empty({});
   CHECK(empty.lag_sum() == 0.0);
   CHECK_THROWS_AS(empty.push(1.0), std::logic_error);
+}
+
+TEST_CASE("FftHistory: independent instances in parallel threads", "[fft_history]") {
+  // Sweeps run simulations in threads: planning (first use of each length) and execution must
+  // be safe. Distinct lengths make the threads plan different transforms at the same time.
+  const std::vector<std::size_t> lengths{5000, 7000, 9000, 11000, 13000, 20000};
+  std::vector<double> results(lengths.size(), 1.0);
+  std::vector<std::thread> threads;
+  for (std::size_t k = 0; k < lengths.size(); ++k)
+    threads.emplace_back([&, k] {
+      const auto w = adjoin::grunwald_letnikov_weights(0.3 + 0.1 * static_cast<double>(k),
+                                                       lengths[k] + 1);
+      const auto y = random_sequence(lengths[k] + 1, static_cast<unsigned>(k));
+      const auto expected = reference_lag_sums(w, y);
+      FftHistory fft(w);
+      double worst = 0.0;
+      for (std::size_t m = 0; m < y.size(); ++m) {
+        fft.push(y[m]);
+        worst = std::max(worst, std::abs(fft.lag_sum() - expected[m + 1]));
+      }
+      results[k] = worst / scale_of(w, y);
+    });
+  for (auto& t : threads) t.join();
+  for (std::size_t k = 0; k < lengths.size(); ++k) {
+    INFO("N = " << lengths[k] << ": " << results[k]);
+    CHECK(results[k] < 1e-12);
+  }
 }
 
 TEST_CASE("make_history builds the FFT engine", "[fft_history]") {

@@ -94,3 +94,15 @@ TEST_CASE("Zener rod: the instantaneous stiffness tends to tau_x / tau_f", "[zen
   CHECK(f[0] == Approx(r.tau_x / r.tau_f).epsilon(1e-5));
   CHECK(r.exact(1e-30) == Approx(r.tau_x / r.tau_f).epsilon(1e-12));
 }
+
+TEST_CASE("Zener rod: the fft history engine gives the direct engine's forces", "[zener]") {
+  for (const Relaxation r : {Relaxation{0.53, 4.0, 0.2}, Relaxation{0.23, 1.183, 0.004}}) {
+    const auto direct = discrete_relaxation(r, 1.0 / 3200, 6400, adjoin::HistoryEngine::direct);
+    const auto fft = discrete_relaxation(r, 1.0 / 3200, 6400, adjoin::HistoryEngine::fft);
+    double worst = 0.0;
+    for (std::size_t m = 0; m < direct.size(); ++m)
+      worst = std::max(worst, std::abs(fft[m] - direct[m]) / std::abs(direct[m]));
+    INFO("g = " << r.order << ": max relative difference " << worst);
+    CHECK(worst < 1e-12);
+  }
+}
