@@ -74,7 +74,7 @@ Relay resolve_relay(double w0, double s, double mu, Phase before, double w_befor
 
 }  // namespace
 
-void run_implicit_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                          Observer& observer) {
   const double h = options.h;
   const std::size_t n_steps = options.steps();
@@ -155,6 +155,7 @@ void run_implicit_scheme(const SolverOptions& options, const Model& model, const
     now = next;
   }
   observer.end();
+  return rod1.bytes() + rod2.bytes();
 }
 
 }  // namespace adjoin::detail

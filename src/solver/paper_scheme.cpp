@@ -66,7 +66,7 @@ void check_stability(const SolverOptions& options, const Model& model) {
 
 }  // namespace
 
-void run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+std::size_t run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                       Observer& observer) {
   if (options.stability_check) check_stability(options, model);
   const double h = options.h, h2 = h * h;
@@ -160,6 +160,7 @@ void run_paper_scheme(const SolverOptions& options, const Model& model, const Gr
     first = false;
   }
   observer.end();
+  return rod1.bytes() + rod2.bytes();
 }
 
 }  // namespace adjoin::detail

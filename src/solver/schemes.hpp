@@ -8,11 +8,12 @@
 
 namespace adjoin::detail {
 
-void run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+// Each returns the bytes its history engines held (for the memory benchmarks).
+std::size_t run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                       Observer& observer);
 
 // "implicit" and "implicit-gl".
-void run_implicit_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                          Observer& observer);
 
 // The friction force a stuck damper must carry: q = (rho f2 - f1) / (rho + 1).

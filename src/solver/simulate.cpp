@@ -13,10 +13,11 @@ SolverSummary simulate(const SolverOptions& options, const Model& model, const G
   if (!model.IsValid(&error) || !options.IsValid(&error)) throw InputError(error);
 
   const auto start = std::chrono::steady_clock::now();
+  std::size_t history_bytes = 0;
   switch (options.scheme) {
-    case Scheme::paper: detail::run_paper_scheme(options, model, ground, observer); break;
+    case Scheme::paper: history_bytes = detail::run_paper_scheme(options, model, ground, observer); break;
     case Scheme::implicit:
-    case Scheme::implicit_gl: detail::run_implicit_scheme(options, model, ground, observer); break;
+    case Scheme::implicit_gl: history_bytes = detail::run_implicit_scheme(options, model, ground, observer); break;
   }
   const auto stop = std::chrono::steady_clock::now();
 
@@ -26,6 +27,7 @@ SolverSummary simulate(const SolverOptions& options, const Model& model, const G
   summary.h = options.h;
   summary.steps = options.steps();
   summary.wall_seconds = std::chrono::duration<double>(stop - start).count();
+  summary.history_bytes = history_bytes;
   return summary;
 }
 

@@ -28,6 +28,7 @@ struct SolverSummary {
   double h = 0.0;
   std::size_t steps = 0;
   double wall_seconds = 0.0;
+  std::size_t history_bytes = 0;  // memory held by the rods' history engines
 };
 
 SolverSummary simulate(const SolverOptions& options, const Model& model, const GroundMotion& ground,
