@@ -35,10 +35,10 @@ int main(int argc, char** argv) {
                 report.phases.back().t_start);
     std::printf("max |x1| = %.5f, max |x2| = %.5f, max damper stroke = %.5f\n", report.peaks.x1.max_abs,
                 report.peaks.x2.max_abs, printer.max_stroke);
-    std::printf("min gap = %.5f at t = %.3f; friction dissipated %.5f of %.5f input\n", report.pounding.min_gap,
-                report.pounding.t_min_gap, report.energy.friction, report.energy.input);
+    std::printf("min gap = %.5f at t = %.3f; friction dissipated %.5f of %.5f input\n", report.pounding->min_gap,
+                report.pounding->t_min_gap, report.energy->friction, report.energy->input);
     // The paper's qualitative result, checked: the structures never pound.
-    return report.pounding.contact ? 1 : 0;
+    return report.pounding->contact ? 1 : 0;
   } catch (const adjoin::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return adjoin::kExitInputError;

@@ -51,7 +51,7 @@ TEST_CASE("adjoin run writes summary.json and timeseries.csv per the SPEC", "[cl
   CHECK(j["peaks"]["q"]["max_abs"].get<double>() == Approx(0.3));
   for (const char* key : {"t", "x1", "x2", "v1", "v2", "f1", "f2", "q"}) CHECK(j["final"].contains(key));
   CHECK(j["final"]["t"] == Approx(16.0));
-  CHECK(j["pounding"]["min_gap"] == report.pounding.min_gap);
+  CHECK(j["pounding"]["min_gap"] == report.pounding->min_gap);
   CHECK(j["pounding"]["contact"] == false);
   CHECK(j["pounding"]["t_first_contact"].is_null());
   for (const char* key : {"input", "kinetic", "rod1", "rod2", "friction", "residual"})

@@ -22,5 +22,5 @@ TEST_CASE("5,000,000 steps with the fft engine: finite, the strong scene's story
   CHECK(r.phases.back().state == Phase::stick);
   CHECK(std::abs(r.final.v1) < 1e-6);
   CHECK(std::isfinite(r.final.x1));
-  CHECK(std::abs(r.energy.residual) < 1e-5 * r.energy.input);
+  CHECK(std::abs(r.energy->residual) < 1e-5 * r.energy->input);
 }

@@ -9,6 +9,7 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
+#include "adjoin/io/energy_csv.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/summary.hpp"
 #include "adjoin/io/timeseries_csv.hpp"
@@ -32,14 +33,27 @@ int run_command(const RunArgs& args) {
   std::filesystem::create_directories(dir, error);
   if (error) throw InputError(dir.string() + ": cannot create the output folder: " + error.message());
 
-  std::unique_ptr<AtomicFile> csv_file;
-  std::unique_ptr<TimeSeriesCsvWriter> csv;
+  // Streamed outputs: each writer sees the grid points as they are computed.
+  std::vector<std::unique_ptr<AtomicFile>> files;
+  std::vector<std::unique_ptr<Observer>> writers;
+  ObserverList streams;
   if (scene.output.timeseries) {
-    csv_file = std::make_unique<AtomicFile>(dir / "timeseries.csv");
-    csv = std::make_unique<TimeSeriesCsvWriter>(csv_file->stream(), scene.scales, scene.output.every);
+    files.push_back(std::make_unique<AtomicFile>(dir / "timeseries.csv"));
+    writers.push_back(std::make_unique<TimeSeriesCsvWriter>(files.back()->stream(), scene.scales, scene.output.every));
+    streams.add(writers.back().get());
   }
-  const RunReport report = run_scene(scene, csv.get());
-  if (csv_file) csv_file->commit();
+  if (scene.output.energy_history) {
+    files.push_back(std::make_unique<AtomicFile>(dir / "energy.csv"));
+    writers.push_back(std::make_unique<EnergyCsvWriter>(files.back()->stream(), scene.scales, scene.output.every));
+    streams.add(writers.back().get());
+  }
+  const RunReport report = run_scene(scene, writers.empty() ? nullptr : &streams);
+  for (auto& file : files) file->commit();
+  if (!report.spectra.empty()) {
+    AtomicFile spectra(dir / "spectra.csv");
+    spectra.stream() << spectra_csv(report);
+    spectra.commit();
+  }
 
   AtomicFile summary(dir / "summary.json");
   summary.stream() << summary_json(scene, report);
@@ -49,6 +63,8 @@ int run_command(const RunArgs& args) {
     std::cout << brief_report(scene, report);
     std::cout << "wrote " << (dir / "summary.json").string();
     if (scene.output.timeseries) std::cout << ", " << (dir / "timeseries.csv").string();
+    if (scene.output.energy_history) std::cout << ", " << (dir / "energy.csv").string();
+    if (!report.spectra.empty()) std::cout << ", " << (dir / "spectra.csv").string();
     std::cout << "\n";
   }
   return 0;

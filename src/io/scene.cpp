@@ -17,7 +17,7 @@
 namespace adjoin {
 namespace {
 
-enum class Kind { number, integer, string, boolean };
+enum class Kind { number, integer, string, boolean, numbers, strings };
 
 struct KeySpec {
   const char* path;
@@ -55,12 +55,17 @@ const std::vector<KeySpec>& schema() {
       {"solver.h", Kind::number},         {"solver.t_end", Kind::number},
       {"solver.locate_switches", Kind::boolean},
       {"output.timeseries", Kind::boolean}, {"output.every", Kind::integer},
+      {"output.peaks", Kind::boolean},      {"output.phases", Kind::boolean},
+      {"output.pounding", Kind::boolean},   {"output.energy", Kind::boolean},
+      {"output.energy_history", Kind::boolean},
+      {"output.spectra.signals", Kind::strings}, {"output.spectra.damping", Kind::numbers},
+      {"output.spectra.periods", Kind::numbers},
   };
   return keys;
 }
 
 const std::vector<std::string> kTables = {"model", "model.rod1", "model.rod2", "ground", "solver",
-                                          "output"};
+                                          "output", "output.spectra"};
 
 // Which ground keys each source takes.
 const std::map<std::string, std::vector<std::string>>& ground_keys() {
@@ -104,6 +109,8 @@ const char* kind_name(Kind kind) {
     case Kind::integer: return "an integer";
     case Kind::string: return "a string";
     case Kind::boolean: return "true or false";
+    case Kind::numbers: return "an array of numbers";
+    case Kind::strings: return "an array of strings";
   }
   return "?";
 }
@@ -164,6 +171,18 @@ class SceneReader {
     auto node = table_.at_path(key);
     return node ? *node.value<std::int64_t>() : fallback;
   }
+  std::vector<double> numbers(const std::string& key) const {
+    std::vector<double> out;
+    if (auto node = table_.at_path(key); node && node.is_array())
+      for (const auto& v : *node.as_array()) out.push_back(*v.value<double>());
+    return out;
+  }
+  std::vector<std::string> strings(const std::string& key) const {
+    std::vector<std::string> out;
+    if (auto node = table_.at_path(key); node && node.is_array())
+      for (const auto& v : *node.as_array()) out.push_back(*v.value<std::string>());
+    return out;
+  }
   const toml::table& table() const { return table_; }
 
  private:
@@ -204,6 +223,15 @@ void check_keys(const SceneReader& reader, const toml::table& table, const std::
       case Kind::integer: ok = node.is_integer(); break;
       case Kind::string: ok = node.is_string(); break;
       case Kind::boolean: ok = node.is_boolean(); break;
+      case Kind::numbers:
+        ok = node.is_array() && node.as_array()->size() > 0 &&
+             std::all_of(node.as_array()->begin(), node.as_array()->end(),
+                         [](const toml::node& v) { return v.is_floating_point() || v.is_integer(); });
+        break;
+      case Kind::strings:
+        ok = node.is_array() && node.as_array()->size() > 0 &&
+             std::all_of(node.as_array()->begin(), node.as_array()->end(), [](const toml::node& v) { return v.is_string(); });
+        break;
     }
     if (!ok) reader.fail(path, path + " must be " + kind_name(spec->kind));
   }
@@ -443,6 +471,28 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
   if (!o.IsValid(&error)) r.fail(error.substr(0, error.find(' ')), error);
 
   // ---- output ----
+  OutputOptions& out = scene.output;
+  out.peaks = r.boolean("output.peaks", true);
+  out.phases = r.boolean("output.phases", true);
+  out.pounding = r.boolean("output.pounding", true);
+  out.energy = r.boolean("output.energy", true);
+  out.energy_history = r.boolean("output.energy_history", false);
+  if (r.has("output.spectra")) {
+    SpectraOutput spectra;
+    if (r.has("output.spectra.signals")) spectra.signals = r.strings("output.spectra.signals");
+    for (const auto& signal : spectra.signals)
+      if (signal != "ground" && signal != "block1" && signal != "block2")
+        r.fail("output.spectra.signals", "output.spectra.signals: \"" + signal + "\" must be \"ground\", \"block1\" or \"block2\"");
+    if (r.has("output.spectra.damping")) spectra.damping = r.numbers("output.spectra.damping");
+    for (double d : spectra.damping)
+      if (!(d >= 0.0 && d < 1.0))
+        r.fail("output.spectra.damping", "output.spectra.damping: " + format_number(d) + " must be a damping ratio in [0, 1)");
+    spectra.periods = r.numbers("output.spectra.periods");
+    for (double t : spectra.periods)
+      if (!(std::isfinite(t) && t >= 0.0))
+        r.fail("output.spectra.periods", "output.spectra.periods: " + format_number(t) + " must be zero or a positive period");
+    out.spectra = spectra;
+  }
   scene.output.timeseries = r.boolean("output.timeseries", false);
   const std::int64_t every = r.integer("output.every", 1);
   if (every < 1) r.fail("output.every", "output.every = " + std::to_string(every) + " must be 1 or more");

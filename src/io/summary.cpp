@@ -27,37 +27,68 @@ std::string summary_json(const Scene& scene, const RunReport& r) {
                              {"wall_seconds", r.solver.wall_seconds},
                              {"t_end", static_cast<double>(r.solver.steps) * r.solver.h * k.time}};
   j["ground"] = scene.ground->describe();
-  ordered_json phases = ordered_json::array();
-  for (const auto& p : r.phases)
-    phases.push_back(ordered_json{{"state", to_string(p.state)}, {"t_start", p.t_start * k.time}, {"t_end", p.t_end * k.time}});
-  j["phases"] = phases;
-  j["switches"] = r.phases.empty() ? 0 : r.phases.size() - 1;
-  const Peaks& p = r.peaks;
-  j["peaks"] = ordered_json{{"x1", peak(p.x1, k.length, k.time)},
-                            {"x2", peak(p.x2, k.length, k.time)},
-                            {"f1", peak(p.f1, k.force, k.time)},
-                            {"f2", peak(p.f2, k.force, k.time)},
-                            {"q", peak(p.q, k.force, k.time)},
-                            {"v1", peak(p.v1, k.velocity, k.time)},
-                            {"v2", peak(p.v2, k.velocity, k.time)},
-                            {"a1_abs", peak(p.a1, k.acceleration, k.time)},
-                            {"a2_abs", peak(p.a2, k.acceleration, k.time)},
-                            {"ag", peak(p.ag, k.acceleration, k.time)},
-                            {"drift", peak(p.drift, k.length, k.time)}};
+  const OutputOptions& asked = scene.output;
+  if (asked.phases) {
+    ordered_json phases = ordered_json::array();
+    for (const auto& p : r.phases)
+      phases.push_back(
+          ordered_json{{"state", to_string(p.state)}, {"t_start", p.t_start * k.time}, {"t_end", p.t_end * k.time}});
+    j["phases"] = phases;
+    j["switches"] = r.phases.empty() ? 0 : r.phases.size() - 1;
+  } else {
+    j["phases"] = nullptr;
+  }
+  if (asked.peaks) {
+    const Peaks& p = r.peaks;
+    j["peaks"] = ordered_json{{"x1", peak(p.x1, k.length, k.time)},
+                              {"x2", peak(p.x2, k.length, k.time)},
+                              {"f1", peak(p.f1, k.force, k.time)},
+                              {"f2", peak(p.f2, k.force, k.time)},
+                              {"q", peak(p.q, k.force, k.time)},
+                              {"v1", peak(p.v1, k.velocity, k.time)},
+                              {"v2", peak(p.v2, k.velocity, k.time)},
+                              {"a1_abs", peak(p.a1, k.acceleration, k.time)},
+                              {"a2_abs", peak(p.a2, k.acceleration, k.time)},
+                              {"ag", peak(p.ag, k.acceleration, k.time)},
+                              {"drift", peak(p.drift, k.length, k.time)}};
+  } else {
+    j["peaks"] = nullptr;
+  }
   const State& f = r.final;
-  j["final"] = ordered_json{{"t", f.t * k.time},         {"x1", f.x1 * k.length}, {"x2", f.x2 * k.length},
-                            {"v1", f.v1 * k.velocity},   {"v2", f.v2 * k.velocity},
-                            {"f1", f.f1 * k.force},      {"f2", f.f2 * k.force},
-                            {"q", f.q * k.force},        {"phase", to_string(f.phase)}};
-  const PoundingMargin& g = r.pounding;
-  j["pounding"] = ordered_json{{"min_gap", g.min_gap * k.length},
-                               {"t_min_gap", g.t_min_gap * k.time},
-                               {"contact", g.contact},
-                               {"t_first_contact", g.t_first_contact ? ordered_json(*g.t_first_contact * k.time) : ordered_json(nullptr)}};
-  const EnergyBalance& e = r.energy;
-  j["energy"] = ordered_json{{"input", e.input * k.energy},       {"kinetic", e.kinetic * k.energy},
-                             {"rod1", e.rod1 * k.energy},         {"rod2", e.rod2 * k.energy},
-                             {"friction", e.friction * k.energy}, {"residual", e.residual * k.energy}};
+  j["final"] = ordered_json{{"t", f.t * k.time},       {"x1", f.x1 * k.length},   {"x2", f.x2 * k.length},
+                            {"v1", f.v1 * k.velocity}, {"v2", f.v2 * k.velocity}, {"f1", f.f1 * k.force},
+                            {"f2", f.f2 * k.force},    {"q", f.q * k.force},      {"phase", to_string(f.phase)}};
+  if (r.pounding) {
+    const PoundingMargin& g = *r.pounding;
+    j["pounding"] = ordered_json{
+        {"min_gap", g.min_gap * k.length},
+        {"t_min_gap", g.t_min_gap * k.time},
+        {"contact", g.contact},
+        {"t_first_contact", g.t_first_contact ? ordered_json(*g.t_first_contact * k.time) : ordered_json(nullptr)}};
+  } else {
+    j["pounding"] = nullptr;
+  }
+  if (r.energy) {
+    const EnergyBalance& e = *r.energy;
+    j["energy"] = ordered_json{{"input", e.input * k.energy},       {"kinetic", e.kinetic * k.energy},
+                               {"rod1", e.rod1 * k.energy},         {"rod2", e.rod2 * k.energy},
+                               {"friction", e.friction * k.energy}, {"residual", e.residual * k.energy}};
+  } else {
+    j["energy"] = nullptr;
+  }
+  if (!r.spectra.empty()) {
+    ordered_json spectra = ordered_json::object();
+    for (const auto& sig : r.spectra) {
+      // The peak PSA of each signal at the first damping, as a pointer into spectra.csv.
+      const SpectralValues* best = nullptr;
+      for (std::size_t i = 0; i < sig.spectrum.periods.size(); ++i)
+        if (!best || sig.spectrum.at(0, i).psa > best->psa) best = &sig.spectrum.at(0, i);
+      if (best)
+        spectra[sig.signal] =
+            ordered_json{{"damping", best->damping}, {"max_psa_g", best->psa}, {"period", best->period}};
+    }
+    j["spectra"] = spectra;
+  }
   return j.dump(2) + "\n";
 }
 
@@ -71,37 +102,57 @@ std::string brief_report(const Scene& scene, const RunReport& r) {
   std::snprintf(line, sizeof line, "solver %s/%s, h = %g%s, %zu steps, %.3f s wall\n", r.solver.scheme.c_str(),
                 r.solver.history.c_str(), r.solver.h * k.time, u("s").c_str(), r.solver.steps, r.solver.wall_seconds);
   s << line;
-  s << "phases (" << r.phases.size() << "):";
-  const std::size_t shown = 8;
-  for (std::size_t i = 0; i < r.phases.size(); ++i) {
-    if (i == shown && r.phases.size() > shown + 1) {
-      s << " ... (" << r.phases.size() - shown - 1 << " more)";
-      i = r.phases.size() - 1;
+  if (scene.output.phases) {
+    s << "phases (" << r.phases.size() << "):";
+    const std::size_t shown = 8;
+    for (std::size_t i = 0; i < r.phases.size(); ++i) {
+      if (i == shown && r.phases.size() > shown + 1) {
+        s << " ... (" << r.phases.size() - shown - 1 << " more)";
+        i = r.phases.size() - 1;
+      }
+      std::snprintf(line, sizeof line, " %s [%.4g, %.4g]", to_string(r.phases[i].state), r.phases[i].t_start * k.time,
+                    r.phases[i].t_end * k.time);
+      s << line;
     }
-    std::snprintf(line, sizeof line, " %s [%.4g, %.4g]", to_string(r.phases[i].state), r.phases[i].t_start * k.time,
-                  r.phases[i].t_end * k.time);
+    s << "\n";
+  }
+  const Peaks& p = r.peaks;
+  if (scene.output.peaks) {
+    std::snprintf(line, sizeof line, "peaks: |x1| %.6g%s at t = %.4g, |x2| %.6g%s at t = %.4g, |q| %.6g%s\n",
+                  p.x1.max_abs * k.length, u("m").c_str(), p.x1.t * k.time, p.x2.max_abs * k.length, u("m").c_str(),
+                  p.x2.t * k.time, p.q.max_abs * k.force, u("N").c_str());
+    s << line;
+    std::snprintf(line, sizeof line, "       |f1| %.6g%s, |f2| %.6g%s\n", p.f1.max_abs * k.force, u("N").c_str(),
+                  p.f2.max_abs * k.force, u("N").c_str());
     s << line;
   }
-  s << "\n";
-  const Peaks& p = r.peaks;
-  std::snprintf(line, sizeof line, "peaks: |x1| %.6g%s at t = %.4g, |x2| %.6g%s at t = %.4g, |q| %.6g%s\n",
-                p.x1.max_abs * k.length, u("m").c_str(), p.x1.t * k.time, p.x2.max_abs * k.length, u("m").c_str(),
-                p.x2.t * k.time, p.q.max_abs * k.force, u("N").c_str());
-  s << line;
-  std::snprintf(line, sizeof line, "       |f1| %.6g%s, |f2| %.6g%s\n", p.f1.max_abs * k.force, u("N").c_str(),
-                p.f2.max_abs * k.force, u("N").c_str());
-  s << line;
-  const PoundingMargin& g = r.pounding;
-  std::snprintf(line, sizeof line, "pounding: min gap %.6g%s at t = %.4g, %s\n", g.min_gap * k.length, u("m").c_str(),
-                g.t_min_gap * k.time,
-                g.contact ? ("CONTACT first at t = " + std::to_string(*g.t_first_contact * k.time)).c_str() : "no contact");
-  s << line;
-  const EnergyBalance& e = r.energy;
-  std::snprintf(line, sizeof line,
-                "energy%s: input %.6g, kinetic %.6g, rod1 %.6g, rod2 %.6g, friction %.6g, residual %.3g\n",
-                si ? " [J]" : " (per unit m1)", e.input * k.energy, e.kinetic * k.energy, e.rod1 * k.energy,
-                e.rod2 * k.energy, e.friction * k.energy, e.residual * k.energy);
-  s << line;
+  if (r.pounding) {
+    const PoundingMargin& g = *r.pounding;
+    std::snprintf(
+        line, sizeof line, "pounding: min gap %.6g%s at t = %.4g, %s\n", g.min_gap * k.length, u("m").c_str(),
+        g.t_min_gap * k.time,
+        g.contact ? ("CONTACT first at t = " + std::to_string(*g.t_first_contact * k.time)).c_str() : "no contact");
+    s << line;
+  }
+  if (r.energy) {
+    const EnergyBalance& e = *r.energy;
+    std::snprintf(line, sizeof line,
+                  "energy%s: input %.6g, kinetic %.6g, rod1 %.6g, rod2 %.6g, friction %.6g, residual %.3g\n",
+                  si ? " [J]" : " (per unit m1)", e.input * k.energy, e.kinetic * k.energy, e.rod1 * k.energy,
+                  e.rod2 * k.energy, e.friction * k.energy, e.residual * k.energy);
+    s << line;
+  }
+  return s.str();
+}
+
+std::string spectra_csv(const RunReport& report) {
+  std::ostringstream s;
+  s.precision(10);
+  s << "signal,period,damping,sd,sv,sa,psv,psa\n";
+  for (const auto& sig : report.spectra)
+    for (const auto& v : sig.spectrum.values)
+      s << sig.signal << ',' << v.period << ',' << v.damping << ',' << v.sd << ',' << v.sv << ',' << v.sa << ','
+        << v.psv << ',' << v.psa << '\n';
   return s.str();
 }
 

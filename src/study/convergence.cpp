@@ -136,8 +136,8 @@ ConvergenceResult run_convergence(const Scene& scene, const ConvergenceOptions& 
     ref.x2 = grid.x2;
     ref.has_summary = true;
     ref.peak_x1 = r.peaks.x1.max_abs;
-    ref.min_gap = r.pounding.min_gap;
-    ref.friction = r.energy.friction;
+    ref.min_gap = r.pounding->min_gap;
+    ref.friction = r.energy->friction;
     ref.description = "a finer run: implicit/" + to_string(s.solver.history) + " at h = " + number(h_ref);
   }
   ref.scale = 0.0;
@@ -169,8 +169,8 @@ ConvergenceResult run_convergence(const Scene& scene, const ConvergenceOptions& 
           row.order = std::isnan(previous) ? kNaN : std::log(previous / row.error) / std::log(result.rows.back().h / h);
           previous = row.error;
           row.peak_x1 = ref.has_summary ? relative(r.peaks.x1.max_abs, ref.peak_x1) : kNaN;
-          row.min_gap = ref.has_summary ? relative(r.pounding.min_gap, ref.min_gap) : kNaN;
-          row.friction = ref.has_summary && ref.friction > 0.0 ? relative(r.energy.friction, ref.friction) : kNaN;
+          row.min_gap = ref.has_summary ? relative(r.pounding->min_gap, ref.min_gap) : kNaN;
+          row.friction = ref.has_summary && ref.friction > 0.0 ? relative(r.energy->friction, ref.friction) : kNaN;
         } catch (const NumericalError& e) {
           row.failed = true;
           row.message = e.what();

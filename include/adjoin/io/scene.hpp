@@ -10,6 +10,7 @@
 // "--set KEY=VALUE:") and names the key and what is expected.
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -20,10 +21,25 @@
 
 namespace adjoin {
 
-// What a run computes and writes beyond summary.json ([output]; absent keys mean "not needed").
+// Response spectra computed inside a run ([output.spectra]; its presence asks for them).
+struct SpectraOutput {
+  // "ground" (a_g), "block1", "block2" (the blocks' absolute accelerations: in-structure spectra).
+  std::vector<std::string> signals{"ground", "block1", "block2"};
+  std::vector<double> damping{0.05};
+  std::vector<double> periods;  // in the scene's time unit; empty: 100 log-spaced from 0.01 to 10
+};
+
+// What a run computes and writes ([output]). What is not asked is neither computed nor kept.
+// The summary's parts are cheap (constant memory) and on by default; files are off unless asked.
 struct OutputOptions {
-  bool timeseries = false;    // output.timeseries: write timeseries.csv
-  std::size_t every = 1;      // output.every: keep every n-th grid point in timeseries.csv
+  bool peaks = true;            // output.peaks: peaks in summary.json
+  bool phases = true;           // output.phases: phase intervals in summary.json
+  bool pounding = true;         // output.pounding: the pounding margin in summary.json
+  bool energy = true;           // output.energy: the final energy balance in summary.json
+  bool timeseries = false;      // output.timeseries: write timeseries.csv (streamed)
+  bool energy_history = false;  // output.energy_history: write energy.csv (streamed)
+  std::size_t every = 1;        // output.every: keep every n-th grid point in the CSV files
+  std::optional<SpectraOutput> spectra;  // [output.spectra]: write spectra.csv
 };
 
 struct Scene {

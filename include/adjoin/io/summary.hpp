@@ -12,5 +12,7 @@ namespace adjoin {
 std::string summary_json(const Scene& scene, const RunReport& report);
 // A few lines: scene, solver, phases, peaks, pounding margin, energy.
 std::string brief_report(const Scene& scene, const RunReport& report);
+// spectra.csv: signal,period,damping,sd,sv,sa,psv,psa (the scene's units; sa and psa in g).
+std::string spectra_csv(const RunReport& report);
 
 }  // namespace adjoin

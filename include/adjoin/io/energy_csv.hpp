@@ -1,0 +1,30 @@
+#pragma once
+// Streams the energy balance's time history to CSV as the solver runs, in the scene's units
+// (per unit m1 for dimensionless scenes, joules for SI ones):
+//
+//     t,input,kinetic,rod1,rod2,friction,residual
+//
+// The definitions are those of observe/energy.hpp (and the README).
+#include <ostream>
+
+#include "adjoin/model/units.hpp"
+#include "adjoin/observe/energy.hpp"
+
+namespace adjoin {
+
+class EnergyCsvWriter final : public Observer {
+ public:
+  EnergyCsvWriter(std::ostream& out, const Scales& scales, std::size_t every = 1);
+  void begin(const RunInfo& info) override;
+  void observe(const State& s) override;
+  void end() override;
+
+ private:
+  std::ostream& out_;
+  Scales scales_;
+  std::size_t every_, steps_ = 0, count_ = 0;
+  EnergyObserver energy_;
+  std::string buffer_;
+};
+
+}  // namespace adjoin

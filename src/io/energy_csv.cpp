@@ -1,0 +1,40 @@
+#include "adjoin/io/energy_csv.hpp"
+
+#include <charconv>
+
+namespace adjoin {
+
+EnergyCsvWriter::EnergyCsvWriter(std::ostream& out, const Scales& scales, std::size_t every)
+    : out_(out), scales_(scales), every_(every == 0 ? 1 : every) {}
+
+void EnergyCsvWriter::begin(const RunInfo& info) {
+  energy_.begin(info);
+  steps_ = info.steps;
+  count_ = 0;
+  buffer_.clear();
+  out_ << "t,input,kinetic,rod1,rod2,friction,residual\n";
+}
+
+void EnergyCsvWriter::observe(const State& s) {
+  energy_.observe(s);
+  const std::size_t index = count_++;
+  if (index % every_ != 0 && index != steps_) return;
+  const EnergyBalance& e = energy_.balance();
+  const double k = scales_.energy;
+  const double values[] = {e.t * scales_.time, e.input * k, e.kinetic * k, e.rod1 * k, e.rod2 * k, e.friction * k, e.residual * k};
+  char number[32];
+  for (std::size_t i = 0; i < 7; ++i) {
+    auto [end, ec] = std::to_chars(number, number + sizeof number, values[i]);
+    buffer_.append(number, end);
+    buffer_.push_back(i + 1 < 7 ? ',' : '\n');
+  }
+  if (buffer_.size() > (1 << 16)) { out_ << buffer_; buffer_.clear(); }
+}
+
+void EnergyCsvWriter::end() {
+  out_ << buffer_;
+  buffer_.clear();
+  out_.flush();
+}
+
+}  // namespace adjoin
