@@ -31,8 +31,8 @@ std::vector<SignalSpectrum> spectra_of(const Scene& scene, const AccelerationRec
   const Scales& k = scene.scales;
   SpectrumOptions options;
   options.dampings = asked.damping;
+  // Periods are in the scene's time unit already, as is the step below.
   options.periods = asked.periods.empty() ? default_spectrum_periods() : asked.periods;
-  for (double& t : options.periods) t *= k.time;  // to seconds (SI) or kept (dimensionless)
   // The library works in m/s^2 and s; dimensionless accelerations are in g. For a
   // dimensionless scene, lengths come out multiplied by g and are divided back below.
   const double dt = scene.solver.h * k.time;
