@@ -1,0 +1,186 @@
+#pragma once
+// Sweeps for damper design (SPEC §2 "Studies"): a base scene, axes over any scene key, and a
+// set of ground motions; one run per point of their cartesian product, one table row per run.
+//
+//     SweepSpec spec = load_sweep("examples/sweeps/slip-force.toml");
+//     std::vector<SweepRow> rows = run_sweep(spec);          // all local cores
+//     SweepTable table = sweep_table(spec, rows);            // the CSV/JSON cells
+//
+// Order. Run i has coordinates (axis 0 value, axis 1 value, ..., motion): the first axis varies
+// slowest and the motion fastest, i = ((v0 n1 + v1) n2 + ...) n_motions + m. Rows are placed by
+// index, so the table is the same whatever the parallelism (threads, shards, MPI ranks).
+//
+// A run builds its scene from the base file with the run's overrides (the axis values, then
+// the motion), exactly like `adjoin run BASE --set KEY=VALUE...`, and integrates it with the
+// observers run_scene() uses (peaks, phases, pounding, energy) plus the ground-motion intensity
+// measures of the forcing the solver actually saw (PGA; Sa(T, damping) at the sweep's
+// im_periods). A NumericalError is recorded in the row's `error`; an InputError stops the sweep
+// with the sweep file, the run and the key.
+//
+// Values are in the base scene's units (SI scenes: m, N, m/s^2, J); energy shares are ratios to
+// the input energy; pga_g and sa_T are in g with T in seconds (a dimensionless scene: T in its
+// time unit, i.e. ground.time_scale seconds for a record, 1 otherwise).
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "adjoin/io/scene.hpp"
+
+namespace adjoin {
+
+// One value of an axis, or one ground motion: a label for the table and the scene edits it makes.
+struct SweepSetting {
+  std::string label;                    // the table cell (an axis value) or the motion's name
+  std::optional<double> number;         // the value, when it is a number (label = shortest repr)
+  std::vector<std::string> unset;       // dotted keys removed from the base scene first
+  std::vector<std::pair<std::string, std::string>> set;  // dotted key -> TOML value text
+  std::size_t line = 0;                 // where it was written in the sweep file
+  // "--set" style strings "key=value", in order.
+  std::vector<std::string> overrides() const;
+};
+
+struct SweepAxis {
+  std::string name;  // column header: `name`, or the key
+  std::string key;   // the scene key a plain value sets (empty if every value is a set of edits)
+  std::vector<SweepSetting> values;
+  std::size_t line = 0;  // in the sweep file
+};
+
+struct SweepSpec {
+  std::filesystem::path file;  // the sweep file ("" if parsed from text without a file)
+  std::string name;            // `name`, or the sweep file's stem
+  std::filesystem::path base;  // the base scene (resolved relative to the sweep file)
+  SweepSetting common;         // top-level set = {...} / unset = [...]: edits every run makes first
+  std::vector<SweepAxis> axes;
+  std::vector<SweepSetting> motions;  // at least one ("base": the base scene's own ground)
+  std::vector<double> im_periods;     // [output] im_periods: Sa(T) columns [s]
+  double im_damping = 0.05;           // [output] im_damping
+  std::string fingerprint;            // hash of the sweep text, the base scene text and the version
+  std::string base_text;              // the base scene file's text, read once
+
+  std::size_t runs() const;
+  // Index of the value on each axis, then the motion's index (size axes + 1).
+  std::vector<std::size_t> coordinates(std::size_t index) const;
+  // The edits of run `index`: the common ones, the axis values, then the motion.
+  std::vector<SweepSetting> settings(std::size_t index) const;
+  // "model.mu=0.3, motion=elcentro": for messages.
+  std::string describe(std::size_t index) const;
+};
+
+// Reads a sweep file (TOML; README "Sweeps"). Every problem is an InputError "FILE:LINE: ...".
+// The base scene is loaded once to check it (its own errors name its file and line).
+SweepSpec load_sweep(const std::filesystem::path& file);
+// The same from text; `name` stands for the file in messages and paths are relative to its folder.
+SweepSpec parse_sweep(const std::string& text, const std::string& name);
+
+// The scene of run `index` (InputError prefixed with the sweep file and the run).
+Scene sweep_scene(const SweepSpec& spec, std::size_t index);
+
+struct SweepRow {
+  std::size_t index = 0;
+  std::string units;  // "dimensionless" or "SI"
+  // Peaks (max |.|) in the scene's units: displacements, drift = |x1 - x2| (the damper's stroke),
+  // rod forces, absolute accelerations of the blocks.
+  double x1 = 0, x2 = 0, drift = 0, f1 = 0, f2 = 0, a1_abs = 0, a2_abs = 0;
+  double min_gap = 0;   // pounding margin (scene units)
+  bool contact = false;
+  double energy_input = 0;  // scene units (per unit m1, or J)
+  double share_rod1 = 0, share_rod2 = 0, share_friction = 0, share_residual = 0;  // / input
+  std::size_t stick_intervals = 0, slip_intervals = 0, switches = 0;
+  double pga_g = 0;             // of the forcing the solver saw [g]
+  std::vector<double> sa_g;     // Sa(T, im_damping) at spec.im_periods [g]
+  double wall_seconds = 0;      // building the scene + integrating + intensity measures
+  std::string error;            // a NumericalError's message; the numbers are then NaN
+};
+
+// One run (InputError propagates; NumericalError is caught into row.error).
+SweepRow run_sweep_point(const SweepSpec& spec, std::size_t index);
+
+struct SweepOptions {
+  unsigned jobs = 0;                  // threads; 0: std::thread::hardware_concurrency()
+  std::vector<std::size_t> indices;   // runs to do; empty: all
+  // Called once per finished row, one call at a time (under a lock), from the worker threads:
+  // journals, progress bars.
+  std::function<void(const SweepRow&)> on_row;
+};
+
+// The rows of options.indices (or all runs), in increasing index order. An InputError (or any
+// other exception) in one run stops the others from starting and is rethrown (the lowest
+// failing index wins, so the message does not depend on timing).
+std::vector<SweepRow> run_sweep(const SweepSpec& spec, const SweepOptions& options = {});
+
+// ---- the table: what sweep.csv and sweep.json hold ----
+
+enum class ColumnType { integer, number, boolean, string };
+
+struct SweepColumn {
+  std::string name;
+  ColumnType type;
+};
+
+// index, the axes, motion, units, x1, x2, drift, f1, f2, a1_abs, a2_abs, min_gap, contact,
+// energy_input, share_rod1, share_rod2, share_friction, share_residual, stick_intervals,
+// slip_intervals, switches, pga_g, sa_<T>..., wall_seconds, error.
+std::vector<SweepColumn> sweep_columns(const SweepSpec& spec);
+
+// Cells as text: numbers in their shortest round-trip form, NaN and absent values as "",
+// booleans as true/false. The same cells go to the CSV, the journal and the JSON, so a table
+// assembled from shards or ranks is identical to one computed in one go.
+struct SweepTable {
+  std::vector<SweepColumn> columns;
+  std::vector<std::vector<std::string>> rows;  // ordered by index (column 0)
+};
+
+std::vector<std::string> sweep_cells(const SweepSpec& spec, const SweepRow& row);
+SweepTable sweep_table(const SweepSpec& spec, const std::vector<SweepRow>& rows);
+
+// CSV: a header line, then one line per row; cells with ',', '"' or a line break are quoted.
+std::string csv_line(const std::vector<std::string>& cells);
+// Splits one CSV line (no line break); false if the quoting is broken.
+bool split_csv_line(const std::string& line, std::vector<std::string>* cells);
+std::string sweep_csv(const SweepTable& table);
+
+// A shard of the runs: indices i with i mod count == index (0-based).
+struct SweepShard {
+  std::size_t index = 0, count = 1;
+  bool whole() const { return count == 1; }
+  bool contains(std::size_t run) const { return run % count == index; }
+};
+
+// sweep.json: {"sweep", "base", "fingerprint", "runs", "shard" ({"index","count"} or null),
+// "columns": [{"name","type"}], "rows": [{column: value}]} with numbers as numbers and empty
+// cells as null.
+// A table (a shard's or a whole sweep's) with its bookkeeping, as sweep.json holds it.
+struct SweepTableFile {
+  std::filesystem::path file;  // where it was read from (empty if made here)
+  std::string sweep, base, fingerprint;
+  std::size_t runs = 0;
+  SweepShard shard;
+  SweepTable table;
+};
+SweepTableFile sweep_table_file(const SweepSpec& spec, SweepTable table, const SweepShard& shard);
+std::string sweep_json(const SweepTableFile& table);
+SweepTableFile read_sweep_json(const std::filesystem::path& file);
+
+// Combines shard tables into the table of the whole sweep: same fingerprint and columns, every
+// run exactly once (InputError naming the file otherwise).
+SweepTableFile merge_sweep_tables(const std::vector<SweepTableFile>& parts);
+
+// ---- the journal: DIR/sweep.partial.csv (or sweep.shard-I-of-N.partial.csv) ----
+// Line 1 "# adjoin sweep journal fingerprint=F runs=N shard=I/N", line 2 the CSV header,
+// then one row per finished run, appended and flushed as each run ends (any order).
+
+std::string sweep_journal_preamble(const SweepSpec& spec, const SweepShard& shard);
+// Rows of a journal that match the spec and shard (a journal of another sweep, or a torn last
+// line, is ignored: returns what can be trusted). Returns {} if the file does not exist.
+std::vector<std::vector<std::string>> read_sweep_journal(const std::filesystem::path& file,
+                                                         const SweepSpec& spec, const SweepShard& shard);
+
+// File names inside the output folder: "sweep" or "sweep.shard-I-of-N".
+std::string sweep_file_stem(const SweepShard& shard);
+
+}  // namespace adjoin

@@ -1,0 +1,411 @@
+// adjoin sweep SWEEP.toml [--out DIR] [--jobs N] [--shard I/N] [--quiet]
+// adjoin sweep merge DIR...|FILE... --out FILE      (also: adjoin sweep-merge ...)
+//
+// Runs every point of a sweep (study/sweep.hpp) on all local cores and writes DIR/sweep.csv and
+// DIR/sweep.json (the same rows). Each finished run is appended to a journal,
+// DIR/sweep.partial.csv, flushed per row: a rerun skips the runs it holds, and the final files
+// are written (temporary file + rename) only when every run is done; the journal is then removed.
+//
+// --shard I/N runs only the indices i with i mod N == I (I from 0 to N-1) and writes
+// DIR/sweep.shard-I-of-N.{csv,json}; `adjoin sweep merge` combines the shards into the table a
+// single run would have written.
+//
+// MPI (built with -DADJOIN_WITH_MPI=ON): under mpirun with more than one rank, rank r runs shard
+// r/size (with its own journal, so an interrupted MPI sweep resumes), and rank 0 gathers the rows
+// and writes DIR/sweep.{csv,json}. Each rank uses (local cores / local ranks) threads unless --jobs.
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <thread>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/io/atomic_file.hpp"
+#include "adjoin/study/sweep.hpp"
+#include "command.hpp"
+
+#ifdef ADJOIN_WITH_MPI
+#include <mpi.h>
+#endif
+
+namespace adjoin::cli {
+namespace {
+
+struct SweepArgs {
+  std::string sweep, out, shard;
+  unsigned jobs = 0;
+  bool quiet = false;
+};
+
+struct MergeArgs {
+  std::vector<std::string> inputs;
+  std::string out;
+};
+
+SweepShard parse_shard(const std::string& text) {
+  SweepShard shard;
+  const auto slash = text.find('/');
+  try {
+    if (slash == std::string::npos) throw std::invalid_argument("no slash");
+    std::size_t used = 0;
+    const long long i = std::stoll(text.substr(0, slash), &used);
+    if (used != slash) throw std::invalid_argument("index");
+    const std::string rest = text.substr(slash + 1);
+    const long long n = std::stoll(rest, &used);
+    if (used != rest.size()) throw std::invalid_argument("count");
+    if (n < 1 || i < 0 || i >= n) throw std::invalid_argument("range");
+    shard.index = static_cast<std::size_t>(i);
+    shard.count = static_cast<std::size_t>(n);
+  } catch (const std::exception&) {
+    throw InputError("--shard " + text + ": expected I/N with 0 <= I < N (0-based: --shard 0/2 and --shard 1/2 make a whole)");
+  }
+  return shard;
+}
+
+// A progress bar on stderr, only when stderr is a terminal.
+class Progress {
+ public:
+  Progress(bool enabled, std::size_t done, std::size_t total)
+      : enabled_(enabled && isatty(STDERR_FILENO)), start_done_(done), done_(done), total_(total),
+        start_(std::chrono::steady_clock::now()) {
+    draw();
+  }
+  void tick() {
+    ++done_;
+    const auto now = std::chrono::steady_clock::now();
+    if (done_ == total_ || now - last_ > std::chrono::milliseconds(100)) {
+      last_ = now;
+      draw();
+    }
+  }
+  void finish() {
+    if (enabled_) std::fprintf(stderr, "\n");
+  }
+
+ private:
+  void draw() {
+    if (!enabled_ || total_ == 0) return;
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+    const double rate = seconds > 0 ? static_cast<double>(done_ - start_done_) / seconds : 0.0;
+    const int width = 30;
+    const int filled = static_cast<int>(static_cast<double>(width) * static_cast<double>(done_) / static_cast<double>(total_));
+    std::string bar(static_cast<std::size_t>(filled), '#');
+    bar += std::string(static_cast<std::size_t>(width - filled), '.');
+    char eta[32] = "--:--";
+    if (rate > 0) {
+      const long remaining = std::lround(static_cast<double>(total_ - done_) / rate);
+      std::snprintf(eta, sizeof eta, "%ld:%02ld", remaining / 60, remaining % 60);
+    }
+    std::fprintf(stderr, "\r[%s] %zu/%zu runs, %.1f runs/s, ETA %s   ", bar.c_str(), done_, total_, rate, eta);
+    std::fflush(stderr);
+  }
+  bool enabled_;
+  std::size_t start_done_, done_, total_;
+  std::chrono::steady_clock::time_point start_, last_{};
+};
+
+void write_table(const SweepTableFile& table, const std::filesystem::path& csv, const std::filesystem::path& json) {
+  {
+    AtomicFile file(csv);
+    file.stream() << sweep_csv(table.table);
+    file.commit();
+  }
+  AtomicFile file(json);
+  file.stream() << sweep_json(table);
+  file.commit();
+}
+
+std::size_t cell_index(const std::vector<std::string>& cells) { return std::stoull(cells.at(0)); }
+
+// Runs the shard's runs that its journal does not hold yet; returns every row of the shard
+// (journal + new), ordered by index. The journal stays until the caller removes it.
+std::vector<std::vector<std::string>> run_shard(const SweepSpec& spec, const SweepShard& shard, const std::filesystem::path& dir,
+                                                unsigned jobs, bool progress_bar) {
+  const std::filesystem::path journal_path = dir / (sweep_file_stem(shard) + ".partial.csv");
+  std::vector<std::vector<std::string>> rows = read_sweep_journal(journal_path, spec, shard);
+  std::set<std::size_t> done;
+  for (const auto& r : rows) done.insert(cell_index(r));
+
+  // Rewrite the journal with what can be trusted (drops a torn last line or another sweep's rows).
+  {
+    AtomicFile file(journal_path);
+    file.stream() << sweep_journal_preamble(spec, shard);
+    for (const auto& r : rows) file.stream() << csv_line(r) << "\n";
+    file.commit();
+  }
+  std::vector<std::size_t> pending;
+  std::size_t total = 0;
+  for (std::size_t i = shard.index; i < spec.runs(); i += shard.count) {
+    ++total;
+    if (!done.count(i)) pending.push_back(i);
+  }
+  if (!pending.empty()) {
+    std::ofstream journal(journal_path, std::ios::binary | std::ios::app);
+    if (!journal) throw InputError(journal_path.string() + ": cannot append to the sweep journal");
+    Progress progress(progress_bar, total - pending.size(), total);
+    SweepOptions options;
+    options.jobs = jobs;
+    options.indices = pending;
+    options.on_row = [&](const SweepRow& row) {
+      auto cells = sweep_cells(spec, row);
+      journal << csv_line(cells) << "\n";
+      journal.flush();
+      if (!journal) throw InputError(journal_path.string() + ": cannot write the sweep journal (disk full?)");
+      rows.push_back(std::move(cells));
+      progress.tick();
+    };
+    try {
+      run_sweep(spec, options);
+    } catch (...) {
+      progress.finish();
+      throw;
+    }
+    progress.finish();
+  }
+  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return cell_index(a) < cell_index(b); });
+  return rows;
+}
+
+std::size_t count_failed(const SweepTable& table) {
+  return static_cast<std::size_t>(std::count_if(table.rows.begin(), table.rows.end(), [](const auto& r) { return !r.back().empty(); }));
+}
+
+std::filesystem::path output_dir(const SweepArgs& args, const SweepSpec& spec) {
+  const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / spec.name : std::filesystem::path(args.out);
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) throw InputError(dir.string() + ": cannot create the output folder: " + error.message());
+  return dir;
+}
+
+void report(const SweepArgs& args, const SweepSpec& spec, const SweepTableFile& table, const std::filesystem::path& dir,
+            const std::string& stem, double seconds) {
+  if (args.quiet) return;
+  const std::size_t failed = count_failed(table.table);
+  std::printf("sweep %s: %zu runs", spec.name.c_str(), table.table.rows.size());
+  if (!table.shard.whole()) std::printf(" (shard %zu/%zu of %zu)", table.shard.index, table.shard.count, spec.runs());
+  std::printf(" in %.3g s", seconds);
+  if (failed) std::printf(", %zu stopped on a numerical failure (see the error column)", failed);
+  std::printf("\nwrote %s, %s\n", (dir / (stem + ".csv")).string().c_str(), (dir / (stem + ".json")).string().c_str());
+}
+
+int sweep_local(const SweepArgs& args) {
+  const auto start = std::chrono::steady_clock::now();
+  const SweepSpec spec = load_sweep(args.sweep);
+  const SweepShard shard = args.shard.empty() ? SweepShard{} : parse_shard(args.shard);
+  const std::filesystem::path dir = output_dir(args, spec);
+  auto rows = run_shard(spec, shard, dir, args.jobs, !args.quiet);
+  SweepTable table{sweep_columns(spec), std::move(rows)};
+  const SweepTableFile file = sweep_table_file(spec, std::move(table), shard);
+  const std::string stem = sweep_file_stem(shard);
+  write_table(file, dir / (stem + ".csv"), dir / (stem + ".json"));
+  std::filesystem::remove(dir / (stem + ".partial.csv"));
+  report(args, spec, file, dir, stem,
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  return 0;
+}
+
+#ifdef ADJOIN_WITH_MPI
+// MPI is started only when a launcher (mpirun, srun) says so; a plain `adjoin sweep` stays serial.
+bool launched_by_mpi() {
+  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS", "SLURM_PROCID"})
+    if (std::getenv(v)) return true;
+  return false;
+}
+
+struct MpiSession {
+  bool active = false;
+  int rank = 0, size = 1, local_size = 1;
+  MpiSession() {
+    if (!launched_by_mpi()) return;
+    int initialized = 0;
+    MPI_Initialized(&initialized);
+    if (!initialized) MPI_Init(nullptr, nullptr);
+    active = true;
+    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
+    MPI_Comm_size(MPI_COMM_WORLD, &size);
+    MPI_Comm local;
+    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &local);
+    MPI_Comm_size(local, &local_size);
+    MPI_Comm_free(&local);
+  }
+  ~MpiSession() {
+    int finalized = 0;
+    if (active && (MPI_Finalized(&finalized), !finalized)) MPI_Finalize();
+  }
+  MpiSession(const MpiSession&) = delete;
+  MpiSession& operator=(const MpiSession&) = delete;
+};
+
+// Rank 0 receives every rank's text.
+std::vector<std::string> gather_text(const std::string& mine, const MpiSession& mpi) {
+  const int length = static_cast<int>(mine.size());
+  std::vector<int> lengths(static_cast<std::size_t>(mpi.size)), offsets(static_cast<std::size_t>(mpi.size));
+  MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
+  int total = 0;
+  for (int r = 0; r < mpi.size; ++r) {
+    offsets[static_cast<std::size_t>(r)] = total;
+    total += lengths[static_cast<std::size_t>(r)];
+  }
+  std::string all(mpi.rank == 0 ? static_cast<std::size_t>(total) : 0, '\0');
+  MPI_Gatherv(mine.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR, 0, MPI_COMM_WORLD);
+  std::vector<std::string> out;
+  if (mpi.rank == 0)
+    for (int r = 0; r < mpi.size; ++r)
+      out.push_back(all.substr(static_cast<std::size_t>(offsets[static_cast<std::size_t>(r)]),
+                               static_cast<std::size_t>(lengths[static_cast<std::size_t>(r)])));
+  return out;
+}
+
+int sweep_mpi(const SweepArgs& args, const MpiSession& mpi) {
+  const auto start = std::chrono::steady_clock::now();
+  int status = 0;
+  std::string message, rows_text;
+  SweepSpec spec;
+  std::filesystem::path dir;
+  const SweepShard shard{static_cast<std::size_t>(mpi.rank), static_cast<std::size_t>(mpi.size)};
+  try {
+    if (!args.shard.empty()) throw InputError("--shard " + args.shard + ": not with mpirun (each rank runs shard RANK/SIZE)");
+    spec = load_sweep(args.sweep);
+    dir = output_dir(args, spec);
+    const unsigned jobs = args.jobs ? args.jobs
+                                    : std::max(1u, std::thread::hardware_concurrency() / static_cast<unsigned>(std::max(1, mpi.local_size)));
+    for (const auto& r : run_shard(spec, shard, dir, jobs, !args.quiet && mpi.rank == 0)) rows_text += csv_line(r) + "\n";
+  } catch (const InputError& e) {
+    status = kExitInputError;
+    message = e.what();
+  } catch (const std::exception& e) {
+    status = 1;
+    message = std::string("internal: ") + e.what();
+  }
+  int worst = 0;
+  MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
+  const auto messages = gather_text(status ? message : std::string(), mpi);
+  if (worst != 0) {
+    if (mpi.rank != 0) return worst;
+    for (int r = 0; r < mpi.size; ++r)
+      if (!messages[static_cast<std::size_t>(r)].empty()) {
+        const std::string text = mpi.size > 1 ? "rank " + std::to_string(r) + ": " + messages[static_cast<std::size_t>(r)] : messages[0];
+        if (worst == kExitInputError) throw InputError(text);
+        throw std::runtime_error(text);
+      }
+    return worst;
+  }
+  const auto parts = gather_text(rows_text, mpi);
+  int written = 0;
+  if (mpi.rank == 0) {
+    try {
+      std::vector<std::vector<std::string>> rows;
+      for (const auto& part : parts) {
+        std::size_t pos = 0;
+        while (pos < part.size()) {
+          const std::size_t end = part.find('\n', pos);
+          std::vector<std::string> cells;
+          split_csv_line(part.substr(pos, end - pos), &cells);
+          rows.push_back(std::move(cells));
+          pos = end + 1;
+        }
+      }
+      std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return cell_index(a) < cell_index(b); });
+      const SweepTableFile file = sweep_table_file(spec, SweepTable{sweep_columns(spec), std::move(rows)}, SweepShard{});
+      write_table(file, dir / "sweep.csv", dir / "sweep.json");
+      written = 1;
+      report(args, spec, file, dir, "sweep", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      if (!args.quiet) std::printf("(%d MPI ranks)\n", mpi.size);
+    } catch (const std::exception& e) {
+      message = e.what();
+    }
+  }
+  MPI_Bcast(&written, 1, MPI_INT, 0, MPI_COMM_WORLD);
+  if (!written) {
+    if (mpi.rank == 0) throw InputError(message);
+    return kExitInputError;
+  }
+  std::filesystem::remove(dir / (sweep_file_stem(shard) + ".partial.csv"));
+  return 0;
+}
+#endif
+
+int sweep_command(const SweepArgs& args) {
+  if (args.sweep.empty()) throw InputError("adjoin sweep: expected a sweep file (adjoin sweep SWEEP.toml) or `adjoin sweep merge`");
+#ifdef ADJOIN_WITH_MPI
+  MpiSession mpi;
+  if (mpi.size > 1) return sweep_mpi(args, mpi);
+#endif
+  return sweep_local(args);
+}
+
+int merge_command(const MergeArgs& args) {
+  std::vector<std::filesystem::path> files;
+  for (const auto& input : args.inputs) {
+    const std::filesystem::path p(input);
+    if (std::filesystem::is_directory(p)) {
+      std::vector<std::filesystem::path> found;
+      for (const auto& entry : std::filesystem::directory_iterator(p)) {
+        const std::string name = entry.path().filename().string();
+        if (name.rfind("sweep.shard-", 0) == 0 && entry.path().extension() == ".json") found.push_back(entry.path());
+      }
+      if (found.empty()) throw InputError(p.string() + ": no shard tables (sweep.shard-I-of-N.json) in this folder");
+      std::sort(found.begin(), found.end());
+      files.insert(files.end(), found.begin(), found.end());
+    } else if (p.extension() == ".csv") {
+      // The CSV's sibling JSON carries the sweep's fingerprint and run count.
+      files.push_back(std::filesystem::path(p).replace_extension(".json"));
+    } else {
+      files.push_back(p);
+    }
+  }
+  std::vector<SweepTableFile> parts;
+  for (const auto& f : files) parts.push_back(read_sweep_json(f));
+  const SweepTableFile merged = merge_sweep_tables(parts);
+  std::filesystem::path csv(args.out), json(args.out);
+  if (csv.extension() == ".csv" || csv.extension() == ".json") {
+    csv.replace_extension(".csv");
+    json.replace_extension(".json");
+  } else {
+    csv = csv / "sweep.csv";
+    json = json / "sweep.json";
+  }
+  if (csv.has_parent_path()) std::filesystem::create_directories(csv.parent_path());
+  write_table(merged, csv, json);
+  std::printf("merged %zu tables: %zu runs of sweep %s\nwrote %s, %s\n", parts.size(), merged.table.rows.size(),
+              merged.sweep.c_str(), csv.string().c_str(), json.string().c_str());
+  return 0;
+}
+
+void add_merge_options(CLI::App* sub, const std::shared_ptr<MergeArgs>& args) {
+  sub->add_option("tables", args->inputs, "Shard tables: folders holding sweep.shard-I-of-N.json, or .json/.csv files")->required();
+  sub->add_option("--out", args->out, "Merged table: FILE.csv (and FILE.json beside it), or a folder")->required();
+}
+
+const Registration registration(50, [](CLI::App& app) -> Runner {
+  auto args = std::make_shared<SweepArgs>();
+  auto merge = std::make_shared<MergeArgs>();
+  auto* sub = app.add_subcommand("sweep", "Run a sweep (base scene x axes x ground motions): sweep.csv and sweep.json");
+  sub->add_option("sweep", args->sweep, "Sweep file (TOML; README \"Sweeps\")");
+  sub->add_option("--out", args->out, "Output folder (default out/<sweep name>/)");
+  sub->add_option("--jobs,-j", args->jobs, "Threads (default: all local cores; under MPI, cores per local rank)");
+  sub->add_option("--shard", args->shard, "Run only the runs i with i mod N == I (0-based I/N); merge the shards with `adjoin sweep merge`");
+  sub->add_flag("--quiet,-q", args->quiet, "No progress bar and no summary");
+  auto* merge_sub = sub->add_subcommand("merge", "Combine shard tables into the table of the whole sweep");
+  add_merge_options(merge_sub, merge);
+  return [args, merge, merge_sub]() { return merge_sub->parsed() ? merge_command(*merge) : sweep_command(*args); };
+});
+
+const Registration merge_registration(51, [](CLI::App& app) -> Runner {
+  auto merge = std::make_shared<MergeArgs>();
+  auto* sub = app.add_subcommand("sweep-merge", "The same as `adjoin sweep merge`");
+  add_merge_options(sub, merge);
+  return [merge]() { return merge_command(*merge); };
+});
+
+}  // namespace
+}  // namespace adjoin::cli

@@ -1,0 +1,485 @@
+// Sweeps (study/sweep.hpp, adjoin sweep / sweep merge) and demand models (study/demand.hpp,
+// adjoin demand).
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <set>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/ground/record_file.hpp"
+#include "adjoin/post/intensity.hpp"
+#include "adjoin/post/spectrum.hpp"
+#include "adjoin/study/demand.hpp"
+#include "adjoin/study/sweep.hpp"
+#include "cli_helpers.hpp"
+
+using namespace adjoin;
+using adjoin::test::run_cli;
+using adjoin::test::slurp;
+using adjoin::test::write_temp;
+
+namespace {
+
+const std::string kStrong = std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/paper-strong.toml";
+const std::filesystem::path kRecords = ADJOIN_SHARED_RECORDS;
+
+std::string qpath(const std::filesystem::path& p) { return "\"" + p.string() + "\""; }
+
+// A sweep file in its own scratch folder (its relative paths resolve there).
+std::filesystem::path sweep_file(const std::string& name, const std::string& body) {
+  return write_temp(name, "base = " + qpath(kStrong) + "\n" + body);
+}
+
+std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
+  std::vector<std::vector<std::string>> rows;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) {
+    std::vector<std::string> cells;
+    REQUIRE(split_csv_line(line, &cells));
+    rows.push_back(cells);
+  }
+  return rows;
+}
+
+// Every cell except the wall_seconds column.
+std::vector<std::vector<std::string>> without_wall_time(std::vector<std::vector<std::string>> rows) {
+  REQUIRE(!rows.empty());
+  const auto it = std::find(rows[0].begin(), rows[0].end(), "wall_seconds");
+  REQUIRE(it != rows[0].end());
+  const auto column = static_cast<std::size_t>(it - rows[0].begin());
+  for (auto& r : rows) r.erase(r.begin() + static_cast<std::ptrdiff_t>(column));
+  return rows;
+}
+
+std::size_t column_of(const SweepSpec& spec, const std::string& name) {
+  const auto columns = sweep_columns(spec);
+  for (std::size_t i = 0; i < columns.size(); ++i)
+    if (columns[i].name == name) return i;
+  FAIL("no column " << name);
+  return 0;
+}
+
+}  // namespace
+
+TEST_CASE("sweep files: ranges, values, order of the runs", "[sweep]") {
+  const auto file = sweep_file("order.toml", R"(
+set = {"solver.h" = 0.01}
+[[axis]]
+key = "model.mu"
+from = 0.1
+to = 0.4
+n = 4
+[[axis]]
+key = "model.eps"
+from = 0.5
+to = 8.0
+n = 5
+spacing = "log"
+[[motion]]
+name = "a"
+[[motion]]
+name = "b"
+set = {"ground.u0" = 0.5}
+)");
+  const SweepSpec spec = load_sweep(file);
+  REQUIRE(spec.runs() == 4 * 5 * 2);
+  REQUIRE(spec.axes.size() == 2);
+  CHECK(spec.axes[0].values[0].number.value() == 0.1);
+  CHECK(spec.axes[0].values[1].number.value() == Approx(0.2).epsilon(1e-15));
+  CHECK(spec.axes[0].values[3].number.value() == 0.4);
+  // log spacing: 0.5, 1, 2, 4, 8
+  for (std::size_t i = 0; i < 5; ++i) CHECK(spec.axes[1].values[i].number.value() == Approx(0.5 * std::pow(2.0, i)).epsilon(1e-14));
+  CHECK(spec.axes[1].values[4].label == "8");
+  // The first axis varies slowest, the motion fastest.
+  CHECK(spec.coordinates(0) == std::vector<std::size_t>{0, 0, 0});
+  CHECK(spec.coordinates(1) == std::vector<std::size_t>{0, 0, 1});
+  CHECK(spec.coordinates(2) == std::vector<std::size_t>{0, 1, 0});
+  CHECK(spec.coordinates(10) == std::vector<std::size_t>{1, 0, 0});
+  CHECK(spec.coordinates(39) == std::vector<std::size_t>{3, 4, 1});
+  CHECK(spec.describe(13) == "model.mu=0.2, model.eps=1, motion=b");
+  const Scene scene = sweep_scene(spec, 13);
+  CHECK(scene.model.mu == Approx(0.2).epsilon(1e-15));
+  CHECK(scene.model.eps == Approx(1.0).epsilon(1e-14));
+  CHECK(scene.solver.h == 0.01);
+  CHECK(scene.ground->describe().find("u0=0.5") != std::string::npos);
+}
+
+TEST_CASE("sweep files: bad input names the file, line and key", "[sweep]") {
+  auto message = [](const std::string& body) {
+    try {
+      load_sweep(sweep_file("bad.toml", body));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK_THAT(message("[[axis]]\nkey = \"model.mu\"\nfrom = 0\nto = 1\n"), Catch::Contains("bad.toml:2:") && Catch::Contains("missing n"));
+  CHECK_THAT(message("[[axis]]\nkey = \"model.mu\"\nfrom = 0\nto = 1\nn = 3\nspacing = \"log\"\n"),
+             Catch::Contains("bad.toml:4:") && Catch::Contains("from > 0"));
+  CHECK_THAT(message("[[axis]]\nkey = \"model.mu\"\nvalues = [0.1]\nfrom = 0\n"), Catch::Contains("either values"));
+  CHECK_THAT(message("[[axis]]\nkye = \"model.mu\"\nvalues = [1]\n"), Catch::Contains("bad.toml:3:") && Catch::Contains("did you mean key"));
+  CHECK_THAT(message("[[motion]]\nset = {}\n"), Catch::Contains("bad.toml:2:") && Catch::Contains("name"));
+  CHECK_THAT(message("[output]\nim_periods = [0.0]\n"), Catch::Contains("bad.toml:3:") && Catch::Contains("positive"));
+  CHECK_THAT(message("[[axis]]\nkey = \"model.mu\"\nvalues = [0.1, 0.1]\n"), Catch::Contains("twice"));
+  // An unknown scene key in an axis: the run's scene fails, and the message points at the axis.
+  const SweepSpec spec = load_sweep(sweep_file("unknown.toml", "\n[[axis]]\nkey = \"model.muu\"\nvalues = [0.1, 0.2]\n"));
+  try {
+    run_sweep(spec, {});
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK_THAT(e.what(), Catch::Contains("unknown.toml:5: run 0 (model.muu=0.1, motion=base)") &&
+                             Catch::Contains("model.muu") && Catch::Contains("did you mean model.mu"));
+  }
+}
+
+TEST_CASE("a sweep row is what `adjoin run` reports (paper's strong scene)", "[sweep]") {
+  // README: |x1| 1.16654, |x2| 0.743036, min gap 1.44812, energy input 7.21543, friction 1.23778,
+  // 8 phase intervals (3 stick, 5 slip).
+  const SweepSpec spec = load_sweep(sweep_file("strong.toml", "[[axis]]\nkey = \"model.mu\"\nvalues = [0.3]\n"));
+  const auto rows = run_sweep(spec, {});
+  REQUIRE(rows.size() == 1);
+  const SweepRow& r = rows[0];
+  CHECK(r.error.empty());
+  CHECK(r.units == "dimensionless");
+  CHECK(r.x1 == Approx(1.16654).epsilon(5e-6));
+  CHECK(r.x2 == Approx(0.743036).epsilon(5e-6));
+  CHECK(r.min_gap == Approx(1.44812).epsilon(5e-6));
+  CHECK_FALSE(r.contact);
+  CHECK(r.energy_input == Approx(7.21543).epsilon(5e-6));
+  CHECK(r.share_friction == Approx(1.23778 / 7.21543).epsilon(2e-5));
+  CHECK(r.share_rod1 + r.share_rod2 + r.share_friction + r.share_residual == Approx(1.0 - 7.95554e-07 / 7.21543).epsilon(1e-6));
+  CHECK(r.stick_intervals == 3);
+  CHECK(r.slip_intervals == 5);
+  CHECK(r.switches == 7);
+  // a_g = u0 Omega^2 e^{-kt} sin(Omega t): the peak of the sampled forcing, below u0 Omega^2 = 3.375.
+  CHECK(r.pga_g > 2.0);
+  CHECK(r.pga_g < 3.375);
+}
+
+TEST_CASE("sweeps: the table does not depend on the number of threads", "[sweep]") {
+  const SweepSpec spec = load_sweep(sweep_file("threads.toml", R"(
+set = {"solver.h" = 0.01, "solver.t_end" = 10.0, "solver.history" = "fft"}
+[[axis]]
+key = "model.mu"
+from = 0.0
+to = 0.8
+n = 5
+[[motion]]
+name = "strong"
+[[motion]]
+name = "weak"
+set = {"ground.u0" = 0.05, "ground.omega" = 3.5, "ground.k" = 0.3}
+)"));
+  SweepOptions one, three;
+  one.jobs = 1;
+  three.jobs = 3;
+  std::vector<std::size_t> seen;
+  three.on_row = [&](const SweepRow& row) { seen.push_back(row.index); };
+  const auto a = without_wall_time(csv_rows(sweep_csv(sweep_table(spec, run_sweep(spec, one)))));
+  const auto b = without_wall_time(csv_rows(sweep_csv(sweep_table(spec, run_sweep(spec, three)))));
+  CHECK(a == b);
+  REQUIRE(a.size() == 11);
+  CHECK(std::set<std::size_t>(seen.begin(), seen.end()).size() == 10);
+  // Motion is the fastest coordinate; the weak motion sticks throughout: no stroke, no friction.
+  const auto mu = column_of(spec, "model.mu"), motion = column_of(spec, "motion"), drift = column_of(spec, "drift"),
+             friction = column_of(spec, "share_friction");
+  CHECK(a[4][mu] == "0.2");
+  CHECK(a[4][motion] == "weak");
+  CHECK(a[6][mu] == "0.4");
+  CHECK(a[6][drift] == "0");
+  CHECK(a[6][friction] == "0");
+  CHECK(a[8][mu] == "0.6");  // ranges are rounded to 15 digits: 0.6, not 0.6000000000000001
+  CHECK(std::stod(a[4][drift]) > 0.0);  // mu = 0.2 lets the weak motion slip a little
+  CHECK(a[1][friction] == "0");  // mu = 0: no damper
+  CHECK(std::stod(a[3][friction]) > 0.05);
+  // A subset of runs.
+  SweepOptions some;
+  some.indices = {7, 2};
+  const auto rows = run_sweep(spec, some);
+  REQUIRE(rows.size() == 2);
+  CHECK(rows[0].index == 2);
+  CHECK(rows[1].index == 7);
+}
+
+TEST_CASE("sweeps: axis values with their own edits; elastic rods drop their fractional keys", "[sweep]") {
+  const SweepSpec spec = load_sweep(sweep_file("rods.toml", R"(
+set = {"solver.h" = 0.01, "solver.t_end" = 10.0, "model.mu" = 0.0}
+[[axis]]
+key = "model.rod1.elastic"
+values = [false, true]
+[[axis]]
+name = "rod2"
+values = [{name = "fractional"}, {name = "elastic", set = {"model.rod2.elastic" = true}},
+          {name = "explicit", set = {"model.rod2.elastic" = true}, unset = ["model.rod2.order", "model.rod2.tau_x", "model.rod2.tau_f"]}]
+)"));
+  REQUIRE(spec.runs() == 6);
+  CHECK(sweep_columns(spec)[1].type == ColumnType::string);
+  CHECK(sweep_scene(spec, 0).model.rod1.elastic == false);
+  CHECK(sweep_scene(spec, 4).model.rod1.elastic == true);
+  CHECK(sweep_scene(spec, 4).model.rod2.elastic == true);
+  const auto rows = run_sweep(spec, {});
+  // Both rods elastic, no damper, eps rho = 1: equal natural frequencies and the same forcing,
+  // so the blocks move together exactly.
+  for (std::size_t i : {4, 5}) {
+    CHECK(rows[i].error.empty());
+    CHECK(rows[i].drift == 0.0);
+    CHECK(rows[i].x1 == rows[i].x2);
+  }
+  CHECK(rows[4].x1 == rows[5].x1);
+  CHECK(rows[0].drift > 0.1);
+}
+
+TEST_CASE("sweeps: a numerical failure is a row's error, the others go on", "[sweep]") {
+  // The paper scheme is conditionally stable; h = 1.5 is far beyond its bound.
+  const SweepSpec spec = load_sweep(sweep_file("unstable.toml", "[[axis]]\nkey = \"solver.h\"\nvalues = [0.01, 1.5]\n"));
+  const auto rows = run_sweep(spec, {});
+  CHECK(rows[0].error.empty());
+  CHECK_THAT(rows[1].error, Catch::Contains("stab") || Catch::Contains("step"));
+  CHECK(std::isnan(rows[1].x1));
+  const auto cells = sweep_cells(spec, rows[1]);
+  CHECK(cells[column_of(spec, "x1")].empty());
+  CHECK(cells[column_of(spec, "switches")].empty());
+  CHECK(cells[column_of(spec, "error")] == rows[1].error);
+}
+
+TEST_CASE("sweeps: intensity measures of a record as the solver saw it", "[sweep][records]") {
+  const auto record_file = kRecords / "two-column" / "elCentro.txt";
+  if (!std::filesystem::exists(record_file)) {
+    WARN("skipped: " << record_file << " is not there");
+    return;
+  }
+  // Dimensionless scene, time unit 1 s; h = 0.01 s puts a grid point on every record sample,
+  // so the solver's piecewise-linear forcing is the record's own.
+  const SweepSpec spec = load_sweep(sweep_file("record.toml", R"(
+set = {"solver.h" = 0.01, "solver.t_end" = 32.0, "solver.scheme" = "implicit", "solver.history" = "fft"}
+[output]
+im_periods = [0.5, 1.0]
+[[motion]]
+name = "elcentro"
+set = {"ground.source" = "record", "ground.file" = ")" + record_file.string() + R"(", "ground.units" = "g"}
+[[motion]]
+name = "elcentro-0.5g"
+set = {"ground.source" = "record", "ground.file" = ")" + record_file.string() + R"(", "ground.units" = "g", "ground.scale_pga" = 0.5}
+)"));
+  const auto rows = run_sweep(spec, {});
+  RecordFormat format;
+  format.units = AccelUnit::g;
+  const Record record = read_record(record_file, format);
+  const IntensityMeasures im = intensity_measures(record);
+  REQUIRE(rows[0].error.empty());
+  CHECK(rows[0].pga_g == Approx(im.pga).epsilon(1e-12));
+  CHECK(rows[1].pga_g == Approx(0.5).epsilon(1e-12));
+  for (std::size_t k = 0; k < 2; ++k) {
+    const double period = spec.im_periods[k];
+    const double sa = spectral_values(record.dt, record.accel, period, 0.05).sa;
+    CHECK(rows[0].sa_g[k] == Approx(sa).epsilon(1e-6));
+    CHECK(rows[1].sa_g[k] == Approx(sa * 0.5 / im.pga).epsilon(1e-6));
+  }
+  const auto columns = sweep_columns(spec);
+  CHECK(columns[columns.size() - 4].name == "sa_0.5");
+  CHECK(columns[columns.size() - 3].name == "sa_1");
+}
+
+TEST_CASE("adjoin sweep: files, resuming from the journal, shards merged like a serial run", "[sweep][cli]") {
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / ("sweep_cli_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  const auto file = sweep_file("cli.toml", R"(
+set = {"solver.h" = 0.01, "solver.t_end" = 8.0}
+[[axis]]
+key = "model.mu"
+values = [0.0, 0.3, 0.6]
+[[motion]]
+name = "strong"
+[[motion]]
+name = "weak"
+set = {"ground.u0" = 0.05, "ground.omega" = 3.5, "ground.k" = 0.3}
+[output]
+im_periods = [1.0]
+)");
+  auto r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir / "serial") + " --jobs 2");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("6 runs"));
+  CHECK(r.err.empty());  // no progress bar: stderr is not a terminal
+  const std::string serial = slurp(dir / "serial" / "sweep.csv");
+  const auto serial_rows = csv_rows(serial);
+  REQUIRE(serial_rows.size() == 7);
+  CHECK(serial_rows[0][0] == "index");
+  CHECK_FALSE(std::filesystem::exists(dir / "serial" / "sweep.partial.csv"));
+  // The JSON holds the same rows.
+  const SweepTableFile json = read_sweep_json(dir / "serial" / "sweep.json");
+  CHECK(json.runs == 6);
+  CHECK(sweep_csv(json.table) == serial);
+
+  SECTION("resume: finished runs in the journal are not run again; a torn line is dropped") {
+    const SweepSpec spec = load_sweep(file);
+    const auto wall = column_of(spec, "wall_seconds");
+    std::filesystem::create_directories(dir / "resume");
+    {
+      std::ofstream journal(dir / "resume" / "sweep.partial.csv", std::ios::binary);
+      journal << sweep_journal_preamble(spec, SweepShard{});
+      for (std::size_t i : {4, 1}) {
+        auto cells = serial_rows[i + 1];
+        cells[wall] = "123";
+        journal << csv_line(cells) << "\n";
+      }
+      journal << "5,0.6,weak,dimensionless,0.1";  // torn: the run was interrupted while writing
+    }
+    r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir / "resume") + " --quiet");
+    REQUIRE(r.status == 0);
+    CHECK(r.out.empty());
+    const auto resumed = csv_rows(slurp(dir / "resume" / "sweep.csv"));
+    REQUIRE(resumed.size() == 7);
+    for (std::size_t i = 0; i < 6; ++i) CHECK((resumed[i + 1][wall] == "123") == (i == 1 || i == 4));
+    CHECK(without_wall_time(resumed) == without_wall_time(serial_rows));
+    CHECK_FALSE(std::filesystem::exists(dir / "resume" / "sweep.partial.csv"));
+  }
+
+  SECTION("shards 0/2 and 1/2 merged equal the serial table but for wall times") {
+    for (const char* shard : {"0/2", "1/2"}) {
+      r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir / "shards") + " -q --jobs 1 --shard " + shard);
+      REQUIRE(r.status == 0);
+    }
+    const auto shard0 = csv_rows(slurp(dir / "shards" / "sweep.shard-0-of-2.csv"));
+    REQUIRE(shard0.size() == 4);
+    CHECK(shard0[1][0] == "0");
+    CHECK(shard0[2][0] == "2");
+    CHECK(shard0[3][0] == "4");
+    r = run_cli("sweep merge " + qpath(dir / "shards") + " --out " + qpath(dir / "merged.csv"));
+    REQUIRE(r.status == 0);
+    CHECK(without_wall_time(csv_rows(slurp(dir / "merged.csv"))) == without_wall_time(serial_rows));
+    CHECK(read_sweep_json(dir / "merged.json").shard.whole());
+    // The same from the files, with the other spelling.
+    r = run_cli("sweep-merge " + qpath(dir / "shards" / "sweep.shard-1-of-2.csv") + " " +
+                qpath(dir / "shards" / "sweep.shard-0-of-2.json") + " --out " + qpath(dir / "merged2"));
+    REQUIRE(r.status == 0);
+    CHECK(slurp(dir / "merged2" / "sweep.csv") == slurp(dir / "merged.csv"));
+    // A missing shard is named.
+    r = run_cli("sweep merge " + qpath(dir / "shards" / "sweep.shard-0-of-2.json") + " --out " + qpath(dir / "bad.csv"));
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::StartsWith("error:") && Catch::Contains("3 of 6 runs") && Catch::Contains("runs 1, 3, 5"));
+  }
+
+  SECTION("bad input: exit 2 with the file and what is expected") {
+    r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir / "x") + " --shard 2/2");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::StartsWith("error: --shard 2/2") && Catch::Contains("0 <= I < N"));
+    const auto bad = write_temp("badbase.toml", "base = \"nowhere.toml\"\n");
+    r = run_cli("sweep " + qpath(bad) + " --out " + qpath(dir / "x"));
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::StartsWith("error:") && Catch::Contains("nowhere.toml") && Catch::Contains("badbase.toml:1"));
+  }
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("demand model: exact recovery of a and b, dispersion and R^2", "[demand]") {
+  const double a = -0.7, b = 1.3;
+  std::vector<double> im, d;
+  for (double x : {0.05, 0.1, 0.2, 0.4, 0.8, 1.6}) {
+    im.push_back(x);
+    d.push_back(std::exp(a + b * std::log(x)));
+  }
+  DemandFit fit = fit_demand_model(im, d);
+  CHECK(fit.n == 6);
+  CHECK(fit.a == Approx(a).epsilon(1e-12));
+  CHECK(fit.b == Approx(b).epsilon(1e-12));
+  CHECK(fit.beta == Approx(0.0).margin(1e-12));
+  CHECK(fit.r2 == Approx(1.0).epsilon(1e-12));
+
+  // Residuals +-e at each IM: orthogonal to (1, ln IM), so the fit is unchanged, the residual
+  // sum of squares is n e^2 and beta = e sqrt(n / (n - 2)).
+  const double e = 0.3;
+  std::vector<double> im2, d2;
+  for (double x : {0.05, 0.1, 0.2, 0.4, 0.8}) {
+    for (double s : {-1.0, 1.0}) {
+      im2.push_back(x);
+      d2.push_back(std::exp(a + b * std::log(x) + s * e));
+    }
+  }
+  fit = fit_demand_model(im2, d2);
+  CHECK(fit.a == Approx(a).epsilon(1e-12));
+  CHECK(fit.b == Approx(b).epsilon(1e-12));
+  CHECK(fit.beta == Approx(e * std::sqrt(10.0 / 8.0)).epsilon(1e-12));
+  double mean = 0, total = 0;
+  for (double v : d2) mean += std::log(v) / 10.0;
+  for (double v : d2) total += (std::log(v) - mean) * (std::log(v) - mean);
+  CHECK(fit.r2 == Approx(1.0 - 10.0 * e * e / total).epsilon(1e-12));
+
+  CHECK_THROWS_WITH(fit_demand_model(std::vector<double>{1, 1, 1}, std::vector<double>{1, 2, 3}), Catch::Contains("distinct IM"));
+  CHECK_THROWS_WITH(fit_demand_model(std::vector<double>{1, 2}, std::vector<double>{1, 2}), Catch::Contains("at least 3"));
+  CHECK_THROWS_WITH(fit_demand_model(std::vector<double>{1, 2, 0}, std::vector<double>{1, 2, 3}), Catch::Contains("positive"));
+}
+
+TEST_CASE("adjoin demand on a real sweep over recorded motions", "[demand][records][cli]") {
+  const auto elcentro = kRecords / "two-column" / "elCentro.txt", kobe = kRecords / "two-column" / "Kobe.dat";
+  if (!std::filesystem::exists(elcentro) || !std::filesystem::exists(kobe)) {
+    WARN("skipped: the shared records are not there");
+    return;
+  }
+  std::string motions;
+  for (double pga : {0.1, 0.2, 0.4})
+    motions += "[[motion]]\nname = \"elcentro-" + std::to_string(pga).substr(0, 3) + "\"\nset = {\"ground.source\" = \"record\", \"ground.file\" = " +
+               qpath(elcentro) + ", \"ground.units\" = \"g\", \"ground.scale_pga\" = " + std::to_string(pga) + "}\n";
+  for (double pga : {0.15, 0.3})
+    motions += "[[motion]]\nname = \"kobe-" + std::to_string(pga).substr(0, 4) + "\"\nset = {\"ground.source\" = \"record\", \"ground.file\" = " +
+               qpath(kobe) + ", \"ground.units\" = \"m/s2\", \"ground.scale_pga\" = " + std::to_string(pga) + "}\n";
+  const auto file = sweep_file("demand.toml", R"(
+set = {"solver.h" = 0.01, "solver.t_end" = 25.0, "solver.scheme" = "implicit", "solver.history" = "fft", "model.mu" = 0.05}
+[output]
+im_periods = [1.0]
+)" + motions);
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / ("sweep_demand_" + std::to_string(::getpid()));
+  auto r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir) + " -q");
+  REQUIRE(r.status == 0);
+  const SweepCsvTable table = read_sweep_csv(dir / "sweep.csv");
+  REQUIRE(table.rows.size() == 5);
+  std::vector<double> pga, sa, x1;
+  for (const auto& row : table.rows) {
+    CHECK(row[table.column("error")].empty());
+    pga.push_back(std::stod(row[table.column("pga_g")]));
+    sa.push_back(std::stod(row[table.column("sa_1")]));
+    x1.push_back(std::stod(row[table.column("x1")]));
+  }
+  // The motions' PGA is what they were scaled to (every record sample is on the grid).
+  CHECK(pga[0] == Approx(0.1).epsilon(1e-12));
+  CHECK(pga[2] == Approx(0.4).epsilon(1e-12));
+  CHECK(pga[4] == Approx(0.3).epsilon(1e-12));
+  // Sa of a scaled record scales with it.
+  CHECK(sa[2] / sa[0] == Approx(4.0).epsilon(1e-9));
+
+  // The fit equals the closed-form least squares on the logs of the table's columns.
+  const auto fits = fit_sweep_demand(table, "x1", "sa:1");
+  REQUIRE(fits.size() == 1);
+  const std::size_t n = 5;
+  double mx = 0, my = 0;
+  for (std::size_t i = 0; i < n; ++i) { mx += std::log(sa[i]) / n; my += std::log(x1[i]) / n; }
+  double sxy = 0, sxx = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    sxy += (std::log(sa[i]) - mx) * (std::log(x1[i]) - my);
+    sxx += (std::log(sa[i]) - mx) * (std::log(sa[i]) - mx);
+  }
+  const double b = sxy / sxx, a = my - b * mx;
+  double ssr = 0;
+  for (std::size_t i = 0; i < n; ++i) ssr += std::pow(std::log(x1[i]) - a - b * std::log(sa[i]), 2);
+  CHECK(fits[0].fit.a == Approx(a).epsilon(1e-10));
+  CHECK(fits[0].fit.b == Approx(b).epsilon(1e-10));
+  CHECK(fits[0].fit.beta == Approx(std::sqrt(ssr / 3.0)).epsilon(1e-9));
+  // A nearly elastic structure (small slip force): its displacement follows the shaking.
+  CHECK(fits[0].fit.b > 0.5);
+  CHECK(fits[0].fit.b < 1.5);
+
+  r = run_cli("demand " + qpath(dir / "sweep.csv") + " --response x1 --im sa:1.0 --out " + qpath(dir / "fit.csv"));
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("ln(x1) = a + b ln(sa_1)"));
+  const auto fit_rows = csv_rows(slurp(dir / "fit.csv"));
+  REQUIRE(fit_rows.size() == 2);
+  CHECK(std::stod(fit_rows[1][5]) == Approx(b).epsilon(1e-8));
+  r = run_cli("demand " + qpath(dir / "sweep.csv") + " --response x1 --im sa:2");
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::Contains("sweep.csv:1: no column sa_2") && Catch::Contains("sa_1"));
+  r = run_cli("demand " + qpath(dir / "sweep.csv") + " --response stroke");
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::Contains("no column \"stroke\"") && Catch::Contains("drift"));
+  std::filesystem::remove_all(dir);
+}
