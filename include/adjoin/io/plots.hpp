@@ -1,0 +1,89 @@
+#pragma once
+// Figures from adjoin's own outputs, drawn with gnuplot (PNG through pngcairo, or SVG):
+//
+//  - plot_run: the seed paper's figures for one run folder (timeseries.csv + summary.json):
+//      displacements   x1 and x2 against t                         (paper Fig. 3 / 6)
+//      excitation      a_g, damper force q, relative velocity v1 - v2, stacked on one t axis,
+//                      stick intervals shaded                       (paper Fig. 4 / 7)
+//      rod-forces      f1 and f2 against t                          (paper Fig. 5 / 8)
+//      gap             the gap ξ with its minimum marked and the contact line ξ = 0
+//      energy          cumulative energy shares, only when DIR/energy.csv exists (header
+//                      t and any of input,kinetic,rod1,rod2,friction,residual)
+//    Axis labels carry the scene's units ("(dimensionless)" or SI units), titles its name.
+//  - plot_spectrum_csv: PSA and SD against period (log axis), one curve per damping, from the
+//    CSV of `adjoin spectrum` (period,damping,sd,sv,sa,psv,psa).
+//  - plot_convergence_csv: error against wall time (log-log), one curve per scheme/history,
+//    from the CSV of `adjoin converge` (scheme,history,h,steps,wall_seconds,error,...).
+//  - plot_sweep_csv: any column against any column(s) of a CSV with a header, optionally one
+//    curve per value of a grouping column (for `adjoin sweep` tables, or any other).
+//
+// Bad input (missing file or column, non-numeric cell, unknown format) throws InputError that
+// names the file, line or column and what was expected.
+#include <cstddef>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace adjoin {
+
+// A CSV file with a header line: cells kept as text, converted on demand. Quoted fields
+// ("a,b", with "" for a quote) are understood; blank lines and lines starting with '#' are
+// skipped; every row must have as many fields as the header.
+struct CsvTable {
+  std::filesystem::path file;
+  std::vector<std::string> columns;
+  std::vector<std::vector<std::string>> rows;
+  std::vector<std::size_t> lines;  // the file line of each row (1-based)
+
+  bool has(const std::string& name) const;
+  // Index of a column; InputError naming the column and listing the available ones otherwise.
+  std::size_t column(const std::string& name, const std::string& context = "") const;
+  // The column as numbers: an empty cell or nan/NaN is NaN; anything else that is not a number
+  // is an InputError naming file:line and the column.
+  std::vector<double> numbers(const std::string& name, const std::string& context = "") const;
+};
+
+CsvTable read_csv_table(const std::filesystem::path& file);
+
+struct PlotStyle {
+  std::string format = "png";  // "png" or "svg"
+  int width = 900, height = 600;
+};
+
+// Checks "png"/"svg" (InputError naming `option` otherwise) and returns the extension (".png").
+std::string plot_extension(const std::string& format, const std::string& option = "--format");
+// Parses "WxH" (e.g. 900x600, each 100..10000 pixels) into the style; InputError otherwise.
+void parse_plot_size(const std::string& text, PlotStyle* style, const std::string& option = "--size");
+// For a single-image command: the image path (`out`, or `fallback` with the format's
+// extension); the extension of `out` must be .png or .svg and agree with an explicit format.
+std::filesystem::path plot_target(const std::string& out, const std::filesystem::path& fallback,
+                                  const std::string& explicit_format, PlotStyle* style);
+
+// Runs a gnuplot script (which must not set terminal or output) to make `image` at the
+// style's size, through a temporary file renamed into place. UTF-8 text; enhanced text mode
+// (x_1 is a subscript; use `noenhanced` for verbatim labels).
+void render_gnuplot(const std::string& script, const std::filesystem::path& image, const PlotStyle& style);
+
+struct RunPlots {
+  std::vector<std::filesystem::path> images;  // in the order listed above
+  std::vector<std::string> notes;             // e.g. why the energy figure was skipped
+};
+
+// Figures for the run folder `dir`, written to `prefix` + name + extension (e.g. prefix
+// "out/paper-strong/" gives out/paper-strong/displacements.png). Parent folders are created.
+RunPlots plot_run(const std::filesystem::path& dir, const std::string& prefix, const PlotStyle& style);
+
+void plot_spectrum_csv(const std::filesystem::path& csv, const std::filesystem::path& image, const PlotStyle& style);
+void plot_convergence_csv(const std::filesystem::path& csv, const std::filesystem::path& image, const PlotStyle& style);
+
+struct SweepPlotOptions {
+  std::string x;               // column on the horizontal axis
+  std::vector<std::string> y;  // one panel per column
+  std::string group;           // optional: one curve per distinct value of this column
+  bool log_x = false, log_y = false;
+  std::string title;           // default: the CSV's file name
+};
+void plot_sweep_csv(const std::filesystem::path& csv, const SweepPlotOptions& options,
+                    const std::filesystem::path& image, const PlotStyle& style);
+
+}  // namespace adjoin

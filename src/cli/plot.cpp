@@ -1,0 +1,136 @@
+// adjoin plot run DIR [--out PREFIX] [--format png|svg] [--size WxH]
+// adjoin plot spectrum CSV [--out FILE] [--format png|svg] [--size WxH]
+// adjoin plot converge CSV [--out FILE] [--format png|svg] [--size WxH]
+// adjoin plot sweep CSV --x COLUMN --y COLUMN[,COLUMN...] [--group COLUMN] [--logx] [--logy]
+//                       [--title TEXT] [--out FILE] [--format png|svg] [--size WxH]
+//
+// Figures with gnuplot from adjoin's own outputs (see adjoin/io/plots.hpp): the seed paper's
+// figures for a run folder, response spectra, work-precision and sweep curves. Prints the
+// files it wrote.
+#include <filesystem>
+#include <iostream>
+#include <memory>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/io/plots.hpp"
+#include "command.hpp"
+
+namespace adjoin::cli {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct PlotArgs {
+  std::string input, out, format, size = "900x600";
+  std::string x, group, title;
+  std::vector<std::string> y;
+  bool log_x = false, log_y = false;
+};
+
+PlotStyle style_of(const PlotArgs& a) {
+  PlotStyle style;
+  parse_plot_size(a.size, &style);
+  if (!a.format.empty()) {
+    plot_extension(a.format);
+    style.format = a.format;
+  }
+  return style;
+}
+
+// The default image beside the CSV: <stem>.png, or <stem>-plot.png if that is the CSV itself.
+fs::path beside(const fs::path& csv, const std::string& suffix) {
+  fs::path p = csv;
+  p.replace_filename(csv.stem().string() + suffix);
+  return p;
+}
+
+int plot_run_command(const PlotArgs& a) {
+  const PlotStyle style = style_of(a);
+  std::string prefix = a.out;
+  if (prefix.empty()) prefix = (fs::path(a.input) / "").string();
+  else if (fs::is_directory(prefix) && prefix.back() != '/') prefix += '/';
+  const RunPlots plots = plot_run(a.input, prefix, style);
+  for (const auto& image : plots.images) std::cout << "wrote " << image.string() << "\n";
+  for (const auto& note : plots.notes) std::cout << note << "\n";
+  return 0;
+}
+
+int plot_spectrum_command(const PlotArgs& a) {
+  PlotStyle style = style_of(a);
+  const fs::path image = plot_target(a.out, beside(a.input, ".png"), a.format, &style);
+  plot_spectrum_csv(a.input, image, style);
+  std::cout << "wrote " << image.string() << "\n";
+  return 0;
+}
+
+int plot_converge_command(const PlotArgs& a) {
+  PlotStyle style = style_of(a);
+  const fs::path image = plot_target(a.out, beside(a.input, "-work-precision.png"), a.format, &style);
+  plot_convergence_csv(a.input, image, style);
+  std::cout << "wrote " << image.string() << "\n";
+  return 0;
+}
+
+int plot_sweep_command(const PlotArgs& a) {
+  PlotStyle style = style_of(a);
+  const fs::path image = plot_target(a.out, beside(a.input, ".png"), a.format, &style);
+  SweepPlotOptions options;
+  options.x = a.x;
+  options.y = a.y;
+  options.group = a.group;
+  options.log_x = a.log_x;
+  options.log_y = a.log_y;
+  options.title = a.title;
+  plot_sweep_csv(a.input, options, image, style);
+  std::cout << "wrote " << image.string() << "\n";
+  return 0;
+}
+
+void common_options(CLI::App* sub, PlotArgs* a, const std::string& out_help) {
+  sub->add_option("--out", a->out, out_help);
+  sub->add_option("--format", a->format, "Image format: png or svg (default png, or the --out extension)");
+  sub->add_option("--size", a->size, "Image size WIDTHxHEIGHT in pixels (default 900x600)");
+}
+
+const Registration registration(60, [](CLI::App& app) -> Runner {
+  auto args = std::make_shared<PlotArgs>();
+  auto* plot = app.add_subcommand("plot", "Figures (PNG or SVG, with gnuplot) of runs, spectra, convergence studies and sweeps");
+  plot->require_subcommand(1);
+
+  auto* run = plot->add_subcommand(
+      "run", "The paper's figures for a run folder: displacements, excitation/damper force/relative velocity, "
+             "rod forces, gap, energy (if DIR/energy.csv exists)");
+  run->add_option("dir", args->input, "Output folder of `adjoin run` (summary.json, timeseries.csv)")->required();
+  common_options(run, args.get(), "Prefix of the image files (default DIR/; e.g. figs/strong- gives figs/strong-gap.png)");
+
+  auto* spectrum = plot->add_subcommand("spectrum", "PSA and SD against period, one curve per damping");
+  spectrum->add_option("csv", args->input, "CSV of `adjoin spectrum` (period,damping,sd,sv,sa,psv,psa)")->required();
+  common_options(spectrum, args.get(), "Image file, .png or .svg (default: the CSV's name with .png)");
+
+  auto* converge = plot->add_subcommand("converge", "Work-precision: error against wall time per scheme/history, log-log");
+  converge->add_option("csv", args->input, "convergence.csv of `adjoin converge`")->required();
+  common_options(converge, args.get(), "Image file, .png or .svg (default <csv name>-work-precision.png beside it)");
+
+  auto* sweep = plot->add_subcommand("sweep", "Column against column(s) of any CSV with a header, e.g. of `adjoin sweep`");
+  sweep->add_option("csv", args->input, "CSV file with a header line")->required();
+  sweep->add_option("--x", args->x, "Column on the horizontal axis")->required();
+  sweep->add_option("--y", args->y, "Column(s) on the vertical axis, comma separated: one panel each")
+      ->required()
+      ->delimiter(',');
+  sweep->add_option("--group", args->group, "One curve per distinct value of this column");
+  sweep->add_flag("--logx", args->log_x, "Logarithmic x axis");
+  sweep->add_flag("--logy", args->log_y, "Logarithmic y axis");
+  sweep->add_option("--title", args->title, "Title (default: Sweep: <file name>)");
+  common_options(sweep, args.get(), "Image file, .png or .svg (default: the CSV's name with .png)");
+
+  return [args, run, spectrum, converge, sweep]() {
+    if (run->parsed()) return plot_run_command(*args);
+    if (spectrum->parsed()) return plot_spectrum_command(*args);
+    if (converge->parsed()) return plot_converge_command(*args);
+    if (sweep->parsed()) return plot_sweep_command(*args);
+    throw InputError("plot: expected one of run, spectrum, converge, sweep");
+  };
+});
+
+}  // namespace
+}  // namespace adjoin::cli

@@ -1,0 +1,757 @@
+#include "adjoin/io/plots.hpp"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <sstream>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/io/gnuplot.hpp"
+
+namespace adjoin {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r");
+  return s.substr(b, e - b + 1);
+}
+
+// Splits one CSV line; false if a quoted field is not closed.
+bool split_csv_line(const std::string& line, std::vector<std::string>* fields) {
+  fields->clear();
+  std::string field;
+  bool quoted = false, was_quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"') {
+        if (i + 1 < line.size() && line[i + 1] == '"') {
+          field += '"';
+          ++i;
+        } else {
+          quoted = false;
+        }
+      } else {
+        field += c;
+      }
+    } else if (c == '"' && trim(field).empty()) {
+      quoted = was_quoted = true;
+      field.clear();
+    } else if (c == ',') {
+      fields->push_back(was_quoted ? field : trim(field));
+      field.clear();
+      was_quoted = false;
+    } else {
+      field += c;
+    }
+  }
+  if (quoted) return false;
+  fields->push_back(was_quoted ? field : trim(field));
+  return true;
+}
+
+bool parse_double(const std::string& text, double* value) {
+  const std::string t = trim(text);
+  if (t.empty()) return false;
+  const char* first = t.data();
+  if (*first == '+') ++first;
+  const auto [ptr, ec] = std::from_chars(first, t.data() + t.size(), *value);
+  return ec == std::errc() && ptr == t.data() + t.size();
+}
+
+std::string join(const std::vector<std::string>& items, const std::string& separator) {
+  std::string s;
+  for (std::size_t i = 0; i < items.size(); ++i) s += (i ? separator : "") + items[i];
+  return s;
+}
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "NaN";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.10g", v);
+  return text;
+}
+
+// A gnuplot datablock named $name with whitespace-separated rows; NaN cells are written as
+// NaN (gnuplot skips those points and breaks the line there).
+void datablock(std::ostringstream& script, const std::string& name, const std::vector<std::vector<double>>& columns) {
+  script << "$" << name << " << EOD\n";
+  const std::size_t n = columns.empty() ? 0 : columns.front().size();
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t c = 0; c < columns.size(); ++c) script << (c ? " " : "") << num(columns[c][i]);
+    script << "\n";
+  }
+  script << "EOD\n";
+}
+
+// Common look: light grid, readable fonts, a sober palette.
+const char* kPreamble =
+    "set encoding utf8\n"
+    "set grid lc rgb '#d0d0d0' lw 1\n"
+    "set border lw 1.2\n"
+    "set key opaque box lc rgb '#b0b0b0' samplen 2.5 spacing 1.1\n"
+    "set linetype 1 lc rgb '#1f5fa8' lw 2\n"
+    "set linetype 2 lc rgb '#d0451b' lw 2\n"
+    "set linetype 3 lc rgb '#2e8b3a' lw 2\n"
+    "set linetype 4 lc rgb '#7b3fa0' lw 2\n"
+    "set linetype 5 lc rgb '#c08a00' lw 2\n"
+    "set linetype 6 lc rgb '#0f9b9b' lw 2\n"
+    "set linetype 7 lc rgb '#555555' lw 2\n"
+    "set linetype 8 lc rgb '#e377c2' lw 2\n"
+    "set linetype cycle 8\n";
+
+// Every CSV read for a figure goes through here so missing files name themselves.
+CsvTable must_read(const fs::path& file, const std::string& what) {
+  if (!fs::exists(file)) throw InputError(file.string() + ": not found (expected " + what + ")");
+  return read_csv_table(file);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------- CSV tables
+
+bool CsvTable::has(const std::string& name) const {
+  return std::find(columns.begin(), columns.end(), name) != columns.end();
+}
+
+std::size_t CsvTable::column(const std::string& name, const std::string& context) const {
+  const auto it = std::find(columns.begin(), columns.end(), name);
+  if (it == columns.end())
+    throw InputError(file.string() + ": no column '" + name + "'" + (context.empty() ? "" : " (" + context + ")") +
+                     "; the columns are: " + join(columns, ", "));
+  return static_cast<std::size_t>(it - columns.begin());
+}
+
+std::vector<double> CsvTable::numbers(const std::string& name, const std::string& context) const {
+  const std::size_t c = column(name, context);
+  std::vector<double> values(rows.size(), kNaN);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const std::string cell = trim(rows[i][c]);
+    if (cell.empty() || cell == "nan" || cell == "NaN" || cell == "-" || cell == "null") continue;
+    if (!parse_double(cell, &values[i]))
+      throw InputError(file.string() + ":" + std::to_string(lines[i]) + ": column '" + name + "' holds '" + cell +
+                       "', expected a number");
+  }
+  return values;
+}
+
+CsvTable read_csv_table(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  if (!in) throw InputError(file.string() + ": cannot open (expected a CSV file with a header line)");
+  CsvTable table;
+  table.file = file;
+  std::string line;
+  std::size_t number = 0;
+  std::vector<std::string> fields;
+  while (std::getline(in, line)) {
+    ++number;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (number == 1 && line.rfind("\xEF\xBB\xBF", 0) == 0) line.erase(0, 3);  // UTF-8 byte-order mark
+    const std::string t = trim(line);
+    if (t.empty() || t[0] == '#') continue;
+    if (!split_csv_line(line, &fields))
+      throw InputError(file.string() + ":" + std::to_string(number) + ": unterminated quoted field");
+    if (table.columns.empty()) {
+      for (const std::string& f : fields)
+        if (f.empty())
+          throw InputError(file.string() + ":" + std::to_string(number) +
+                           ": empty column name in the header (expected a header line naming every column)");
+      table.columns = fields;
+      continue;
+    }
+    if (fields.size() != table.columns.size())
+      throw InputError(file.string() + ":" + std::to_string(number) + ": " + std::to_string(fields.size()) +
+                       " fields, expected " + std::to_string(table.columns.size()) + " as in the header");
+    table.rows.push_back(fields);
+    table.lines.push_back(number);
+  }
+  if (table.columns.empty()) throw InputError(file.string() + ": empty file (expected a CSV file with a header line)");
+  return table;
+}
+
+// ---------------------------------------------------------------- options
+
+std::string plot_extension(const std::string& format, const std::string& option) {
+  if (format == "png") return ".png";
+  if (format == "svg") return ".svg";
+  throw InputError(option + " " + format + ": unknown format (expected png or svg)");
+}
+
+void parse_plot_size(const std::string& text, PlotStyle* style, const std::string& option) {
+  const auto x = text.find_first_of("xX");
+  double w = 0.0, h = 0.0;
+  if (x == std::string::npos || !parse_double(text.substr(0, x), &w) || !parse_double(text.substr(x + 1), &h) ||
+      w != std::floor(w) || h != std::floor(h) || w < 100 || h < 100 || w > 10000 || h > 10000)
+    throw InputError(option + " " + text + ": expected WIDTHxHEIGHT in pixels, e.g. 900x600 (100 to 10000 each)");
+  style->width = static_cast<int>(w);
+  style->height = static_cast<int>(h);
+}
+
+fs::path plot_target(const std::string& out, const fs::path& fallback, const std::string& explicit_format,
+                     PlotStyle* style) {
+  if (!explicit_format.empty()) plot_extension(explicit_format);
+  if (out.empty()) {
+    if (!explicit_format.empty()) style->format = explicit_format;
+    fs::path p = fallback;
+    p.replace_extension(plot_extension(style->format));
+    return p;
+  }
+  const std::string ext = fs::path(out).extension().string();
+  if (ext != ".png" && ext != ".svg")
+    throw InputError("--out " + out + ": expected a file name ending in .png or .svg");
+  const std::string format = ext.substr(1);
+  if (!explicit_format.empty() && explicit_format != format)
+    throw InputError("--out " + out + " and --format " + explicit_format + " disagree (expected the same image format)");
+  style->format = format;
+  return out;
+}
+
+// ---------------------------------------------------------------- gnuplot
+
+void render_gnuplot(const std::string& script, const fs::path& image, const PlotStyle& style) {
+  const std::string ext = image.extension().string();
+  std::string terminal;
+  const std::string size = std::to_string(style.width) + "," + std::to_string(style.height);
+  if (ext == ".png") terminal = "set terminal pngcairo size " + size + " enhanced font 'sans,11' linewidth 1\n";
+  else if (ext == ".svg") terminal = "set terminal svg size " + size + " dynamic enhanced font 'sans,11' linewidth 1\n";
+  else throw InputError(image.string() + ": a plot must be a .png or .svg file");
+
+  if (image.has_parent_path()) {
+    std::error_code error;
+    fs::create_directories(image.parent_path(), error);
+    if (error) throw InputError(image.parent_path().string() + ": cannot create the folder: " + error.message());
+  }
+  const std::string tag = ".tmp." + std::to_string(::getpid());
+  fs::path temporary = image;
+  temporary += tag + ext;
+  const fs::path script_file = image.string() + tag + ".gp";
+  const fs::path errors = image.string() + tag + ".err";
+  {
+    std::ofstream out(script_file);
+    out << terminal << "set output " << gnuplot_quote(temporary.string()) << "\n" << script << "\nunset output\n";
+    if (!out) throw InputError(script_file.string() + ": cannot write the gnuplot script");
+  }
+  const std::string command =
+      "gnuplot " + gnuplot_quote(script_file.string()) + " 2> " + gnuplot_quote(errors.string());
+  const int status = std::system(command.c_str());
+  std::ifstream err_in(errors);
+  std::stringstream err;
+  err << err_in.rdbuf();
+  std::error_code ignored;
+  if (std::getenv("ADJOIN_KEEP_GNUPLOT") == nullptr) fs::remove(script_file, ignored);
+  fs::remove(errors, ignored);
+  if (status != 0 || !fs::exists(temporary)) {
+    fs::remove(temporary, ignored);
+    std::string message = err.str();
+    if (message.size() > 2000) message = message.substr(0, 2000) + "...";
+    throw InputError(image.string() + ": gnuplot failed" +
+                     (status == 127 * 256 ? std::string(" (is gnuplot installed? scripts/setup.sh installs it)")
+                                          : ": " + message));
+  }
+  std::error_code error;
+  fs::rename(temporary, image, error);
+  if (error) {
+    fs::remove(temporary, ignored);
+    throw InputError(image.string() + ": cannot write the image: " + error.message());
+  }
+}
+
+// ---------------------------------------------------------------- run figures
+
+namespace {
+
+struct Interval {
+  std::string state;
+  double t0, t1;
+};
+
+struct RunData {
+  std::string scene;
+  bool si = false;
+  std::vector<Interval> phases;
+  std::optional<double> min_gap, t_min_gap, t_first_contact;
+  CsvTable series;
+};
+
+// Axis-label units of one kind of quantity.
+std::string unit(bool si, const std::string& si_unit) {
+  return si ? " [" + si_unit + "]" : " (dimensionless)";
+}
+
+std::optional<double> json_number(const nlohmann::json& j, const char* a, const char* b) {
+  if (!j.contains(a) || !j[a].is_object() || !j[a].contains(b) || !j[a][b].is_number()) return std::nullopt;
+  return j[a][b].get<double>();
+}
+
+RunData load_run(const fs::path& dir) {
+  if (!fs::is_directory(dir))
+    throw InputError(dir.string() + ": not a folder (expected the output folder of `adjoin run`)");
+  RunData run;
+  const fs::path summary_file = dir / "summary.json";
+  if (!fs::exists(summary_file))
+    throw InputError(summary_file.string() + ": not found (expected the summary.json written by `adjoin run`)");
+  nlohmann::json j;
+  {
+    std::ifstream in(summary_file);
+    try {
+      in >> j;
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(summary_file.string() + ": not valid JSON (" + e.what() + ")");
+    }
+  }
+  if (!j.is_object()) throw InputError(summary_file.string() + ": expected a JSON object");
+  run.scene = j.value("scene", dir.filename().string());
+  const std::string units = j.value("units", "dimensionless");
+  if (units != "SI" && units != "dimensionless")
+    throw InputError(summary_file.string() + ": \"units\" is '" + units + "', expected \"SI\" or \"dimensionless\"");
+  run.si = units == "SI";
+  if (j.contains("phases") && j["phases"].is_array())
+    for (const auto& p : j["phases"])
+      if (p.is_object() && p.contains("t_start") && p.contains("t_end") && p["t_start"].is_number() &&
+          p["t_end"].is_number())
+        run.phases.push_back({p.value("state", ""), p["t_start"].get<double>(), p["t_end"].get<double>()});
+  run.min_gap = json_number(j, "pounding", "min_gap");
+  run.t_min_gap = json_number(j, "pounding", "t_min_gap");
+  run.t_first_contact = json_number(j, "pounding", "t_first_contact");
+
+  run.series = must_read(dir / "timeseries.csv",
+                         "the timeseries.csv of `adjoin run`; the scene needs output.timeseries = true");
+  for (const char* c : {"t", "x1", "x2", "v1", "v2", "f1", "f2", "q", "ag", "gap"})
+    run.series.column(c, "needed for the run figures");
+  if (run.series.rows.size() < 2)
+    throw InputError(run.series.file.string() + ": fewer than two rows (expected a time history)");
+  // Phases from the CSV when the summary has none.
+  if (run.phases.empty() && run.series.has("phase")) {
+    const std::size_t c = run.series.column("phase");
+    const std::vector<double> t = run.series.numbers("t");
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      const std::string& s = run.series.rows[i][c];
+      if (!run.phases.empty() && run.phases.back().state == s) run.phases.back().t1 = t[i];
+      else run.phases.push_back({s, t[i], t[i]});
+    }
+  }
+  return run;
+}
+
+// Light bands behind the data for the stick intervals (objects persist across multiplot panels).
+std::string stick_bands(const std::vector<Interval>& phases) {
+  std::ostringstream s;
+  int n = 0;
+  for (const Interval& p : phases)
+    if (p.state == "stick" && p.t1 > p.t0)
+      s << "set object " << 100 + n++ << " rect from " << num(p.t0) << ", graph 0 to " << num(p.t1)
+        << ", graph 1 behind fillcolor rgb '#dfe7f2' fillstyle solid 1.0 noborder\n";
+  return s.str();
+}
+
+bool has_stick(const std::vector<Interval>& phases) {
+  return std::any_of(phases.begin(), phases.end(), [](const Interval& p) { return p.state == "stick" && p.t1 > p.t0; });
+}
+
+// The key's corner with the fewest data points under it (the key box is about 35 % of the
+// width and 25 % of the height, here of the data's range widened by `pad` on each side).
+std::string key_corner(const std::vector<double>& t, const std::vector<std::vector<double>>& ys, double pad = 0.06,
+                       std::optional<std::pair<double, double>> fixed = std::nullopt) {
+  double t0 = INFINITY, t1 = -INFINITY, lo = INFINITY, hi = -INFINITY;
+  for (double v : t)
+    if (std::isfinite(v)) t0 = std::min(t0, v), t1 = std::max(t1, v);
+  for (const auto& y : ys)
+    for (double v : y)
+      if (std::isfinite(v)) lo = std::min(lo, v), hi = std::max(hi, v);
+  if (fixed) lo = fixed->first, hi = fixed->second, pad = 0.0;
+  if (!(t1 > t0) || !(hi >= lo)) return "top right";
+  const double span = hi - lo > 0 ? hi - lo : 1.0;
+  lo -= pad * span;
+  hi += pad * span;
+  const double h = hi - lo;
+  const char* names[] = {"top right", "top left", "bottom right", "bottom left"};
+  std::size_t best = 0, best_count = SIZE_MAX;
+  for (std::size_t c = 0; c < 4; ++c) {
+    const bool right = c % 2 == 0, top = c < 2;
+    const double a = right ? t1 - 0.35 * (t1 - t0) : t0, b = right ? t1 : t0 + 0.35 * (t1 - t0);
+    const double y0 = top ? hi - 0.25 * h : lo, y1 = top ? hi : lo + 0.25 * h;
+    std::size_t count = 0;
+    for (const auto& y : ys)
+      for (std::size_t i = 0; i < t.size() && i < y.size(); ++i)
+        if (t[i] >= a && t[i] <= b && y[i] >= y0 && y[i] <= y1) ++count;
+    if (count < best_count) best = c, best_count = count;
+  }
+  return names[best];
+}
+
+const char* kStickKey = "keyentry with boxes fillstyle solid 1.0 noborder fillcolor rgb '#dfe7f2' title 'stick'";
+
+std::string title_line(const std::string& scene, const std::string& what) {
+  return "set title " + gnuplot_quote(scene + ": " + what) + " noenhanced font ',12'\n";
+}
+
+}  // namespace
+
+RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyle& style) {
+  const RunData run = load_run(dir);
+  const std::string ext = plot_extension(style.format);
+  const bool si = run.si;
+  const CsvTable& ts = run.series;
+  const std::vector<double> t = ts.numbers("t"), x1 = ts.numbers("x1"), x2 = ts.numbers("x2"),
+                            v1 = ts.numbers("v1"), v2 = ts.numbers("v2"), f1 = ts.numbers("f1"),
+                            f2 = ts.numbers("f2"), q = ts.numbers("q"), ag = ts.numbers("ag"),
+                            gap = ts.numbers("gap");
+  std::vector<double> dv(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) dv[i] = v1[i] - v2[i];
+  const double t_first = t.front(), t_last = t.back();
+  // The t axis spans the run exactly; the data get a little headroom above and below.
+  const std::string xrange =
+      "set xrange [" + num(t_first) + ":" + num(t_last) + "]\nset offsets 0, 0, graph 0.06, graph 0.06\n";
+  const std::string tlabel = "set xlabel 'time t" + unit(si, "s") + "'\n";
+  const std::string bands = stick_bands(run.phases);
+  const bool stick = has_stick(run.phases);
+
+  RunPlots result;
+  auto target = [&](const std::string& name) { return fs::path(prefix + name + ext); };
+
+  // (1) displacements
+  {
+    std::ostringstream s;
+    s << kPreamble;
+    datablock(s, "d", {t, x1, x2});
+    s << title_line(run.scene, "block displacements relative to the base") << xrange << tlabel
+      << "set ylabel 'displacement x_1, x_2" << unit(si, "m") << "'\n"
+      << "set key " << key_corner(t, {x1, x2}) << "\n" << bands
+      << "plot $d using 1:2 with lines lt 1 title 'x_1', $d using 1:3 with lines lt 2 dt 2 title 'x_2'"
+      << (stick ? std::string(", ") + kStickKey : "") << "\n";
+    render_gnuplot(s.str(), target("displacements"), style);
+    result.images.push_back(target("displacements"));
+  }
+
+  // (2) ground acceleration, damper force, relative velocity: three panels on one t axis
+  {
+    double mu = 0.0;
+    bool slip = false;
+    if (ts.has("phase")) {
+      const std::size_t c = ts.column("phase");
+      for (std::size_t i = 0; i < t.size(); ++i)
+        if (ts.rows[i][c].rfind("slip", 0) == 0 && std::isfinite(q[i])) {
+          slip = true;
+          mu = std::max(mu, std::abs(q[i]));
+        }
+    }
+    std::ostringstream s;
+    s << kPreamble;
+    datablock(s, "d", {t, ag, q, dv});
+    s << "set multiplot layout 3,1 title " << gnuplot_quote(run.scene + ": excitation, damper force and relative velocity")
+      << " noenhanced font ',12' margins 0.11,0.97,0.09,0.91 spacing 0,0.025\n"
+      << xrange << bands << "set key " << key_corner(t, {ag}) << "\n"
+      << "set format x ''\nunset xlabel\n"
+      << "set ylabel 'a_g" << unit(si, "m/s²") << "'\n"
+      << "plot $d using 1:2 with lines lt 7 title 'ground acceleration a_g'"
+      << (stick ? std::string(", ") + kStickKey : "") << "\n"
+      << "set ylabel 'q" << unit(si, "N") << "'\n";
+    if (slip && mu > 0.0) {
+      s << "set key " << key_corner(t, {q}, 0.0, std::pair{-1.35 * mu, 1.35 * mu}) << "\nset yrange [" << num(-1.35 * mu) << ":" << num(1.35 * mu) << "]\n"
+        << "plot $d using 1:3 with lines lt 2 title 'damper force q', " << num(mu)
+        << " with lines lc rgb '#888888' dt 3 lw 1.5 title '±μ', " << num(-mu)
+        << " with lines lc rgb '#888888' dt 3 lw 1.5 notitle\n"
+        << "set autoscale y\n";
+    } else {
+      s << "set key " << key_corner(t, {q}) << "\nplot $d using 1:3 with lines lt 2 title 'damper force q'\n";
+    }
+    s << "set key " << key_corner(t, {dv}) << "\nset format x '%g'\n" << tlabel << "set ylabel 'v_1 − v_2" << unit(si, "m/s") << "'\n"
+      << "plot $d using 1:4 with lines lt 1 title 'relative velocity v_1 − v_2', 0 with lines lc rgb '#888888' "
+         "lw 1 notitle\n"
+      << "unset multiplot\n";
+    render_gnuplot(s.str(), target("excitation"), style);
+    result.images.push_back(target("excitation"));
+  }
+
+  // (3) rod forces
+  {
+    std::ostringstream s;
+    s << kPreamble;
+    datablock(s, "d", {t, f1, f2});
+    s << title_line(run.scene, "forces in the viscoelastic rods") << xrange << tlabel
+      << "set ylabel 'rod force f_1, f_2" << unit(si, "N") << "'\n"
+      << "set key " << key_corner(t, {f1, f2}) << "\n" << bands
+      << "plot $d using 1:2 with lines lt 1 title 'f_1 (rod 1)', $d using 1:3 with lines lt 2 title 'f_2 (rod 2)'"
+      << (stick ? std::string(", ") + kStickKey : "") << "\n";
+    render_gnuplot(s.str(), target("rod-forces"), style);
+    result.images.push_back(target("rod-forces"));
+  }
+
+  // (4) gap with its minimum and the contact line
+  {
+    double lo = 0.0, hi = 0.0;
+    for (double g : gap)
+      if (std::isfinite(g)) hi = std::max(hi, g), lo = std::min(lo, g);
+    std::ostringstream s;
+    s << kPreamble;
+    datablock(s, "d", {t, gap});
+    s << title_line(run.scene, "gap between the blocks (pounding margin)") << xrange << tlabel
+      << "set ylabel 'gap ξ" << unit(si, "m") << "'\n"
+      << "set yrange [" << num(lo - 0.08 * (hi - lo)) << ":" << num(hi + 0.15 * (hi - lo)) << "]\n"
+      << "set key " << key_corner(t, {gap, std::vector<double>(t.size(), 0.0)}, 0.0,
+                                  std::pair{lo - 0.08 * (hi - lo), hi + 0.15 * (hi - lo)}) << "\n";
+    std::string extra;
+    if (run.min_gap && run.t_min_gap) {
+      char label[160];
+      std::snprintf(label, sizeof label, "min ξ = %.4g at t = %.4g%s", *run.min_gap, *run.t_min_gap, si ? " s" : "");
+      s << "$m << EOD\n" << num(*run.t_min_gap) << " " << num(*run.min_gap) << "\nEOD\n";
+      extra += ", $m using 1:2 with points pt 7 ps 1.6 lc rgb '#d0451b' title " + gnuplot_quote(label);
+    }
+    if (run.t_first_contact)
+      s << "set arrow from " << num(*run.t_first_contact) << ", graph 0 to " << num(*run.t_first_contact)
+        << ", graph 1 nohead lc rgb '#b00000' dt 2 lw 1.5\n"
+        << "set label 'first contact' at " << num(*run.t_first_contact) << ", graph 0.95 offset 0.5,0 tc rgb '#b00000'\n";
+    s << "plot $d using 1:2 with lines lt 1 title 'ξ = ξ_0 + x_2 − x_1', 0 with lines lc rgb '#b00000' lw 1.5 "
+         "title 'contact (ξ = 0)'"
+      << extra << "\n";
+    render_gnuplot(s.str(), target("gap"), style);
+    result.images.push_back(target("gap"));
+  }
+
+  // (5) energy shares, when an energy history is there
+  const fs::path energy_file = dir / "energy.csv";
+  if (fs::exists(energy_file)) {
+    const CsvTable e = read_csv_table(energy_file);
+    const std::vector<double> te = e.numbers("t", "time of the energy history");
+    std::vector<std::vector<double>> columns{te};
+    std::vector<std::string> names;
+    std::vector<double> sum(te.size(), 0.0);
+    const std::vector<std::pair<const char*, const char*>> parts{
+        {"kinetic", "kinetic"}, {"rod1", "rod 1"}, {"rod2", "rod 2"}, {"friction", "friction (damper)"}};
+    // Final shares of the input energy, for the key.
+    double input_final = kNaN;
+    if (e.has("input"))
+      for (double v : e.numbers("input"))
+        if (std::isfinite(v)) input_final = v;
+    for (const auto& [column, label] : parts) {
+      if (!e.has(column)) continue;
+      const std::vector<double> v = e.numbers(column);
+      double last = kNaN;
+      for (std::size_t i = 0; i < sum.size(); ++i) {
+        sum[i] += std::isfinite(v[i]) ? v[i] : 0.0;
+        if (std::isfinite(v[i])) last = v[i];
+      }
+      columns.push_back(sum);
+      std::string name = label;
+      if (input_final > 0.0 && std::isfinite(last)) {
+        char share[48];
+        std::snprintf(share, sizeof share, " (%.0f %% at the end)", 100.0 * last / input_final);
+        name += share;
+      }
+      names.push_back(name);
+    }
+    if (names.empty() && !e.has("input"))
+      throw InputError(energy_file.string() + ": no energy columns (expected t and some of input, kinetic, rod1, "
+                                              "rod2, friction, residual); the columns are: " + join(e.columns, ", "));
+    std::ostringstream s;
+    s << kPreamble;
+    const bool input = e.has("input");
+    if (input) columns.push_back(e.numbers("input"));
+    datablock(s, "e", columns);
+    s << title_line(run.scene, "energy balance (cumulative shares)")
+      << "set xlabel 'time t" << unit(si, "s") << "'\n"
+      << "set ylabel '" << (si ? "energy [J]" : "energy per unit m_1 (dimensionless)") << "'\n"
+      << "set key outside right top\nset style fill solid 0.75 noborder\nplot ";
+    for (std::size_t k = 0; k < names.size(); ++k)
+      s << (k ? ", " : "") << "$e using 1:" << (k == 0 ? std::string("(0)") : std::to_string(k + 1)) << ":"
+        << k + 2 << " with filledcurves lt " << k + 1 << " title " << gnuplot_quote(names[k]);
+    if (input)
+      s << (names.empty() ? "" : ", ") << "$e using 1:" << names.size() + 2
+        << " with lines lc rgb 'black' lw 2 title 'input'";
+    s << "\n";
+    render_gnuplot(s.str(), target("energy"), style);
+    result.images.push_back(target("energy"));
+  } else {
+    result.notes.push_back("no energy figure: " + energy_file.string() + " does not exist");
+  }
+  return result;
+}
+
+// ---------------------------------------------------------------- spectra
+
+void plot_spectrum_csv(const fs::path& csv, const fs::path& image, const PlotStyle& style) {
+  const CsvTable table = must_read(csv, "the CSV of `adjoin spectrum`: period,damping,sd,sv,sa,psv,psa");
+  const std::vector<double> period = table.numbers("period", "spectrum CSV"), damping = table.numbers("damping", "spectrum CSV"),
+                            psa = table.numbers("psa", "spectrum CSV"), sd = table.numbers("sd", "spectrum CSV");
+  std::vector<double> dampings;
+  for (double z : damping)
+    if (std::isfinite(z) && std::find(dampings.begin(), dampings.end(), z) == dampings.end()) dampings.push_back(z);
+  std::ostringstream s;
+  s << kPreamble;
+  std::size_t blocks = 0;
+  std::vector<std::string> labels;
+  for (double z : dampings) {
+    std::vector<std::pair<double, std::size_t>> order;
+    for (std::size_t i = 0; i < period.size(); ++i)
+      if (damping[i] == z && period[i] > 0.0) order.push_back({period[i], i});
+    if (order.empty()) continue;
+    std::sort(order.begin(), order.end());
+    std::vector<std::vector<double>> cols(3);
+    for (const auto& [p, i] : order) {
+      cols[0].push_back(p);
+      cols[1].push_back(psa[i]);
+      cols[2].push_back(sd[i]);
+    }
+    datablock(s, "s" + std::to_string(blocks++), cols);
+    char label[64];
+    std::snprintf(label, sizeof label, "damping %g %%", z * 100.0);
+    labels.push_back(label);
+  }
+  if (blocks == 0) throw InputError(csv.string() + ": no rows with period > 0 s to plot");
+  s << "set multiplot layout 2,1 title " << gnuplot_quote("Elastic response spectra: " + csv.filename().string())
+    << " noenhanced font ',12' margins 0.1,0.97,0.09,0.92 spacing 0,0.03\n"
+    << "set logscale x\nset format x ''\nset key top right\nset mxtics 10\n"
+    << "set grid xtics mxtics ytics lc rgb '#d0d0d0', lc rgb '#ececec'\n";
+  auto panel = [&](int column) {
+    s << "plot ";
+    for (std::size_t d = 0; d < blocks; ++d)
+      s << (d ? ", " : "") << "$s" << d << " using 1:" << column << " with lines lt " << d + 1 << " title "
+        << gnuplot_quote(labels[d]);
+    s << "\n";
+  };
+  s << "set ylabel 'PSA [g]'\n";
+  panel(2);
+  s << "set format x '%g'\nset xlabel 'period T [s]'\nset ylabel 'SD [m]'\nset key top left\n";
+  panel(3);
+  s << "unset multiplot\n";
+  render_gnuplot(s.str(), image, style);
+}
+
+// ---------------------------------------------------------------- convergence
+
+void plot_convergence_csv(const fs::path& csv, const fs::path& image, const PlotStyle& style) {
+  const CsvTable table = must_read(csv, "the convergence.csv of `adjoin converge`");
+  const std::string context = "convergence CSV: scheme,history,h,steps,wall_seconds,error,...";
+  const std::size_t cs = table.column("scheme", context), ch = table.column("history", context);
+  const std::vector<double> wall = table.numbers("wall_seconds", context), error = table.numbers("error", context);
+  std::vector<std::pair<std::string, std::string>> series;
+  for (const auto& row : table.rows) {
+    const std::pair<std::string, std::string> key{row[cs], row[ch]};
+    if (std::find(series.begin(), series.end(), key) == series.end()) series.push_back(key);
+  }
+  std::ostringstream s;
+  s << kPreamble;
+  std::vector<std::string> plots;
+  for (const auto& key : series) {
+    std::vector<std::vector<double>> cols(2);
+    for (std::size_t i = 0; i < table.rows.size(); ++i)
+      if (table.rows[i][cs] == key.first && table.rows[i][ch] == key.second && wall[i] > 0.0 && error[i] > 0.0) {
+        cols[0].push_back(wall[i]);
+        cols[1].push_back(error[i]);
+      }
+    if (cols[0].empty()) continue;
+    const std::string name = "c" + std::to_string(plots.size());
+    datablock(s, name, cols);
+    plots.push_back("$" + name + " using 1:2 with linespoints lt " + std::to_string(plots.size() + 1) +
+                    " pt 7 ps 1.2 title " + gnuplot_quote(key.first + " / " + key.second) + " noenhanced");
+  }
+  if (plots.empty())
+    throw InputError(csv.string() + ": no rows with wall_seconds > 0 and error > 0 to plot on log axes");
+  const std::string where = csv.has_parent_path() && !csv.parent_path().filename().empty()
+                                ? csv.parent_path().filename().string()
+                                : csv.filename().string();
+  s << "set title " << gnuplot_quote("Work-precision: " + where) << " noenhanced font ',12'\n"
+    << "set logscale xy\nset format y '10^{%L}'\nset format x '10^{%L}'\n"
+    << "set xlabel 'wall time of the run [s]'\nset ylabel 'error (relative max norm)'\n"
+    << "set key top right\nplot " << join(plots, ", ") << "\n";
+  render_gnuplot(s.str(), image, style);
+}
+
+// ---------------------------------------------------------------- sweeps
+
+void plot_sweep_csv(const fs::path& csv, const SweepPlotOptions& options, const fs::path& image,
+                    const PlotStyle& style) {
+  if (options.x.empty()) throw InputError("--x: expected a column name");
+  if (options.y.empty()) throw InputError("--y: expected one or more column names separated by commas");
+  const CsvTable table = must_read(csv, "a CSV file with a header line");
+  const std::vector<double> x = table.numbers(options.x, "--x");
+  std::vector<std::vector<double>> ys;
+  for (const std::string& name : options.y) {
+    if (name.empty()) throw InputError("--y: empty column name (expected names separated by commas)");
+    ys.push_back(table.numbers(name, "--y"));
+  }
+  std::vector<std::string> groups{""};
+  std::size_t cg = 0;
+  if (!options.group.empty()) {
+    cg = table.column(options.group, "--group");
+    groups.clear();
+    for (const auto& row : table.rows)
+      if (std::find(groups.begin(), groups.end(), row[cg]) == groups.end()) groups.push_back(row[cg]);
+  }
+  if (table.rows.empty()) throw InputError(csv.string() + ": no data rows to plot");
+  if (groups.size() > 40)
+    throw InputError("--group " + options.group + ": " + std::to_string(groups.size()) +
+                     " distinct values (expected at most 40 curves; group by a coarser column)");
+
+  std::ostringstream s;
+  s << kPreamble;
+  // One datablock per group: x then every y column, sorted by x.
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    std::vector<std::size_t> rows;
+    for (std::size_t i = 0; i < table.rows.size(); ++i)
+      if ((options.group.empty() || table.rows[i][cg] == groups[g]) && std::isfinite(x[i]) &&
+          !(options.log_x && x[i] <= 0.0))
+        rows.push_back(i);
+    std::stable_sort(rows.begin(), rows.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
+    std::vector<std::vector<double>> cols(1 + ys.size());
+    for (std::size_t i : rows) {
+      cols[0].push_back(x[i]);
+      for (std::size_t k = 0; k < ys.size(); ++k)
+        cols[k + 1].push_back(options.log_y && !(ys[k][i] > 0.0) ? kNaN : ys[k][i]);
+    }
+    datablock(s, "g" + std::to_string(g), cols);
+  }
+  for (std::size_t k = 0; k < ys.size(); ++k) {
+    const bool any = std::any_of(ys[k].begin(), ys[k].end(), [&](double v) {
+      return std::isfinite(v) && !(options.log_y && v <= 0.0);
+    });
+    if (!any)
+      throw InputError(csv.string() + ": column '" + options.y[k] + "' has no " +
+                       (options.log_y ? "positive " : "") + "numbers to plot");
+  }
+  const std::string title = options.title.empty() ? "Sweep: " + csv.filename().string() : options.title;
+  const bool panels = ys.size() > 1;
+  if (panels)
+    s << "set multiplot layout " << ys.size() << ",1 title " << gnuplot_quote(title)
+      << " noenhanced font ',12' margins 0.12,0.97,0.09,0.92 spacing 0,0.03\n";
+  else
+    s << "set title " << gnuplot_quote(title) << " noenhanced font ',12'\n";
+  if (options.log_x) s << "set logscale x\n";
+  if (options.log_y) s << "set logscale y\n";
+  s << "set key noenhanced\nset offsets graph 0.02, graph 0.02, graph 0.06, graph 0.06\n";
+  for (std::size_t k = 0; k < ys.size(); ++k) {
+    s << "set key " << key_corner(x, {ys[k]}) << "\n";
+    const bool last = k + 1 == ys.size();
+    if (panels) s << (last ? "set format x '%g'\nset xlabel " + gnuplot_quote(options.x) + " noenhanced\n"
+                           : std::string("set format x ''\nunset xlabel\n"));
+    else s << "set xlabel " << gnuplot_quote(options.x) << " noenhanced\n";
+    s << "set ylabel " << gnuplot_quote(options.y[k]) << " noenhanced\n";
+    if (k > 0 && !options.group.empty()) s << "unset key\n";
+    s << "plot ";
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      const std::string label = options.group.empty() ? options.y[k] : options.group + " = " + groups[g];
+      s << (g ? ", " : "") << "$g" << g << " using 1:" << k + 2 << " with linespoints lt " << g % 8 + 1
+        << " pt 7 ps 0.8 title " << gnuplot_quote(label);
+    }
+    s << "\n";
+  }
+  if (panels) s << "unset multiplot\n";
+  render_gnuplot(s.str(), image, style);
+}
+
+}  // namespace adjoin

@@ -1,0 +1,254 @@
+// adjoin plot: figures of a run, spectra, convergence and sweep tables; valid PNG/SVG files
+// at the requested size; bad inputs exit 2 with a message naming what is wrong.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/io/plots.hpp"
+#include "cli_helpers.hpp"
+
+namespace fs = std::filesystem;
+using adjoin::test::run_cli;
+using adjoin::test::slurp;
+using adjoin::test::write_temp;
+
+namespace {
+
+const std::string kSource = ADJOIN_SOURCE_DIR;
+
+fs::path scratch(const std::string& name) {
+  const fs::path dir = fs::path(ADJOIN_TEST_TMP) / ("plot_" + std::to_string(::getpid())) / name;
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::uint32_t big_endian(const std::string& bytes, std::size_t at) {
+  std::uint32_t v = 0;
+  for (std::size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
+  return v;
+}
+
+// A PNG: the 8-byte signature, then the IHDR chunk with width and height.
+void require_png(const fs::path& file, std::uint32_t width, std::uint32_t height) {
+  INFO(file.string());
+  REQUIRE(fs::exists(file));
+  const std::string bytes = slurp(file);
+  REQUIRE(bytes.size() > 33);
+  CHECK(bytes.substr(0, 8) == std::string("\x89PNG\r\n\x1a\n", 8));
+  CHECK(bytes.substr(12, 4) == "IHDR");
+  CHECK(big_endian(bytes, 16) == width);
+  CHECK(big_endian(bytes, 20) == height);
+  CHECK(bytes.size() > 10000);  // a real drawing, not an empty canvas
+}
+
+// Solves the strong scene once for all the tests here.
+const fs::path& strong_run() {
+  static const fs::path dir = [] {
+    const fs::path d = scratch("strong");
+    const auto r = run_cli("run '" + kSource + "/records/scenes/paper-strong.toml' --quiet --out '" + d.string() + "'");
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    return d;
+  }();
+  return dir;
+}
+
+}  // namespace
+
+TEST_CASE("plot run draws the paper's figures as PNG files of the requested size", "[plot][cli]") {
+  const fs::path& dir = strong_run();
+  const auto r = run_cli("plot run '" + dir.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  for (const char* name : {"displacements", "excitation", "rod-forces", "gap"}) {
+    require_png(dir / (std::string(name) + ".png"), 900, 600);
+    CHECK(r.out.find(name) != std::string::npos);
+  }
+  // No energy history in a run folder: the energy figure is skipped, and says so.
+  CHECK_FALSE(fs::exists(dir / "energy.png"));
+  CHECK(r.out.find("no energy figure") != std::string::npos);
+
+  const fs::path prefix = scratch("sized") / "strong-";
+  const auto sized = run_cli("plot run '" + dir.string() + "' --size 640x480 --out '" + prefix.string() + "'");
+  INFO(sized.err);
+  REQUIRE(sized.status == 0);
+  require_png(prefix.string() + "displacements.png", 640, 480);
+  require_png(prefix.string() + "excitation.png", 640, 480);
+}
+
+TEST_CASE("plot run as SVG labels the axes with the quantities and the scene's units", "[plot][cli]") {
+  const fs::path& dir = strong_run();
+  const fs::path prefix = scratch("svg") / "";
+  const auto r = run_cli("plot run '" + dir.string() + "' --format svg --out '" + prefix.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string displacements = slurp(prefix / "displacements.svg");
+  CHECK(displacements.rfind("<?xml", 0) == 0);
+  CHECK(displacements.find("<svg") != std::string::npos);
+  CHECK(displacements.find("(dimensionless)") != std::string::npos);
+  CHECK(displacements.find("time t") != std::string::npos);
+  CHECK(displacements.find("paper-strong") != std::string::npos);
+  CHECK(displacements.find("stick") != std::string::npos);
+  const std::string excitation = slurp(prefix / "excitation.svg");
+  CHECK(excitation.find("ground acceleration") != std::string::npos);
+  CHECK(excitation.find("damper force q") != std::string::npos);
+  CHECK(excitation.find("relative velocity") != std::string::npos);
+  CHECK(slurp(prefix / "rod-forces.svg").find("rod force") != std::string::npos);
+  const std::string gap = slurp(prefix / "gap.svg");
+  CHECK(gap.find("min ξ = 1.44") != std::string::npos);
+  CHECK(gap.find("contact") != std::string::npos);
+}
+
+TEST_CASE("plot run labels SI scenes in SI units and draws an energy history when there is one", "[plot][cli]") {
+  const fs::path dir = scratch("si");
+  // A short SI-like run folder written by hand: the plots only read the files.
+  std::ofstream(dir / "summary.json") << R"({"scene": "si-test", "units": "SI",
+    "phases": [{"state": "stick", "t_start": 0.0, "t_end": 0.4}, {"state": "slip_right", "t_start": 0.4, "t_end": 1.0}],
+    "pounding": {"min_gap": 0.05, "t_min_gap": 0.5, "contact": false, "t_first_contact": null}})";
+  {
+    std::ofstream ts(dir / "timeseries.csv");
+    ts << "t,x1,x2,v1,v2,f1,f2,q,ag,gap,phase\n";
+    for (int i = 0; i <= 100; ++i) {
+      const double t = i * 0.01;
+      ts << t << "," << 0.01 * t << "," << 0.005 * t << ",0.01,0.005," << 1e5 * t << "," << 2e5 * t << ","
+         << (t < 0.4 ? 1e4 * t : 2e4) << "," << std::sin(10 * t) << "," << 0.1 - 0.005 * t << ","
+         << (t < 0.4 ? "stick" : "slip_right") << "\n";
+    }
+    std::ofstream e(dir / "energy.csv");
+    e << "t,input,kinetic,rod1,rod2,friction,residual\n";
+    for (int i = 0; i <= 100; ++i) {
+      const double t = i * 0.01;
+      e << t << "," << 4 * t << "," << t << "," << t << "," << t << "," << t << ",0\n";
+    }
+  }
+  const auto r = run_cli("plot run '" + dir.string() + "' --format svg");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string displacements = slurp(dir / "displacements.svg");
+  CHECK(displacements.find("[m]") != std::string::npos);
+  CHECK(displacements.find("time t [s]") != std::string::npos);
+  CHECK(displacements.find("dimensionless") == std::string::npos);
+  const std::string excitation = slurp(dir / "excitation.svg");
+  CHECK(excitation.find("[m/s²]") != std::string::npos);
+  CHECK(excitation.find("[N]") != std::string::npos);
+  CHECK(excitation.find("[m/s]") != std::string::npos);
+  const std::string energy = slurp(dir / "energy.svg");
+  CHECK(energy.find("energy [J]") != std::string::npos);
+  CHECK(energy.find("friction") != std::string::npos);
+}
+
+TEST_CASE("plot spectrum, converge and sweep draw from their CSV tables", "[plot][cli]") {
+  const fs::path dir = scratch("tables");
+  const fs::path spectrum = write_temp("spectrum.csv",
+                                       "period,damping,sd,sv,sa,psv,psa\n"
+                                       "0,0.05,0,0,0.3,0,0.3\n"
+                                       "0.1,0.05,0.001,0.05,0.5,0.06,0.5\n0.5,0.05,0.02,0.2,0.6,0.25,0.6\n"
+                                       "2,0.05,0.1,0.3,0.15,0.3,0.15\n"
+                                       "0.1,0.02,0.0015,0.07,0.7,0.09,0.7\n0.5,0.02,0.03,0.3,0.9,0.35,0.9\n"
+                                       "2,0.02,0.14,0.4,0.2,0.45,0.2\n");
+  auto r = run_cli("plot spectrum '" + spectrum.string() + "' --out '" + (dir / "spectrum.svg").string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string svg = slurp(dir / "spectrum.svg");
+  CHECK(svg.find("PSA [g]") != std::string::npos);
+  CHECK(svg.find("period T [s]") != std::string::npos);
+  CHECK(svg.find("damping 2 %") != std::string::npos);
+
+  const fs::path converge = write_temp("convergence.csv",
+                                       "scheme,history,h,steps,wall_seconds,error,order\n"
+                                       "paper,direct,0.004,4000,0.01,1e-2,\n"
+                                       "paper,direct,0.002,8000,0.03,5e-3,1.0\n"
+                                       "implicit,direct,0.004,4000,0.02,1e-4,\n"
+                                       "implicit,direct,0.002,8000,0.06,2.5e-5,2.0\n"
+                                       "implicit,fft,0.002,8000,0.05,2.5e-5,2.0\n");
+  r = run_cli("plot converge '" + converge.string() + "' --out '" + (dir / "converge.png").string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  require_png(dir / "converge.png", 900, 600);
+
+  const fs::path sweep = write_temp("sweep.csv",
+                                    "model.mu,ground,peak_x1,min_gap\n"
+                                    "0.1,\"sine, strong\",1.2,1.4\n0.2,\"sine, strong\",1.1,1.5\n"
+                                    "0.3,\"sine, strong\",1.0,1.6\n0.1,weak,0.1,1.9\n0.2,weak,0.1,1.9\n0.3,weak,0.1,1.9\n");
+  r = run_cli("plot sweep '" + sweep.string() + "' --x model.mu --y peak_x1,min_gap --group ground --format svg --out '" +
+              (dir / "sweep.svg").string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string curves = slurp(dir / "sweep.svg");
+  CHECK(curves.find("model.mu") != std::string::npos);
+  CHECK(curves.find("peak_x1") != std::string::npos);
+  CHECK(curves.find("ground = sine, strong") != std::string::npos);
+  r = run_cli("plot sweep '" + sweep.string() + "' --x model.mu --y peak_x1 --size 500x400");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  require_png(sweep.parent_path() / "sweep.png", 500, 400);
+}
+
+TEST_CASE("plot rejects bad input with exit 2 and a message naming the problem", "[plot][cli]") {
+  const fs::path empty = scratch("empty");
+  auto r = run_cli("plot run '" + empty.string() + "'");
+  CHECK(r.status == 2);
+  CHECK(r.err.rfind("error:", 0) == 0);
+  CHECK(r.err.find("summary.json") != std::string::npos);
+
+  std::ofstream(empty / "summary.json") << R"({"scene": "x", "units": "dimensionless"})";
+  r = run_cli("plot run '" + empty.string() + "'");
+  CHECK(r.status == 2);
+  CHECK(r.err.rfind("error:", 0) == 0);
+  CHECK(r.err.find("timeseries.csv") != std::string::npos);
+  CHECK(r.err.find("not found") != std::string::npos);
+
+  r = run_cli("plot spectrum '" + (empty / "missing.csv").string() + "'");
+  CHECK(r.status == 2);
+  CHECK(r.err.rfind("error:", 0) == 0);
+  CHECK(r.err.find("missing.csv") != std::string::npos);
+
+  const fs::path sweep = write_temp("bad-sweep.csv", "model.mu,peak_x1,peak_x2\n0.1,1,2\n0.2,1.5,x\n");
+  r = run_cli("plot sweep '" + sweep.string() + "' --x model.mu --y peak_q");
+  CHECK(r.status == 2);
+  CHECK(r.err.rfind("error:", 0) == 0);
+  CHECK(r.err.find("'peak_q'") != std::string::npos);
+  CHECK(r.err.find("model.mu, peak_x1, peak_x2") != std::string::npos);
+  r = run_cli("plot sweep '" + sweep.string() + "' --x model.mu --y peak_x1 --group load_case");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("'load_case'") != std::string::npos);
+  r = run_cli("plot sweep '" + sweep.string() + "' --x model.mu --y peak_x2");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("bad-sweep.csv:3") != std::string::npos);
+  CHECK(r.err.find("'x'") != std::string::npos);
+
+  const fs::path& dir = strong_run();
+  r = run_cli("plot run '" + dir.string() + "' --format jpg");
+  CHECK(r.status == 2);
+  CHECK(r.err.rfind("error:", 0) == 0);
+  CHECK(r.err.find("--format jpg") != std::string::npos);
+  CHECK(r.err.find("png or svg") != std::string::npos);
+  r = run_cli("plot sweep '" + sweep.string() + "' --x model.mu --y peak_x1 --out curves.pdf");
+  CHECK(r.status == 2);
+  CHECK(r.err.find(".png or .svg") != std::string::npos);
+  r = run_cli("plot run '" + dir.string() + "' --size big");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("--size big") != std::string::npos);
+}
+
+TEST_CASE("read_csv_table understands quotes and reports ragged rows by line", "[plot]") {
+  const fs::path file = write_temp("quoted.csv", "# comment\na,b\n\"x, y\",\"say \"\"hi\"\"\"\n1,2\n");
+  const adjoin::CsvTable t = adjoin::read_csv_table(file);
+  REQUIRE(t.rows.size() == 2);
+  CHECK(t.rows[0][0] == "x, y");
+  CHECK(t.rows[0][1] == "say \"hi\"");
+  CHECK(t.lines[1] == 4);
+  CHECK_THROWS_WITH(t.numbers("b"), Catch::Contains("quoted.csv:3") && Catch::Contains("column 'b'"));
+  const fs::path numeric = write_temp("numeric.csv", "a,b\n1,\n2,nan\n3,-4.5e1\n");
+  const std::vector<double> b = adjoin::read_csv_table(numeric).numbers("b");
+  CHECK(std::isnan(b[0]));
+  CHECK(std::isnan(b[1]));
+  CHECK(b[2] == -45.0);
+  const fs::path ragged = write_temp("ragged.csv", "a,b\n1,2\n3\n");
+  CHECK_THROWS_WITH(adjoin::read_csv_table(ragged), Catch::Contains("ragged.csv:3") && Catch::Contains("expected 2"));
+}
