@@ -566,7 +566,14 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
     s << title_line(run.scene, "energy balance (cumulative shares)")
       << "set xlabel 'time t" << unit(si, "s") << "'\n"
       << "set ylabel '" << (si ? "energy [J]" : "energy per unit m_1 (dimensionless)") << "'\n"
-      << "set key outside right top\nset style fill solid 0.75 noborder\nplot ";
+      << "set key top left\nset style fill solid 0.75 noborder\n";
+    // Headroom above the curves for the key.
+    double top = 0.0;
+    for (std::size_t c = 1; c < columns.size(); ++c)
+      for (double v : columns[c])
+        if (std::isfinite(v)) top = std::max(top, v);
+    if (top > 0.0) s << "set yrange [*:" << num(1.4 * top) << "]\n";
+    s << "plot ";
     for (std::size_t k = 0; k < names.size(); ++k)
       s << (k ? ", " : "") << "$e using 1:" << (k == 0 ? std::string("(0)") : std::to_string(k + 1)) << ":"
         << k + 2 << " with filledcurves lt " << k + 1 << " title " << gnuplot_quote(names[k]);
