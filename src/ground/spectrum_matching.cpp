@@ -1,0 +1,364 @@
+// Spectrum-compatible motions by iterative Fourier-amplitude scaling (see spectrum_matching.hpp).
+#include "adjoin/ground/spectrum_matching.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <numbers>
+#include <sstream>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/model/units.hpp"
+#include "adjoin/post/spectrum.hpp"
+#include "synthesis_detail.hpp"
+
+namespace adjoin {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+std::string num(double x) {
+  char buffer[64];
+  const auto r = std::to_chars(buffer, buffer + sizeof buffer, x);
+  return std::string(buffer, r.ptr);
+}
+
+bool fail(std::string* error, const std::string& message) {
+  if (error) *error = message;
+  return false;
+}
+
+char upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' + 'A') : c; }
+
+}  // namespace
+
+Ec8Parameters ec8_type1_parameters(char ground_type) {
+  switch (upper(ground_type)) {
+    case 'A': return {1.0, 0.15, 0.4, 2.0};
+    case 'B': return {1.2, 0.15, 0.5, 2.0};
+    case 'C': return {1.15, 0.20, 0.6, 2.0};
+    case 'D': return {1.35, 0.20, 0.8, 2.0};
+    case 'E': return {1.4, 0.15, 0.5, 2.0};
+    default: break;
+  }
+  throw InputError(std::string("EC8 ground type '") + ground_type + "': expected A, B, C, D or E");
+}
+
+double ec8_type1_psa(double period, char ground_type, double ag, double eta) {
+  const Ec8Parameters p = ec8_type1_parameters(ground_type);
+  const double plateau = 2.5 * ag * p.S * eta;
+  if (period <= p.TB) return ag * p.S * (1.0 + period / p.TB * (2.5 * eta - 1.0));
+  if (period <= p.TC) return plateau;
+  if (period <= p.TD) return plateau * p.TC / period;
+  return plateau * p.TC * p.TD / (period * period);
+}
+
+TargetSpectrum TargetSpectrum::ec8_type1(char ground_type, double ag) {
+  ec8_type1_parameters(ground_type);  // checks the type
+  if (!(ag > 0.0) || !std::isfinite(ag)) throw InputError("EC8 ag = " + num(ag) + ": expected a design ground acceleration > 0 g");
+  TargetSpectrum t;
+  t.kind = Kind::ec8_type1;
+  t.ground_type = upper(ground_type);
+  t.ag = ag;
+  t.name = std::string("EC8 type 1, ground ") + t.ground_type + ", ag = " + num(ag) + " g, 5 %";
+  return t;
+}
+
+TargetSpectrum TargetSpectrum::table(std::vector<double> periods, std::vector<double> psa, std::string name) {
+  if (periods.size() != psa.size()) throw InputError(name + ": periods and PSA values differ in number");
+  if (periods.size() < 2) throw InputError(name + ": a target table needs at least two rows (period [s], PSA [g])");
+  for (std::size_t i = 0; i < periods.size(); ++i) {
+    if (!std::isfinite(periods[i]) || periods[i] < 0.0)
+      throw InputError(name + ": row " + std::to_string(i + 1) + ": period " + num(periods[i]) + " (expected >= 0 s)");
+    if (!std::isfinite(psa[i]) || !(psa[i] > 0.0))
+      throw InputError(name + ": row " + std::to_string(i + 1) + ": PSA " + num(psa[i]) + " (expected > 0 g)");
+    if (i > 0 && !(periods[i] > periods[i - 1]))
+      throw InputError(name + ": row " + std::to_string(i + 1) + ": period " + num(periods[i]) +
+                       " (expected periods to increase strictly)");
+  }
+  TargetSpectrum t;
+  t.kind = Kind::table;
+  t.periods = std::move(periods);
+  t.psa = std::move(psa);
+  t.name = std::move(name);
+  return t;
+}
+
+double TargetSpectrum::psa_at(double period) const {
+  if (kind == Kind::ec8_type1) return ec8_type1_psa(period, ground_type, ag);
+  if (period < periods.front() || period > periods.back())
+    throw InputError(name + ": period " + num(period) + " s is outside the table (" + num(periods.front()) + " to " +
+                     num(periods.back()) + " s)");
+  const auto it = std::upper_bound(periods.begin(), periods.end(), period);
+  if (it == periods.end()) return psa.back();
+  const std::size_t i = static_cast<std::size_t>(it - periods.begin());
+  const double w = (period - periods[i - 1]) / (periods[i] - periods[i - 1]);
+  return psa[i - 1] + w * (psa[i] - psa[i - 1]);
+}
+
+double TargetSpectrum::min_period() const { return kind == Kind::table ? periods.front() : 0.0; }
+double TargetSpectrum::max_period() const {
+  return kind == Kind::table ? periods.back() : std::numeric_limits<double>::infinity();
+}
+
+TargetSpectrum load_target_spectrum(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string() + ": cannot read the target spectrum file");
+  std::vector<double> periods, psa;
+  std::string line;
+  std::size_t number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (number == 1 && line.size() >= 3 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::size_t first = line.find_first_not_of(" \t");
+    if (first == std::string::npos || line[first] == '#' || line[first] == '%') continue;
+    const std::string where = path.string() + ":" + std::to_string(number) + ": ";
+    std::vector<double> values;
+    std::size_t pos = first;
+    while (pos < line.size()) {
+      pos = line.find_first_not_of(" \t,;", pos);
+      if (pos == std::string::npos) break;
+      std::size_t end = line.find_first_of(" \t,;", pos);
+      if (end == std::string::npos) end = line.size();
+      double v = 0.0;
+      const auto r = std::from_chars(line.data() + pos, line.data() + end, v);
+      if (r.ec != std::errc() || r.ptr != line.data() + end || !std::isfinite(v))
+        throw InputError(where + "'" + line.substr(pos, end - pos) + "' is not a number (expected period [s] and PSA [g])");
+      values.push_back(v);
+      pos = end;
+    }
+    if (values.size() != 2)
+      throw InputError(where + std::to_string(values.size()) + " values (expected two: period [s] and PSA [g])");
+    if (values[0] < 0.0) throw InputError(where + "period " + num(values[0]) + " (expected >= 0 s)");
+    if (!(values[1] > 0.0)) throw InputError(where + "PSA " + num(values[1]) + " (expected > 0 g)");
+    if (!periods.empty() && !(values[0] > periods.back()))
+      throw InputError(where + "period " + num(values[0]) + " after " + num(periods.back()) +
+                       " (expected periods to increase strictly)");
+    periods.push_back(values[0]);
+    psa.push_back(values[1]);
+  }
+  if (periods.size() < 2)
+    throw InputError(path.string() + ": " + std::to_string(periods.size()) +
+                     " rows (expected at least two rows of period [s] and PSA [g])");
+  return TargetSpectrum::table(std::move(periods), std::move(psa), path.string());
+}
+
+TargetSpectrum parse_target_spectrum(const std::string& text) {
+  std::string lower = text;
+  for (char& c : lower)
+    if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
+  if (lower.rfind("ec8:", 0) == 0) {
+    const std::string rest = text.substr(4);
+    const std::size_t colon = rest.find(':');
+    const std::string type = rest.substr(0, colon);
+    if (type.size() != 1)
+      throw InputError("'" + text + "': expected ec8:T or ec8:T:AG with ground type T one of A, B, C, D, E");
+    double ag = 0.25;
+    if (colon != std::string::npos) {
+      const std::string a = rest.substr(colon + 1);
+      const auto r = std::from_chars(a.data(), a.data() + a.size(), ag);
+      if (a.empty() || r.ec != std::errc() || r.ptr != a.data() + a.size())
+        throw InputError("'" + text + "': '" + a + "' is not a number (expected ag in g, e.g. ec8:B:0.25)");
+    }
+    try {
+      return TargetSpectrum::ec8_type1(type[0], ag);
+    } catch (const InputError& e) {
+      throw InputError("'" + text + "': " + e.what());
+    }
+  }
+  return load_target_spectrum(text);
+}
+
+bool MatchOptions::IsValid(std::string* error) const {
+  if (!(period_min > 0.0) || !std::isfinite(period_min))
+    return fail(error, "match.period_min = " + num(period_min) + ": expected a period > 0 s");
+  if (!(period_max > period_min) || !std::isfinite(period_max))
+    return fail(error, "match.period_max = " + num(period_max) + ": expected a period > match.period_min = " +
+                           num(period_min) + " s");
+  if (period_min < target.min_period() || period_max > target.max_period())
+    return fail(error, "match.period_min/period_max = " + num(period_min) + "/" + num(period_max) +
+                           ": expected a band inside the target's periods (" + num(target.min_period()) + " to " +
+                           num(target.max_period()) + " s of " + target.name + ")");
+  if (band_points < 2) return fail(error, "match.band_points = " + std::to_string(band_points) + ": expected >= 2");
+  if (!(damping >= 0.0 && damping < 1.0)) return fail(error, "match.damping = " + num(damping) + ": expected 0 <= damping < 1");
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance))
+    return fail(error, "match.tolerance = " + num(tolerance) + ": expected a relative tolerance > 0");
+  if (max_iterations < 0) return fail(error, "match.max_iterations = " + std::to_string(max_iterations) + ": expected >= 0");
+  if (attempts < 1) return fail(error, "match.attempts = " + std::to_string(attempts) + ": expected >= 1");
+  return true;
+}
+
+namespace {
+
+// Linear interpolation of ratio(ln f) through (x_i, r_i) (x ascending), held at the ends up to
+// the last point, then blended to 1 over one octave by a half cosine.
+double gain_factor(double lf, const std::vector<double>& x, const std::vector<double>& r) {
+  const double octave = std::log(2.0);
+  auto blend = [&](double edge, double distance) {
+    const double w = distance / octave;
+    if (w >= 1.0) return 1.0;
+    const double s = 0.5 * (1.0 - std::cos(kPi * w));
+    return edge * (1.0 - s) + s;
+  };
+  if (lf <= x.front()) return blend(r.front(), x.front() - lf);
+  if (lf >= x.back()) return blend(r.back(), lf - x.back());
+  const auto it = std::upper_bound(x.begin(), x.end(), lf);
+  const std::size_t i = static_cast<std::size_t>(it - x.begin());
+  const double w = (lf - x[i - 1]) / (x[i] - x[i - 1]);
+  return r[i - 1] + w * (r[i] - r[i - 1]);
+}
+
+// The matching loop on a buffer of m samples whose first n are the motion.
+Record match_core(std::vector<double> buffer, std::size_t n, double dt, const MatchOptions& o, MatchReport* report,
+                  Record prototype) {
+  const std::size_t m = buffer.size();
+  const std::size_t half = m / 2;
+  detail::RealArray real = detail::real_array(m);
+  detail::ComplexArray y0 = detail::complex_array(half + 1), work = detail::complex_array(half + 1);
+  std::copy(buffer.begin(), buffer.end(), real.get());
+  detail::forward_real_fft(m, real.get(), y0.get());
+  std::vector<double> gain(half + 1, 1.0 / static_cast<double>(m));
+
+  // Periods: the band, and one octave beyond each end in quarter octaves (inside the target).
+  const std::vector<double> band = period_range(o.period_min, o.period_max, o.band_points, PeriodSpacing::log);
+  std::vector<double> periods;
+  for (int k = 4; k >= 1; --k) {
+    const double t = o.period_min / std::pow(2.0, k / 4.0);
+    if (t >= o.target.min_period() && t > 0.0) periods.push_back(t);
+  }
+  const std::size_t band_first = periods.size();
+  periods.insert(periods.end(), band.begin(), band.end());
+  for (int k = 1; k <= 4; ++k) {
+    const double t = o.period_max * std::pow(2.0, k / 4.0);
+    if (t <= o.target.max_period()) periods.push_back(t);
+  }
+  std::vector<double> target(periods.size());
+  for (std::size_t i = 0; i < periods.size(); ++i) target[i] = o.target.psa_at(periods[i]);
+  // ln f ascending: periods descending.
+  std::vector<double> lf(periods.size()), ratio(periods.size());
+  for (std::size_t i = 0; i < periods.size(); ++i) lf[periods.size() - 1 - i] = -std::log(periods[i]);
+
+  SpectrumOptions spectrum;
+  spectrum.periods = periods;
+  spectrum.dampings = {o.damping};
+
+  std::vector<double> accel(n), best;
+  MatchReport r;
+  double best_max = std::numeric_limits<double>::infinity();
+  for (int iteration = 0;; ++iteration) {
+    for (std::size_t k = 0; k <= half; ++k) {
+      work[k][0] = gain[k] * y0[k][0];
+      work[k][1] = gain[k] * y0[k][1];
+    }
+    detail::inverse_real_fft(m, work.get(), real.get());
+    std::copy(real.get(), real.get() + n, accel.begin());
+    const ResponseSpectrum s = response_spectrum(dt, accel, spectrum);
+    double max_misfit = 0.0, sum = 0.0;
+    for (std::size_t i = 0; i < band.size(); ++i) {
+      const double misfit = std::abs(s.at(0, band_first + i).psa / target[band_first + i] - 1.0);
+      if (!std::isfinite(misfit)) throw NumericalError("spectrum matching: non-finite PSA at iteration " + std::to_string(iteration), 0.0);
+      max_misfit = std::max(max_misfit, misfit);
+      sum += misfit;
+    }
+    r.max_misfit_history.push_back(max_misfit);
+    if (max_misfit < best_max) {
+      best_max = max_misfit;
+      best = accel;
+      r.iterations = iteration;
+      r.max_misfit = max_misfit;
+      r.mean_misfit = sum / static_cast<double>(band.size());
+      r.psa.resize(band.size());
+      for (std::size_t i = 0; i < band.size(); ++i) r.psa[i] = s.at(0, band_first + i).psa;
+    }
+    if (max_misfit <= o.tolerance || iteration >= o.max_iterations) break;
+    for (std::size_t i = 0; i < periods.size(); ++i) {
+      const double psa = s.at(0, i).psa;
+      ratio[periods.size() - 1 - i] = psa > 0.0 ? std::clamp(target[i] / psa, 0.1, 10.0) : 10.0;
+    }
+    // The overall level c (geometric mean of the band ratios) scales every frequency; the
+    // local ratios relative to it shape the band and blend to c outside.
+    double log_c = 0.0;
+    for (std::size_t i = 0; i < band.size(); ++i) log_c += std::log(ratio[periods.size() - 1 - band_first - i]);
+    const double c = std::exp(log_c / static_cast<double>(band.size()));
+    for (double& v : ratio) v /= c;
+    const double df = 1.0 / (static_cast<double>(m) * dt);
+    gain[0] *= c * gain_factor(-std::numeric_limits<double>::infinity(), lf, ratio);
+    for (std::size_t k = 1; k <= half; ++k) gain[k] *= c * gain_factor(std::log(static_cast<double>(k) * df), lf, ratio);
+  }
+  r.converged = r.max_misfit <= o.tolerance;
+  r.periods = band;
+  r.target.assign(target.begin() + static_cast<std::ptrdiff_t>(band_first),
+                  target.begin() + static_cast<std::ptrdiff_t>(band_first + band.size()));
+  if (report) *report = r;
+
+  Record out = std::move(prototype);
+  out.dt = dt;
+  out.accel = std::move(best);
+  std::ostringstream d;
+  d << "; matched to " << o.target.name << " over " << num(o.period_min) << "-" << num(o.period_max) << " s ("
+    << r.iterations << " iterations, max misfit " << num(std::round(r.max_misfit * 1e4) / 1e4) << ", mean "
+    << num(std::round(r.mean_misfit * 1e4) / 1e4) << ")";
+  out.description += d.str();
+  return out;
+}
+
+void check_options(const MatchOptions& o) {
+  std::string error;
+  if (!o.IsValid(&error)) throw InputError(error);
+}
+
+}  // namespace
+
+Record match_spectrum(Record seed, const MatchOptions& o, MatchReport* report) {
+  check_options(o);
+  if (seed.accel.size() < 2) throw InputError(seed.source + ": spectrum matching needs a record of at least two samples");
+  if (!(seed.dt > 0.0) || !std::isfinite(seed.dt)) throw InputError(seed.source + ": the record's dt must be positive");
+  for (double v : seed.accel)
+    if (!std::isfinite(v)) throw InputError(seed.source + ": non-finite acceleration in the seed record");
+  const std::size_t n = seed.accel.size();
+  std::vector<double> buffer(detail::smooth_fft_length(2 * n), 0.0);
+  std::copy(seed.accel.begin(), seed.accel.end(), buffer.begin());
+  const double dt = seed.dt;
+  seed.accel.clear();
+  return match_core(std::move(buffer), n, dt, o, report, std::move(seed));
+}
+
+Record synthesize_matched(const SynthesisOptions& synthesis, const MatchOptions& options, MatchReport* report) {
+  check_options(options);
+  SynthesisOptions s = synthesis;
+  s.s0 = 1.0;
+  s.target_pga.reset();
+  std::string error;
+  if (!s.IsValid(&error)) throw InputError(error);
+  Record best;
+  MatchReport best_report;
+  for (int attempt = 0; attempt < options.attempts; ++attempt) {
+    s.seed = attempt_seed(synthesis.seed, attempt);
+    Record seed = synthesize(s);
+    seed.description = detail::describe(s, false);
+    MatchReport r;
+    Record matched = match_spectrum(std::move(seed), options, &r);
+    r.attempt = attempt;
+    r.phase_seed = s.seed;
+    if (attempt == 0 || r.max_misfit < best_report.max_misfit) {
+      best = std::move(matched);
+      best_report = std::move(r);
+    }
+    if (best_report.converged) break;
+  }
+  if (report) *report = best_report;
+  return best;
+}
+
+std::uint64_t attempt_seed(std::uint64_t seed, int attempt) {
+  if (attempt == 0) return seed;
+  // splitmix64 of seed + attempt * golden ratio constant.
+  std::uint64_t z = seed + static_cast<std::uint64_t>(attempt) * 0x9E3779B97F4A7C15ull;
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  return z ^ (z >> 31);
+}
+
+}  // namespace adjoin
