@@ -13,6 +13,8 @@
 #include "adjoin/ground/processing.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/ground/record_motion.hpp"
+#include "adjoin/ground/spectrum_matching.hpp"
+#include "adjoin/ground/synthesis.hpp"
 
 namespace adjoin {
 namespace {
@@ -51,6 +53,17 @@ const std::vector<KeySpec>& schema() {
       {"ground.filter", Kind::string},      {"ground.f_low", Kind::number},
       {"ground.f_high", Kind::number},      {"ground.filter_order", Kind::integer},
       {"ground.resample_dt", Kind::number}, {"ground.scale_pga", Kind::number},
+      {"ground.spectrum", Kind::string},    {"ground.omega_g", Kind::number},
+      {"ground.zeta_g", Kind::number},      {"ground.omega_f", Kind::number},
+      {"ground.zeta_f", Kind::number},      {"ground.s0", Kind::number},
+      {"ground.target_pga", Kind::number},  {"ground.envelope", Kind::string},
+      {"ground.t1", Kind::number},          {"ground.t2", Kind::number},
+      {"ground.decay", Kind::number},       {"ground.eps", Kind::number},
+      {"ground.eta", Kind::number},         {"ground.t_n", Kind::number},
+      {"ground.duration", Kind::number},    {"ground.seed", Kind::integer},
+      {"ground.match_ec8", Kind::string},   {"ground.match_ag", Kind::number},
+      {"ground.match_table", Kind::string}, {"ground.match_band", Kind::numbers},
+      {"ground.match_tolerance", Kind::number},
       {"solver.scheme", Kind::string},    {"solver.history", Kind::string},
       {"solver.h", Kind::number},         {"solver.t_end", Kind::number},
       {"solver.locate_switches", Kind::boolean},
@@ -74,6 +87,9 @@ const std::map<std::string, std::vector<std::string>>& ground_keys() {
       {"record", {"file", "format", "units", "dt", "time_column", "accel_column", "time_scale",
                   "window_start", "window_end", "baseline", "pad_before", "pad_after", "filter",
                   "f_low", "f_high", "filter_order", "resample_dt", "scale_pga"}},
+      {"filtered-noise", {"spectrum", "omega_g", "zeta_g", "omega_f", "zeta_f", "s0", "target_pga", "envelope", "t1",
+                          "t2", "decay", "eps", "eta", "t_n", "duration", "dt", "seed", "match_ec8", "match_ag",
+                          "match_table", "match_band", "match_tolerance", "time_scale"}},
   };
   return keys;
 }
@@ -302,6 +318,19 @@ std::string rod_key_of(const std::string& message) {
   return "model";
 }
 
+// The time scale of a ground motion given in seconds: T0 for SI scenes, ground.time_scale
+// (default 1 s) for dimensionless ones.
+double record_time_scale(const SceneReader& r, const Scales& scales) {
+  if (scales.si) {
+    if (r.has("ground.time_scale")) r.fail("ground.time_scale", "ground.time_scale is set by m1 and k1 in an SI scene; remove it");
+    return scales.time;
+  }
+  const double time_scale = r.number("ground.time_scale", 1.0);
+  if (!(std::isfinite(time_scale) && time_scale > 0.0))
+    r.fail("ground.time_scale", "ground.time_scale = " + format_number(time_scale) + " must be a positive number of seconds");
+  return time_scale;
+}
+
 // source = "record": read, process, and scale to the solver's units. A dimensionless scene
 // says what one unit of its time is in seconds (ground.time_scale, default 1 s); its
 // accelerations are in g. An SI scene uses T0 = sqrt(m1/k1).
@@ -352,14 +381,7 @@ std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, con
   if (r.has("ground.resample_dt")) processing.dt = r.number("ground.resample_dt");
   if (r.has("ground.scale_pga")) processing.target_pga = r.number("ground.scale_pga") * kStandardGravity;
 
-  double time_scale = scales.time;
-  if (!scales.si) {
-    time_scale = r.number("ground.time_scale", 1.0);
-    if (!(std::isfinite(time_scale) && time_scale > 0.0))
-      r.fail("ground.time_scale", "ground.time_scale = " + format_number(time_scale) + " must be a positive number of seconds");
-  } else if (r.has("ground.time_scale")) {
-    r.fail("ground.time_scale", "ground.time_scale is set by m1 and k1 in an SI scene; remove it");
-  }
+  const double time_scale = record_time_scale(r, scales);
   Record record = read_record(file, format);  // InputError names the file and line
   try {
     record = process(record, processing);
@@ -367,6 +389,70 @@ std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, con
     r.fail("ground", e.what());
   }
   return std::make_shared<RecordMotion>(std::move(record), time_scale, kStandardGravity);
+}
+
+// source = "filtered-noise": white noise shaped by a Kanai-Tajimi or Clough-Penzien spectrum
+// and an envelope (ground/synthesis.hpp), optionally matched to a target spectrum. Reproducible
+// from ground.seed.
+std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, const Scales& scales) {
+  SynthesisOptions o;
+  if (r.has("ground.spectrum")) {
+    const std::string name = r.string("ground.spectrum", "");
+    if (!parse_spectrum_model(name, &o.spectrum))
+      r.fail("ground.spectrum", "ground.spectrum = \"" + name + "\" must be \"kanai-tajimi\" or \"clough-penzien\"");
+  }
+  o.omega_g = r.number("ground.omega_g", o.omega_g);
+  o.zeta_g = r.number("ground.zeta_g", o.zeta_g);
+  o.omega_f = r.number("ground.omega_f", o.omega_f);
+  o.zeta_f = r.number("ground.zeta_f", o.zeta_f);
+  if (r.has("ground.s0")) o.s0 = r.number("ground.s0");
+  if (r.has("ground.target_pga")) o.target_pga = r.number("ground.target_pga");
+  if (r.has("ground.envelope")) {
+    const std::string name = r.string("ground.envelope", "");
+    if (!parse_envelope_kind(name, &o.envelope.kind))
+      r.fail("ground.envelope", "ground.envelope = \"" + name + "\" must be \"none\", \"jennings-housner-tsai\" or \"saragoni-hart\"");
+  }
+  for (auto [key, field] : {std::pair{"ground.t1", &o.envelope.t1}, {"ground.t2", &o.envelope.t2}, {"ground.decay", &o.envelope.decay},
+                            {"ground.eps", &o.envelope.eps}, {"ground.eta", &o.envelope.eta}, {"ground.t_n", &o.envelope.t_n}})
+    if (r.has(key)) *field = r.number(key);
+  o.duration = r.number("ground.duration", o.duration);
+  o.dt = r.number("ground.dt", o.dt);
+  const std::int64_t seed = r.integer("ground.seed", 1);
+  if (seed < 0) r.fail("ground.seed", "ground.seed = " + std::to_string(seed) + " must be zero or positive");
+  o.seed = static_cast<std::uint64_t>(seed);
+  std::string error;
+  if (!o.IsValid(&error)) r.fail(error.substr(0, error.find(' ')), error);
+  const double time_scale = record_time_scale(r, scales);
+
+  const bool match = r.has("ground.match_ec8") || r.has("ground.match_table");
+  for (const char* key : {"ground.match_ag", "ground.match_band", "ground.match_tolerance"})
+    if (r.has(key) && !match) r.fail(key, std::string(key) + " needs ground.match_ec8 or ground.match_table");
+  if (!match) return std::make_shared<RecordMotion>(synthesize(o), time_scale, kStandardGravity);
+
+  MatchOptions m;
+  if (r.has("ground.match_ec8") && r.has("ground.match_table"))
+    r.fail("ground.match_table", "give ground.match_ec8 or ground.match_table, not both");
+  if (r.has("ground.match_ec8")) {
+    const std::string type = r.string("ground.match_ec8", "");
+    if (type.size() != 1 || std::string("ABCDE").find(type[0]) == std::string::npos)
+      r.fail("ground.match_ec8", "ground.match_ec8 = \"" + type + "\" must be an EC8 ground type, \"A\" to \"E\"");
+    m.target = TargetSpectrum::ec8_type1(type[0], r.number("ground.match_ag", 0.25));
+  } else {
+    std::filesystem::path file = r.string("ground.match_table", "");
+    if (file.is_relative() && !r.overridden("ground.match_table")) file = std::filesystem::path(r.name()).parent_path() / file;
+    m.target = load_target_spectrum(file);
+  }
+  if (r.has("ground.match_band")) {
+    const auto band = r.numbers("ground.match_band");
+    if (band.size() != 2) r.fail("ground.match_band", "ground.match_band must be [shortest, longest] period in s");
+    m.period_min = band[0];
+    m.period_max = band[1];
+  }
+  m.tolerance = r.number("ground.match_tolerance", m.tolerance);
+  if (!m.IsValid(&error)) r.fail("ground.match_band", "ground matching: " + error);
+  MatchReport report;
+  Record matched = synthesize_matched(o, m, &report);
+  return std::make_shared<RecordMotion>(std::move(matched), time_scale, kStandardGravity);
 }
 
 Scene build_scene(const SceneReader& r, const std::string& name) {
@@ -455,6 +541,8 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
     scene.ground = std::make_shared<DecayingSine>(u0 / s.length, omega * s.time, k * s.time);
   } else if (source == "record") {
     scene.ground = read_record_source(r, scene.scales);
+  } else if (source == "filtered-noise") {
+    scene.ground = synthesize_source(r, scene.scales);
   }
 
   // ---- solver ----
