@@ -143,6 +143,10 @@ std::vector<double> CsvTable::numbers(const std::string& name, const std::string
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const std::string cell = trim(rows[i][c]);
     if (cell.empty() || cell == "nan" || cell == "NaN" || cell == "-" || cell == "null") continue;
+    if (cell == "true" || cell == "false") {  // flags such as a sweep's `contact` plot as 1 / 0
+      values[i] = cell == "true" ? 1.0 : 0.0;
+      continue;
+    }
     if (!parse_double(cell, &values[i]))
       throw InputError(file.string() + ":" + std::to_string(lines[i]) + ": column '" + name + "' holds '" + cell +
                        "', expected a number");
@@ -731,7 +735,10 @@ void plot_sweep_csv(const fs::path& csv, const SweepPlotOptions& options, const 
       throw InputError(csv.string() + ": column '" + options.y[k] + "' has no " +
                        (options.log_y ? "positive " : "") + "numbers to plot");
   }
-  const std::string title = options.title.empty() ? "Sweep: " + csv.filename().string() : options.title;
+  const std::string where = csv.has_parent_path() && !csv.parent_path().filename().empty()
+                                ? (csv.parent_path().filename() / csv.filename()).string()
+                                : csv.filename().string();
+  const std::string title = options.title.empty() ? "Sweep: " + where : options.title;
   const bool panels = ys.size() > 1;
   if (panels)
     s << "set multiplot layout " << ys.size() << ",1 title " << gnuplot_quote(title)
@@ -740,9 +747,12 @@ void plot_sweep_csv(const fs::path& csv, const SweepPlotOptions& options, const 
     s << "set title " << gnuplot_quote(title) << " noenhanced font ',12'\n";
   if (options.log_x) s << "set logscale x\n";
   if (options.log_y) s << "set logscale y\n";
-  s << "set key noenhanced\nset offsets graph 0.02, graph 0.02, graph 0.06, graph 0.06\n";
+  // x spans the data plus a little (not rounded out to the next tics); y gets headroom.
+  s << "set key noenhanced\nset autoscale xfix\nset offsets graph 0.02, graph 0.02, graph 0.06, graph 0.06\n";
   for (std::size_t k = 0; k < ys.size(); ++k) {
-    s << "set key " << key_corner(x, {ys[k]}) << "\n";
+    // One curve per panel needs no key: the y label names it.
+    if (options.group.empty()) s << "unset key\n";
+    else s << "set key " << key_corner(x, {ys[k]}) << "\n";
     const bool last = k + 1 == ys.size();
     if (panels) s << (last ? "set format x '%g'\nset xlabel " + gnuplot_quote(options.x) + " noenhanced\n"
                            : std::string("set format x ''\nunset xlabel\n"));

@@ -38,7 +38,8 @@ struct CsvTable {
   bool has(const std::string& name) const;
   // Index of a column; InputError naming the column and listing the available ones otherwise.
   std::size_t column(const std::string& name, const std::string& context = "") const;
-  // The column as numbers: an empty cell or nan/NaN is NaN; anything else that is not a number
+  // The column as numbers: an empty cell, nan/NaN, "-" or null is NaN; true/false are 1/0;
+  // anything else that is not a number
   // is an InputError naming file:line and the column.
   std::vector<double> numbers(const std::string& name, const std::string& context = "") const;
 };
