@@ -3,21 +3,19 @@
 
 #include <map>
 #include <mutex>
+
+#include "../detail/fftw_planner.hpp"
 #include <new>
 
 namespace adjoin::detail {
 namespace {
 
-std::mutex& planner_mutex() {
-  static std::mutex m;
-  return m;
-}
 
 enum class Direction { forward, inverse };
 
 fftw_plan cached_plan(std::size_t n, Direction direction) {
   static std::map<std::pair<std::size_t, Direction>, fftw_plan> plans;
-  std::lock_guard<std::mutex> lock(planner_mutex());
+  std::lock_guard<std::mutex> lock(detail::fftw_planner_mutex());
   auto it = plans.find({n, direction});
   if (it != plans.end()) return it->second;
   RealArray real = real_array(n);

@@ -420,11 +420,13 @@ std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, cons
   const std::int64_t seed = r.integer("ground.seed", 1);
   if (seed < 0) r.fail("ground.seed", "ground.seed = " + std::to_string(seed) + " must be zero or positive");
   o.seed = static_cast<std::uint64_t>(seed);
+  const bool match = r.has("ground.match_ec8") || r.has("ground.match_table");
+  // A matched motion takes its level from the target spectrum: no intensity needed.
+  if (match && !o.s0 && !o.target_pga) o.target_pga = 1.0;
   std::string error;
   if (!o.IsValid(&error)) r.fail(error.substr(0, error.find(' ')), error);
   const double time_scale = record_time_scale(r, scales);
 
-  const bool match = r.has("ground.match_ec8") || r.has("ground.match_table");
   for (const char* key : {"ground.match_ag", "ground.match_band", "ground.match_tolerance"})
     if (r.has(key) && !match) r.fail(key, std::string(key) + " needs ground.match_ec8 or ground.match_table");
   if (!match) return std::make_shared<RecordMotion>(synthesize(o), time_scale, kStandardGravity);

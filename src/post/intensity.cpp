@@ -8,6 +8,8 @@
 #include <complex>
 #include <memory>
 #include <mutex>
+
+#include "../detail/fftw_planner.hpp"
 #include <numbers>
 #include <string>
 
@@ -23,10 +25,6 @@ void check(const Record& record) {
 }
 
 // FFTW's planner is not thread-safe; executing a plan is.
-std::mutex& fftw_planner_mutex() {
-  static std::mutex m;
-  return m;
-}
 
 // Time at which the cumulative curve h (non-decreasing) first reaches level, interpolated.
 double crossing_time(const std::vector<double>& h, double level, double dt) {
@@ -106,13 +104,13 @@ FourierSpectrum fourier_amplitude_spectrum(const Record& record) {
   if (!in || !out) throw std::bad_alloc();
   fftw_plan plan;
   {
-    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    std::lock_guard<std::mutex> lock(detail::fftw_planner_mutex());
     plan = fftw_plan_dft_r2c_1d(static_cast<int>(n), in.get(), out.get(), FFTW_ESTIMATE);
   }
   std::copy(record.accel.begin(), record.accel.end(), in.get());
   fftw_execute(plan);
   {
-    std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    std::lock_guard<std::mutex> lock(detail::fftw_planner_mutex());
     fftw_destroy_plan(plan);
   }
   s.frequency.resize(m);
