@@ -155,6 +155,29 @@ TEST_CASE("FftHistory: lengths that are not powers of two, and tiny ones", "[fft
   }
 }
 
+TEST_CASE("FftHistory: the last windows of each level, cut short at N", "[fft_history]") {
+  // Near N a level's last window or two want fewer than 2L - 1 outputs, and are formed
+  // directly, by a shorter FFT of just the values that reach them, or in full, by a cost
+  // estimate. N = j L + d for the first three block lengths L and a spread of d covers all
+  // three (and windows with fewer partitions than r - 1 at the top level). Random weights:
+  // every tile counts equally.
+  const std::size_t b = FftHistory::near_lags(), r = FftHistory::level_ratio();
+  std::size_t cases = 0;
+  for (std::size_t block : {b, r * b, r * r * b})
+    for (std::size_t j : {std::size_t{1}, std::size_t{2}, r - 1, r})
+      for (std::size_t d : {std::size_t{1}, std::size_t{3}, block / 16, block / 3, block - 1,
+                            block + 5, block + block / 2}) {
+        const std::size_t n = j * block + d;
+        if (n > 40000) continue;  // the reference is quadratic
+        const auto w = random_sequence(n + 1, static_cast<unsigned>(n));
+        const double diff = fft_difference(w, random_sequence(n + 1, static_cast<unsigned>(n + 1)));
+        INFO("N = " << n << " (L = " << block << "): max relative difference " << diff);
+        CHECK(diff < 1e-12);
+        ++cases;
+      }
+  CHECK(cases > 50);
+}
+
 TEST_CASE("FftHistory: arbitrary weights and exact small cases", "[fft_history]") {
   // Random (non-decaying) weights exercise every tile equally.
   const auto w = random_sequence(30001, 11);

@@ -76,113 +76,292 @@ PlanCache& plan_cache() {
   return cache;
 }
 
-// Whether a tile of block length L with `outputs` wanted results is cheaper by FFT. Direct:
-// one multiply-add per product, vectorised; FFT: a forward and an inverse real transform of
-// length 2L (about 2.5 n log2 n flops each, less efficient per flop) plus the pointwise
-// product. The constant only moves work between two exact methods.
-std::size_t direct_products(std::size_t block, std::size_t outputs) {
-  if (outputs <= block) return outputs * (outputs + 1) / 2;
-  return block * (block + 1) / 2 + (outputs - block) * block;
+// The hot loops below are also compiled for AVX2 with FMA, chosen at load time when the CPU
+// has them (as FFTW chooses its own SIMD kernels): results then differ from the baseline
+// build's only by rounding.
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define ADJOIN_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define ADJOIN_SIMD_CLONES
+#endif
+
+// sum_{i<n} a[i] b[i], with eight independent partial sums (the compiler keeps them in vector
+// registers; one chain of additions would be latency-bound).
+ADJOIN_SIMD_CLONES
+double dot(const double* __restrict a, const double* __restrict b, std::size_t n) {
+  double s[8] = {};
+  std::size_t i = 0;
+  for (; i + 8 <= n; i += 8)
+    for (std::size_t k = 0; k < 8; ++k) s[k] += a[i + k] * b[i + k];
+  for (; i < n; ++i) s[0] += a[i] * b[i];
+  return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
 }
-bool tile_by_fft(std::size_t block, std::size_t outputs) {
-  const double n = 2.0 * static_cast<double>(block);
-  const double fft_cost = 8.0 * n * std::log2(n) + 64.0;
-  return static_cast<double>(direct_products(block, outputs)) > fft_cost;
+
+// sum_{q<n} y[q] w[-q]: a convolution term with the weights read backwards.
+ADJOIN_SIMD_CLONES
+double dot_reversed(const double* __restrict y, const double* __restrict w, std::size_t n) {
+  double s[4] = {};
+  std::size_t q = 0;
+  for (; q + 4 <= n; q += 4)
+    for (std::size_t k = 0; k < 4; ++k) s[k] += y[q + k] * w[-static_cast<std::ptrdiff_t>(q + k)];
+  for (; q < n; ++q) s[0] += y[q] * w[-static_cast<std::ptrdiff_t>(q)];
+  return (s[0] + s[1]) + (s[2] + s[3]);
+}
+
+// s = x w, elementwise on interleaved complex values (s may be x).
+ADJOIN_SIMD_CLONES
+void multiply(double* s, const double* x, const double* __restrict w, std::size_t count) {
+  for (std::size_t f = 0; f < 2 * count; f += 2) {
+    const double xr = x[f], xi = x[f + 1];
+    s[f] = xr * w[f] - xi * w[f + 1];
+    s[f + 1] = xr * w[f + 1] + xi * w[f];
+  }
+}
+// s += x w.
+ADJOIN_SIMD_CLONES
+void multiply_add(double* __restrict s, const double* __restrict x, const double* __restrict w,
+                  std::size_t count) {
+  for (std::size_t f = 0; f < 2 * count; f += 2) {
+    s[f] += x[f] * w[f] - x[f + 1] * w[f + 1];
+    s[f + 1] += x[f] * w[f + 1] + x[f + 1] * w[f];
+  }
+}
+
+// Products of one tile (L values of y times L weights) that land on its first `outputs` steps.
+std::size_t direct_products(std::size_t block, std::size_t outputs) {
+  // Output t has min(t, L-1) - max(0, t-L+1) + 1 products: t + 1 below L, 2L - 1 - t above.
+  if (outputs <= block) return outputs * (outputs + 1) / 2;
+  const std::size_t e = outputs - block;
+  return block * (block + 1) / 2 + e * block - e * (e + 1) / 2;
+}
+
+// The smallest FFT length that holds the first `outputs` terms of a convolution of two
+// sequences of `outputs` terms without wrap-around into them: 2 outputs - 1, rounded up.
+std::size_t truncated_length(std::size_t outputs) {
+  return std::bit_ceil(std::max<std::size_t>(2 * outputs - 1, 2));
+}
+
+// How a window is formed (see choose() and Spectra::plan below).
+enum class Method { direct, truncated, full };
+
+// Costs in multiply-adds of a vectorised dot product: a real FFT of length n about
+// 2 n log2 n of them (measured), a complex multiply-add about 2. The constants only move work
+// between exact methods.
+double fft_cost(std::size_t n) {
+  const double x = static_cast<double>(n);
+  return 2.0 * x * std::log2(x);
+}
+
+// The cheapest method for a window of `tiles` tiles of block length L with `outputs` wanted
+// results, `new_weights` of whose weight spectra would be made for it:
+//  - direct: one multiply-add per product;
+//  - full: forward FFT of the new y block, inverse FFT of the window, spectrum products;
+//  - truncated: only the first `outputs` values of each y block and weight partition matter,
+//    so a fresh, shorter convolution of each tile (two forward FFTs) and one inverse FFT.
+Method choose(std::size_t block, std::size_t tiles, std::size_t outputs, std::size_t new_weights) {
+  const auto t = static_cast<double>(tiles);
+  double best = static_cast<double>(2 + new_weights) * fft_cost(2 * block) +
+                2.0 * t * static_cast<double>(block + 1) + static_cast<double>(2 * block);
+  Method method = Method::full;
+  const std::size_t n = truncated_length(outputs);
+  if (n < 2 * block) {
+    const double truncated = (2.0 * t + 1.0) * fft_cost(n) + 2.0 * t * static_cast<double>(n / 2 + 1) +
+                             t * static_cast<double>(2 * n);
+    if (truncated < best) {
+      best = truncated;
+      method = Method::truncated;
+    }
+  }
+  if (t * static_cast<double>(direct_products(block, outputs)) <= best) method = Method::direct;
+  return method;
 }
 
 }  // namespace
 
 struct FftHistory::Spectra {
   struct Level {
-    std::size_t block = 0;   // L: y block length and weight segment length
-    bool fft = false;        // whether any of its tiles is done by FFT
-    PlanPair plans;          // length 2L
-    FftwArray<fftw_complex> weights;  // spectrum of w_L..w_{2L-1}, zero-padded, scaled 1/(2L)
+    std::size_t block = 0;  // L: y block length and weight partition length
+    std::size_t parts = 0;  // P: partitions p = 1..P, lags [pL, (p+1)L), with pL <= N
+    std::size_t windows = 0;  // windows k = 0..windows-1 (steps (k+1) L <= N)
+    PlanPair plans;         // length 2L
+    // weights[p-1]: spectrum of w_{pL}..w_{pL+L-1} (zero past N), zero-padded to 2L and scaled
+    // by 1/(2L); made on first use.
+    std::vector<FftwArray<fftw_complex>> weights;
+    // ring[k mod P]: spectrum of the y block k (zero-padded to 2L), made on first use;
+    // ring_block says which block a slot holds (npos: none).
+    std::vector<FftwArray<fftw_complex>> ring;
+    std::vector<std::size_t> ring_block;
   };
   std::vector<Level> levels;
-  FftwArray<fftw_complex> work;       // L_max + 1 complex = 2 L_max + 2 doubles, in place
-  std::size_t buffer_block = 0;       // L_max over the FFT levels
+  FftwArray<fftw_complex> work;  // the product spectrum, work_size + 1 complex values
+  std::size_t work_size = 0;
+
+  // Tiles and wanted outputs of window k, given N + 1 = count.
+  static std::size_t tiles(const Level& level, std::size_t k) { return std::min(level.parts, k + 1); }
+  static std::size_t outputs(const Level& level, std::size_t k, std::size_t count) {
+    return std::min(2 * level.block - 1, count - (k + 1) * level.block);
+  }
+  // How window k is formed. Only the last two windows of a level can want fewer than 2L - 1
+  // outputs; the others are all full, so window k is the first user of W_{k+1} if k < P.
+  static Method plan(const Level& level, std::size_t k, std::size_t count) {
+    const std::size_t t = tiles(level, k);
+    return choose(level.block, t, outputs(level, k, count), k < level.parts ? 1 : 0);
+  }
 };
 
 FftHistory::FftHistory(std::vector<double> weights)
     : w_(std::move(weights)), spectra_(std::make_unique<Spectra>()) {
-  static_assert(std::has_single_bit(kNear), "block lengths must stay powers of two");
+  static_assert(std::has_single_bit(kNear) && std::has_single_bit(kRatio) && kRatio >= 2,
+                "block lengths must stay powers of two");
   if (w_.empty()) return;
   const std::size_t n_max = w_.size() - 1;  // N
   y_.reserve(w_.size());
   future_.assign(w_.size(), 0.0);
 
-  const std::size_t near_count = std::min(kNear - 1, n_max);
+  // near_[i] = w_{n-i} for the lags n - i = 1..n, n = min(B, N); but lag B belongs to the
+  // first level, so near_[0] = 0 if n = B (a zero that makes the near sum a whole number of
+  // vector strides).
+  const std::size_t near_count = std::min(kNear, n_max);
   near_.resize(near_count);
   for (std::size_t i = 0; i < near_count; ++i) near_[i] = w_[near_count - i];
+  if (near_count == kNear) near_[0] = 0.0;
 
-  // Levels L = B 2^l <= N. The first tile of a level (at step L) has the most outputs still
-  // wanted, min(2L - 1, N + 1 - L); if even that one is cheaper directly, so are the rest.
-  for (std::size_t block = kNear; block <= n_max; block *= 2) {
+  // Levels L = B r^l <= N, each with the partitions its lags [L, rL) need up to N.
+  for (std::size_t block = kNear; block <= n_max; block *= kRatio) {
     Spectra::Level level;
     level.block = block;
-    level.fft = tile_by_fft(block, std::min(2 * block - 1, n_max + 1 - block));
-    if (level.fft) spectra_->buffer_block = block;
-    spectra_->levels.push_back(std::move(level));
-  }
-  if (spectra_->buffer_block == 0) return;
-  spectra_->work = fftw_array<fftw_complex>(spectra_->buffer_block + 1);
-  fftw_complex* work = spectra_->work.get();
-  double* real = work[0];
-  for (auto& level : spectra_->levels) {
-    if (!level.fft) continue;
-    const std::size_t block = level.block;
+    level.windows = n_max / block;
+    level.parts = std::min(kRatio - 1, level.windows);
     level.plans = plan_cache().get(2 * block);
-    level.weights = fftw_array<fftw_complex>(block + 1);
-    std::fill(real, real + 2 * block, 0.0);
-    const std::size_t end = std::min(2 * block, n_max + 1);
-    std::copy(w_.begin() + static_cast<std::ptrdiff_t>(block),
-              w_.begin() + static_cast<std::ptrdiff_t>(end), real);
-    fftw_execute_dft_r2c(level.plans.forward, real, work);
-    // FFTW's transforms are unnormalised: fold 1/(2L) into the weights once.
-    const double scale = 1.0 / (2.0 * static_cast<double>(block));
-    for (std::size_t k = 0; k <= block; ++k) {
-      level.weights[k][0] = scale * work[k][0];
-      level.weights[k][1] = scale * work[k][1];
-    }
+    level.weights.resize(level.parts);
+    level.ring.resize(level.parts);
+    level.ring_block.assign(level.parts, static_cast<std::size_t>(-1));
+    spectra_->levels.push_back(std::move(level));
+    if (block > n_max / kRatio) break;  // the next block would pass N (or overflow)
   }
 }
 
 FftHistory::~FftHistory() = default;
 
-void FftHistory::add_tile(std::size_t index, std::size_t m) {
-  // Block y_{m-L}..y_{m-1} times w_L..w_{2L-1}: products land on steps n = m .. m + 2L - 2;
-  // only n <= N are ever read.
-  const Spectra::Level& level = spectra_->levels[index];
+void FftHistory::add_window(std::size_t index, std::size_t m) {
+  // Step m = (k+1) L completes y block k. The window collects every tile (y block k', weight
+  // partition p) with k' + p = k + 1: its products w_j y_i (i in block k', j in [pL, pL+L))
+  // land on steps n = m .. m + 2L - 2 and none earlier; only n <= N are ever read.
+  Spectra::Level& level = spectra_->levels[index];
   const std::size_t block = level.block;
-  const std::size_t outputs = std::min(2 * block - 1, future_.size() - m);
-  const double* y = y_.data() + (m - block);
+  const std::size_t k = m / block - 1;
+  const std::size_t tiles = Spectra::tiles(level, k);
+  const std::size_t outputs = Spectra::outputs(level, k, w_.size());
   double* out = future_.data() + m;
-  if (!level.fft || !tile_by_fft(block, outputs)) {
-    const double* w = w_.data() + block;
-    for (std::size_t t = 0; t < outputs; ++t) {
-      // sum over q of w_{L+q} y_{m-L+t-q}, 0 <= q < L, 0 <= t - q < L.
-      const std::size_t q_lo = t >= block ? t - block + 1 : 0;
-      const std::size_t q_hi = std::min(t, block - 1);
-      double s = 0.0;
-      for (std::size_t q = q_lo; q <= q_hi; ++q) s += w[q] * y[t - q];
-      out[t] += s;
+  const Method method = Spectra::plan(level, k, w_.size());
+
+  if (method == Method::direct) {
+    // Output t (step m + t) of tile p: sum over q of y_{k'L+q} w_{pL+t-q}, 0 <= q < L,
+    // 0 <= t - q < L.
+    for (std::size_t p = 1; p <= tiles; ++p) {
+      const double* y = y_.data() + (k + 1 - p) * block;
+      const double* w = w_.data() + p * block;
+      for (std::size_t t = 0; t < outputs; ++t) {
+        const std::size_t q_lo = t >= block ? t - block + 1 : 0;
+        const std::size_t q_hi = std::min(t, block - 1);
+        out[t] += dot_reversed(y + q_lo, w + (t - q_lo), q_hi - q_lo + 1);
+      }
     }
     return;
   }
-  fftw_complex* spectrum = spectra_->work.get();
-  double* real = spectrum[0];
-  std::copy(y, y + block, real);
-  std::fill(real + block, real + 2 * block, 0.0);
-  fftw_execute_dft_r2c(level.plans.forward, real, spectrum);
-  const fftw_complex* w = level.weights.get();
-  for (std::size_t k = 0; k <= block; ++k) {
-    const double re = spectrum[k][0] * w[k][0] - spectrum[k][1] * w[k][1];
-    const double im = spectrum[k][0] * w[k][1] + spectrum[k][1] * w[k][0];
-    spectrum[k][0] = re;
-    spectrum[k][1] = im;
+
+  if (method == Method::truncated) {
+    // Outputs t < T only involve q <= t and t - q <= t: the first T values of each y block
+    // and of each weight partition, convolved at the length n >= 2T - 1 (no wrap-around into
+    // the first T terms). Fresh spectra: these windows come at most twice per level.
+    const std::size_t n = truncated_length(outputs);
+    const std::size_t half = n / 2 + 1;
+    const PlanPair plans = plan_cache().get(n);
+    auto sum = fftw_array<fftw_complex>(half);
+    auto ys = fftw_array<fftw_complex>(half);
+    auto ws = fftw_array<fftw_complex>(half);
+    double* yr = ys.get()[0];
+    double* wr = ws.get()[0];
+    for (std::size_t p = 1; p <= tiles; ++p) {
+      const double* y = y_.data() + (k + 1 - p) * block;
+      const double* w = w_.data() + p * block;
+      std::copy(y, y + outputs, yr);
+      std::fill(yr + outputs, yr + n, 0.0);
+      std::copy(w, w + outputs, wr);
+      std::fill(wr + outputs, wr + n, 0.0);
+      fftw_execute_dft_r2c(plans.forward, yr, ys.get());
+      fftw_execute_dft_r2c(plans.forward, wr, ws.get());
+      if (p == 1)
+        multiply(sum.get()[0], ys.get()[0], ws.get()[0], half);
+      else
+        multiply_add(sum.get()[0], ys.get()[0], ws.get()[0], half);
+    }
+    double* real = sum.get()[0];
+    fftw_execute_dft_c2r(plans.backward, sum.get(), real);
+    const double scale = 1.0 / static_cast<double>(n);
+    for (std::size_t t = 0; t < outputs; ++t) out[t] += scale * real[t];
+    return;
   }
-  fftw_execute_dft_c2r(level.plans.backward, spectrum, real);
+
+  const std::size_t half = block + 1;  // complex values of a length-2L real spectrum
+  // Weight spectra, on first use (in place: reals in, spectrum out).
+  for (std::size_t p = 1; p <= tiles; ++p) {
+    auto& spectrum = level.weights[p - 1];
+    if (spectrum) continue;
+    spectrum = fftw_array<fftw_complex>(half);
+    double* real = spectrum.get()[0];
+    const std::size_t begin = p * block, end = std::min(begin + block, w_.size());
+    std::copy(w_.data() + begin, w_.data() + end, real);
+    std::fill(real + (end - begin), real + 2 * block, 0.0);
+    fftw_execute_dft_r2c(level.plans.forward, real, spectrum.get());
+    // FFTW's transforms are unnormalised: fold 1/(2L) into the weights once.
+    const double scale = 1.0 / (2.0 * static_cast<double>(block));
+    for (std::size_t f = 0; f < half; ++f) {
+      spectrum[f][0] *= scale;
+      spectrum[f][1] *= scale;
+    }
+  }
+  // Spectra of the y blocks k + 1 - tiles .. k (all but block k normally kept from before).
+  for (std::size_t kb = k + 1 - tiles; kb <= k; ++kb) {
+    const std::size_t slot = kb % level.parts;
+    if (level.ring_block[slot] == kb) continue;
+    auto& spectrum = level.ring[slot];
+    if (!spectrum) spectrum = fftw_array<fftw_complex>(half);
+    double* real = spectrum.get()[0];
+    const double* y = y_.data() + kb * block;
+    std::copy(y, y + block, real);
+    std::fill(real + block, real + 2 * block, 0.0);
+    fftw_execute_dft_r2c(level.plans.forward, real, spectrum.get());
+    level.ring_block[slot] = kb;
+  }
+
+  // Whether a later full window reads block k's spectrum; if none does, the window's
+  // spectrum overwrites it instead of taking the shared work array.
+  bool kept = false;
+  for (std::size_t k2 = k + 1; !kept && k2 < std::min(k + level.parts, level.windows); ++k2)
+    kept = Spectra::plan(level, k2, w_.size()) == Method::full;
+  fftw_complex* product;
+  if (kept) {
+    if (spectra_->work_size < block) {
+      spectra_->work = fftw_array<fftw_complex>(half);
+      spectra_->work_size = block;
+    }
+    product = spectra_->work.get();
+  } else {
+    product = level.ring[k % level.parts].get();
+    level.ring_block[k % level.parts] = static_cast<std::size_t>(-1);
+  }
+  // The window's spectrum, sum over p of X_{k+1-p} W_p, in chunks that stay in the L1 cache.
+  constexpr std::size_t kChunk = 256;
+  for (std::size_t f0 = 0; f0 < half; f0 += kChunk) {
+    const std::size_t count = std::min(kChunk, half - f0);
+    multiply(product[f0], level.ring[k % level.parts][f0], level.weights[0][f0], count);
+    for (std::size_t p = 2; p <= tiles; ++p)
+      multiply_add(product[f0], level.ring[(k + 1 - p) % level.parts][f0], level.weights[p - 1][f0],
+                   count);
+  }
+  double* real = product[0];
+  fftw_execute_dft_c2r(level.plans.backward, product, real);
   for (std::size_t t = 0; t < outputs; ++t) out[t] += real[t];
 }
 
@@ -193,29 +372,16 @@ void FftHistory::push(double y) {
   const std::size_t m = y_.size();
   if (m >= w_.size()) { lag_sum_ = 0.0; return; }  // past step N: never read
 
-  // Every block that ends here: L divides m, for L = B, 2B, ... (a power-of-two ladder, so
-  // the first L that does not divide m ends the search).
+  // Every window that closes here: L divides m, for L = B, rB, r^2 B, ... (a power-of-two
+  // ladder, so the first L that does not divide m ends the search).
   const auto& levels = spectra_->levels;
-  for (std::size_t i = 0; i < levels.size() && levels[i].block <= m && m % levels[i].block == 0; ++i)
-    add_tile(i, m);
+  for (std::size_t i = 0; i < levels.size() && m % levels[i].block == 0; ++i) add_window(i, m);
 
-  // Near lags j = 1..min(B-1, m): near_[i] = w_{n-i} with n = near_.size(), against
-  // y_{m-n+i}. Four partial sums let the compiler overlap the multiply-adds.
+  // Near lags j = 1..min(n, m): near_[i] = w_{n-i} with n = near_.size(), against
+  // y_{m-n+i}.
   const std::size_t n = near_.size();
   const std::size_t i0 = m >= n ? 0 : n - m;
-  const std::size_t count = n - i0;
-  const double* wp = near_.data() + i0;
-  const double* yp = y_.data() + (m + i0 - n);
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-  std::size_t i = 0;
-  for (; i + 4 <= count; i += 4) {
-    s0 += wp[i] * yp[i];
-    s1 += wp[i + 1] * yp[i + 1];
-    s2 += wp[i + 2] * yp[i + 2];
-    s3 += wp[i + 3] * yp[i + 3];
-  }
-  for (; i < count; ++i) s0 += wp[i] * yp[i];
-  lag_sum_ = future_[m] + ((s0 + s1) + (s2 + s3));
+  lag_sum_ = future_[m] + dot(near_.data() + i0, y_.data() + (m + i0 - n), n - i0);
 }
 
 std::size_t FftHistory::bytes() const {
@@ -223,10 +389,15 @@ std::size_t FftHistory::bytes() const {
                       (w_.capacity() + near_.capacity() + y_.capacity() + future_.capacity()) *
                           sizeof(double);
   total += spectra_->levels.capacity() * sizeof(Spectra::Level);
-  for (const auto& level : spectra_->levels)
-    if (level.fft) total += (level.block + 1) * sizeof(fftw_complex);
-  if (spectra_->buffer_block > 0)
-    total += (spectra_->buffer_block + 1) * sizeof(fftw_complex);
+  for (const auto& level : spectra_->levels) {
+    total += (level.weights.capacity() + level.ring.capacity()) * sizeof(FftwArray<fftw_complex>) +
+             level.ring_block.capacity() * sizeof(std::size_t);
+    for (const auto& s : level.weights)
+      if (s) total += (level.block + 1) * sizeof(fftw_complex);
+    for (const auto& s : level.ring)
+      if (s) total += (level.block + 1) * sizeof(fftw_complex);
+  }
+  if (spectra_->work_size > 0) total += (spectra_->work_size + 1) * sizeof(fftw_complex);
   return total;
 }
 
