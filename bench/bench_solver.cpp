@@ -6,6 +6,7 @@
 // Counters: steps/s, and history bytes per step (what the history engines hold).
 #include <benchmark/benchmark.h>
 
+#include <cstdio>
 #include <string>
 
 #include "adjoin/io/scene.hpp"
@@ -16,6 +17,12 @@ namespace {
 adjoin::Scene scene(const char* which, std::vector<std::string> overrides) {
   overrides.push_back("output.timeseries=false");
   return adjoin::load_scene(std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/paper-" + which + ".toml", overrides);
+}
+
+std::string exact(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
 }
 
 void run(benchmark::State& state, const adjoin::Scene& s) {
@@ -43,7 +50,9 @@ void BM_strong_1e4(benchmark::State& st) { run(st, scene("strong", {"solver.sche
 BENCHMARK(BM_strong_1e4)->Name("targets/strong/implicit/direct/h:0.004")->Unit(benchmark::kMillisecond);
 // 2^20 steps of the strong scene with the fft engine.
 void BM_strong_2e20(benchmark::State& st) {
-  run(st, scene("strong", {"solver.scheme=implicit", "solver.history=\"fft\"", "solver.h=" + std::to_string(16.0 / (1 << 20))}));
+  char h[32];
+  std::snprintf(h, sizeof h, "%.17g", 16.0 / (1 << 20));  // exactly 2^20 steps
+  run(st, scene("strong", {"solver.scheme=implicit", "solver.history=\"fft\"", std::string("solver.h=") + h}));
 }
 BENCHMARK(BM_strong_2e20)->Name("targets/strong/implicit/fft/steps:2^20")->Unit(benchmark::kMillisecond)->Iterations(3);
 // The weak scene to 1e-9 in x(16): h = 0.0008 (see tests/test_weak_exact.cpp).
@@ -56,7 +65,7 @@ BENCHMARK(BM_weak_1e9)->Name("targets/weak/implicit/fft/h:0.0008")->Unit(benchma
 void BM_ladder(benchmark::State& st, const char* scheme, const char* engine) {
   const double steps = static_cast<double>(st.range(0));
   run(st, scene("strong", {std::string("solver.scheme=") + scheme, std::string("solver.history=\"") + engine + "\"",
-                           "solver.h=" + std::to_string(16.0 / steps)}));
+                           "solver.h=" + exact(16.0 / steps)}));
 }
 BENCHMARK_CAPTURE(BM_ladder, paper_direct, "paper", "direct")->RangeMultiplier(4)->Range(1 << 12, 1 << 16)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ladder, implicit_direct, "implicit", "direct")->RangeMultiplier(4)->Range(1 << 12, 1 << 16)->Unit(benchmark::kMillisecond);
