@@ -1,5 +1,12 @@
 // adjoin record info FILE... [--units U] [--dt DT] [--format F] [--time-column C]
 //                            [--accel-column C] [--delimiter D] [--json] [--out FILE]
+// adjoin record process FILE [reading options] [--window T0:T1] [--baseline N] [--pad B:A]
+//                       [--highpass F | --lowpass F | --bandpass F1:F2] [--filter-order N]
+//                       [--resample DT] [--scale-pga G] --out FILE
+//
+// `process` applies what scenes can ask for (ground/processing.hpp, in that order: window,
+// baseline, padding, zero-phase Butterworth, resampling, scaling) and writes two columns,
+// t [s] and a [g], that the readers take back; then prints the result's intensity measures.
 //
 // Reads accelerograms and prints their intensity measures: npts, dt, duration, PGA [g],
 // PGV [m/s], PGD [m] (trapezoid integrals, no baseline correction), Arias intensity [m/s],
@@ -16,7 +23,9 @@
 #include <vector>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/ground/processing.hpp"
 #include "adjoin/ground/record_file.hpp"
+#include "adjoin/ground/synthesis.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/post/intensity.hpp"
 #include "command.hpp"
@@ -30,7 +39,12 @@ struct RecordArgs {
   double dt = 0.0;
   bool json = false;
   std::string out;
+  // process
+  std::string window, pad, bandpass;
+  double highpass = 0.0, lowpass = 0.0, resample = 0.0, scale_pga = 0.0;
+  int baseline = -1, filter_order = 4;
 };
+
 
 RecordFormat format_from(const RecordArgs& args) {
   RecordFormat f;
@@ -112,6 +126,70 @@ std::string table(const Record& record, const IntensityMeasures& m) {
   return s.str();
 }
 
+// "A:B" -> two numbers; InputError naming the option otherwise.
+std::pair<double, double> pair_of(const std::string& option, const std::string& text) {
+  const auto colon = text.find(':');
+  try {
+    if (colon == std::string::npos) throw std::invalid_argument("no colon");
+    std::size_t used = 0;
+    const double a = std::stod(text.substr(0, colon), &used);
+    const double b = std::stod(text.substr(colon + 1));
+    return {a, b};
+  } catch (const std::exception&) {
+    throw InputError(option + " " + text + ": expected two numbers as A:B");
+  }
+}
+
+int process_command(const RecordArgs& args) {
+  const RecordFormat format = format_from(args);
+  const Record input = read_record(args.files.at(0), format);
+  Processing p;
+  std::vector<std::string> header = {"processed by adjoin record process from " + input.source};
+  if (!args.window.empty()) {
+    const auto [t0, t1] = pair_of("--window", args.window);
+    p.window_t0 = t0;
+    p.window_t1 = t1;
+    header.push_back("window " + number(t0) + " to " + number(t1) + " s");
+  }
+  if (args.baseline >= 0) {
+    p.baseline_order = args.baseline;
+    header.push_back("baseline removed: polynomial of order " + std::to_string(args.baseline));
+  }
+  if (!args.pad.empty()) {
+    const auto [before, after] = pair_of("--pad", args.pad);
+    p.pad_before = before;
+    p.pad_after = after;
+    header.push_back("zero padding " + number(before) + " s before, " + number(after) + " s after");
+  }
+  const int filters = (args.highpass > 0.0) + (args.lowpass > 0.0) + !args.bandpass.empty();
+  if (filters > 1) throw InputError("--highpass, --lowpass, --bandpass: give one filter");
+  if (filters == 1) {
+    ButterworthFilter f;
+    f.order = args.filter_order;
+    if (args.highpass > 0.0) { f.type = ButterworthFilter::Type::highpass; f.f_low = args.highpass; }
+    if (args.lowpass > 0.0) { f.type = ButterworthFilter::Type::lowpass; f.f_high = args.lowpass; }
+    if (!args.bandpass.empty()) {
+      f.type = ButterworthFilter::Type::bandpass;
+      std::tie(f.f_low, f.f_high) = pair_of("--bandpass", args.bandpass);
+    }
+    p.filter = f;
+    header.push_back("zero-phase Butterworth of order " + std::to_string(f.order) + ", corners " + number(f.f_low) +
+                     " / " + number(f.f_high) + " Hz");
+  }
+  if (args.resample > 0.0) {
+    p.dt = args.resample;
+    header.push_back("resampled to dt = " + number(args.resample) + " s (windowed sinc)");
+  }
+  if (args.scale_pga > 0.0) {
+    p.target_pga = args.scale_pga * 9.80665;
+    header.push_back("scaled to PGA = " + number(args.scale_pga) + " g");
+  }
+  const Record output = process(input, p);
+  write_record_g(output, args.out, header);
+  std::cout << "wrote " << args.out << " (two columns: t [s], a [g])\n" << table(output, intensity_measures(output));
+  return 0;
+}
+
 int info_command(const RecordArgs& args) {
   const RecordFormat format = format_from(args);
   std::string text;
@@ -155,8 +233,28 @@ const Registration registration(30, [](CLI::App& app) -> Runner {
   info->add_option("--delimiter", args->delimiter, "Delimited files: one character, or tab, comma, semicolon, space");
   info->add_flag("--json", args->json, "Print JSON instead of a table");
   info->add_option("--out", args->out, "Write to this file instead of stdout");
-  return [args, info]() -> int {
+  auto* process = record->add_subcommand("process", "Process a record (window, baseline, padding, filter, resampling, "
+                                                     "scaling) and write it as two columns t [s], a [g]");
+  process->add_option("file", args->files, "Accelerogram to process")->required()->expected(1);
+  process->add_option("--units", args->units, "Acceleration units of the file: g, m/s2, cm/s2 (gal), mm/s2");
+  process->add_option("--format", args->format, "auto (default), at2, one-column, two-column, delimited");
+  process->add_option("--dt", args->dt, "Time step [s] of a one-column file");
+  process->add_option("--time-column", args->time_column, "Delimited files: time column");
+  process->add_option("--accel-column", args->accel_column, "Delimited files: acceleration column");
+  process->add_option("--delimiter", args->delimiter, "Delimited files: the delimiter");
+  process->add_option("--window", args->window, "Keep T0:T1 [s]");
+  process->add_option("--baseline", args->baseline, "Remove a least-squares polynomial baseline of this order (0 = mean)");
+  process->add_option("--pad", args->pad, "Zero padding BEFORE:AFTER [s]");
+  process->add_option("--highpass", args->highpass, "Zero-phase Butterworth high-pass corner [Hz]");
+  process->add_option("--lowpass", args->lowpass, "Zero-phase Butterworth low-pass corner [Hz]");
+  process->add_option("--bandpass", args->bandpass, "Zero-phase Butterworth band-pass corners F1:F2 [Hz]");
+  process->add_option("--filter-order", args->filter_order, "Butterworth order per pass (default 4)");
+  process->add_option("--resample", args->resample, "New time step [s] (band-limited windowed-sinc interpolation)");
+  process->add_option("--scale-pga", args->scale_pga, "Scale to this PGA [g] (last)");
+  process->add_option("--out", args->out, "Output file (two columns t [s], a [g])")->required();
+  return [args, info, process]() -> int {
     if (info->parsed()) return info_command(*args);
+    if (process->parsed()) return process_command(*args);
     return 0;
   };
 });
