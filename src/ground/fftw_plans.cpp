@@ -14,7 +14,10 @@ namespace {
 enum class Direction { forward, inverse };
 
 fftw_plan cached_plan(std::size_t n, Direction direction) {
-  static std::map<std::pair<std::size_t, Direction>, fftw_plan> plans;
+  // Plans live for the whole process. The cache is never destroyed (a destroyed map would leave
+  // the plans unreachable at exit, which LeakSanitizer reports, and destroying the plans at
+  // exit would race with the destruction of the planner mutex).
+  static auto& plans = *new std::map<std::pair<std::size_t, Direction>, fftw_plan>();
   std::lock_guard<std::mutex> lock(detail::fftw_planner_mutex());
   auto it = plans.find({n, direction});
   if (it != plans.end()) return it->second;
