@@ -8,6 +8,7 @@
 #include <sstream>
 #include <toml++/toml.h>
 
+#include "../detail/nearest.hpp"
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
 #include "adjoin/ground/processing.hpp"
@@ -94,30 +95,7 @@ const std::map<std::string, std::vector<std::string>>& ground_keys() {
   return keys;
 }
 
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
-std::string nearest(const std::string& key, const std::vector<std::string>& candidates) {
-  std::string best;
-  std::size_t best_distance = std::string::npos;
-  for (const auto& c : candidates) {
-    const std::size_t d = edit_distance(key, c);
-    if (d < best_distance) { best_distance = d; best = c; }
-  }
-  return best;
-}
+using detail::nearest;
 
 const char* kind_name(Kind kind) {
   switch (kind) {

@@ -19,6 +19,7 @@
 #include <thread>
 #include <toml++/toml.h>
 
+#include "../detail/nearest.hpp"
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/record_motion.hpp"
 #include "adjoin/observe/energy.hpp"
@@ -123,30 +124,12 @@ class SweepReader {
   std::string name_;
 };
 
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
-
 void check_keys(const SweepReader& r, const toml::table& table, const std::vector<std::string>& known,
                 const std::string& where_name) {
   for (const auto& [key, node] : table) {
     const std::string k(key.str());
     if (std::find(known.begin(), known.end(), k) != known.end()) continue;
-    std::string best;
-    std::size_t best_distance = std::string::npos;
-    for (const auto& c : known)
-      if (const std::size_t d = edit_distance(k, c); d < best_distance) { best_distance = d; best = c; }
+    const std::string best = detail::nearest(k, known);
     r.fail(&node, "unknown key " + k + " in " + where_name + "; did you mean " + best + "? (expected one of: " + [&] {
       std::string list;
       for (const auto& c : known) list += (list.empty() ? "" : ", ") + c;
