@@ -199,6 +199,26 @@ class Oscillator {
   double v() const { return v_; }
   double a_abs() const { return a_; }
 
+  // Hooks for the lane kernels below, which step several oscillators at once in vector
+  // registers and come back here for the rare steps near a peak.
+  const StepCoefficients& coefficients() const { return k_; }
+  double damping_term() const { return c_; }
+  double stiffness_term() const { return w2_; }
+  double threshold_u() const { return threshold_u_; }
+  double threshold_v() const { return threshold_v_; }
+  double threshold_a() const { return threshold_a_; }
+  void set_state(double u, double v, double a) {
+    u_ = u;
+    v_ = v;
+    a_ = a;
+  }
+  void set_peaks(const Peaks& peaks) { peaks_ = peaks; }
+  // The step from the current state to (u1, v1, a1) under p0 -> p1 came near a peak.
+  void step_near_peak(double p0, double p1, double u1, double v1, double a1) {
+    near_peak(p0, p1, u1, v1, a1);
+    set_state(u1, v1, a1);
+  }
+
  private:
   void update_thresholds() {
     if (!refine_) {  // peaks at the sub-step points only
@@ -330,59 +350,185 @@ SpectralValues rigid(std::span<const double> accel, double damping) {
   return out;
 }
 
-// Steps K oscillators together over the record, n sub-steps per interval.
-template <int K, bool Sampled>
-void advance(std::array<Oscillator, K>& oscillators, std::span<const double> accel, std::size_t n) {
-  const std::size_t samples = accel.size();
-  auto step = [](Oscillator& oscillator, double p0, double p1) {
-    if constexpr (Sampled) oscillator.step_sampled(p0, p1); else oscillator.step(p0, p1);
-  };
-  if (n == 1) {
-    double p0 = -accel[0];
-    for (std::size_t i = 1; i < samples; ++i) {
-      const double p1 = -accel[i];
-      for (auto& oscillator : oscillators) step(oscillator, p0, p1);
-      p0 = p1;
-    }
-    return;
+// ---- Lane kernels -------------------------------------------------------------------------
+//
+// Oscillators sharing a sub-step count see the same excitation values, so four of them are
+// advanced together, one per lane of a vector register (GCC vector extensions: AVX2 registers
+// in the x86-64-v3 clone, pairs of SSE2 registers otherwise), and a group of eight uses two
+// registers so that the processor overlaps two independent recursions. Each lane computes
+// exactly what Oscillator::step computes, in the same order, so results do not depend on the
+// grouping. The near-peak test is done for all lanes at once; the rare lanes that pass it go
+// through the scalar Oscillator code and their thresholds are reloaded.
+//
+// GCC warns that passing these vectors by value has another ABI with and without AVX; they
+// only pass between inlined helpers in this file, and the warning is given at the end of the
+// file, so it is turned off for the whole file.
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+using Vec = double __attribute__((vector_size(32)));
+using Mask = long long __attribute__((vector_size(32)));
+constexpr int kLanes = 4;
+
+[[gnu::always_inline]] inline Vec vabs(Vec x) { return reinterpret_cast<Vec>(reinterpret_cast<Mask>(x) & 0x7fffffffffffffffLL); }
+[[gnu::always_inline]] inline Vec vmax(Vec a, Vec b) { return a > b ? a : b; }
+[[gnu::always_inline]] inline bool any(Mask m) { return ((m[0] | m[1]) | (m[2] | m[3])) != 0; }
+
+template <int V>
+struct Lanes {
+  Vec a_uu[V], a_uv[V], b_u0[V], b_u1[V], a_vu[V], a_vv[V], b_v0[V], b_v1[V], c[V], w2[V];
+  Vec u[V], v[V], a[V];
+
+  explicit Lanes(const Oscillator* osc) {
+    for (int r = 0; r < V; ++r)
+      for (int l = 0; l < kLanes; ++l) {
+        const Oscillator& o = osc[r * kLanes + l];
+        const StepCoefficients& k = o.coefficients();
+        a_uu[r][l] = k.a_uu, a_uv[r][l] = k.a_uv, b_u0[r][l] = k.b_u0, b_u1[r][l] = k.b_u1;
+        a_vu[r][l] = k.a_vu, a_vv[r][l] = k.a_vv, b_v0[r][l] = k.b_v0, b_v1[r][l] = k.b_v1;
+        c[r][l] = o.damping_term(), w2[r][l] = o.stiffness_term();
+        u[r][l] = o.u(), v[r][l] = o.v(), a[r][l] = o.a_abs();
+      }
   }
+  void store_state(Oscillator* osc) const {
+    for (int r = 0; r < V; ++r)
+      for (int l = 0; l < kLanes; ++l) osc[r * kLanes + l].set_state(u[r][l], v[r][l], a[r][l]);
+  }
+};
+
+// Peaks at the sub-step points only.
+template <int V>
+[[gnu::always_inline]] inline void lanes_sampled(Oscillator* osc, const double* accel, std::size_t samples, std::size_t n) {
+  Lanes<V> s(osc);
+  Vec pu[V], pv[V], pa[V];
+  for (int r = 0; r < V; ++r) {
+    for (int l = 0; l < kLanes; ++l) {
+      const Peaks& p = osc[r * kLanes + l].peaks();
+      pu[r][l] = p.u, pv[r][l] = p.v, pa[r][l] = p.a;
+    }
+  }
+  auto step = [&](double p0, double p1) [[gnu::always_inline]] {
+    for (int r = 0; r < V; ++r) {
+      const Vec u1 = s.a_uu[r] * s.u[r] + s.a_uv[r] * s.v[r] + s.b_u0[r] * p0 + s.b_u1[r] * p1;
+      const Vec v1 = s.a_vu[r] * s.u[r] + s.a_vv[r] * s.v[r] + s.b_v0[r] * p0 + s.b_v1[r] * p1;
+      const Vec a1 = -(s.c[r] * v1 + s.w2[r] * u1);
+      pu[r] = vmax(pu[r], vabs(u1));
+      pv[r] = vmax(pv[r], vabs(v1));
+      pa[r] = vmax(pa[r], vabs(a1));
+      s.u[r] = u1, s.v[r] = v1, s.a[r] = a1;
+    }
+  };
   const double inv_n = 1.0 / static_cast<double>(n);
   for (std::size_t i = 0; i + 1 < samples; ++i) {
-    const double p0 = -accel[i];
-    const double dp = (-accel[i + 1] - p0) * inv_n;
+    const double p0 = -accel[i], p1 = -accel[i + 1];
+    if (n == 1) {
+      step(p0, p1);
+      continue;
+    }
+    const double dp = (p1 - p0) * inv_n;
+    double pa_ = p0;
+    for (std::size_t j = 1; j <= n; ++j) {
+      const double pb = j == n ? p1 : p0 + dp * static_cast<double>(j);
+      step(pa_, pb);
+      pa_ = pb;
+    }
+  }
+  s.store_state(osc);
+  for (int r = 0; r < V; ++r)
+    for (int l = 0; l < kLanes; ++l) osc[r * kLanes + l].set_peaks(Peaks{pu[r][l], pv[r][l], pa[r][l]});
+}
+
+// Peaks located exactly between sub-step points (Oscillator::step, four lanes at a time).
+template <int V>
+[[gnu::always_inline]] inline void lanes_refined(Oscillator* osc, const double* accel, std::size_t samples, std::size_t n) {
+  Lanes<V> s(osc);
+  Vec tu[V], tv[V], ta[V];  // thresholds
+  Vec au[V], av[V], aa[V];  // |u|, |v|, |a_abs| at the start of the sub-step
+  auto load_thresholds = [&](int r, int l) {
+    const Oscillator& o = osc[r * kLanes + l];
+    tu[r][l] = o.threshold_u(), tv[r][l] = o.threshold_v(), ta[r][l] = o.threshold_a();
+  };
+  for (int r = 0; r < V; ++r) {
+    for (int l = 0; l < kLanes; ++l) load_thresholds(r, l);
+    au[r] = vabs(s.u[r]), av[r] = vabs(s.v[r]), aa[r] = vabs(s.a[r]);
+  }
+  auto step = [&](double p0, double p1) [[gnu::always_inline]] {
+    for (int r = 0; r < V; ++r) {
+      const Vec u1 = s.a_uu[r] * s.u[r] + s.a_uv[r] * s.v[r] + s.b_u0[r] * p0 + s.b_u1[r] * p1;
+      const Vec v1 = s.a_vu[r] * s.u[r] + s.a_vv[r] * s.v[r] + s.b_v0[r] * p0 + s.b_v1[r] * p1;
+      const Vec a1 = -(s.c[r] * v1 + s.w2[r] * u1);
+      const Vec au1 = vabs(u1), av1 = vabs(v1), aa1 = vabs(a1);
+      const Mask near = (vmax(au[r], au1) >= tu[r]) | (vmax(av[r], av1) >= tv[r]) | (vmax(aa[r], aa1) >= ta[r]);
+      if (any(near)) [[unlikely]] {
+        for (int l = 0; l < kLanes; ++l) {
+          if (!near[l]) continue;
+          Oscillator& o = osc[r * kLanes + l];
+          o.set_state(s.u[r][l], s.v[r][l], s.a[r][l]);
+          o.step_near_peak(p0, p1, u1[l], v1[l], a1[l]);
+          load_thresholds(r, l);
+        }
+      }
+      s.u[r] = u1, s.v[r] = v1, s.a[r] = a1;
+      au[r] = au1, av[r] = av1, aa[r] = aa1;
+    }
+  };
+  const double inv_n = 1.0 / static_cast<double>(n);
+  for (std::size_t i = 0; i + 1 < samples; ++i) {
+    const double p0 = -accel[i], p1 = -accel[i + 1];
+    if (n == 1) {
+      step(p0, p1);
+      continue;
+    }
+    const double dp = (p1 - p0) * inv_n;
     double pa = p0;
     for (std::size_t j = 1; j <= n; ++j) {
-      const double pb = j == n ? -accel[i + 1] : p0 + dp * static_cast<double>(j);
-      for (auto& oscillator : oscillators) step(oscillator, pa, pb);
+      const double pb = j == n ? p1 : p0 + dp * static_cast<double>(j);
+      step(pa, pb);
       pa = pb;
     }
   }
+  s.store_state(osc);
 }
 
-// K oscillators (periods > 0) sharing one sub-step count n, advanced together: their
-// recursions are independent, so the processor overlaps them instead of waiting on one chain.
-template <int K>
-void compute_group(double dt, std::span<const double> accel, const Task* tasks, std::size_t n,
+// The entry points, compiled twice where the toolchain can (see fft_history.cpp).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
+#define ADJOIN_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
+#else
+#define ADJOIN_SIMD_CLONES
+#endif
+
+ADJOIN_SIMD_CLONES void sampled_4(Oscillator* o, const double* a, std::size_t m, std::size_t n) { lanes_sampled<1>(o, a, m, n); }
+ADJOIN_SIMD_CLONES void sampled_8(Oscillator* o, const double* a, std::size_t m, std::size_t n) { lanes_sampled<2>(o, a, m, n); }
+ADJOIN_SIMD_CLONES void refined_4(Oscillator* o, const double* a, std::size_t m, std::size_t n) { lanes_refined<1>(o, a, m, n); }
+ADJOIN_SIMD_CLONES void refined_8(Oscillator* o, const double* a, std::size_t m, std::size_t n) { lanes_refined<2>(o, a, m, n); }
+
+constexpr std::size_t kMaxGroup = 2 * kLanes;
+
+// Up to eight oscillators (periods > 0) sharing one sub-step count n. Unused lanes repeat the
+// first oscillator and are discarded.
+void compute_group(double dt, std::span<const double> accel, const Task* tasks, std::size_t count, std::size_t n,
                    const SpectrumOptions& options, SpectralValues* out) {
   const double h = dt / static_cast<double>(n);
   const ExcitationBounds bounds = excitation_bounds(dt, accel);
-  std::array<Oscillator, K> oscillators;
-  for (int k = 0; k < K; ++k)
-    oscillators[static_cast<std::size_t>(k)] =
-        Oscillator(kTwoPi / tasks[k].period, tasks[k].damping, h, options.refine_peaks, bounds);
+  const bool wide = count > static_cast<std::size_t>(kLanes);
+  const std::size_t lanes = wide ? kMaxGroup : static_cast<std::size_t>(kLanes);
+  auto task = [&](std::size_t k) -> const Task& { return tasks[k < count ? k : 0]; };
+  std::array<Oscillator, kMaxGroup> oscillators;
+  for (std::size_t k = 0; k < lanes; ++k)
+    oscillators[k] = Oscillator(kTwoPi / task(k).period, task(k).damping, h, options.refine_peaks, bounds);
+  auto sampled = wide ? sampled_8 : sampled_4;
   if (options.refine_peaks) {
     // Floors: peaks at the samples, one step per record interval.
-    std::array<Oscillator, K> sampled;
-    for (int k = 0; k < K; ++k)
-      sampled[static_cast<std::size_t>(k)] = Oscillator(kTwoPi / tasks[k].period, tasks[k].damping, dt, false, bounds);
-    advance<K, true>(sampled, accel, 1);
-    for (std::size_t k = 0; k < static_cast<std::size_t>(K); ++k) oscillators[k].set_floor(sampled[k].peaks());
-    advance<K, false>(oscillators, accel, n);
+    std::array<Oscillator, kMaxGroup> coarse;
+    for (std::size_t k = 0; k < lanes; ++k)
+      coarse[k] = Oscillator(kTwoPi / task(k).period, task(k).damping, dt, false, bounds);
+    sampled(coarse.data(), accel.data(), accel.size(), 1);
+    for (std::size_t k = 0; k < lanes; ++k) oscillators[k].set_floor(coarse[k].peaks());
+    (wide ? refined_8 : refined_4)(oscillators.data(), accel.data(), accel.size(), n);
   } else {
-    advance<K, true>(oscillators, accel, n);
+    sampled(oscillators.data(), accel.data(), accel.size(), n);
   }
-  for (int k = 0; k < K; ++k) {
-    Oscillator& oscillator = oscillators[static_cast<std::size_t>(k)];
+  for (std::size_t k = 0; k < count; ++k) {
+    Oscillator& oscillator = oscillators[k];
     const double period = tasks[k].period, damping = tasks[k].damping;
     if (options.free_vibration) {
       // Extremes of a damped free vibration shrink, so one damped period holds its largest.
@@ -400,18 +546,6 @@ void compute_group(double dt, std::span<const double> accel, const Task* tasks, 
     v.sa = peaks.a / kStandardGravity;
     v.psv = omega * peaks.u;
     v.psa = omega * omega * peaks.u / kStandardGravity;
-  }
-}
-
-constexpr std::size_t kGroup = 4;
-
-void compute_tasks(double dt, std::span<const double> accel, const Task* tasks, std::size_t count,
-                   std::size_t n, const SpectrumOptions& options, SpectralValues* out) {
-  switch (count) {
-    case 1: compute_group<1>(dt, accel, tasks, n, options, out); break;
-    case 2: compute_group<2>(dt, accel, tasks, n, options, out); break;
-    case 3: compute_group<3>(dt, accel, tasks, n, options, out); break;
-    default: compute_group<4>(dt, accel, tasks, n, options, out); break;
   }
 }
 
@@ -517,7 +651,7 @@ SpectralValues spectral_values(double dt, std::span<const double> accel, double 
   if (period == 0.0) return rigid(accel, damping);
   SpectralValues out;
   const Task task{period, damping, 0};
-  compute_tasks(dt, accel, &task, 1, spectrum_substeps(dt, period, options), options, &out);
+  compute_group(dt, accel, &task, 1, spectrum_substeps(dt, period, options), options, &out);
   return out;
 }
 
@@ -562,14 +696,14 @@ ResponseSpectrum response_spectrum(double dt, std::span<const double> accel,
   for (std::size_t k = 0; k < sorted.size();) {
     const std::size_t n = substeps[order[k]];
     std::size_t count = 1;
-    while (count < kGroup && k + count < sorted.size() && substeps[order[k + count]] == n) ++count;
+    while (count < kMaxGroup && k + count < sorted.size() && substeps[order[k + count]] == n) ++count;
     groups.push_back(Group{k, count, n});
     k += count;
   }
   std::atomic<std::size_t> next{0};
   auto work = [&]() {
     for (std::size_t g = next.fetch_add(1); g < groups.size(); g = next.fetch_add(1))
-      compute_tasks(dt, accel, sorted.data() + groups[g].first, groups[g].count, groups[g].n, options,
+      compute_group(dt, accel, sorted.data() + groups[g].first, groups[g].count, groups[g].n, options,
                     spectrum.values.data());
   };
   unsigned threads = options.threads != 0 ? options.threads : std::thread::hardware_concurrency();
