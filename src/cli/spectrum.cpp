@@ -1,6 +1,6 @@
 // adjoin spectrum RECORD [--units g|m/s2|cm/s2|mm/s2] [--format KIND] [--dt S]
 //                        [--damping 0.05[,0.02...]] [--periods LIST | --range T0:T1:N[:log|lin]]
-//                        [--free-vibration] [--threads N] [--out FILE] [--plot FILE.png|.svg]
+//                        [--peaks exact|samples] [--free-vibration] [--threads N] [--out FILE] [--plot FILE.png|.svg]
 //
 // Elastic response spectra of a recorded accelerogram (SPEC §3): CSV with header
 // `period,damping,sd,sv,sa,psv,psa` (s, ratio, m, m/s, g, m/s, g), one row per damping and
@@ -44,6 +44,7 @@ struct SpectrumArgs {
   std::string damping = "0.05";
   std::string periods;
   std::string range;
+  std::string peaks = "exact";
   bool free_vibration = false;
   unsigned threads = 0;
   std::string out;
@@ -246,6 +247,14 @@ int spectrum_command(const SpectrumArgs& args) {
   } else if (!args.range.empty()) {
     options.periods = parse_range(args.range);
   }
+  if (args.peaks == "samples") {
+    // The recursion is exact at any step, so one step per sample gives the response at the
+    // samples exactly; only the peaks between samples are not looked for.
+    options.refine_peaks = false;
+    options.max_substeps = 1;
+  } else if (args.peaks != "exact") {
+    throw InputError("--peaks " + args.peaks + ": expected exact or samples");
+  }
   options.free_vibration = args.free_vibration;
   options.threads = args.threads;
   if (!args.plot.empty()) {
@@ -294,6 +303,9 @@ const Registration registration(20, [](CLI::App& app) -> Runner {
   auto* range = sub->add_option("--range", args->range,
                                 "Periods T0:T1:N[:log|lin] (default 0.01:10:100:log)");
   periods->excludes(range);
+  sub->add_option("--peaks", args->peaks,
+                  "exact (default): peaks of the exact response between samples too; samples: at the "
+                  "record's samples only, as tools that sample the response report them");
   sub->add_flag("--free-vibration", args->free_vibration,
                 "Also look for peaks in one period of free vibration after the record");
   sub->add_option("--threads", args->threads, "Worker threads (default 0: all cores)");

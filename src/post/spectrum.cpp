@@ -395,80 +395,52 @@ struct Lanes {
   }
 };
 
-// Peaks at the sub-step points only.
-template <int V>
-[[gnu::always_inline]] inline void lanes_sampled(Oscillator* osc, const double* accel, std::size_t samples, std::size_t n) {
+// Advances the lanes over the record. Refine: peaks located exactly between sub-step points
+// (Oscillator::step, four lanes at a time); otherwise peaks at the sub-step points only
+// (Oscillator::step_sampled).
+template <int V, bool Refine>
+[[gnu::always_inline]] inline void advance_lanes(Oscillator* osc, const double* accel, std::size_t samples,
+                                                 std::size_t n) {
   Lanes<V> s(osc);
-  Vec pu[V], pv[V], pa[V];
-  for (int r = 0; r < V; ++r) {
-    for (int l = 0; l < kLanes; ++l) {
-      const Peaks& p = osc[r * kLanes + l].peaks();
-      pu[r][l] = p.u, pv[r][l] = p.v, pa[r][l] = p.a;
-    }
-  }
-  auto step = [&](double p0, double p1) [[gnu::always_inline]] {
-    for (int r = 0; r < V; ++r) {
-      const Vec u1 = s.a_uu[r] * s.u[r] + s.a_uv[r] * s.v[r] + s.b_u0[r] * p0 + s.b_u1[r] * p1;
-      const Vec v1 = s.a_vu[r] * s.u[r] + s.a_vv[r] * s.v[r] + s.b_v0[r] * p0 + s.b_v1[r] * p1;
-      const Vec a1 = -(s.c[r] * v1 + s.w2[r] * u1);
-      pu[r] = vmax(pu[r], vabs(u1));
-      pv[r] = vmax(pv[r], vabs(v1));
-      pa[r] = vmax(pa[r], vabs(a1));
-      s.u[r] = u1, s.v[r] = v1, s.a[r] = a1;
-    }
-  };
-  const double inv_n = 1.0 / static_cast<double>(n);
-  for (std::size_t i = 0; i + 1 < samples; ++i) {
-    const double p0 = -accel[i], p1 = -accel[i + 1];
-    if (n == 1) {
-      step(p0, p1);
-      continue;
-    }
-    const double dp = (p1 - p0) * inv_n;
-    double pa_ = p0;
-    for (std::size_t j = 1; j <= n; ++j) {
-      const double pb = j == n ? p1 : p0 + dp * static_cast<double>(j);
-      step(pa_, pb);
-      pa_ = pb;
-    }
-  }
-  s.store_state(osc);
-  for (int r = 0; r < V; ++r)
-    for (int l = 0; l < kLanes; ++l) osc[r * kLanes + l].set_peaks(Peaks{pu[r][l], pv[r][l], pa[r][l]});
-}
-
-// Peaks located exactly between sub-step points (Oscillator::step, four lanes at a time).
-template <int V>
-[[gnu::always_inline]] inline void lanes_refined(Oscillator* osc, const double* accel, std::size_t samples, std::size_t n) {
-  Lanes<V> s(osc);
-  Vec tu[V], tv[V], ta[V];  // thresholds
-  Vec au[V], av[V], aa[V];  // |u|, |v|, |a_abs| at the start of the sub-step
+  Vec pu[V], pv[V], pa[V];  // sampled: running peaks
+  Vec tu[V], tv[V], ta[V];  // refined: thresholds of the near-peak test
+  Vec au[V], av[V], aa[V];  // refined: |u|, |v|, |a_abs| at the start of the sub-step
   auto load_thresholds = [&](int r, int l) {
     const Oscillator& o = osc[r * kLanes + l];
     tu[r][l] = o.threshold_u(), tv[r][l] = o.threshold_v(), ta[r][l] = o.threshold_a();
   };
   for (int r = 0; r < V; ++r) {
-    for (int l = 0; l < kLanes; ++l) load_thresholds(r, l);
+    for (int l = 0; l < kLanes; ++l) {
+      const Peaks& p = osc[r * kLanes + l].peaks();
+      pu[r][l] = p.u, pv[r][l] = p.v, pa[r][l] = p.a;
+      load_thresholds(r, l);
+    }
     au[r] = vabs(s.u[r]), av[r] = vabs(s.v[r]), aa[r] = vabs(s.a[r]);
   }
-  auto step = [&](double p0, double p1) [[gnu::always_inline]] {
+  auto step = [&](double p0, double p1) {
     for (int r = 0; r < V; ++r) {
       const Vec u1 = s.a_uu[r] * s.u[r] + s.a_uv[r] * s.v[r] + s.b_u0[r] * p0 + s.b_u1[r] * p1;
       const Vec v1 = s.a_vu[r] * s.u[r] + s.a_vv[r] * s.v[r] + s.b_v0[r] * p0 + s.b_v1[r] * p1;
       const Vec a1 = -(s.c[r] * v1 + s.w2[r] * u1);
       const Vec au1 = vabs(u1), av1 = vabs(v1), aa1 = vabs(a1);
-      const Mask near = (vmax(au[r], au1) >= tu[r]) | (vmax(av[r], av1) >= tv[r]) | (vmax(aa[r], aa1) >= ta[r]);
-      if (any(near)) [[unlikely]] {
-        for (int l = 0; l < kLanes; ++l) {
-          if (!near[l]) continue;
-          Oscillator& o = osc[r * kLanes + l];
-          o.set_state(s.u[r][l], s.v[r][l], s.a[r][l]);
-          o.step_near_peak(p0, p1, u1[l], v1[l], a1[l]);
-          load_thresholds(r, l);
+      if constexpr (Refine) {
+        const Mask near = (vmax(au[r], au1) >= tu[r]) | (vmax(av[r], av1) >= tv[r]) | (vmax(aa[r], aa1) >= ta[r]);
+        if (any(near)) [[unlikely]] {
+          for (int l = 0; l < kLanes; ++l) {
+            if (!near[l]) continue;
+            Oscillator& o = osc[r * kLanes + l];
+            o.set_state(s.u[r][l], s.v[r][l], s.a[r][l]);
+            o.step_near_peak(p0, p1, u1[l], v1[l], a1[l]);
+            load_thresholds(r, l);
+          }
         }
+        au[r] = au1, av[r] = av1, aa[r] = aa1;
+      } else {
+        pu[r] = vmax(pu[r], au1);
+        pv[r] = vmax(pv[r], av1);
+        pa[r] = vmax(pa[r], aa1);
       }
       s.u[r] = u1, s.v[r] = v1, s.a[r] = a1;
-      au[r] = au1, av[r] = av1, aa[r] = aa1;
     }
   };
   const double inv_n = 1.0 / static_cast<double>(n);
@@ -479,14 +451,17 @@ template <int V>
       continue;
     }
     const double dp = (p1 - p0) * inv_n;
-    double pa = p0;
+    double p = p0;
     for (std::size_t j = 1; j <= n; ++j) {
-      const double pb = j == n ? p1 : p0 + dp * static_cast<double>(j);
-      step(pa, pb);
-      pa = pb;
+      const double next = j == n ? p1 : p0 + dp * static_cast<double>(j);
+      step(p, next);
+      p = next;
     }
   }
   s.store_state(osc);
+  if constexpr (!Refine)
+    for (int r = 0; r < V; ++r)
+      for (int l = 0; l < kLanes; ++l) osc[r * kLanes + l].set_peaks(Peaks{pu[r][l], pv[r][l], pa[r][l]});
 }
 
 // The entry points, compiled twice where the toolchain can (see fft_history.cpp).
@@ -496,10 +471,10 @@ template <int V>
 #define ADJOIN_SIMD_CLONES
 #endif
 
-ADJOIN_SIMD_CLONES void sampled_4(Oscillator* o, const double* a, std::size_t m, std::size_t n) { lanes_sampled<1>(o, a, m, n); }
-ADJOIN_SIMD_CLONES void sampled_8(Oscillator* o, const double* a, std::size_t m, std::size_t n) { lanes_sampled<2>(o, a, m, n); }
-ADJOIN_SIMD_CLONES void refined_4(Oscillator* o, const double* a, std::size_t m, std::size_t n) { lanes_refined<1>(o, a, m, n); }
-ADJOIN_SIMD_CLONES void refined_8(Oscillator* o, const double* a, std::size_t m, std::size_t n) { lanes_refined<2>(o, a, m, n); }
+ADJOIN_SIMD_CLONES void sampled_4(Oscillator* o, const double* a, std::size_t m, std::size_t n) { advance_lanes<1, false>(o, a, m, n); }
+ADJOIN_SIMD_CLONES void sampled_8(Oscillator* o, const double* a, std::size_t m, std::size_t n) { advance_lanes<2, false>(o, a, m, n); }
+ADJOIN_SIMD_CLONES void refined_4(Oscillator* o, const double* a, std::size_t m, std::size_t n) { advance_lanes<1, true>(o, a, m, n); }
+ADJOIN_SIMD_CLONES void refined_8(Oscillator* o, const double* a, std::size_t m, std::size_t n) { advance_lanes<2, true>(o, a, m, n); }
 
 constexpr std::size_t kMaxGroup = 2 * kLanes;
 
