@@ -166,10 +166,11 @@ class Oscillator {
     const double u1 = k_.a_uu * u_ + k_.a_uv * v_ + k_.b_u0 * p0 + k_.b_u1 * p1;
     const double v1 = k_.a_vu * u_ + k_.a_vv * v_ + k_.b_v0 * p0 + k_.b_v1 * p1;
     const double a1 = -(c_ * v1 + w2_ * u1);  // absolute acceleration u'' + a_g
-    if ((std::max(std::abs(u_), std::abs(u1)) >= threshold_u_) |
-        (std::max(std::abs(v_), std::abs(v1)) >= threshold_v_) |
-        (std::max(std::abs(a_), std::abs(a1)) >= threshold_a_))
-      near_peak(p0, p1, u1, v1, a1);
+    // One test for the three quantities (no short-circuit branches).
+    const int near = int{std::max(std::abs(u_), std::abs(u1)) >= threshold_u_} |
+                     int{std::max(std::abs(v_), std::abs(v1)) >= threshold_v_} |
+                     int{std::max(std::abs(a_), std::abs(a1)) >= threshold_a_};
+    if (near != 0) near_peak(p0, p1, u1, v1, a1);
     u_ = u1;
     v_ = v1;
     a_ = a1;
