@@ -11,7 +11,7 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
-#include "adjoin/io/gnuplot.hpp"
+#include "adjoin/io/plots.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/study/convergence.hpp"
 #include "command.hpp"
@@ -31,27 +31,6 @@ std::string cell(double v, const char* format = "%.3e") {
   char text[32];
   std::snprintf(text, sizeof text, format, v);
   return text;
-}
-
-void plot(const ConvergenceResult& result, const std::filesystem::path& csv, const std::filesystem::path& image,
-          const std::string& title) {
-  std::ostringstream script;
-  script << "set datafile separator ','\nset logscale xy\nset grid\nset key outside right\n"
-         << "set title " << gnuplot_quote("Work-precision: " + title + " (reference: " + result.reference + ")") << "\n"
-         << "set format y '%.0e'\nset xlabel 'wall time of the run [s]'\nset ylabel 'relative max-norm error in x1, x2 [-]'\nplot ";
-  std::vector<std::pair<std::string, std::string>> series;
-  for (const auto& row : result.rows) {
-    const std::pair<std::string, std::string> key{row.scheme, row.history};
-    if (std::find(series.begin(), series.end(), key) == series.end()) series.push_back(key);
-  }
-  for (std::size_t i = 0; i < series.size(); ++i) {
-    const auto& [scheme, history] = series[i];
-    script << (i ? ", " : "") << gnuplot_quote(csv.string())
-           << " using (strcol(1) eq '" << scheme << "' && strcol(2) eq '" << history << "' ? $5 : 1/0):6"
-           << " with linespoints linewidth 2 pointtype 7 title " << gnuplot_quote(scheme + "/" + history);
-  }
-  script << "\n";
-  run_gnuplot(script.str(), image);
 }
 
 int converge_command(const ConvergeArgs& args) {
@@ -115,7 +94,9 @@ int converge_command(const ConvergeArgs& args) {
   std::printf("wrote %s", csv_path.string().c_str());
   if (!args.no_plot) {
     const std::filesystem::path image = args.plot.empty() ? dir / "work-precision.png" : std::filesystem::path(args.plot);
-    plot(result, csv_path, image, scene.name);
+    PlotStyle style;
+    style.format = image.extension() == ".svg" ? "svg" : "png";
+    plot_convergence_csv(csv_path, image, style, scene.name + " (reference: " + result.reference + ")");
     std::printf(", %s", image.string().c_str());
   }
   std::printf("\n");

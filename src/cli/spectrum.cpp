@@ -7,16 +7,9 @@
 // period, to FILE (temporary file and rename) or stdout. --plot draws PSA and SD against
 // period with gnuplot. Without gnuplot on PATH the CSV is still written and the command
 // fails (exit 1) with a message saying so.
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <charconv>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <memory>
 #include <sstream>
@@ -26,10 +19,9 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/io/atomic_file.hpp"
+#include "adjoin/io/plots.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "command.hpp"
-
-extern char** environ;
 
 namespace adjoin::cli {
 namespace {
@@ -118,108 +110,6 @@ void write_csv(std::ostream& out, const ResponseSpectrum& spectrum) {
   }
 }
 
-// A temporary file removed when it goes out of scope.
-struct TempFile {
-  fs::path path;
-  ~TempFile() {
-    std::error_code ignored;
-    if (!path.empty()) fs::remove(path, ignored);
-  }
-};
-
-fs::path temporary_beside(const fs::path& target, const std::string& suffix) {
-  const fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
-  return dir / ("." + target.filename().string() + ".tmp" + std::to_string(::getpid()) + suffix);
-}
-
-std::string gnuplot_quote(const std::string& s) {
-  std::string out = "'";
-  for (char c : s) {
-    if (c == '\'') out += "''";
-    else out += c;
-  }
-  return out + "'";
-}
-
-// Draws PSA and SD against period. Returns 0, or 1 after printing why (gnuplot missing/failed).
-int plot_spectrum(const ResponseSpectrum& spectrum, const fs::path& target, const std::string& title,
-                  const std::string& csv_note) {
-  const bool svg = target.extension() == ".svg";
-  TempFile data{temporary_beside(target, ".dat")};
-  TempFile script{temporary_beside(target, ".gp")};
-  TempFile image{temporary_beside(target, svg ? ".svg" : ".png")};
-  {
-    std::ofstream out(data.path);
-    const std::size_t np = spectrum.periods.size();
-    for (std::size_t d = 0; d < spectrum.dampings.size(); ++d) {
-      if (d > 0) out << "\n\n";
-      out << "# damping " << spectrum.dampings[d] << ": period[s] psa[g] sd[m]\n";
-      for (std::size_t i = 0; i < np; ++i) {
-        const SpectralValues& v = spectrum.at(d, i);
-        if (v.period > 0.0) out << v.period << ' ' << v.psa << ' ' << v.sd << '\n';
-      }
-    }
-    if (!out) throw InputError(data.path.string() + ": cannot write the plot's data file");
-  }
-  {
-    std::ofstream out(script.path);
-    if (svg) {
-      out << "set terminal svg size 900,900 dynamic enhanced font 'Sans,11'\n";
-    } else {
-      out << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 900,900 enhanced "
-             "font 'Sans,10' } else { set terminal png size 900,900 }\n";
-    }
-    out << "set output " << gnuplot_quote(image.path.string()) << "\n"
-        << "set datafile commentschars '#'\n"
-        << "set multiplot layout 2,1 title " << gnuplot_quote("Elastic response spectra: " + title) << " noenhanced\n"
-        << "set logscale x\nset grid xtics mxtics ytics\nset format x '%g'\nset key top right\n"
-        << "set xlabel 'Period T [s]'\n";
-    auto plot_command = [&](int column) {
-      out << "plot ";
-      for (std::size_t d = 0; d < spectrum.dampings.size(); ++d) {
-        char label[64];
-        std::snprintf(label, sizeof label, "damping %g %%", spectrum.dampings[d] * 100.0);
-        out << (d ? ", " : "") << gnuplot_quote(data.path.string()) << " index " << d << " using 1:" << column
-            << " with lines linewidth 2 title " << gnuplot_quote(label);
-      }
-      out << "\n";
-    };
-    out << "set ylabel 'Pseudo-spectral acceleration PSA [g]'\n";
-    plot_command(2);
-    out << "set ylabel 'Spectral displacement SD [m]'\n";
-    plot_command(3);
-    out << "unset multiplot\nset output\n";
-    if (!out) throw InputError(script.path.string() + ": cannot write the plot's gnuplot script");
-  }
-
-  std::string program = "gnuplot";
-  std::string script_arg = script.path.string();
-  char* argv[] = {program.data(), script_arg.data(), nullptr};
-  pid_t pid = 0;
-  const int spawn_error = ::posix_spawnp(&pid, "gnuplot", nullptr, nullptr, argv, environ);
-  if (spawn_error != 0) {
-    std::cerr << "error: --plot " << target.string() << ": cannot run gnuplot ("
-              << (spawn_error == ENOENT ? "not found on PATH; install gnuplot or drop --plot"
-                                        : std::strerror(spawn_error))
-              << ")" << csv_note << "\n";
-    return 1;
-  }
-  int status = 0;
-  while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || !fs::exists(image.path)) {
-    std::cerr << "error: --plot " << target.string() << ": gnuplot failed"
-              << (WIFEXITED(status) ? " with exit status " + std::to_string(WEXITSTATUS(status)) : std::string())
-              << csv_note << "\n";
-    return 1;
-  }
-  std::error_code error;
-  fs::rename(image.path, target, error);
-  if (error) throw InputError(target.string() + ": cannot write the plot: " + error.message());
-  image.path.clear();
-  return 0;
-}
-
 int spectrum_command(const SpectrumArgs& args) {
   RecordFormat format;
   if (!args.units.empty()) {
@@ -283,7 +173,15 @@ int spectrum_command(const SpectrumArgs& args) {
     if (!any_positive) throw InputError("--plot " + args.plot + ": needs at least one period > 0 s");
     const std::string note = args.out.empty() ? std::string("; the spectrum was printed")
                                               : "; the spectrum was written to " + args.out;
-    return plot_spectrum(spectrum, args.plot, fs::path(args.record).filename().string(), note);
+    PlotStyle style;
+    style.format = fs::path(args.plot).extension() == ".svg" ? "svg" : "png";
+    style.height = 900;
+    try {
+      plot_spectrum(spectrum, args.plot, style, fs::path(args.record).filename().string());
+    } catch (const InputError& e) {  // gnuplot missing or failed: the spectrum itself is fine
+      std::cerr << "error: --plot " << e.what() << note << "\n";
+      return 1;
+    }
   }
   return 0;
 }

@@ -595,44 +595,34 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
 
 // ---------------------------------------------------------------- spectra
 
-void plot_spectrum_csv(const fs::path& csv, const fs::path& image, const PlotStyle& style) {
-  const CsvTable table = must_read(csv, "the CSV of `adjoin spectrum`: period,damping,sd,sv,sa,psv,psa");
-  const std::vector<double> period = table.numbers("period", "spectrum CSV"), damping = table.numbers("damping", "spectrum CSV"),
-                            psa = table.numbers("psa", "spectrum CSV"), sd = table.numbers("sd", "spectrum CSV");
-  std::vector<double> dampings;
-  for (double z : damping)
-    if (std::isfinite(z) && std::find(dampings.begin(), dampings.end(), z) == dampings.end()) dampings.push_back(z);
+namespace {
+
+struct SpectrumCurve {
+  std::string label;
+  std::vector<double> period, psa, sd;  // periods > 0, increasing
+};
+
+std::string damping_label(double zeta) {
+  char label[64];
+  std::snprintf(label, sizeof label, "damping %g %%", zeta * 100.0);
+  return label;
+}
+
+void draw_spectra(const std::vector<SpectrumCurve>& curves, const std::string& title, const fs::path& image,
+                  const PlotStyle& style) {
   std::ostringstream s;
   s << kPreamble;
-  std::size_t blocks = 0;
-  std::vector<std::string> labels;
-  for (double z : dampings) {
-    std::vector<std::pair<double, std::size_t>> order;
-    for (std::size_t i = 0; i < period.size(); ++i)
-      if (damping[i] == z && period[i] > 0.0) order.push_back({period[i], i});
-    if (order.empty()) continue;
-    std::sort(order.begin(), order.end());
-    std::vector<std::vector<double>> cols(3);
-    for (const auto& [p, i] : order) {
-      cols[0].push_back(p);
-      cols[1].push_back(psa[i]);
-      cols[2].push_back(sd[i]);
-    }
-    datablock(s, "s" + std::to_string(blocks++), cols);
-    char label[64];
-    std::snprintf(label, sizeof label, "damping %g %%", z * 100.0);
-    labels.push_back(label);
-  }
-  if (blocks == 0) throw InputError(csv.string() + ": no rows with period > 0 s to plot");
-  s << "set multiplot layout 2,1 title " << gnuplot_quote("Elastic response spectra: " + csv.filename().string())
+  for (std::size_t d = 0; d < curves.size(); ++d)
+    datablock(s, "s" + std::to_string(d), {curves[d].period, curves[d].psa, curves[d].sd});
+  s << "set multiplot layout 2,1 title " << gnuplot_quote("Elastic response spectra: " + title)
     << " noenhanced font ',12' margins 0.1,0.97,0.09,0.92 spacing 0,0.03\n"
     << "set logscale x\nset format x ''\nset key top right\nset mxtics 10\n"
     << "set grid xtics mxtics ytics lc rgb '#d0d0d0', lc rgb '#ececec'\n";
   auto panel = [&](int column) {
     s << "plot ";
-    for (std::size_t d = 0; d < blocks; ++d)
+    for (std::size_t d = 0; d < curves.size(); ++d)
       s << (d ? ", " : "") << "$s" << d << " using 1:" << column << " with lines lt " << d + 1 << " title "
-        << gnuplot_quote(labels[d]);
+        << gnuplot_quote(curves[d].label);
     s << "\n";
   };
   s << "set ylabel 'PSA [g]'\n";
@@ -643,9 +633,60 @@ void plot_spectrum_csv(const fs::path& csv, const fs::path& image, const PlotSty
   render_gnuplot(s.str(), image, style);
 }
 
+// One curve per damping from rows (period, damping, psa, sd) in any order; periods > 0 only.
+std::vector<SpectrumCurve> spectrum_curves(const std::vector<double>& period, const std::vector<double>& damping,
+                                           const std::vector<double>& psa, const std::vector<double>& sd) {
+  std::vector<double> dampings;
+  for (double z : damping)
+    if (std::isfinite(z) && std::find(dampings.begin(), dampings.end(), z) == dampings.end()) dampings.push_back(z);
+  std::vector<SpectrumCurve> curves;
+  for (double z : dampings) {
+    std::vector<std::pair<double, std::size_t>> order;
+    for (std::size_t i = 0; i < period.size(); ++i)
+      if (damping[i] == z && period[i] > 0.0) order.push_back({period[i], i});
+    if (order.empty()) continue;
+    std::sort(order.begin(), order.end());
+    SpectrumCurve curve{damping_label(z), {}, {}, {}};
+    for (const auto& [p, i] : order) {
+      curve.period.push_back(p);
+      curve.psa.push_back(psa[i]);
+      curve.sd.push_back(sd[i]);
+    }
+    curves.push_back(std::move(curve));
+  }
+  return curves;
+}
+
+}  // namespace
+
+void plot_spectrum(const ResponseSpectrum& spectrum, const fs::path& image, const PlotStyle& style,
+                   const std::string& title) {
+  std::vector<double> period, damping, psa, sd;
+  for (const SpectralValues& v : spectrum.values) {
+    period.push_back(v.period);
+    damping.push_back(v.damping);
+    psa.push_back(v.psa);
+    sd.push_back(v.sd);
+  }
+  const std::vector<SpectrumCurve> curves = spectrum_curves(period, damping, psa, sd);
+  if (curves.empty()) throw InputError(image.string() + ": no period > 0 s to plot");
+  draw_spectra(curves, title, image, style);
+}
+
+void plot_spectrum_csv(const fs::path& csv, const fs::path& image, const PlotStyle& style) {
+  const CsvTable table = must_read(csv, "the CSV of `adjoin spectrum`: period,damping,sd,sv,sa,psv,psa");
+  const std::string context = "spectrum CSV";
+  const std::vector<SpectrumCurve> curves =
+      spectrum_curves(table.numbers("period", context), table.numbers("damping", context),
+                      table.numbers("psa", context), table.numbers("sd", context));
+  if (curves.empty()) throw InputError(csv.string() + ": no rows with period > 0 s to plot");
+  draw_spectra(curves, csv.filename().string(), image, style);
+}
+
 // ---------------------------------------------------------------- convergence
 
-void plot_convergence_csv(const fs::path& csv, const fs::path& image, const PlotStyle& style) {
+void plot_convergence_csv(const fs::path& csv, const fs::path& image, const PlotStyle& style,
+                          const std::string& title) {
   const CsvTable table = must_read(csv, "the convergence.csv of `adjoin converge`");
   const std::string context = "convergence CSV: scheme,history,h,steps,wall_seconds,error,...";
   const std::size_t cs = table.column("scheme", context), ch = table.column("history", context);
@@ -673,7 +714,8 @@ void plot_convergence_csv(const fs::path& csv, const fs::path& image, const Plot
   }
   if (plots.empty())
     throw InputError(csv.string() + ": no rows with wall_seconds > 0 and error > 0 to plot on log axes");
-  const std::string where = csv.has_parent_path() && !csv.parent_path().filename().empty()
+  const std::string where = !title.empty() ? title
+                            : csv.has_parent_path() && !csv.parent_path().filename().empty()
                                 ? csv.parent_path().filename().string()
                                 : csv.filename().string();
   s << "set title " << gnuplot_quote("Work-precision: " + where) << " noenhanced font ',12'\n"

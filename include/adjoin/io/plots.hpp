@@ -24,6 +24,8 @@
 #include <string>
 #include <vector>
 
+#include "adjoin/post/spectrum.hpp"
+
 namespace adjoin {
 
 // A CSV file with a header line: cells kept as text, converted on demand. Quoted fields
@@ -74,8 +76,15 @@ struct RunPlots {
 // "out/paper-strong/" gives out/paper-strong/displacements.png). Parent folders are created.
 RunPlots plot_run(const std::filesystem::path& dir, const std::string& prefix, const PlotStyle& style);
 
+// PSA and SD against period (log axis), one curve per damping; title after "Elastic response
+// spectra: ". From memory, or from the CSV of `adjoin spectrum` (title: the file's name).
+void plot_spectrum(const ResponseSpectrum& spectrum, const std::filesystem::path& image, const PlotStyle& style,
+                   const std::string& title);
 void plot_spectrum_csv(const std::filesystem::path& csv, const std::filesystem::path& image, const PlotStyle& style);
-void plot_convergence_csv(const std::filesystem::path& csv, const std::filesystem::path& image, const PlotStyle& style);
+// Error against wall time, one curve per scheme/history; title after "Work-precision: "
+// (default: the CSV's folder).
+void plot_convergence_csv(const std::filesystem::path& csv, const std::filesystem::path& image, const PlotStyle& style,
+                          const std::string& title = "");
 
 struct SweepPlotOptions {
   std::string x;               // column on the horizontal axis
