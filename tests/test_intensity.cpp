@@ -1,6 +1,7 @@
 // Intensity measures against closed forms on signals whose integrals are known.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <vector>
 #include <numbers>
 
 #include "adjoin/errors.hpp"
@@ -116,4 +117,82 @@ TEST_CASE("degenerate records", "[intensity]") {
   bad.dt = 0.0;
   CHECK_THROWS_AS(intensity_measures(bad), InputError);
   CHECK_THROWS_AS(significant_duration(zero, 0.9, 0.1), InputError);
+}
+
+TEST_CASE("Fourier amplitudes satisfy Parseval: sum A^2 df (one-sided) = sum a^2 dt", "[intensity]") {
+  // Independent of the FFT's normalisation and of how the one-sided spectrum is folded: the
+  // energy of a record equals that of its spectrum, for odd and even lengths.
+  for (std::size_t n : {999u, 1000u, 4096u, 6007u}) {
+    const Record r = make(0.01, n, [](double t) {
+      return std::exp(-0.2 * t) * (std::sin(7.0 * t) + 0.3 * std::cos(41.0 * t * t / (1.0 + t)));
+    });
+    const FourierSpectrum s = fourier_amplitude_spectrum(r);
+    const double df = 1.0 / (static_cast<double>(n) * r.dt);
+    double spectral = 0.0;
+    for (std::size_t k = 0; k < s.amplitude.size(); ++k) {
+      const bool single = k == 0 || (n % 2 == 0 && k == n / 2);  // DC and Nyquist appear once
+      spectral += (single ? 1.0 : 2.0) * s.amplitude[k] * s.amplitude[k] * df;
+    }
+    double temporal = 0.0;
+    for (double a : r.accel) temporal += a * a * r.dt;
+    INFO("n = " << n);
+    CHECK(spectral == Approx(temporal).epsilon(1e-12));
+  }
+}
+
+TEST_CASE("Konno-Ohmachi smoothing: constants kept, the window's zeros, scale invariance", "[intensity]") {
+  const Record r = make(0.01, 3000, [](double t) { return std::sin(3.0 * t) * std::exp(-0.1 * t); });
+  FourierSpectrum s = fourier_amplitude_spectrum(r);
+  const std::vector<double> centres{0.05, 0.3, 1.0, 7.0, 49.0};
+
+  SECTION("a constant spectrum stays constant (the weights are normalised)") {
+    for (double& a : s.amplitude) a = 2.5;
+    for (double v : konno_ohmachi(s, centres)) CHECK(v == Approx(2.5).epsilon(1e-13));
+  }
+  SECTION("a single line: zero where the window has its first zeros, fc = f0 10^(+-pi/b)") {
+    for (double& a : s.amplitude) a = 0.0;
+    const std::size_t k0 = 400;  // f0 = 400 / 30 Hz
+    s.amplitude[k0] = 1.0;
+    const double f0 = s.frequency[k0];
+    for (double b : {20.0, 40.0, 80.0}) {
+      const std::vector<double> zeros{f0 * std::pow(10.0, pi / b), f0 * std::pow(10.0, -pi / b)};
+      const std::vector<double> at_zeros = konno_ohmachi(s, zeros, b);
+      const std::vector<double> at_line = konno_ohmachi(s, std::vector<double>{f0}, b);
+      INFO("b = " << b);
+      CHECK(at_zeros[0] < 1e-25 * at_line[0]);
+      CHECK(at_zeros[1] < 1e-25 * at_line[0]);
+    }
+  }
+  SECTION("the window's shape: (sin x / x)^4 with x = b log10(f / fc)") {
+    // On a grid uniform in log f, centres moved by whole grid steps see the same normalising
+    // sum (up to the grid's far ends), so a single line smoothed at fc = f0 10^(m step) is
+    // the line's own value times W(b m step). With step = pi / (4 b), m = 2 is halfway to the
+    // first zero, W = (2/pi)^4, and m = 4 is the zero itself.
+    const double b = 40.0, step = pi / (4.0 * b);
+    FourierSpectrum log_grid;
+    for (int i = -3000; i <= 3000; ++i) {
+      log_grid.frequency.push_back(std::pow(10.0, step * i));
+      log_grid.amplitude.push_back(i == 0 ? 1.0 : 0.0);
+    }
+    const std::vector<double> c{1.0, std::pow(10.0, 2.0 * step), std::pow(10.0, -2.0 * step), std::pow(10.0, 4.0 * step),
+                                std::pow(10.0, 6.0 * step)};
+    const std::vector<double> v = konno_ohmachi(log_grid, c, b);
+    CHECK(v[1] / v[0] == Approx(std::pow(2.0 / pi, 4)).epsilon(1e-6));
+    CHECK(v[2] / v[0] == Approx(std::pow(2.0 / pi, 4)).epsilon(1e-6));
+    CHECK(v[3] < 1e-25 * v[0]);
+    const double x = 1.5 * pi;  // the first side lobe's neighbourhood: (sin x / x)^4
+    CHECK(v[4] / v[0] == Approx(std::pow(std::sin(x) / x, 4)).epsilon(1e-6));
+  }
+  SECTION("a very narrow window returns the raw amplitude at a line's frequency") {
+    const std::vector<double> at{s.frequency[90], s.frequency[1000]};
+    const std::vector<double> v = konno_ohmachi(s, at, 1e6);
+    CHECK(v[0] == Approx(s.amplitude[90]).epsilon(1e-9));
+    CHECK(v[1] == Approx(s.amplitude[1000]).epsilon(1e-9));
+  }
+  SECTION("bad input") {
+    CHECK_THROWS_AS(konno_ohmachi(s, centres, 0.0), InputError);
+    CHECK_THROWS_AS(konno_ohmachi(s, std::vector<double>{0.0}), InputError);
+    CHECK_THROWS_AS(konno_ohmachi(s, std::vector<double>{NAN}), InputError);
+    CHECK_THROWS_AS(konno_ohmachi(FourierSpectrum{{0.0}, {1.0}}, centres), InputError);
+  }
 }

@@ -11,6 +11,7 @@
 
 #include "../detail/fftw_planner.hpp"
 #include <numbers>
+#include <sstream>
 #include <string>
 
 #include "adjoin/errors.hpp"
@@ -121,6 +122,46 @@ FourierSpectrum fourier_amplitude_spectrum(const Record& record) {
     s.amplitude[k] = record.dt * std::hypot(out.get()[k][0], out.get()[k][1]);
   }
   return s;
+}
+
+std::vector<double> konno_ohmachi(const FourierSpectrum& spectrum, std::span<const double> centres,
+                                  double bandwidth) {
+  if (!(bandwidth > 0.0) || !std::isfinite(bandwidth)) {
+    std::ostringstream out;
+    out << "Konno-Ohmachi smoothing: the bandwidth b must be a finite number > 0 (40 is usual), got " << bandwidth;
+    throw InputError(out.str());
+  }
+  // log10 of the positive frequencies, once.
+  std::vector<double> log_f, amplitude;
+  for (std::size_t k = 0; k < spectrum.frequency.size(); ++k)
+    if (spectrum.frequency[k] > 0.0) {
+      log_f.push_back(std::log10(spectrum.frequency[k]));
+      amplitude.push_back(spectrum.amplitude[k]);
+    }
+  if (log_f.empty()) throw InputError("Konno-Ohmachi smoothing: the spectrum has no frequency > 0");
+  std::vector<double> smoothed(centres.size());
+  for (std::size_t c = 0; c < centres.size(); ++c) {
+    const double fc = centres[c];
+    if (!(fc > 0.0) || !std::isfinite(fc)) {
+      std::ostringstream out;
+      out << "Konno-Ohmachi smoothing: centre frequencies must be finite numbers > 0 Hz, got " << fc;
+      throw InputError(out.str());
+    }
+    const double log_fc = std::log10(fc);
+    double weighted = 0.0, total = 0.0;
+    for (std::size_t k = 0; k < log_f.size(); ++k) {
+      const double x = bandwidth * (log_f[k] - log_fc);
+      double w = 1.0;
+      if (x != 0.0) {
+        const double r = std::sin(x) / x;
+        w = (r * r) * (r * r);
+      }
+      weighted += w * amplitude[k];
+      total += w;
+    }
+    smoothed[c] = weighted / total;
+  }
+  return smoothed;
 }
 
 double predominant_period(const Record& record) {

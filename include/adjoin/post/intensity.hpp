@@ -14,7 +14,14 @@
 //    f_k = k / (n dt), k = 0 .. n/2 (FFTW, no padding, no window).
 //  - Predominant period: 1 / f at the largest Fourier amplitude with f > 0 [s] (resolution:
 //    neighbouring frequencies are 1/(n dt) apart).
+//  - Konno-Ohmachi smoothing (Konno & Ohmachi 1998) of an amplitude spectrum at centre
+//    frequencies fc > 0:  S(fc) = sum_k W_k A_k / sum_k W_k  over the spectrum's f_k > 0, with
+//    W_k = [sin(b log10(f_k/fc)) / (b log10(f_k/fc))]^4 (1 at f_k = fc): a window of constant
+//    width in log frequency whose first zeros are at fc 10^(+-pi/b); b = 40 is the usual
+//    bandwidth, larger is narrower. Summed over every frequency (no truncated window), so the
+//    cost is centres x frequencies.
 #include <cstddef>
+#include <span>
 #include <vector>
 
 #include "adjoin/ground/record.hpp"
@@ -58,6 +65,10 @@ struct FourierSpectrum {
   std::vector<double> amplitude;  // m/s
 };
 FourierSpectrum fourier_amplitude_spectrum(const Record& record);
+// Throws InputError for bandwidth <= 0, a centre that is not a finite number > 0, or a
+// spectrum without a frequency > 0.
+std::vector<double> konno_ohmachi(const FourierSpectrum& spectrum, std::span<const double> centres,
+                                  double bandwidth = 40.0);
 double predominant_period(const Record& record);
 
 }  // namespace adjoin
