@@ -1,6 +1,7 @@
 // `adjoin record info` through the command line: the shared records (npts and dt from the
 // records README, PGA checked against a plain stream read of the file), a synthetic sine with
 // closed-form intensity measures, and defective files (exit 2, "error:", file and line).
+// `adjoin record fourier`: its CSV against the library's spectra.
 #include <sys/wait.h>
 
 #include <catch2/catch.hpp>
@@ -14,6 +15,11 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include "adjoin/ground/record_file.hpp"
+#include "adjoin/post/intensity.hpp"
+#include "adjoin/post/spectrum.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
@@ -197,4 +203,68 @@ TEST_CASE("record info on defective files: exit 2, error: file:line", "[record_c
   CHECK(missing.status == 2);
   CHECK_THAT(missing.err, StartsWith("error:") && Contains("no-such-file.txt"));
   CHECK(run("record").status == 2);
+}
+
+TEST_CASE("record fourier: raw and Konno-Ohmachi smoothed spectra equal the library's", "[record_cli]") {
+  const std::string file = records + "/peer/RSN175_IMPVALL.H_H-E12140.AT2";
+  const adjoin::Record record = adjoin::read_record(file);
+  const adjoin::FourierSpectrum raw = adjoin::fourier_amplitude_spectrum(record);
+  // CSV rows "f,a" -> numbers (10 significant digits).
+  auto rows = [](const std::string& csv) {
+    std::istringstream in(csv);
+    std::string line;
+    std::getline(in, line);
+    CHECK(line == "frequency,amplitude");
+    std::vector<std::pair<double, double>> out;
+    double f = 0.0, a = 0.0;
+    char comma = 0;
+    while (in >> f >> comma >> a) out.emplace_back(f, a);
+    return out;
+  };
+
+  const Result plain = run("record fourier " + q(file));
+  REQUIRE(plain.status == 0);
+  const auto r = rows(plain.out);
+  REQUIRE(r.size() == raw.frequency.size());
+  REQUIRE(r.size() == record.accel.size() / 2 + 1);
+  for (std::size_t k = 0; k < r.size(); k += 97) {
+    INFO("k = " << k);
+    CHECK(r[k].first == Approx(raw.frequency[k]).epsilon(1e-9));
+    CHECK(r[k].second == Approx(raw.amplitude[k]).epsilon(1e-9).margin(1e-300));
+  }
+
+  const fs::path out = tmp / "fourier.csv";
+  const Result smooth = run("record fourier " + q(file) + " --smooth 30 --frequencies 0.2:20:30 --out " + q(out.string()));
+  REQUIRE(smooth.status == 0);
+  const auto s = rows(slurp(out));
+  const std::vector<double> centres = adjoin::period_range(0.2, 20.0, 30, adjoin::PeriodSpacing::log);
+  const std::vector<double> expected = adjoin::konno_ohmachi(raw, centres, 30.0);
+  REQUIRE(s.size() == 30);
+  for (std::size_t k = 0; k < s.size(); ++k) {
+    CHECK(s[k].first == Approx(centres[k]).epsilon(1e-9));
+    CHECK(s[k].second == Approx(expected[k]).epsilon(1e-9));
+  }
+  // Default points: 200 from 0.1 Hz to 50 Hz (the Nyquist frequency is 100 Hz here).
+  const auto d = rows(run("record fourier " + q(file) + " --smooth 40").out);
+  REQUIRE(d.size() == 200);
+  CHECK(d.front().first == Approx(0.1));
+  CHECK(d.back().first == Approx(50.0));
+
+  const fs::path png = tmp / "fourier.png";
+  fs::remove(png);
+  const Result drawn = run("record fourier " + q(file) + " --smooth 40 --out " + q(out.string()) + " --plot " + q(png.string()));
+  if (drawn.status == 1 && drawn.err.find("gnuplot") != std::string::npos) {
+    WARN("gnuplot is not installed: plot not checked");
+  } else {
+    REQUIRE(drawn.status == 0);
+    CHECK(fs::file_size(png) > 1000);
+  }
+
+  for (const std::string bad : {"--smooth -1", "--frequencies 0:1:10", "--frequencies 1:2", "--frequencies 1:2:1.5",
+                                "--plot spectrum.pdf"}) {
+    INFO(bad);
+    const Result e = run("record fourier " + q(file) + " " + bad);
+    CHECK(e.status == 2);
+    CHECK_THAT(e.err, StartsWith("error:") && Contains(bad.substr(0, bad.find(' '))));
+  }
 }

@@ -3,6 +3,13 @@
 // adjoin record process FILE [reading options] [--window T0:T1] [--baseline N] [--pad B:A]
 //                       [--highpass F | --lowpass F | --bandpass F1:F2] [--filter-order N]
 //                       [--resample DT] [--scale-pga G] --out FILE
+// adjoin record fourier FILE [reading options] [--smooth B] [--frequencies F0:F1:N]
+//                       [--out FILE] [--plot FILE.png|.svg]
+//
+// `fourier` writes the Fourier amplitude spectrum as CSV `frequency,amplitude` (Hz, m/s): at
+// the FFT frequencies k / (n dt), or, with --smooth or --frequencies, Konno-Ohmachi smoothed
+// (bandwidth B, default 40) at N log-spaced frequencies (default 200 from 0.1 Hz, or the
+// lowest FFT frequency above it, to 50 Hz or the Nyquist frequency).
 //
 // `process` applies what scenes can ask for (ground/processing.hpp, in that order: window,
 // baseline, padding, zero-phase Butterworth, resampling, scaling) and writes two columns,
@@ -13,7 +20,10 @@
 // CAV [m/s], significant duration D5-95 [s], predominant period [s] (peak of the Fourier
 // amplitude spectrum). As a table (one block per file) or JSON (an object, or an array for
 // several files), to stdout or to FILE (temporary file and rename).
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <memory>
@@ -27,7 +37,9 @@
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/ground/synthesis.hpp"
 #include "adjoin/io/atomic_file.hpp"
+#include "adjoin/io/plots.hpp"
 #include "adjoin/post/intensity.hpp"
+#include "adjoin/post/spectrum.hpp"
 #include "command.hpp"
 
 namespace adjoin::cli {
@@ -43,6 +55,9 @@ struct RecordArgs {
   std::string window, pad, bandpass;
   double highpass = 0.0, lowpass = 0.0, resample = 0.0, scale_pga = 0.0;
   int baseline = -1, filter_order = 4;
+  // fourier
+  double smooth = 0.0;  // 0: not asked
+  std::string frequencies, plot;
 };
 
 
@@ -190,6 +205,78 @@ int process_command(const RecordArgs& args) {
   return 0;
 }
 
+// "F0:F1:N" -> N log-spaced frequencies [Hz]; InputError naming --frequencies otherwise.
+std::vector<double> frequency_points(const std::string& text) {
+  const std::string expected = ": expected F0:F1:N with 0 < F0 < F1 [Hz] and N >= 2 points (log-spaced)";
+  double f0 = 0.0, f1 = 0.0, n = 0.0;
+  char c1 = 0, c2 = 0;
+  std::istringstream in(text);
+  if (!(in >> f0 >> c1 >> f1 >> c2 >> n) || c1 != ':' || c2 != ':' || !(in >> std::ws).eof() || !(f0 > 0.0) ||
+      !(f1 > f0) || !std::isfinite(f1) || n < 2.0 || n > 1e6 || n != std::floor(n))
+    throw InputError("--frequencies " + text + expected);
+  // period_range spaces any positive quantity; here frequencies.
+  return period_range(f0, f1, static_cast<std::size_t>(n), PeriodSpacing::log);
+}
+
+int fourier_command(const RecordArgs& args) {
+  if (args.smooth < 0.0 || !std::isfinite(args.smooth))
+    throw InputError("--smooth " + number(args.smooth) + ": expected the Konno-Ohmachi bandwidth b > 0 (40 is usual)");
+  if (!args.plot.empty()) {
+    const std::string ext = std::filesystem::path(args.plot).extension().string();
+    if (ext != ".png" && ext != ".svg") throw InputError("--plot " + args.plot + ": expected a file name ending in .png or .svg");
+  }
+  const bool smoothing = args.smooth > 0.0 || !args.frequencies.empty();
+  std::vector<double> centres;
+  if (!args.frequencies.empty()) centres = frequency_points(args.frequencies);
+
+  const Record record = read_record(args.files.at(0), format_from(args));
+  const FourierSpectrum raw = fourier_amplitude_spectrum(record);
+  FourierSpectrum smoothed;
+  if (smoothing) {
+    if (centres.empty()) {
+      const double df = raw.frequency.size() > 1 ? raw.frequency[1] : 0.0;
+      const double low = std::max(0.1, df), high = std::min(50.0, raw.frequency.back());
+      if (!(df > 0.0) || !(high > low))
+        throw InputError(record.source + ": too short to smooth between 0.1 Hz and " + number(high) +
+                         " Hz; give --frequencies F0:F1:N");
+      centres = period_range(low, high, 200, PeriodSpacing::log);
+    }
+    smoothed.frequency = centres;
+    smoothed.amplitude = konno_ohmachi(raw, centres, args.smooth > 0.0 ? args.smooth : 40.0);
+  }
+  const FourierSpectrum& shown = smoothing ? smoothed : raw;
+  std::ostringstream csv;
+  csv << "frequency,amplitude\n";
+  char line[64];
+  for (std::size_t k = 0; k < shown.frequency.size(); ++k) {
+    std::snprintf(line, sizeof line, "%.10g,%.10g\n", shown.frequency[k], shown.amplitude[k]);
+    csv << line;
+  }
+  if (args.out.empty()) {
+    std::cout << csv.str();
+    std::cout.flush();
+    if (!std::cout) throw InputError("cannot write to standard output");
+  } else {
+    AtomicFile out(args.out);
+    out.stream() << csv.str();
+    out.commit();
+  }
+  if (!args.plot.empty()) {
+    PlotStyle style;
+    style.format = std::filesystem::path(args.plot).extension() == ".svg" ? "svg" : "png";
+    try {
+      plot_fourier(raw, smoothing ? &smoothed : nullptr, args.plot, style,
+                   std::filesystem::path(args.files.at(0)).filename().string());
+    } catch (const InputError& e) {  // gnuplot missing or failed: the spectrum itself is fine
+      std::cerr << "error: --plot " << e.what()
+                << (args.out.empty() ? std::string("; the spectrum was printed") : "; the spectrum was written to " + args.out)
+                << "\n";
+      return 1;
+    }
+  }
+  return 0;
+}
+
 int info_command(const RecordArgs& args) {
   const RecordFormat format = format_from(args);
   std::string text;
@@ -215,33 +302,33 @@ int info_command(const RecordArgs& args) {
   return 0;
 }
 
+// The options that say how to read a record, shared by the subcommands.
+void add_reading_options(CLI::App* sub, RecordArgs* args) {
+  sub->add_option("--units", args->units,
+                  "Acceleration units of the file: g, m/s2, cm/s2 (gal), mm/s2 (required unless the file says them)");
+  sub->add_option("--format", args->format, "auto (default), at2, one-column, two-column, delimited");
+  sub->add_option("--dt", args->dt, "Time step [s] of a one-column file (or a delimited file without a time column)");
+  sub->add_option("--time-column", args->time_column, "Delimited files: time column, by header name or 1-based index");
+  sub->add_option("--accel-column", args->accel_column,
+                  "Delimited files: acceleration column, by header name or 1-based index");
+  sub->add_option("--delimiter", args->delimiter, "Delimited files: one character, or tab, comma, semicolon, space");
+}
+
 const Registration registration(30, [](CLI::App& app) -> Runner {
   auto args = std::make_shared<RecordArgs>();
-  auto* record = app.add_subcommand("record", "Recorded accelerograms: information and intensity measures");
+  auto* record = app.add_subcommand("record", "Recorded accelerograms: information, processing, Fourier spectra");
   record->require_subcommand(1);
   auto* info = record->add_subcommand(
       "info", "npts, dt, duration, PGA [g], PGV [m/s], PGD [m], Arias [m/s], CAV [m/s], D5-95 [s], predominant period [s]");
   info->add_option("files", args->files, "Accelerogram(s): PEER AT2, one/two-column text, delimited text with a header")
       ->required();
-  info->add_option("--units", args->units,
-                   "Acceleration units of the file: g, m/s2, cm/s2 (gal), mm/s2 (required unless the file says them)");
-  info->add_option("--format", args->format, "auto (default), at2, one-column, two-column, delimited");
-  info->add_option("--dt", args->dt, "Time step [s] of a one-column file (or a delimited file without a time column)");
-  info->add_option("--time-column", args->time_column, "Delimited files: time column, by header name or 1-based index");
-  info->add_option("--accel-column", args->accel_column,
-                   "Delimited files: acceleration column, by header name or 1-based index");
-  info->add_option("--delimiter", args->delimiter, "Delimited files: one character, or tab, comma, semicolon, space");
+  add_reading_options(info, args.get());
   info->add_flag("--json", args->json, "Print JSON instead of a table");
   info->add_option("--out", args->out, "Write to this file instead of stdout");
   auto* process = record->add_subcommand("process", "Process a record (window, baseline, padding, filter, resampling, "
                                                      "scaling) and write it as two columns t [s], a [g]");
   process->add_option("file", args->files, "Accelerogram to process")->required()->expected(1);
-  process->add_option("--units", args->units, "Acceleration units of the file: g, m/s2, cm/s2 (gal), mm/s2");
-  process->add_option("--format", args->format, "auto (default), at2, one-column, two-column, delimited");
-  process->add_option("--dt", args->dt, "Time step [s] of a one-column file");
-  process->add_option("--time-column", args->time_column, "Delimited files: time column");
-  process->add_option("--accel-column", args->accel_column, "Delimited files: acceleration column");
-  process->add_option("--delimiter", args->delimiter, "Delimited files: the delimiter");
+  add_reading_options(process, args.get());
   process->add_option("--window", args->window, "Keep T0:T1 [s]");
   process->add_option("--baseline", args->baseline, "Remove a least-squares polynomial baseline of this order (0 = mean)");
   process->add_option("--pad", args->pad, "Zero padding BEFORE:AFTER [s]");
@@ -252,9 +339,20 @@ const Registration registration(30, [](CLI::App& app) -> Runner {
   process->add_option("--resample", args->resample, "New time step [s] (band-limited windowed-sinc interpolation)");
   process->add_option("--scale-pga", args->scale_pga, "Scale to this PGA [g] (last)");
   process->add_option("--out", args->out, "Output file (two columns t [s], a [g])")->required();
-  return [args, info, process]() -> int {
+  auto* fourier = record->add_subcommand(
+      "fourier", "Fourier amplitude spectrum: CSV frequency,amplitude (Hz, m/s), raw or Konno-Ohmachi smoothed");
+  fourier->add_option("file", args->files, "Accelerogram")->required()->expected(1);
+  add_reading_options(fourier, args.get());
+  fourier->add_option("--smooth", args->smooth, "Konno-Ohmachi smoothing with this bandwidth b (40 is usual)");
+  fourier->add_option("--frequencies", args->frequencies,
+                      "Smoothed spectrum at F0:F1:N log-spaced frequencies [Hz] (default 0.1:50:200; implies "
+                      "smoothing, b = 40 unless --smooth)");
+  fourier->add_option("--out", args->out, "CSV file (default: stdout)");
+  fourier->add_option("--plot", args->plot, "Also draw the spectrum with gnuplot (.png or .svg)");
+  return [args, info, process, fourier]() -> int {
     if (info->parsed()) return info_command(*args);
     if (process->parsed()) return process_command(*args);
+    if (fourier->parsed()) return fourier_command(*args);
     return 0;
   };
 });

@@ -683,6 +683,39 @@ void plot_spectrum_csv(const fs::path& csv, const fs::path& image, const PlotSty
   draw_spectra(curves, csv.filename().string(), image, style);
 }
 
+// ---------------------------------------------------------------- Fourier amplitude
+
+void plot_fourier(const FourierSpectrum& raw, const FourierSpectrum* smoothed, const fs::path& image,
+                  const PlotStyle& style, const std::string& title) {
+  // Log axes: only f > 0 and A > 0 can be drawn.
+  auto positive = [](const FourierSpectrum& spectrum) {
+    std::vector<std::vector<double>> cols(2);
+    for (std::size_t k = 0; k < spectrum.frequency.size(); ++k)
+      if (spectrum.frequency[k] > 0.0 && spectrum.amplitude[k] > 0.0) {
+        cols[0].push_back(spectrum.frequency[k]);
+        cols[1].push_back(spectrum.amplitude[k]);
+      }
+    return cols;
+  };
+  const std::vector<std::vector<double>> r = positive(raw);
+  if (r[0].empty()) throw InputError(image.string() + ": the spectrum has no amplitude > 0 at a frequency > 0 to plot");
+  std::ostringstream s;
+  s << kPreamble;
+  datablock(s, "raw", r);
+  std::string plots = "$raw using 1:2 with lines lc rgb '" + std::string(smoothed ? "#b0b0b0" : "#1f5fa8") +
+                      "' title 'Fourier amplitude'";
+  if (smoothed) {
+    datablock(s, "smooth", positive(*smoothed));
+    plots += ", $smooth using 1:2 with lines lt 1 linewidth 2 title 'Konno-Ohmachi smoothed'";
+  }
+  s << "set title " << gnuplot_quote("Fourier amplitude spectrum: " + title) << " noenhanced font ',12'\n"
+    << "set logscale xy\nset format x '%g'\nset format y '10^{%L}'\nset mxtics 10\n"
+    << "set grid xtics mxtics ytics lc rgb '#d0d0d0', lc rgb '#ececec'\n"
+    << "set xlabel 'frequency f [Hz]'\nset ylabel 'Fourier amplitude [m/s]'\nset key bottom left\n"
+    << "plot " << plots << "\n";
+  render_gnuplot(s.str(), image, style);
+}
+
 // ---------------------------------------------------------------- convergence
 
 void plot_convergence_csv(const fs::path& csv, const fs::path& image, const PlotStyle& style,

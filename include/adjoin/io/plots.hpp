@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "adjoin/post/intensity.hpp"
 #include "adjoin/post/spectrum.hpp"
 
 namespace adjoin {
@@ -81,6 +82,10 @@ RunPlots plot_run(const std::filesystem::path& dir, const std::string& prefix, c
 void plot_spectrum(const ResponseSpectrum& spectrum, const std::filesystem::path& image, const PlotStyle& style,
                    const std::string& title);
 void plot_spectrum_csv(const std::filesystem::path& csv, const std::filesystem::path& image, const PlotStyle& style);
+// Fourier amplitude [m/s] against frequency [Hz] on log-log axes: the raw spectrum and, if
+// given, a smoothed one drawn over it; title after "Fourier amplitude spectrum: ".
+void plot_fourier(const FourierSpectrum& raw, const FourierSpectrum* smoothed, const std::filesystem::path& image,
+                  const PlotStyle& style, const std::string& title);
 // Error against wall time, one curve per scheme/history; title after "Work-precision: "
 // (default: the CSV's folder).
 void plot_convergence_csv(const std::filesystem::path& csv, const std::filesystem::path& image, const PlotStyle& style,
