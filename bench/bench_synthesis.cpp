@@ -43,7 +43,7 @@ void Match(benchmark::State& state) {
   o.duration = 25.0;
   o.dt = 0.005;
   adjoin::MatchOptions m;
-  m.target = adjoin::TargetSpectrum::ec8_type1('B', 0.25);
+  m.target = adjoin::TargetSpectrum::ec8('B', 0.25);
   adjoin::MatchReport report;
   std::uint64_t seed = 1;
   double iterations = 0, misfit = 0, runs = 0;

@@ -5,6 +5,8 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
+#include "adjoin/ground/spectrum_matching.hpp"
+#include "adjoin/model/units.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/observe/time_series.hpp"
 #include "adjoin/study/run.hpp"
@@ -15,6 +17,16 @@ using namespace adjoin;
 namespace {
 const std::string kScenes = std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/";
 const std::string kElCentro = std::string(ADJOIN_SHARED_RECORDS) + "/two-column/elCentro.txt";
+
+// The message of loading scene `name` with overrides, or "no error".
+std::string scene_error(const std::string& name, const std::vector<std::string>& overrides) {
+  try {
+    load_scene(kScenes + name, overrides);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
 }  // namespace
 
 TEST_CASE("a record scene sees the record: a_g = -u'' in g on the solver's grid", "[ground][record]") {
@@ -40,14 +52,7 @@ TEST_CASE("a record scene sees the record: a_g = -u'' in g on the solver's grid"
 }
 
 TEST_CASE("record keys are checked: missing file, bad units, bad filter, keys of another source", "[ground][record]") {
-  auto error_of = [&](std::vector<std::string> o) {
-    try {
-      load_scene(kScenes + "si-record.toml", o);
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string("no error");
-  };
+  auto error_of = [](const std::vector<std::string>& o) { return scene_error("si-record.toml", o); };
   CHECK(error_of({"ground.file=/nonexistent.txt"}).find("/nonexistent.txt") != std::string::npos);
   CHECK(error_of({"ground.file=" + kElCentro, "ground.units=furlongs"}).find("ground.units = \"furlongs\"") != std::string::npos);
   CHECK(error_of({"ground.file=" + kElCentro, "ground.filter=notch"}).find("ground.filter = \"notch\"") != std::string::npos);
@@ -71,6 +76,40 @@ TEST_CASE("a filtered-noise scene is reproducible from its seed and changes with
   }
   CHECK(identical);
   CHECK(different);
+}
+
+TEST_CASE("a filtered-noise scene matched to EC8 type 2 at 2 % damping; its keys are checked", "[ground][synthesis]") {
+  // The scene's ground motion, read back through the library, has the asked-for 2 % spectrum.
+  const std::vector<std::string> type2 = {"ground.match_ec8=\"C\"", "ground.match_ag=0.2", "ground.match_ec8_type=2",
+                                          "ground.match_damping=0.02", "ground.match_band=[0.1, 2.0]",
+                                          "solver.t_end=1"};
+  const Scene s = load_scene(kScenes + "si-noise.toml", type2);
+  // The same motion synthesised directly: seed, envelope and duration of the scene.
+  SynthesisOptions o;
+  o.duration = 20.0;
+  o.dt = 0.005;
+  o.seed = 7;
+  o.target_pga = 1.0;
+  MatchOptions m;
+  m.target = TargetSpectrum::ec8('C', 0.2, 2);
+  m.period_min = 0.1;
+  m.period_max = 2.0;
+  m.damping = 0.02;
+  MatchReport report;
+  const Record direct = synthesize_matched(o, m, &report);
+  REQUIRE(report.converged);
+  // The scene's forcing at the record's instants: a_g = -u'' in g, at dimensionless t / T0.
+  double worst = 0.0;
+  for (std::size_t i = 0; i < direct.accel.size(); i += 37) {
+    const double t = static_cast<double>(i) * direct.dt / s.scales.time;
+    worst = std::max(worst, std::abs(s.ground->ag(t) + direct.accel[i] / kStandardGravity));
+  }
+  CHECK(worst <= 1e-9);
+
+  auto error_of = [](const std::vector<std::string>& keys) { return scene_error("si-noise.toml", keys); };
+  CHECK(error_of({"ground.match_ec8_type=3"}).find("ground.match_ec8_type") != std::string::npos);
+  CHECK(error_of({"ground.match_damping=1.5"}).find("ground.match_damping") != std::string::npos);
+  CHECK(error_of({"ground.match_ag=-0.1"}).find("ground.match_ag") != std::string::npos);
 }
 
 TEST_CASE("the project's own scenes run from a clean checkout (no ../shared needed)", "[ground][scenes]") {

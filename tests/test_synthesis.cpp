@@ -308,32 +308,56 @@ TEST_CASE("A written record reads back through the readers", "[synth]") {
   CHECK(adjoin::test::slurp(path).rfind("# made by test_synthesis\n# columns: t [s], a [g]\n0 ", 0) == 0);
 }
 
-TEST_CASE("EC8 type 1 elastic spectra", "[synth]") {
-  // EN 1998-1 Table 3.2 (typed here independently of the code's table).
+TEST_CASE("EC8 elastic spectra, types 1 and 2, and the damping correction", "[synth]") {
+  // EN 1998-1 Tables 3.2 and 3.3 (typed here independently of the code's tables).
   struct Row {
+    int spectrum;
     char type;
     double S, TB, TC, TD;
   };
-  for (const Row& row : {Row{'A', 1.0, 0.15, 0.4, 2.0}, Row{'B', 1.2, 0.15, 0.5, 2.0}, Row{'C', 1.15, 0.2, 0.6, 2.0},
-                         Row{'D', 1.35, 0.2, 0.8, 2.0}, Row{'E', 1.4, 0.15, 0.5, 2.0}}) {
+  for (const Row& row : {Row{1, 'A', 1.0, 0.15, 0.4, 2.0}, Row{1, 'B', 1.2, 0.15, 0.5, 2.0}, Row{1, 'C', 1.15, 0.2, 0.6, 2.0},
+                         Row{1, 'D', 1.35, 0.2, 0.8, 2.0}, Row{1, 'E', 1.4, 0.15, 0.5, 2.0}, Row{2, 'A', 1.0, 0.05, 0.25, 1.2},
+                         Row{2, 'B', 1.35, 0.05, 0.25, 1.2}, Row{2, 'C', 1.5, 0.10, 0.25, 1.2}, Row{2, 'D', 1.8, 0.10, 0.30, 1.2},
+                         Row{2, 'E', 1.6, 0.05, 0.25, 1.2}}) {
     const double ag = 0.3, plateau = 2.5 * row.S * ag;
-    INFO("ground type " << row.type);
-    CHECK(ec8_type1_psa(0.0, row.type, ag) == Approx(row.S * ag).epsilon(1e-15));
-    CHECK(ec8_type1_psa(row.TB / 2, row.type, ag) == Approx(row.S * ag * 1.75).epsilon(1e-15));
-    CHECK(ec8_type1_psa(row.TB, row.type, ag) == Approx(plateau).epsilon(1e-15));
-    CHECK(ec8_type1_psa(0.5 * (row.TB + row.TC), row.type, ag) == Approx(plateau).epsilon(1e-15));
-    CHECK(ec8_type1_psa(row.TC, row.type, ag) == Approx(plateau).epsilon(1e-15));
-    CHECK(ec8_type1_psa(1.0, row.type, ag) == Approx(plateau * row.TC).epsilon(1e-15));
-    CHECK(ec8_type1_psa(row.TD, row.type, ag) == Approx(plateau * row.TC / row.TD).epsilon(1e-15));
-    CHECK(ec8_type1_psa(4.0, row.type, ag) == Approx(plateau * row.TC * row.TD / 16).epsilon(1e-15));
+    INFO("type " << row.spectrum << ", ground type " << row.type);
+    auto se = [&](double period) { return ec8_psa(period, row.type, ag, row.spectrum); };
+    CHECK(se(0.0) == Approx(row.S * ag).epsilon(1e-15));
+    CHECK(se(row.TB / 2) == Approx(row.S * ag * 1.75).epsilon(1e-15));
+    CHECK(se(row.TB) == Approx(plateau).epsilon(1e-15));
+    CHECK(se(0.5 * (row.TB + row.TC)) == Approx(plateau).epsilon(1e-15));
+    CHECK(se(row.TC) == Approx(plateau).epsilon(1e-15));
+    CHECK(se(1.0) == Approx(plateau * row.TC * (row.TD < 1.0 ? row.TD : 1.0)).epsilon(1e-15));
+    CHECK(se(row.TD) == Approx(plateau * row.TC / row.TD).epsilon(1e-15));
+    CHECK(se(4.0) == Approx(plateau * row.TC * row.TD / 16).epsilon(1e-15));
+    // At 2 % damping: eta = sqrt(10 / 7) on the plateau and beyond, 1 at T = 0.
+    const double eta = std::sqrt(10.0 / 7.0);
+    CHECK(ec8_psa(0.0, row.type, ag, row.spectrum, 0.02) == Approx(row.S * ag).epsilon(1e-15));
+    CHECK(ec8_psa(row.TC, row.type, ag, row.spectrum, 0.02) == Approx(plateau * eta).epsilon(1e-15));
+    CHECK(ec8_psa(3.0, row.type, ag, row.spectrum, 0.02) == Approx(eta * se(3.0)).epsilon(1e-15));
   }
-  CHECK(ec8_type1_psa(0.3, 'b', 0.25) == Approx(0.75));
-  CHECK_THROWS_AS(ec8_type1_parameters('F'), InputError);
+  // Eq. (3.6): eta = sqrt(10 / (5 + xi[%])), at least 0.55.
+  CHECK(ec8_damping_correction(0.05) == 1.0);
+  CHECK(ec8_damping_correction(0.10) == Approx(std::sqrt(10.0 / 15.0)).epsilon(1e-15));
+  CHECK(ec8_damping_correction(0.0) == Approx(std::sqrt(2.0)).epsilon(1e-15));
+  CHECK(ec8_damping_correction(0.28) == Approx(std::sqrt(10.0 / 33.0)).epsilon(1e-15));  // 0.5505
+  CHECK(ec8_damping_correction(0.30) == 0.55);                                           // 0.5345 -> 0.55
+  CHECK_THROWS_AS(ec8_damping_correction(1.0), InputError);
+  CHECK(ec8_psa(0.3, 'b', 0.25) == Approx(0.75));
+  CHECK_THROWS_AS(ec8_parameters('F'), InputError);
+  CHECK_THROWS_AS(ec8_parameters('B', 3), InputError);
   const TargetSpectrum t = parse_target_spectrum("ec8:C:0.2");
   CHECK(t.psa_at(0.4) == Approx(2.5 * 1.15 * 0.2));
+  CHECK(t.name == "EC8 type 1, ground C, ag = 0.2 g");
+  const TargetSpectrum t2 = parse_target_spectrum("ec8:D:0.1:2");
+  CHECK(t2.ec8_type == 2);
+  CHECK(t2.psa_at(0.2) == Approx(2.5 * 1.8 * 0.1));
+  CHECK(t2.psa_at(0.2, 0.10) == Approx(2.5 * 1.8 * 0.1 * std::sqrt(10.0 / 15.0)));
   CHECK(parse_target_spectrum("EC8:B").ag == 0.25);
   CHECK_THROWS_WITH(parse_target_spectrum("ec8:Q"), Contains("A, B, C, D or E"));
   CHECK_THROWS_WITH(parse_target_spectrum("ec8:B:x"), Contains("not a number"));
+  CHECK_THROWS_WITH(parse_target_spectrum("ec8:B:0.2:3"), Contains("1 or 2"));
+  CHECK_THROWS_WITH(parse_target_spectrum("ec8:B:0.2:1:9"), Contains("ec8:T:AG:TYPE"));
 }
 
 TEST_CASE("Target tables: the ASCE 7 file, and defects", "[synth]") {
@@ -360,15 +384,18 @@ namespace {
 
 // Independent check of a matched motion: the project's spectrum code at the report's periods
 // and at 250 other log-spaced periods of the band.
+// The matched record's PSA, computed here independently of the matching's own bookkeeping,
+// against the target at the matching's damping.
 void check_match(const Record& r, const MatchReport& report, const TargetSpectrum& target, double t0, double t1,
-                 double* dense_max) {
+                 double* dense_max, double damping = 0.05) {
   REQUIRE(report.converged);
   SpectrumOptions s;
+  s.dampings = {damping};
   s.periods = report.periods;
   const ResponseSpectrum rs = response_spectrum(r, s);
   double worst = 0.0, sum = 0.0;
   for (std::size_t i = 0; i < s.periods.size(); ++i) {
-    const double misfit = rs.at(0, i).psa / target.psa_at(s.periods[i]) - 1.0;
+    const double misfit = rs.at(0, i).psa / target.psa_at(s.periods[i], damping) - 1.0;
     INFO("T = " << s.periods[i] << " s");
     CHECK(std::abs(misfit) <= 0.10);
     worst = std::max(worst, std::abs(misfit));
@@ -380,7 +407,7 @@ void check_match(const Record& r, const MatchReport& report, const TargetSpectru
   const ResponseSpectrum dense = response_spectrum(r, s);
   *dense_max = 0.0;
   for (std::size_t i = 0; i < s.periods.size(); ++i)
-    *dense_max = std::max(*dense_max, std::abs(dense.at(0, i).psa / target.psa_at(s.periods[i]) - 1.0));
+    *dense_max = std::max(*dense_max, std::abs(dense.at(0, i).psa / target.psa_at(s.periods[i], damping) - 1.0));
 }
 
 }  // namespace
@@ -391,7 +418,7 @@ TEST_CASE("Spectrum matching to EC8 type 1, ground B", "[synth]") {
   o.dt = 0.005;
   o.seed = 3;
   MatchOptions m;
-  m.target = TargetSpectrum::ec8_type1('B', 0.25);
+  m.target = TargetSpectrum::ec8('B', 0.25);
   m.period_min = 0.1;
   m.period_max = 3.0;
   MatchReport report;
@@ -411,6 +438,26 @@ TEST_CASE("Spectrum matching to EC8 type 1, ground B", "[synth]") {
   // Reproducible.
   const Record again = synthesize_matched(o, m, nullptr);
   CHECK(std::memcmp(again.accel.data(), r.accel.data(), r.accel.size() * sizeof(double)) == 0);
+}
+
+TEST_CASE("Spectrum matching to EC8 type 2, ground C, at 2 % damping", "[synth]") {
+  // The target at 2 % is the code's 5 % spectrum times eta = sqrt(10/7) = 1.195 beyond T = 0,
+  // so a match that ignored the damping correction would miss it by 16 % on the plateau.
+  SynthesisOptions o;
+  o.duration = 20.0;
+  o.dt = 0.005;
+  o.seed = 5;
+  MatchOptions m;
+  m.target = TargetSpectrum::ec8('C', 0.15, 2);
+  m.period_min = 0.1;
+  m.period_max = 2.0;
+  m.damping = 0.02;
+  MatchReport report;
+  const Record r = synthesize_matched(o, m, &report);
+  double dense = 0.0;
+  check_match(r, report, m.target, 0.1, 2.0, &dense, 0.02);
+  CHECK(m.target.psa_at(0.2, 0.02) / m.target.psa_at(0.2, 0.05) == Approx(std::sqrt(10.0 / 7.0)).epsilon(1e-14));
+  CHECK(r.description.find("damping 2 %") != std::string::npos);
 }
 
 TEST_CASE("Spectrum matching to the ASCE 7 table", "[synth]") {
@@ -436,7 +483,7 @@ TEST_CASE("Matching a recorded motion keeps its length and phases' timing", "[sy
   f.units = AccelUnit::g;
   const Record seed = read_record(file, f);
   MatchOptions m;
-  m.target = TargetSpectrum::ec8_type1('C', 0.3);
+  m.target = TargetSpectrum::ec8('C', 0.3);
   m.period_min = 0.2;
   m.period_max = 2.0;
   m.band_points = 50;

@@ -1,7 +1,7 @@
 // adjoin synth [--spectrum kt|cp] [--omega-g W] [--zeta-g Z] [--omega-f W] [--zeta-f Z]
 //              [--s0 S0 | --pga G] [--envelope jht|sh|none] [--t1 S] [--t2 S] [--decay C]
 //              [--eps E] [--eta H] [--tn S] [--duration S] [--dt S] [--seed N]
-//              [--match ec8:T[:AG]|FILE] [--band T0:T1] [--band-points N] [--tolerance R]
+//              [--match ec8:T[:AG[:TYPE]]|FILE] [--damping Z] [--band T0:T1] [--band-points N] [--tolerance R]
 //              [--max-iterations N] [--attempts N] --out FILE
 //
 // Synthesizes filtered white noise (ground/synthesis.hpp), optionally matched to a target
@@ -42,6 +42,7 @@ struct SynthArgs {
   std::string match, band = "0.1:3";
   std::size_t band_points = 100;
   double tolerance = 0.10;
+  std::optional<double> damping;
   int max_iterations = 40;
   int attempts = 5;
   std::string out;
@@ -103,6 +104,7 @@ int synth_command(const SynthArgs& a) {
   const bool matching = !a.match.empty();
   if (matching && a.pga) throw InputError("--pga: not with --match (the target spectrum sets the level)");
   if (matching && a.s0) throw InputError("--s0: not with --match (the target spectrum sets the level)");
+  if (!matching && a.damping) throw InputError("--damping: only with --match (the damping of the matched spectrum)");
   if (!matching && !a.s0 && !a.pga) throw InputError("--s0 / --pga: give the intensity, S0 [m^2/s^3] or a target PGA [g]");
   if (matching) o.s0 = 1.0;  // checked below; ignored by the matching
 
@@ -135,12 +137,14 @@ int synth_command(const SynthArgs& a) {
     m.tolerance = a.tolerance;
     m.max_iterations = a.max_iterations;
     m.attempts = a.attempts;
+    if (a.damping) m.damping = *a.damping;
     if (!m.IsValid(&error)) {
       if (error.rfind("match.period", 0) == 0) error = "--band " + a.band + ": " + error;
       else if (error.rfind("match.band_points", 0) == 0) error.replace(0, 17, "--band-points");
       else if (error.rfind("match.tolerance", 0) == 0) error.replace(0, 15, "--tolerance");
       else if (error.rfind("match.max_iterations", 0) == 0) error.replace(0, 20, "--max-iterations");
       else if (error.rfind("match.attempts", 0) == 0) error.replace(0, 14, "--attempts");
+      else if (error.rfind("match.damping", 0) == 0) error.replace(0, 13, "--damping");
       throw InputError(error);
     }
   }
@@ -163,7 +167,7 @@ int synth_command(const SynthArgs& a) {
   if (matching)
     command << " --match " << shell_word(a.match) << " --band " << num(m.period_min) << ":" << num(m.period_max)
             << " --band-points " << m.band_points << " --tolerance " << num(m.tolerance) << " --max-iterations "
-            << m.max_iterations << " --attempts " << m.attempts;
+            << m.max_iterations << " --attempts " << m.attempts << " --damping " << num(m.damping);
   command << " --out " << shell_word(a.out);
 
   MatchReport report;
@@ -181,11 +185,11 @@ int synth_command(const SynthArgs& a) {
       "command: " + command.str(),
       record.description,
       std::to_string(record.accel.size()) + " samples, dt " + num(record.dt) + " s, PGA " + num(im.pga) + " g at t = " +
-          num(im.t_pga) + " s",
+          num(std::round(im.t_pga * 1e9) / 1e9) + " s",
   };
   if (matching) {
     std::ostringstream s;
-    s << "match: " << m.target.name << ", " << m.band_points << " log-spaced periods " << num(m.period_min) << "-"
+    s << "match: " << m.target.name << ", damping " << num(100.0 * m.damping) << " %, " << m.band_points << " log-spaced periods " << num(m.period_min) << "-"
       << num(m.period_max) << " s, " << report.iterations << " iterations, max |PSA/target - 1| = " << num(report.max_misfit)
       << ", mean = " << num(report.mean_misfit);
     if (report.attempt > 0) s << "; phases of attempt " << report.attempt << " (seed " << report.phase_seed << ")";
@@ -195,9 +199,9 @@ int synth_command(const SynthArgs& a) {
   write_record_g(record, a.out, header);
 
   std::cout << "wrote " << a.out << ": " << record.accel.size() << " samples, dt = " << num(record.dt) << " s\n";
-  std::cout << "PGA = " << num(std::round(im.pga * 1e6) / 1e6) << " g at t = " << num(im.t_pga) << " s\n";
+  std::cout << "PGA = " << num(std::round(im.pga * 1e6) / 1e6) << " g at t = " << num(std::round(im.t_pga * 1e9) / 1e9) << " s\n";
   if (matching)
-    std::cout << "match: " << m.target.name << ", " << num(m.period_min) << "-" << num(m.period_max) << " s: "
+    std::cout << "match: " << m.target.name << ", damping " << num(100.0 * m.damping) << " %, " << num(m.period_min) << "-" << num(m.period_max) << " s: "
               << report.iterations << " iterations, max misfit " << num(std::round(report.max_misfit * 1e5) / 1e3)
               << " %, mean misfit " << num(std::round(report.mean_misfit * 1e5) / 1e3) << " %"
               << (report.attempt > 0 ? " (phase draw " + std::to_string(report.attempt) + ")" : std::string()) << "\n";
@@ -225,8 +229,11 @@ const Registration registration(45, [](CLI::App& app) -> Runner {
   synth->add_option("--duration", a->duration, "Duration [s] (default 20)");
   synth->add_option("--dt", a->dt, "Time step [s] (default 0.005)");
   synth->add_option("--seed", a->seed, "Random seed, an unsigned 64-bit integer (default 1)");
-  synth->add_option("--match", a->match, "Match a target spectrum: ec8:T[:AG] (EC8 type 1, ground T = A..E, ag in g, "
-                                          "default 0.25) or a two-column file of period [s], PSA [g]");
+  synth->add_option("--match", a->match, "Match a target spectrum: ec8:T[:AG[:TYPE]] (EC8, ground T = A..E, ag in g "
+                                          "(default 0.25), spectrum type 1 (default) or 2) or a two-column file of "
+                                          "period [s], PSA [g]");
+  synth->add_option("--damping", a->damping, "Damping ratio of the matched spectrum (default 0.05; EC8 targets get "
+                                             "the code's correction eta)");
   synth->add_option("--band", a->band, "Matching period band T0:T1 [s] (default 0.1:3)");
   synth->add_option("--band-points", a->band_points, "Log-spaced periods checked in the band (default 100)");
   synth->add_option("--tolerance", a->tolerance, "Matching tolerance on PSA/target - 1 (default 0.1)");

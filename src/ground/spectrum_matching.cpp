@@ -33,20 +33,30 @@ char upper(char c) { return (c >= 'a' && c <= 'z') ? static_cast<char>(c - 'a' +
 
 }  // namespace
 
-Ec8Parameters ec8_type1_parameters(char ground_type) {
+Ec8Parameters ec8_parameters(char ground_type, int spectrum_type) {
+  if (spectrum_type != 1 && spectrum_type != 2)
+    throw InputError("EC8 spectrum type " + std::to_string(spectrum_type) + ": expected 1 or 2");
+  const bool one = spectrum_type == 1;
   switch (upper(ground_type)) {
-    case 'A': return {1.0, 0.15, 0.4, 2.0};
-    case 'B': return {1.2, 0.15, 0.5, 2.0};
-    case 'C': return {1.15, 0.20, 0.6, 2.0};
-    case 'D': return {1.35, 0.20, 0.8, 2.0};
-    case 'E': return {1.4, 0.15, 0.5, 2.0};
+    case 'A': return one ? Ec8Parameters{1.0, 0.15, 0.4, 2.0} : Ec8Parameters{1.0, 0.05, 0.25, 1.2};
+    case 'B': return one ? Ec8Parameters{1.2, 0.15, 0.5, 2.0} : Ec8Parameters{1.35, 0.05, 0.25, 1.2};
+    case 'C': return one ? Ec8Parameters{1.15, 0.20, 0.6, 2.0} : Ec8Parameters{1.5, 0.10, 0.25, 1.2};
+    case 'D': return one ? Ec8Parameters{1.35, 0.20, 0.8, 2.0} : Ec8Parameters{1.8, 0.10, 0.30, 1.2};
+    case 'E': return one ? Ec8Parameters{1.4, 0.15, 0.5, 2.0} : Ec8Parameters{1.6, 0.05, 0.25, 1.2};
     default: break;
   }
   throw InputError(std::string("EC8 ground type '") + ground_type + "': expected A, B, C, D or E");
 }
 
-double ec8_type1_psa(double period, char ground_type, double ag, double eta) {
-  const Ec8Parameters p = ec8_type1_parameters(ground_type);
+double ec8_damping_correction(double damping) {
+  if (!(damping >= 0.0 && damping < 1.0))
+    throw InputError("EC8 damping correction: damping ratio " + num(damping) + " (expected 0 <= damping < 1)");
+  return std::max(std::sqrt(10.0 / (5.0 + 100.0 * damping)), 0.55);
+}
+
+double ec8_psa(double period, char ground_type, double ag, int spectrum_type, double damping) {
+  const Ec8Parameters p = ec8_parameters(ground_type, spectrum_type);
+  const double eta = ec8_damping_correction(damping);
   const double plateau = 2.5 * ag * p.S * eta;
   if (period <= p.TB) return ag * p.S * (1.0 + period / p.TB * (2.5 * eta - 1.0));
   if (period <= p.TC) return plateau;
@@ -54,14 +64,15 @@ double ec8_type1_psa(double period, char ground_type, double ag, double eta) {
   return plateau * p.TC * p.TD / (period * period);
 }
 
-TargetSpectrum TargetSpectrum::ec8_type1(char ground_type, double ag) {
-  ec8_type1_parameters(ground_type);  // checks the type
+TargetSpectrum TargetSpectrum::ec8(char ground_type, double ag, int spectrum_type) {
+  ec8_parameters(ground_type, spectrum_type);  // checks both
   if (!(ag > 0.0) || !std::isfinite(ag)) throw InputError("EC8 ag = " + num(ag) + ": expected a design ground acceleration > 0 g");
   TargetSpectrum t;
-  t.kind = Kind::ec8_type1;
+  t.kind = Kind::ec8;
   t.ground_type = upper(ground_type);
   t.ag = ag;
-  t.name = std::string("EC8 type 1, ground ") + t.ground_type + ", ag = " + num(ag) + " g, 5 %";
+  t.ec8_type = spectrum_type;
+  t.name = "EC8 type " + std::to_string(spectrum_type) + ", ground " + t.ground_type + ", ag = " + num(ag) + " g";
   return t;
 }
 
@@ -85,8 +96,8 @@ TargetSpectrum TargetSpectrum::table(std::vector<double> periods, std::vector<do
   return t;
 }
 
-double TargetSpectrum::psa_at(double period) const {
-  if (kind == Kind::ec8_type1) return ec8_type1_psa(period, ground_type, ag);
+double TargetSpectrum::psa_at(double period, double damping) const {
+  if (kind == Kind::ec8) return ec8_psa(period, ground_type, ag, ec8_type, damping);
   if (period < periods.front() || period > periods.back())
     throw InputError(name + ": period " + num(period) + " s is outside the table (" + num(periods.front()) + " to " +
                      num(periods.back()) + " s)");
@@ -150,20 +161,32 @@ TargetSpectrum parse_target_spectrum(const std::string& text) {
   for (char& c : lower)
     if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
   if (lower.rfind("ec8:", 0) == 0) {
-    const std::string rest = text.substr(4);
-    const std::size_t colon = rest.find(':');
-    const std::string type = rest.substr(0, colon);
-    if (type.size() != 1)
-      throw InputError("'" + text + "': expected ec8:T or ec8:T:AG with ground type T one of A, B, C, D, E");
+    // ec8:T[:AG[:TYPE]]
+    std::vector<std::string> parts;
+    for (std::size_t start = 4;;) {
+      const std::size_t colon = text.find(':', start);
+      parts.push_back(text.substr(start, colon == std::string::npos ? std::string::npos : colon - start));
+      if (colon == std::string::npos) break;
+      start = colon + 1;
+    }
+    const std::string usage = "expected ec8:T, ec8:T:AG or ec8:T:AG:TYPE with ground type T one of A, B, C, D, E, "
+                              "ag in g and spectrum type 1 or 2";
+    if (parts.size() > 3 || parts[0].size() != 1) throw InputError("'" + text + "': " + usage);
     double ag = 0.25;
-    if (colon != std::string::npos) {
-      const std::string a = rest.substr(colon + 1);
+    if (parts.size() >= 2) {
+      const std::string& a = parts[1];
       const auto r = std::from_chars(a.data(), a.data() + a.size(), ag);
       if (a.empty() || r.ec != std::errc() || r.ptr != a.data() + a.size())
         throw InputError("'" + text + "': '" + a + "' is not a number (expected ag in g, e.g. ec8:B:0.25)");
     }
+    int type = 1;
+    if (parts.size() == 3) {
+      if (parts[2] != "1" && parts[2] != "2")
+        throw InputError("'" + text + "': spectrum type '" + parts[2] + "' (expected 1 or 2, e.g. ec8:B:0.25:2)");
+      type = parts[2] == "2" ? 2 : 1;
+    }
     try {
-      return TargetSpectrum::ec8_type1(type[0], ag);
+      return TargetSpectrum::ec8(parts[0][0], ag, type);
     } catch (const InputError& e) {
       throw InputError("'" + text + "': " + e.what());
     }
@@ -235,7 +258,7 @@ Record match_core(std::vector<double> buffer, std::size_t n, double dt, const Ma
     if (t <= o.target.max_period()) periods.push_back(t);
   }
   std::vector<double> target(periods.size());
-  for (std::size_t i = 0; i < periods.size(); ++i) target[i] = o.target.psa_at(periods[i]);
+  for (std::size_t i = 0; i < periods.size(); ++i) target[i] = o.target.psa_at(periods[i], o.damping);
   // ln f ascending: periods descending.
   std::vector<double> lf(periods.size()), ratio(periods.size());
   for (std::size_t i = 0; i < periods.size(); ++i) lf[periods.size() - 1 - i] = -std::log(periods[i]);
@@ -297,7 +320,7 @@ Record match_core(std::vector<double> buffer, std::size_t n, double dt, const Ma
   out.dt = dt;
   out.accel = std::move(best);
   std::ostringstream d;
-  d << "; matched to " << o.target.name << " over " << num(o.period_min) << "-" << num(o.period_max) << " s ("
+  d << "; matched to " << o.target.name << ", damping " << num(100.0 * o.damping) << " %, over " << num(o.period_min) << "-" << num(o.period_max) << " s ("
     << r.iterations << " iterations, max misfit " << num(std::round(r.max_misfit * 1e4) / 1e4) << ", mean "
     << num(std::round(r.mean_misfit * 1e4) / 1e4) << ")";
   out.description += d.str();

@@ -64,7 +64,8 @@ const std::vector<KeySpec>& schema() {
       {"ground.duration", Kind::number},    {"ground.seed", Kind::integer},
       {"ground.match_ec8", Kind::string},   {"ground.match_ag", Kind::number},
       {"ground.match_table", Kind::string}, {"ground.match_band", Kind::numbers},
-      {"ground.match_tolerance", Kind::number},
+      {"ground.match_tolerance", Kind::number}, {"ground.match_ec8_type", Kind::number},
+      {"ground.match_damping", Kind::number},
       {"solver.scheme", Kind::string},    {"solver.history", Kind::string},
       {"solver.h", Kind::number},         {"solver.t_end", Kind::number},
       {"solver.locate_switches", Kind::boolean},
@@ -90,7 +91,8 @@ const std::map<std::string, std::vector<std::string>>& ground_keys() {
                   "f_low", "f_high", "filter_order", "resample_dt", "scale_pga"}},
       {"filtered-noise", {"spectrum", "omega_g", "zeta_g", "omega_f", "zeta_f", "s0", "target_pga", "envelope", "t1",
                           "t2", "decay", "eps", "eta", "t_n", "duration", "dt", "seed", "match_ec8", "match_ag",
-                          "match_table", "match_band", "match_tolerance", "time_scale"}},
+                          "match_table", "match_band", "match_tolerance", "match_ec8_type", "match_damping",
+                          "time_scale"}},
   };
   return keys;
 }
@@ -405,7 +407,8 @@ std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, cons
   if (!o.IsValid(&error)) r.fail(error.substr(0, error.find(' ')), error);
   const double time_scale = record_time_scale(r, scales);
 
-  for (const char* key : {"ground.match_ag", "ground.match_band", "ground.match_tolerance"})
+  for (const char* key : {"ground.match_ag", "ground.match_band", "ground.match_tolerance", "ground.match_ec8_type",
+                          "ground.match_damping"})
     if (r.has(key) && !match) r.fail(key, std::string(key) + " needs ground.match_ec8 or ground.match_table");
   if (!match) return std::make_shared<RecordMotion>(synthesize(o), time_scale, kStandardGravity);
 
@@ -416,8 +419,16 @@ std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, cons
     const std::string type = r.string("ground.match_ec8", "");
     if (type.size() != 1 || std::string("ABCDE").find(type[0]) == std::string::npos)
       r.fail("ground.match_ec8", "ground.match_ec8 = \"" + type + "\" must be an EC8 ground type, \"A\" to \"E\"");
-    m.target = TargetSpectrum::ec8_type1(type[0], r.number("ground.match_ag", 0.25));
+    const double ag = r.number("ground.match_ag", 0.25);
+    if (!(ag > 0.0) || !std::isfinite(ag))
+      r.fail("ground.match_ag", "ground.match_ag must be the design ground acceleration in g, > 0");
+    const double spectrum_type = r.number("ground.match_ec8_type", 1.0);
+    if (spectrum_type != 1.0 && spectrum_type != 2.0)
+      r.fail("ground.match_ec8_type", "ground.match_ec8_type must be 1 (EN 1998-1 Table 3.2) or 2 (Table 3.3)");
+    m.target = TargetSpectrum::ec8(type[0], ag, static_cast<int>(spectrum_type));
   } else {
+    for (const char* key : {"ground.match_ag", "ground.match_ec8_type"})
+      if (r.has(key)) r.fail(key, std::string(key) + " belongs to ground.match_ec8, not to a target table");
     std::filesystem::path file = r.string("ground.match_table", "");
     if (file.is_relative() && !r.overridden("ground.match_table")) file = std::filesystem::path(r.name()).parent_path() / file;
     m.target = load_target_spectrum(file);
@@ -429,7 +440,13 @@ std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, cons
     m.period_max = band[1];
   }
   m.tolerance = r.number("ground.match_tolerance", m.tolerance);
-  if (!m.IsValid(&error)) r.fail("ground.match_band", "ground matching: " + error);
+  m.damping = r.number("ground.match_damping", m.damping);
+  if (!m.IsValid(&error)) {
+    const std::string key = error.rfind("match.damping", 0) == 0     ? "ground.match_damping"
+                            : error.rfind("match.tolerance", 0) == 0 ? "ground.match_tolerance"
+                                                                     : "ground.match_band";
+    r.fail(key, "ground matching: " + error);
+  }
   MatchReport report;
   Record matched = synthesize_matched(o, m, &report);
   return std::make_shared<RecordMotion>(std::move(matched), time_scale, kStandardGravity);

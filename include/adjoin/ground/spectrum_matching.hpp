@@ -4,25 +4,29 @@
 // within a tolerance at every period of a band.
 //
 //     MatchOptions m;
-//     m.target = TargetSpectrum::ec8_type1('B', 0.25);      // or load_target_spectrum(file)
+//     m.target = TargetSpectrum::ec8('B', 0.25);            // or load_target_spectrum(file)
 //     MatchReport report;
 //     Record r = synthesize_matched(synthesis_options, m, &report);
 //
 // Targets
-//  - EC8 type 1 horizontal elastic spectrum (EN 1998-1:2004 §3.2.2.2, Table 3.2), importance
-//    factor 1, 5 % damping (eta = 1), ag in g:
+//  - EC8 horizontal elastic spectra (EN 1998-1:2004 §3.2.2.2), importance factor 1, ag in g,
+//    type 1 (Table 3.2, high seismicity) or type 2 (Table 3.3, Ms <= 5.5), damping
+//    correction eta = sqrt(10 / (5 + xi[%])) >= 0.55 (eq. 3.6; 1 at 5 %):
 //        0 <= T <= TB:  Se = ag S (1 + T/TB (2.5 eta - 1))
 //        TB <= T <= TC: Se = 2.5 ag S eta
 //        TC <= T <= TD: Se = 2.5 ag S eta TC / T
 //        TD <= T:       Se = 2.5 ag S eta TC TD / T^2   (the code stops at 4 s; continued here)
-//    ground type  S     TB [s]  TC [s]  TD [s]
-//        A        1.0   0.15    0.4     2.0
-//        B        1.2   0.15    0.5     2.0
-//        C        1.15  0.20    0.6     2.0
-//        D        1.35  0.20    0.8     2.0
-//        E        1.4   0.15    0.5     2.0
+//    type 1:  ground  S     TB [s]  TC [s]  TD [s]      type 2:  S     TB [s]  TC [s]  TD [s]
+//             A       1.0   0.15    0.4     2.0                  1.0   0.05    0.25    1.2
+//             B       1.2   0.15    0.5     2.0                  1.35  0.05    0.25    1.2
+//             C       1.15  0.20    0.6     2.0                  1.5   0.10    0.25    1.2
+//             D       1.35  0.20    0.8     2.0                  1.8   0.10    0.30    1.2
+//             E       1.4   0.15    0.5     2.0                  1.6   0.05    0.25    1.2
+//    The damping is the matching's (MatchOptions::damping): an EC8 target is the code's
+//    spectrum at that damping.
 //  - A table of (period [s], PSA [g]) rows, periods strictly increasing, PSA > 0 (a first row
-//    at T = 0 may hold the PGA), interpolated linearly in period; text with one row per line,
+//    at T = 0 may hold the PGA), interpolated linearly in period, taken to be at the
+//    matching's damping; text with one row per line,
 //    blank/tab/','/';' separated, '#' or '%' comment lines (e.g. ../shared/records/targets/
 //    ASCE7.txt).
 //
@@ -61,25 +65,30 @@ namespace adjoin {
 struct Ec8Parameters {
   double S = 0.0, TB = 0.0, TC = 0.0, TD = 0.0;  // -, s, s, s
 };
-// Table 3.2 of EN 1998-1 for ground type 'A'..'E' (case-insensitive); InputError otherwise.
-Ec8Parameters ec8_type1_parameters(char ground_type);
-// Se(T) [g] for ag [g] and damping correction eta (1 at 5 %).
-double ec8_type1_psa(double period, char ground_type, double ag, double eta = 1.0);
+// Table 3.2 (type 1) or 3.3 (type 2) of EN 1998-1 for ground type 'A'..'E' (case-insensitive);
+// InputError for another ground type or a spectrum type other than 1 or 2.
+Ec8Parameters ec8_parameters(char ground_type, int spectrum_type = 1);
+// eta = max(sqrt(10 / (5 + 100 damping)), 0.55); InputError unless 0 <= damping < 1.
+double ec8_damping_correction(double damping);
+// Se(T) [g] for ag [g] at the given damping ratio.
+double ec8_psa(double period, char ground_type, double ag, int spectrum_type = 1, double damping = 0.05);
 
 struct TargetSpectrum {
-  enum class Kind { ec8_type1, table };
-  Kind kind = Kind::ec8_type1;
-  char ground_type = 'B';  // ec8_type1
-  double ag = 0.25;        // g, ec8_type1
+  enum class Kind { ec8, table };
+  Kind kind = Kind::ec8;
+  char ground_type = 'B';  // ec8
+  double ag = 0.25;        // g, ec8
+  int ec8_type = 1;        // ec8: 1 or 2
   std::vector<double> periods, psa;  // table: s, g
   std::string name;                  // "EC8 type 1, ground B, ag = 0.25 g" or the file
 
-  static TargetSpectrum ec8_type1(char ground_type, double ag);
+  static TargetSpectrum ec8(char ground_type, double ag, int spectrum_type = 1);
   // InputError (naming `name`) unless periods strictly increase, all finite, T >= 0, PSA > 0.
   static TargetSpectrum table(std::vector<double> periods, std::vector<double> psa, std::string name);
 
-  // PSA [g] at a period [s]. A table must cover the period (InputError otherwise).
-  double psa_at(double period) const;
+  // PSA [g] at a period [s] and damping ratio (EC8: eta(damping); a table is at the damping it
+  // is given for, which the caller knows). A table must cover the period (InputError otherwise).
+  double psa_at(double period, double damping = 0.05) const;
   // Periods covered [s]: [0, inf) for EC8, [first, last] for a table.
   double min_period() const;
   double max_period() const;
@@ -87,7 +96,8 @@ struct TargetSpectrum {
 
 // Reads a two-column target table; InputError "FILE:LINE: ..." on any defect.
 TargetSpectrum load_target_spectrum(const std::filesystem::path& path);
-// "ec8:B" (ag 0.25 g), "ec8:B:0.3", or else a path to a table file.
+// "ec8:B" (type 1, ag 0.25 g), "ec8:B:0.3" (ag 0.3 g), "ec8:B:0.3:2" (type 2), or else a path
+// to a table file.
 TargetSpectrum parse_target_spectrum(const std::string& text);
 
 struct MatchOptions {
