@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
@@ -131,6 +132,29 @@ TEST_CASE("sweep files: bad input names the file, line and key", "[sweep]") {
   } catch (const InputError& e) {
     CHECK_THAT(e.what(), Catch::Contains("unknown.toml:5: run 0 (model.muu=0.1, motion=base)") &&
                              Catch::Contains("model.muu") && Catch::Contains("did you mean model.mu"));
+  }
+  // A key an axis value unsets but the scene needs: the message names the axis value's line
+  // and the base scene's own line for the table that lacks it ([model.rod2], line 16 of the
+  // paper's strong scene), not a line of some re-written copy.
+  const SweepSpec removed = load_sweep(sweep_file("unset.toml", R"(
+[[axis]]
+name = "rod2"
+values = [{name = "plain"},
+          {name = "no-order", unset = ["model.rod2.order"]}]
+)"));
+  int rod2_line = 0, line_number = 0;
+  std::istringstream base(slurp(kStrong));
+  for (std::string line; std::getline(base, line);) {
+    ++line_number;
+    if (line == "[model.rod2]") rod2_line = line_number;
+  }
+  REQUIRE(rod2_line > 0);
+  try {
+    sweep_scene(removed, 1);
+    FAIL("no error");
+  } catch (const InputError& e) {
+    CHECK_THAT(e.what(), Catch::Contains("unset.toml:6: run 1 (rod2=no-order, motion=base)") &&
+                             Catch::Contains("paper-strong.toml:" + std::to_string(rod2_line) + ": missing key model.rod2.order"));
   }
 }
 

@@ -592,7 +592,8 @@ const std::vector<std::string>& known_scene_keys() {
   return keys;
 }
 
-Scene parse_scene(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
+Scene parse_scene(const std::string& text, const std::string& name, const std::vector<std::string>& overrides,
+                  const std::vector<std::string>& removed) {
   toml::table table;
   try {
     table = toml::parse(text, name);
@@ -600,6 +601,17 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
     std::ostringstream s;
     s << name << ":" << e.source().begin.line << ": not valid TOML: " << e.description();
     throw InputError(s.str());
+  }
+  // Removing nodes from the parsed table keeps the others' source lines, as re-parsing edited
+  // text would not.
+  for (const auto& key : removed) {
+    toml::table* parent = &table;
+    std::string leaf = key;
+    if (const auto dot = key.rfind('.'); dot != std::string::npos) {
+      parent = table.at_path(key.substr(0, dot)).as_table();
+      leaf = key.substr(dot + 1);
+    }
+    if (parent) parent->erase(leaf);
   }
   std::map<std::string, std::string> origins;
   for (const auto& o : overrides) apply_override(table, o, origins);

@@ -496,34 +496,19 @@ Scene sweep_scene(const SweepSpec& spec, std::size_t index) {
     unset.insert(unset.end(), s.unset.begin(), s.unset.end());
   }
   try {
-    if (unset.empty()) {
-      Scene scene = parse_scene(spec.base_text, spec.base.string(), overrides);
-      scene.file = spec.base;
-      return scene;
-    }
-    // Structural edits: remove keys from the base, then apply the overrides to the rest.
-    toml::table table = toml::parse(spec.base_text, spec.base.string());
-    for (const auto& key : unset) {
-      toml::table* parent = &table;
-      std::string leaf = key;
-      if (const auto dot = key.rfind('.'); dot != std::string::npos) {
-        parent = table.at_path(key.substr(0, dot)).as_table();
-        leaf = key.substr(dot + 1);
-      }
-      if (parent) parent->erase(leaf);
-    }
-    std::ostringstream text;
-    text << toml::toml_formatter(table);
-    Scene scene = parse_scene(text.str(), spec.base.string(), overrides);
+    Scene scene = parse_scene(spec.base_text, spec.base.string(), overrides, unset);
     scene.file = spec.base;
     return scene;
   } catch (const InputError& e) {
     // Point at the axis value or motion that set the offending key, when there is one.
     std::size_t line = 0;
     const std::string message = e.what();
-    for (const auto& s : settings)
+    for (const auto& s : settings) {
       for (const auto& o : s.overrides())
         if (message.rfind("--set " + o + ":", 0) == 0) line = s.line;
+      for (const auto& key : s.unset)
+        if (message.find("missing key " + key + " ") != std::string::npos) line = s.line;
+    }
     const std::string where = spec.file.string() + (line ? ":" + std::to_string(line) : std::string()) + ": ";
     throw InputError(where + "run " + std::to_string(index) + " (" + spec.describe(index) + "): " + message);
   }

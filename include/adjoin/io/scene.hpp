@@ -55,9 +55,11 @@ struct Scene {
 // Reads and checks a scene file; `overrides` are "dotted.key=value" strings (TOML values; a
 // bare word is taken as a string).
 Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
-// The same from TOML text; `name` stands for the file in messages.
+// The same from TOML text; `name` stands for the file in messages. `removed` are dotted keys
+// taken out of the text before the overrides apply (sweeps' `unset`); messages about the rest
+// still cite the text's own lines.
 Scene parse_scene(const std::string& text, const std::string& name,
-                  const std::vector<std::string>& overrides = {});
+                  const std::vector<std::string>& overrides = {}, const std::vector<std::string>& removed = {});
 
 // Every key a scene may hold, as dotted paths (for documentation and error messages).
 const std::vector<std::string>& known_scene_keys();
