@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "../detail/dot.hpp"
+
 namespace adjoin {
 
 DirectHistory::DirectHistory(std::vector<double> weights) : w_(std::move(weights)) {
@@ -15,10 +17,8 @@ void DirectHistory::push(double y) {
   // Next step m = size(): sum_{j=1}^{m} w_j y_{m-j}. Unused past the last weight.
   const std::size_t m = y_.size();
   if (m >= w_.size()) { lag_sum_ = 0.0; return; }
-  double s = 0.0;
-  const double* yp = y_.data() + m - 1;  // y_{m-1}
-  for (std::size_t j = 1; j <= m; ++j) s += w_[j] * yp[1 - static_cast<std::ptrdiff_t>(j)];
-  lag_sum_ = s;
+  // y_q w_{m-q} for q = 0 .. m-1 (partial sums in vector registers: detail/dot.hpp).
+  lag_sum_ = detail::dot_reversed(y_.data(), w_.data() + m, m);
 }
 
 std::size_t DirectHistory::bytes() const {

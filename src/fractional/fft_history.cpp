@@ -11,6 +11,9 @@
 #include <stdexcept>
 #include <utility>
 
+#include "../detail/dot.hpp"
+#include "../detail/simd_clones.hpp"
+
 namespace adjoin {
 namespace {
 
@@ -78,35 +81,7 @@ PlanCache& plan_cache() {
 
 // The hot loops below are also compiled for AVX2 with FMA, chosen at load time when the CPU
 // has them (as FFTW chooses its own SIMD kernels): results then differ from the baseline
-// build's only by rounding.
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define ADJOIN_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define ADJOIN_SIMD_CLONES
-#endif
-
-// sum_{i<n} a[i] b[i], with eight independent partial sums (the compiler keeps them in vector
-// registers; one chain of additions would be latency-bound).
-ADJOIN_SIMD_CLONES
-double dot(const double* __restrict a, const double* __restrict b, std::size_t n) {
-  double s[8] = {};
-  std::size_t i = 0;
-  for (; i + 8 <= n; i += 8)
-    for (std::size_t k = 0; k < 8; ++k) s[k] += a[i + k] * b[i + k];
-  for (; i < n; ++i) s[0] += a[i] * b[i];
-  return ((s[0] + s[1]) + (s[2] + s[3])) + ((s[4] + s[5]) + (s[6] + s[7]));
-}
-
-// sum_{q<n} y[q] w[-q]: a convolution term with the weights read backwards.
-ADJOIN_SIMD_CLONES
-double dot_reversed(const double* __restrict y, const double* __restrict w, std::size_t n) {
-  double s[4] = {};
-  std::size_t q = 0;
-  for (; q + 4 <= n; q += 4)
-    for (std::size_t k = 0; k < 4; ++k) s[k] += y[q + k] * w[-static_cast<std::ptrdiff_t>(q + k)];
-  for (; q < n; ++q) s[0] += y[q] * w[-static_cast<std::ptrdiff_t>(q)];
-  return (s[0] + s[1]) + (s[2] + s[3]);
-}
+// build's only by rounding. The dot products live in detail/dot.hpp.
 
 // s = x w, elementwise on interleaved complex values (s may be x).
 ADJOIN_SIMD_CLONES
@@ -264,7 +239,7 @@ void FftHistory::add_window(std::size_t index, std::size_t m) {
       for (std::size_t t = 0; t < outputs; ++t) {
         const std::size_t q_lo = t >= block ? t - block + 1 : 0;
         const std::size_t q_hi = std::min(t, block - 1);
-        out[t] += dot_reversed(y + q_lo, w + (t - q_lo), q_hi - q_lo + 1);
+        out[t] += detail::dot_reversed(y + q_lo, w + (t - q_lo), q_hi - q_lo + 1);
       }
     }
     return;
@@ -381,7 +356,7 @@ void FftHistory::push(double y) {
   // y_{m-n+i}.
   const std::size_t n = near_.size();
   const std::size_t i0 = m >= n ? 0 : n - m;
-  lag_sum_ = future_[m] + dot(near_.data() + i0, y_.data() + (m + i0 - n), n - i0);
+  lag_sum_ = future_[m] + detail::dot(near_.data() + i0, y_.data() + (m + i0 - n), n - i0);
 }
 
 std::size_t FftHistory::bytes() const {

@@ -12,6 +12,7 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/model/units.hpp"
+#include "../detail/simd_clones.hpp"
 
 namespace adjoin {
 
@@ -465,12 +466,7 @@ template <int V, bool Refine>
       for (int l = 0; l < kLanes; ++l) osc[r * kLanes + l].set_peaks(Peaks{pu[r][l], pv[r][l], pa[r][l]});
 }
 
-// The entry points, compiled twice where the toolchain can (see fft_history.cpp).
-#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && defined(__linux__)
-#define ADJOIN_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v3", "default")))
-#else
-#define ADJOIN_SIMD_CLONES
-#endif
+// The entry points, compiled twice where the toolchain can (detail/simd_clones.hpp).
 
 ADJOIN_SIMD_CLONES void sampled_4(Oscillator* o, const double* a, std::size_t m, std::size_t n) { advance_lanes<1, false>(o, a, m, n); }
 ADJOIN_SIMD_CLONES void sampled_8(Oscillator* o, const double* a, std::size_t m, std::size_t n) { advance_lanes<2, false>(o, a, m, n); }
