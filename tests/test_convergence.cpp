@@ -5,14 +5,12 @@
 #include "adjoin/io/scene.hpp"
 #include "adjoin/study/convergence.hpp"
 #include "cli_helpers.hpp"
+#include "scene_helpers.hpp"
 
 using namespace adjoin;
+using adjoin::test::paper_scene;
 
 namespace {
-
-Scene paper_scene(const char* which, std::vector<std::string> overrides = {}) {
-  return load_scene(std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/paper-" + which + ".toml", overrides);
-}
 
 double last_order(const ConvergenceResult& r, const std::string& scheme) {
   double order = std::nan("");

@@ -9,20 +9,13 @@
 #include "adjoin/observe/time_series.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/study/run.hpp"
+#include "scene_helpers.hpp"
 
 using namespace adjoin;
+using adjoin::test::paper_scene;
+using adjoin::test::trajectory;
 
 namespace {
-
-Scene paper_scene(const char* which, std::vector<std::string> overrides = {}) {
-  return load_scene(std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/paper-" + which + ".toml", overrides);
-}
-
-std::vector<State> trajectory(const Scene& scene) {
-  TimeSeriesRecorder recorder;
-  run_scene(scene, &recorder);
-  return recorder.states();
-}
 
 double order_of(double coarse_error, double fine_error) { return std::log2(coarse_error / fine_error); }
 

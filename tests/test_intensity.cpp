@@ -6,6 +6,7 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/post/intensity.hpp"
+#include "record_helpers.hpp"
 
 using namespace adjoin;
 using std::numbers::pi;
@@ -14,21 +15,12 @@ namespace {
 
 constexpr double g = 9.80665;
 
-Record make(double dt, std::size_t n, const auto& f) {
-  Record r;
-  r.source = "synthetic";
-  r.dt = dt;
-  r.accel.resize(n);
-  for (std::size_t i = 0; i < n; ++i) r.accel[i] = f(static_cast<double>(i) * dt);
-  return r;
-}
-
 }  // namespace
 
 TEST_CASE("sine over whole cycles: Arias, CAV, PGA, D5-95, Fourier amplitude, predominant period", "[intensity]") {
   const double A = 3.0, f = 2.0, T = 10.0;  // 20 cycles
   SECTION("Arias intensity pi A^2 T / (4 g) (trapezoid is exact for sin^2 over whole cycles)") {
-    const Record r = make(0.005, 2001, [&](double t) { return A * std::sin(2.0 * pi * f * t); });
+    const Record r = test::sampled_record(0.005, 2001, [&](double t) { return A * std::sin(2.0 * pi * f * t); });
     CHECK(arias_intensity(r) == Approx(pi * A * A * T / (4.0 * g)).epsilon(1e-12));
     const IntensityMeasures m = intensity_measures(r);
     CHECK(m.npts == 2001);
@@ -44,11 +36,11 @@ TEST_CASE("sine over whole cycles: Arias, CAV, PGA, D5-95, Fourier amplitude, pr
     CHECK(m.d5_95 == Approx(0.9 * T).margin(4e-4));
   }
   SECTION("CAV 2 A T / pi (piecewise-linear exact integral converges at O(dt^2))") {
-    const Record r = make(0.001, 10001, [&](double t) { return A * std::sin(2.0 * pi * f * t); });
+    const Record r = test::sampled_record(0.001, 10001, [&](double t) { return A * std::sin(2.0 * pi * f * t); });
     CHECK(cumulative_absolute_velocity(r) == Approx(2.0 * A * T / pi).epsilon(2e-5));
   }
   SECTION("Fourier amplitude A T / 2 at f, predominant period 1/f") {
-    const Record r = make(0.01, 1000, [&](double t) { return A * std::sin(2.0 * pi * f * t); });  // n dt = T
+    const Record r = test::sampled_record(0.01, 1000, [&](double t) { return A * std::sin(2.0 * pi * f * t); });  // n dt = T
     const FourierSpectrum s = fourier_amplitude_spectrum(r);
     REQUIRE(s.frequency.size() == 501);
     CHECK(s.frequency[1] == Approx(0.1));
@@ -58,14 +50,14 @@ TEST_CASE("sine over whole cycles: Arias, CAV, PGA, D5-95, Fourier amplitude, pr
     CHECK(s.amplitude[0] < 1e-10);
     CHECK(predominant_period(r) == Approx(1.0 / f).epsilon(1e-12));
     // A 0.7 Hz sine on top of a weaker 5 Hz one: the period of the stronger.
-    const Record two = make(0.01, 1000, [](double t) { return std::sin(2.0 * pi * 0.7 * t) + 0.5 * std::sin(2.0 * pi * 5.0 * t); });
+    const Record two = test::sampled_record(0.01, 1000, [](double t) { return std::sin(2.0 * pi * 0.7 * t) + 0.5 * std::sin(2.0 * pi * 5.0 * t); });
     CHECK(predominant_period(two) == Approx(1.0 / 0.7).epsilon(1e-12));
   }
 }
 
 TEST_CASE("PGV and PGD of a cosine: A/(2 pi f) and 2 A/(2 pi f)^2", "[intensity]") {
   const double A = 2.0, f = 1.0, w = 2.0 * pi * f;
-  const Record r = make(0.001, 5001, [&](double t) { return A * std::cos(w * t); });
+  const Record r = test::sampled_record(0.001, 5001, [&](double t) { return A * std::cos(w * t); });
   const IntensityMeasures m = intensity_measures(r);
   CHECK(m.pgv == Approx(A / w).epsilon(1e-5));
   CHECK(m.pgd == Approx(2.0 * A / (w * w)).epsilon(1e-5));
@@ -75,7 +67,7 @@ TEST_CASE("PGV and PGD of a cosine: A/(2 pi f) and 2 A/(2 pi f)^2", "[intensity]
 }
 
 TEST_CASE("constant amplitude: D5-95 = 0.9 duration exactly; triangle wave CAV exactly", "[intensity]") {
-  const Record c = make(0.02, 501, [](double) { return -1.5; });  // 10 s
+  const Record c = test::sampled_record(0.02, 501, [](double) { return -1.5; });  // 10 s
   const SignificantDuration d = significant_duration(c);
   CHECK(d.t_start == Approx(0.5).epsilon(1e-12));
   CHECK(d.t_end == Approx(9.5).epsilon(1e-12));
@@ -93,7 +85,7 @@ TEST_CASE("constant amplitude: D5-95 = 0.9 duration exactly; triangle wave CAV e
     const double x = std::fmod(t + 0.013, P) / P;  // shifted so zero crossings fall between samples
     return A * (x < 0.5 ? 4.0 * x - 1.0 : 3.0 - 4.0 * x);
   };
-  Record tr = make(0.01, 1001, tri);
+  Record tr = test::sampled_record(0.01, 1001, tri);
   // The integral of |piecewise-linear interpolant| by a fine midpoint rule, and A T / 2 up to
   // the apexes that fall between samples.
   double exact = 0.0;
@@ -107,7 +99,7 @@ TEST_CASE("constant amplitude: D5-95 = 0.9 duration exactly; triangle wave CAV e
 }
 
 TEST_CASE("degenerate records", "[intensity]") {
-  const Record zero = make(0.01, 100, [](double) { return 0.0; });
+  const Record zero = test::sampled_record(0.01, 100, [](double) { return 0.0; });
   const IntensityMeasures m = intensity_measures(zero);
   CHECK(m.pga == 0.0);
   CHECK(m.arias == 0.0);
@@ -123,7 +115,7 @@ TEST_CASE("Fourier amplitudes satisfy Parseval: sum A^2 df (one-sided) = sum a^2
   // Independent of the FFT's normalisation and of how the one-sided spectrum is folded: the
   // energy of a record equals that of its spectrum, for odd and even lengths.
   for (std::size_t n : {999u, 1000u, 4096u, 6007u}) {
-    const Record r = make(0.01, n, [](double t) {
+    const Record r = test::sampled_record(0.01, n, [](double t) {
       return std::exp(-0.2 * t) * (std::sin(7.0 * t) + 0.3 * std::cos(41.0 * t * t / (1.0 + t)));
     });
     const FourierSpectrum s = fourier_amplitude_spectrum(r);
@@ -141,7 +133,7 @@ TEST_CASE("Fourier amplitudes satisfy Parseval: sum A^2 df (one-sided) = sum a^2
 }
 
 TEST_CASE("Konno-Ohmachi smoothing: constants kept, the window's zeros, scale invariance", "[intensity]") {
-  const Record r = make(0.01, 3000, [](double t) { return std::sin(3.0 * t) * std::exp(-0.1 * t); });
+  const Record r = test::sampled_record(0.01, 3000, [](double t) { return std::sin(3.0 * t) * std::exp(-0.1 * t); });
   FourierSpectrum s = fourier_amplitude_spectrum(r);
   const std::vector<double> centres{0.05, 0.3, 1.0, 7.0, 49.0};
 

@@ -11,20 +11,13 @@
 #include "adjoin/observe/time_series.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/study/run.hpp"
+#include "scene_helpers.hpp"
 
 using namespace adjoin;
+using adjoin::test::paper_scene;
+using adjoin::test::trajectory;
 
 namespace {
-
-Scene paper_scene(const char* which, std::vector<std::string> overrides = {}) {
-  return load_scene(std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/paper-" + which + ".toml", overrides);
-}
-
-std::vector<State> trajectory(const Scene& scene) {
-  TimeSeriesRecorder recorder;
-  run_scene(scene, &recorder);
-  return recorder.states();
-}
 
 // Exact response of x'' + w^2 x = u0 W^2 e^{-k t} sin(W t) from rest.
 double sdof_decaying_sine(double w, double u0, double W, double k, double t) {

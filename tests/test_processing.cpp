@@ -7,20 +7,12 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/processing.hpp"
+#include "record_helpers.hpp"
 
 using namespace adjoin;
 using std::numbers::pi;
 
 namespace {
-
-Record make(double dt, std::size_t n, const auto& f) {
-  Record r;
-  r.source = "synthetic";
-  r.dt = dt;
-  r.accel.resize(n);
-  for (std::size_t i = 0; i < n; ++i) r.accel[i] = f(static_cast<double>(i) * dt);
-  return r;
-}
 
 double max_abs_error(const Record& r, const auto& f, double t_from, double t_to) {
   double e = 0.0;
@@ -35,7 +27,7 @@ double max_abs_error(const Record& r, const auto& f, double t_from, double t_to)
 
 TEST_CASE("baseline removal of a known polynomial leaves ~0", "[processing]") {
   const auto cubic = [](double t) { return 0.3 - 0.2 * t + 0.05 * t * t - 0.004 * t * t * t; };
-  const Record r = make(0.01, 2001, cubic);  // 20 s
+  const Record r = test::sampled_record(0.01, 2001, cubic);  // 20 s
   for (int order = 3; order <= 6; ++order) {
     const Record clean = remove_baseline(r, order);
     INFO("order " << order);
@@ -43,14 +35,14 @@ TEST_CASE("baseline removal of a known polynomial leaves ~0", "[processing]") {
   }
   // Mean removal of c + sine over whole cycles (endpoint included): the sine is left.
   const auto sine = [](double t) { return std::sin(2.0 * pi * 0.5 * t); };
-  const Record s = make(0.01, 2001, [&](double t) { return 1.7 + sine(t); });
+  const Record s = test::sampled_record(0.01, 2001, [&](double t) { return 1.7 + sine(t); });
   CHECK(max_abs_error(remove_baseline(s, 0), sine, 0.0, 1e9) < 1e-12);
   // A line under a sine of whole cycles: order 1 leaves the sine up to the sine's own linear
   // part, which is small; the line's slope is gone (the residual has zero least-squares slope).
-  const Record lined = remove_baseline(make(0.01, 2001, [&](double t) { return 0.2 * t - 1.0; }), 1);
+  const Record lined = remove_baseline(test::sampled_record(0.01, 2001, [&](double t) { return 0.2 * t - 1.0; }), 1);
   CHECK(max_abs_error(lined, [](double) { return 0.0; }, 0.0, 1e9) < 1e-12);
   CHECK_THROWS_AS(remove_baseline(s, -1), InputError);
-  CHECK_THROWS_AS(remove_baseline(make(0.01, 2, sine), 2), InputError);
+  CHECK_THROWS_AS(remove_baseline(test::sampled_record(0.01, 2, sine), 2), InputError);
 }
 
 TEST_CASE("Butterworth design: |H|^2 = 1/2 at the corners, 1 in the passband", "[processing]") {
@@ -90,18 +82,18 @@ TEST_CASE("zero-phase filtering of sines: gain 1/2 at the corner, 1 in the passb
   auto sine = [](double f) { return [f](double t) { return std::sin(2.0 * pi * f * t + 0.3); }; };
   // Steady state in the middle of a 60 s record: y = |H(f)|^2 x, pointwise (so zero phase).
   for (const auto& filter : {lp, hp}) {
-    const Record at_corner = butterworth(make(dt, 6001, sine(f_corner)), filter);
+    const Record at_corner = butterworth(test::sampled_record(dt, 6001, sine(f_corner)), filter);
     CHECK(max_abs_error(at_corner, [&](double t) { return 0.5 * sine(f_corner)(t); }, 20.0, 40.0) < 1e-6);
   }
-  const Record pass = butterworth(make(dt, 6001, sine(0.2)), lp);
+  const Record pass = butterworth(test::sampled_record(dt, 6001, sine(0.2)), lp);
   CHECK(max_abs_error(pass, sine(0.2), 20.0, 40.0) < 1e-6);
-  const Record stop = butterworth(make(dt, 6001, sine(20.0)), lp);  // |H|^2 = 1/(1+W^8) per pass
+  const Record stop = butterworth(test::sampled_record(dt, 6001, sine(20.0)), lp);  // |H|^2 = 1/(1+W^8) per pass
   CHECK(max_abs_error(stop, [](double) { return 0.0; }, 20.0, 40.0) < 1e-7);
-  const Record hp_pass = butterworth(make(dt, 6001, sine(20.0)), hp);
+  const Record hp_pass = butterworth(test::sampled_record(dt, 6001, sine(20.0)), hp);
   CHECK(max_abs_error(hp_pass, sine(20.0), 20.0, 40.0) < 1e-6);
 
   // A symmetric pulse keeps its peak where it was (zero phase), while one causal pass delays it.
-  const Record pulse = make(dt, 2001, [](double t) { return std::exp(-0.5 * std::pow((t - 10.0) / 0.3, 2)); });
+  const Record pulse = test::sampled_record(dt, 2001, [](double t) { return std::exp(-0.5 * std::pow((t - 10.0) / 0.3, 2)); });
   const ButterworthFilter lp1{ButterworthFilter::Type::lowpass, 0.0, 1.0, 4};
   const Record smooth = butterworth(pulse, lp1);
   const auto peak_at = [](const std::vector<double>& a) {
@@ -114,7 +106,7 @@ TEST_CASE("zero-phase filtering of sines: gain 1/2 at the corner, 1 in the passb
 }
 
 TEST_CASE("filtering keeps a constant through a low-pass and removes it with a high-pass", "[processing]") {
-  const Record c = make(0.01, 500, [](double) { return 2.5; });
+  const Record c = test::sampled_record(0.01, 500, [](double) { return 2.5; });
   const Record low = butterworth(c, {ButterworthFilter::Type::lowpass, 0.0, 5.0, 4});
   CHECK(max_abs_error(low, [](double) { return 2.5; }, 0.0, 1e9) < 1e-9);
   const Record high = butterworth(c, {ButterworthFilter::Type::highpass, 0.5, 0.0, 4});
@@ -123,7 +115,7 @@ TEST_CASE("filtering keeps a constant through a low-pass and removes it with a h
 
 TEST_CASE("resampling a band-limited sine reproduces it", "[processing]") {
   const auto sine = [](double t) { return std::sin(2.0 * pi * 2.0 * t + 0.7); };
-  const Record r = make(0.01, 3001, sine);  // 30 s, Nyquist 50 Hz
+  const Record r = test::sampled_record(0.01, 3001, sine);  // 30 s, Nyquist 50 Hz
   SECTION("up to a step that does not divide dt") {
     const Record up = resample(r, 0.0037);
     CHECK(up.dt == 0.0037);
@@ -136,7 +128,7 @@ TEST_CASE("resampling a band-limited sine reproduces it", "[processing]") {
     CHECK(max_abs_error(down, sine, 5.0, 25.0) < 2e-4);
   }
   SECTION("down, where the anti-alias filter removes what the new grid cannot carry") {
-    const Record fast = make(0.01, 3001, [](double t) { return std::sin(2.0 * pi * 20.0 * t); });
+    const Record fast = test::sampled_record(0.01, 3001, [](double t) { return std::sin(2.0 * pi * 20.0 * t); });
     const Record down = resample(fast, 0.04);  // 20 Hz would alias to 5 Hz
     CHECK(max_abs_error(down, [](double) { return 0.0; }, 5.0, 25.0) < 1e-3);
   }
@@ -147,7 +139,7 @@ TEST_CASE("resampling a band-limited sine reproduces it", "[processing]") {
 }
 
 TEST_CASE("scaling, windows and padding", "[processing]") {
-  const Record r = make(0.01, 101, [](double t) { return std::sin(2.0 * pi * t) * (1.0 + t); });
+  const Record r = test::sampled_record(0.01, 101, [](double t) { return std::sin(2.0 * pi * t) * (1.0 + t); });
   const Record scaled = scale_to_pga(r, 3.3);
   double peak = 0.0;
   for (double a : scaled.accel) peak = std::max(peak, std::abs(a));
@@ -155,10 +147,10 @@ TEST_CASE("scaling, windows and padding", "[processing]") {
   double peak_r = 0.0;
   for (double a : r.accel) peak_r = std::max(peak_r, std::abs(a));
   for (std::size_t i = 1; i < r.accel.size(); i += 7) CHECK(scaled.accel[i] == Approx(r.accel[i] * 3.3 / peak_r).epsilon(1e-14));
-  CHECK_THROWS_AS(scale_to_pga(make(0.01, 10, [](double) { return 0.0; }), 1.0), InputError);
+  CHECK_THROWS_AS(scale_to_pga(test::sampled_record(0.01, 10, [](double) { return 0.0; }), 1.0), InputError);
   CHECK_THROWS_AS(scale_to_pga(r, -1.0), InputError);
 
-  const Record ramp = make(0.01, 101, [](double t) { return t; });
+  const Record ramp = test::sampled_record(0.01, 101, [](double t) { return t; });
   const Record w = cut_window(ramp, 0.105, 0.2);
   REQUIRE(w.accel.size() == 10);  // samples at 0.11 .. 0.20
   CHECK(w.accel.front() == Approx(0.11));
@@ -178,7 +170,7 @@ TEST_CASE("scaling, windows and padding", "[processing]") {
 }
 
 TEST_CASE("process applies the steps in order and ends at the target PGA", "[processing]") {
-  const Record r = make(0.005, 4001, [](double t) { return 0.3 + std::sin(2.0 * pi * 1.0 * t) + 0.1 * std::sin(2.0 * pi * 60.0 * t); });
+  const Record r = test::sampled_record(0.005, 4001, [](double t) { return 0.3 + std::sin(2.0 * pi * 1.0 * t) + 0.1 * std::sin(2.0 * pi * 60.0 * t); });
   Processing p;
   p.window_t0 = 1.0;
   p.window_t1 = 19.0;
