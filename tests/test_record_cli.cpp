@@ -20,6 +20,7 @@
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/post/intensity.hpp"
 #include "adjoin/post/spectrum.hpp"
+#include "cli_helpers.hpp"
 
 using Catch::Matchers::Contains;
 using Catch::Matchers::StartsWith;
@@ -31,28 +32,12 @@ const std::string records = ADJOIN_SHARED_RECORDS;
 const fs::path tmp = fs::path(ADJOIN_TEST_TMP) / "record_cli";
 constexpr double g = 9.80665;
 
-struct Result {
-  int status = -1;
-  std::string out, err;
-};
-
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using Result = adjoin::test::CliResult;
+using adjoin::test::slurp;
 
 Result run(const std::string& arguments) {
-  fs::create_directories(tmp);
-  const fs::path out = tmp / "stdout.txt", err = tmp / "stderr.txt";
-  const std::string command = std::string("\"") + ADJOIN_CLI + "\" " + arguments + " > \"" + out.string() + "\" 2> \"" + err.string() + "\"";
-  const int raw = std::system(command.c_str());
-  Result r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
+  fs::create_directories(tmp);  // where the tests write their files
+  return adjoin::test::run_cli(arguments);
 }
 
 std::string q(const std::string& path) { return "\"" + path + "\""; }
