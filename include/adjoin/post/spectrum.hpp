@@ -15,6 +15,12 @@
 // solution, which for a linear excitation is entire and summed to rounding). Peaks are thus the
 // peaks of the exact response to the piecewise-linear excitation, not of a sampled version.
 //
+// Cost: linear in samples x periods (about 3-4 ns per sample and period at 5 %, one core).
+// Oscillators with equal sub-step counts are advanced four or eight at a time in vector
+// lanes; every lane computes what one oscillator alone computes, in the same order and
+// without fused multiply-adds, so the numbers do not depend on the grouping, the thread
+// count or the processor.
+//
 // Outputs (SpectralValues): sd = max|u| [m], sv = max|u'| [m/s] (true relative velocity),
 // sa = max|u'' + a_g| [g] (true absolute acceleration), psv = omega sd [m/s],
 // psa = omega^2 sd [g]. A period of 0 is the rigid oscillator: sd = sv = psv = 0, sa = psa = PGA.
