@@ -237,8 +237,9 @@ int fourier_command(const RecordArgs& args) {
       const double df = raw.frequency.size() > 1 ? raw.frequency[1] : 0.0;
       const double low = std::max(0.1, df), high = std::min(50.0, raw.frequency.back());
       if (!(df > 0.0) || !(high > low))
-        throw InputError(record.source + ": too short to smooth between 0.1 Hz and " + number(high) +
-                         " Hz; give --frequencies F0:F1:N");
+        throw InputError(record.source + ": its Fourier frequencies (" + number(df) + " to " +
+                         number(raw.frequency.back()) + " Hz) leave nothing of the default 0.1-50 Hz; give "
+                         "--frequencies F0:F1:N");
       centres = period_range(low, high, 200, PeriodSpacing::log);
     }
     smoothed.frequency = centres;
