@@ -1,11 +1,17 @@
 // Intensity measures against closed forms on signals whose integrals are known.
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_integration.h>
+
 #include <catch2/catch.hpp>
+#include <filesystem>
 #include <cmath>
 #include <vector>
 #include <numbers>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/ground/record_file.hpp"
 #include "adjoin/post/intensity.hpp"
+#include "adjoin/post/spectrum.hpp"
 #include "record_helpers.hpp"
 
 using namespace adjoin;
@@ -187,4 +193,41 @@ TEST_CASE("Konno-Ohmachi smoothing: constants kept, the window's zeros, scale in
     CHECK_THROWS_AS(konno_ohmachi(s, std::vector<double>{NAN}), InputError);
     CHECK_THROWS_AS(konno_ohmachi(FourierSpectrum{{0.0}, {1.0}}, centres), InputError);
   }
+}
+
+TEST_CASE("spectrum intensities equal an adaptive quadrature of the spectrum (GSL QAG)", "[intensity]") {
+  // An independent integration of the same integrand: GSL's adaptive Gauss-Kronrod rule calls
+  // the one-oscillator spectrum wherever it wants, so Simpson's fixed 0.005 s grid is checked
+  // against a quadrature whose error is controlled.
+  const Record record = read_record(std::filesystem::path(ADJOIN_SHARED_RECORDS) / "peer" / "RSN1044_DirRot2.AT2");
+  struct Integrand {
+    const Record* record;
+    bool psa;
+  };
+  auto integrate = [](Integrand& in, double from, double to) {
+    gsl_function f;
+    f.function = [](double period, void* p) {
+      const auto* i = static_cast<Integrand*>(p);
+      const SpectralValues v = spectral_values(i->record->dt, i->record->accel, period, 0.05);
+      return i->psa ? v.psa : v.psv;
+    };
+    f.params = &in;
+    // The spectrum has kinks (where the peak moves to another cycle), so the rule may stop at
+    // "roundoff" before 1e-7; its own error estimate must still be far below the tolerance.
+    gsl_error_handler_t* previous = gsl_set_error_handler_off();
+    gsl_integration_workspace* w = gsl_integration_workspace_alloc(4000);
+    double result = 0.0, error = 0.0;
+    const int status = gsl_integration_qag(&f, from, to, 0.0, 1e-7, 4000, GSL_INTEG_GAUSS15, w, &result, &error);
+    gsl_integration_workspace_free(w);
+    gsl_set_error_handler(previous);
+    CHECK((status == GSL_SUCCESS || status == GSL_EROUND));
+    CHECK(error <= 1e-6 * std::abs(result));
+    return result;
+  };
+  const SpectrumIntensity si = spectrum_intensity(record);
+  Integrand housner{&record, false}, asi{&record, true};
+  const double housner_qag = integrate(housner, 0.1, 2.5), asi_qag = integrate(asi, 0.1, 0.5);
+  WARN("Housner SI " << si.housner << " m (QAG " << housner_qag << "), ASI " << si.asi << " g s (QAG " << asi_qag << ")");
+  CHECK(si.housner == Approx(housner_qag).epsilon(1e-4));
+  CHECK(si.asi == Approx(asi_qag).epsilon(1e-4));
 }

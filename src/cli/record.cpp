@@ -18,7 +18,7 @@
 // Reads accelerograms and prints their intensity measures: npts, dt, duration, PGA [g],
 // PGV [m/s], PGD [m] (trapezoid integrals, no baseline correction), Arias intensity [m/s],
 // CAV [m/s], significant duration D5-95 [s], predominant period [s] (peak of the Fourier
-// amplitude spectrum). As a table (one block per file) or JSON (an object, or an array for
+// amplitude spectrum), Housner's spectrum intensity [m] and Von Thun's ASI [g s]. As a table (one block per file) or JSON (an object, or an array for
 // several files), to stdout or to FILE (temporary file and rename).
 #include <algorithm>
 #include <cmath>
@@ -101,7 +101,7 @@ std::string number(double x, int precision = 6) {
   return s.str();
 }
 
-nlohmann::json to_json(const Record& record, const IntensityMeasures& m) {
+nlohmann::json to_json(const Record& record, const IntensityMeasures& m, const SpectrumIntensity& si) {
   return nlohmann::json{{"file", record.source},
                         {"description", record.description},
                         {"npts", m.npts},
@@ -117,10 +117,13 @@ nlohmann::json to_json(const Record& record, const IntensityMeasures& m) {
                         {"t5_s", m.t5},
                         {"t95_s", m.t95},
                         {"d5_95_s", m.d5_95},
-                        {"predominant_period_s", m.predominant_period}};
+                        {"predominant_period_s", m.predominant_period},
+                        {"housner_si_m", si.housner},
+                        {"asi_g_s", si.asi}};
 }
 
-std::string table(const Record& record, const IntensityMeasures& m) {
+// The spectrum intensities are printed when given.
+std::string table(const Record& record, const IntensityMeasures& m, const SpectrumIntensity* si = nullptr) {
   std::ostringstream s;
   auto row = [&](const std::string& name, const std::string& value, const std::string& unit, const std::string& note = "") {
     s << "  " << std::left << std::setw(20) << name << std::right << std::setw(12) << value << "  " << std::left
@@ -138,6 +141,10 @@ std::string table(const Record& record, const IntensityMeasures& m) {
   row("CAV", number(m.cav, 4), "m/s");
   row("D5-95", number(m.d5_95, 4), "s", "  from " + number(m.t5, 5) + " to " + number(m.t95, 5) + " s");
   row("predominant period", number(m.predominant_period, 4), "s");
+  if (si) {
+    row("Housner SI", number(si->housner, 4), "m", "  (PSV 5 %, 0.1-2.5 s)");
+    row("ASI", number(si->asi, 4), "g s", " (PSA 5 %, 0.1-0.5 s)");
+  }
   return s.str();
 }
 
@@ -285,10 +292,11 @@ int info_command(const RecordArgs& args) {
   for (std::size_t i = 0; i < args.files.size(); ++i) {
     const Record record = read_record(args.files[i], format);
     const IntensityMeasures m = intensity_measures(record);
+    const SpectrumIntensity si = spectrum_intensity(record);
     if (args.json)
-      all.push_back(to_json(record, m));
+      all.push_back(to_json(record, m, si));
     else
-      text += (i ? "\n" : "") + table(record, m);
+      text += (i ? "\n" : "") + table(record, m, &si);
   }
   if (args.json) text = (all.size() == 1 ? all[0] : all).dump(2) + "\n";
   if (args.out.empty()) {
@@ -320,7 +328,8 @@ const Registration registration(30, [](CLI::App& app) -> Runner {
   auto* record = app.add_subcommand("record", "Recorded accelerograms: information, processing, Fourier spectra");
   record->require_subcommand(1);
   auto* info = record->add_subcommand(
-      "info", "npts, dt, duration, PGA [g], PGV [m/s], PGD [m], Arias [m/s], CAV [m/s], D5-95 [s], predominant period [s]");
+      "info", "npts, dt, duration, PGA [g], PGV [m/s], PGD [m], Arias [m/s], CAV [m/s], D5-95 [s], predominant "
+              "period [s], Housner SI [m], ASI [g s]");
   info->add_option("files", args->files, "Accelerogram(s): PEER AT2, one/two-column text, delimited text with a header")
       ->required();
   add_reading_options(info, args.get());

@@ -16,6 +16,7 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/model/units.hpp"
+#include "adjoin/post/spectrum.hpp"
 
 namespace adjoin {
 namespace {
@@ -170,6 +171,27 @@ double predominant_period(const Record& record) {
   const auto peak = std::max_element(s.amplitude.begin() + 1, s.amplitude.end());
   if (!(*peak > 0.0)) return 0.0;
   return 1.0 / s.frequency[static_cast<std::size_t>(peak - s.amplitude.begin())];
+}
+
+SpectrumIntensity spectrum_intensity(const Record& record) {
+  check(record);
+  // One spectrum over 0.1 .. 2.5 s in steps of 0.005 s (480 intervals: even, as Simpson needs);
+  // ASI uses its first 80 intervals.
+  constexpr std::size_t kIntervals = 480, kAsiIntervals = 80;
+  constexpr double kFirst = 0.1, kStep = 0.005;
+  SpectrumOptions options;
+  options.periods.resize(kIntervals + 1);
+  for (std::size_t i = 0; i <= kIntervals; ++i) options.periods[i] = kFirst + kStep * static_cast<double>(i);
+  const ResponseSpectrum spectrum = response_spectrum(record, options);
+  auto simpson = [&](std::size_t intervals, auto value) {
+    double sum = value(0) + value(intervals);
+    for (std::size_t i = 1; i < intervals; ++i) sum += (i % 2 == 1 ? 4.0 : 2.0) * value(i);
+    return sum * kStep / 3.0;
+  };
+  SpectrumIntensity si;
+  si.housner = simpson(kIntervals, [&](std::size_t i) { return spectrum.at(0, i).psv; });
+  si.asi = simpson(kAsiIntervals, [&](std::size_t i) { return spectrum.at(0, i).psa; });
+  return si;
 }
 
 IntensityMeasures intensity_measures(const Record& record) {

@@ -14,6 +14,11 @@
 //    f_k = k / (n dt), k = 0 .. n/2 (FFTW, no padding, no window).
 //  - Predominant period: 1 / f at the largest Fourier amplitude with f > 0 [s] (resolution:
 //    neighbouring frequencies are 1/(n dt) apart).
+//  - Spectrum intensities, from the 5 % response spectrum with exact peaks (post/spectrum.hpp),
+//    integrated over the period by composite Simpson's rule on periods 0.005 s apart:
+//    Housner's SI = int_{0.1 s}^{2.5 s} PSV dT [m], Von Thun's ASI = int_{0.1 s}^{0.5 s} PSA dT
+//    [g s]. Computed only by spectrum_intensity (about 500 oscillators, so not part of
+//    intensity_measures).
 //  - Konno-Ohmachi smoothing (Konno & Ohmachi 1998) of an amplitude spectrum at centre
 //    frequencies fc > 0:  S(fc) = sum_k W_k A_k / sum_k W_k  over the spectrum's f_k > 0, with
 //    W_k = [sin(b log10(f_k/fc)) / (b log10(f_k/fc))]^4 (1 at f_k = fc): a window of constant
@@ -59,6 +64,12 @@ struct SignificantDuration {
 };
 // Time between the Husid curve reaching `from` and `to` (fractions, 0 <= from < to <= 1).
 SignificantDuration significant_duration(const Record& record, double from = 0.05, double to = 0.95);
+
+struct SpectrumIntensity {
+  double housner = 0.0;  // m
+  double asi = 0.0;      // g s
+};
+SpectrumIntensity spectrum_intensity(const Record& record);
 
 struct FourierSpectrum {
   std::vector<double> frequency;  // Hz
