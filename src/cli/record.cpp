@@ -18,8 +18,9 @@
 // Reads accelerograms and prints their intensity measures: npts, dt, duration, PGA [g],
 // PGV [m/s], PGD [m] (trapezoid integrals, no baseline correction), Arias intensity [m/s],
 // CAV [m/s], significant duration D5-95 [s], predominant period [s] (peak of the Fourier
-// amplitude spectrum), Housner's spectrum intensity [m] and Von Thun's ASI [g s]. As a table (one block per file) or JSON (an object, or an array for
-// several files), to stdout or to FILE (temporary file and rename).
+// amplitude spectrum), Housner's spectrum intensity [m] and Von Thun's ASI [g s]. As a table
+// (one block per file) or JSON (an object, or an array for several files), to stdout or to
+// FILE (temporary file and rename).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
