@@ -18,6 +18,7 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
+#include "adjoin/ground/spectrum_matching.hpp"
 #include "adjoin/model/units.hpp"
 #include "adjoin/post/spectrum.hpp"
 
@@ -542,6 +543,46 @@ TEST_CASE("adjoin spectrum --peaks samples: the exact response's largest sampled
   CHECK(exact[4] > samples[4]);
 }
 
+TEST_CASE("adjoin spectrum --target: PSA against an EC8 spectrum, per damping", "[spectrum][cli]") {
+  // The printed ratios are those of the CSV's PSA to the code's spectrum with eta(damping).
+  const fs::path tmp = fs::path(ADJOIN_TEST_TMP) / "spectrum";
+  fs::create_directories(tmp);
+  const std::string record = std::string(ADJOIN_SHARED_RECORDS) + "/peer/RSN1044_DirRot2.AT2";
+  const fs::path csv = tmp / "target.csv", err = tmp / "target.err";
+  REQUIRE(run(std::string(ADJOIN_CLI) + " spectrum '" + record + "' --periods 0.1,0.3,0.6,1.5 --damping 0.05,0.02 " +
+              "--target ec8:C:0.3:2 --out '" + csv.string() + "' 2> '" + err.string() + "'") == 0);
+  std::istringstream lines(slurp(csv));
+  std::string line;
+  std::getline(lines, line);
+  double low[2] = {1e300, 1e300}, high[2] = {0.0, 0.0}, sum[2] = {0.0, 0.0};
+  while (std::getline(lines, line)) {
+    const std::vector<double> row = csv_row(line);
+    REQUIRE(row.size() == 7);
+    const std::size_t d = row[1] == 0.05 ? 0 : 1;
+    const double ratio = row[6] / ec8_psa(row[0], 'C', 0.3, 2, row[1]);
+    low[d] = std::min(low[d], ratio);
+    high[d] = std::max(high[d], ratio);
+    sum[d] += ratio;
+  }
+  const std::string printed = slurp(err);
+  std::istringstream messages(printed);
+  for (std::size_t d = 0; d < 2; ++d) {
+    REQUIRE(std::getline(messages, line));
+    INFO(line);
+    CHECK(line.rfind("target EC8 type 2, ground C, ag = 0.3 g, damping " + std::string(d == 0 ? "5" : "2") + " %", 0) == 0);
+    double from = 0.0, to = 0.0, mean = 0.0;
+    REQUIRE(std::sscanf(line.c_str() + line.find("from "), "from %lf", &from) == 1);
+    REQUIRE(std::sscanf(line.c_str() + line.find(") to "), ") to %lf", &to) == 1);
+    REQUIRE(std::sscanf(line.c_str() + line.find("mean "), "mean %lf", &mean) == 1);
+    CHECK(from == Approx(low[d]).epsilon(1e-3));
+    CHECK(to == Approx(high[d]).epsilon(1e-3));
+    CHECK(mean == Approx(sum[d] / 4.0).epsilon(1e-3));
+  }
+  // A target that is neither: exit 2, naming the option.
+  CHECK(run(std::string(ADJOIN_CLI) + " spectrum '" + record + "' --target ec8:Z 2> '" + err.string() + "' > /dev/null") == 2);
+  CHECK(slurp(err).find("--target") != std::string::npos);
+}
+
 TEST_CASE("adjoin spectrum: plot with gnuplot", "[spectrum][cli]") {
   const fs::path tmp = fs::path(ADJOIN_TEST_TMP) / "spectrum";
   fs::create_directories(tmp);
@@ -551,8 +592,8 @@ TEST_CASE("adjoin spectrum: plot with gnuplot", "[spectrum][cli]") {
   for (const char* name : {"impvall.png", "impvall.svg"}) {
     const fs::path plot = tmp / name;
     fs::remove(plot);
-    const int status = run(cli + " spectrum '" + record + "' --out '" + csv.string() + "' --plot '" + plot.string() +
-                           "' 2> '" + (tmp / "plot.err").string() + "'");
+    const int status = run(cli + " spectrum '" + record + "' --target ec8:B --out '" + csv.string() + "' --plot '" +
+                           plot.string() + "' 2> '" + (tmp / "plot.err").string() + "'");
     if (status == 1 && slurp(tmp / "plot.err").find("gnuplot") != std::string::npos) {
       WARN("gnuplot is not installed: plot not checked");
       continue;

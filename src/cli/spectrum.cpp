@@ -1,23 +1,27 @@
 // adjoin spectrum RECORD [--units g|m/s2|cm/s2|mm/s2] [--format KIND] [--dt S]
 //                        [--damping 0.05[,0.02...]] [--periods LIST | --range T0:T1:N[:log|lin]]
-//                        [--peaks exact|samples] [--free-vibration] [--threads N] [--out FILE] [--plot FILE.png|.svg]
+//                        [--peaks exact|samples] [--target ec8:T[:AG[:TYPE]]|FILE]
+//                        [--free-vibration] [--threads N] [--out FILE] [--plot FILE.png|.svg]
 //
 // Elastic response spectra of a recorded accelerogram (SPEC §3): CSV with header
 // `period,damping,sd,sv,sa,psv,psa` (s, ratio, m, m/s, g, m/s, g), one row per damping and
 // period, to FILE (temporary file and rename) or stdout. --plot draws PSA and SD against
 // period with gnuplot. Without gnuplot on PATH the CSV is still written and the command
-// fails (exit 1) with a message saying so.
+// fails (exit 1) with a message saying so. --target compares PSA with a target spectrum
+// (ratios on stderr, the target dashed on the plot).
 #include <charconv>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
+#include "adjoin/ground/spectrum_matching.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/plots.hpp"
 #include "adjoin/post/spectrum.hpp"
@@ -41,6 +45,7 @@ struct SpectrumArgs {
   unsigned threads = 0;
   std::string out;
   std::string plot;
+  std::string target;
 };
 
 std::vector<std::string> split(const std::string& text, char separator) {
@@ -110,6 +115,42 @@ void write_csv(std::ostream& out, const ResponseSpectrum& spectrum) {
   }
 }
 
+// Prints, for each damping, how the record's PSA compares with the target over the periods
+// the target covers (on stderr: stdout may hold the CSV), and returns the target's curves for
+// the plot. An EC8 target is the code's spectrum at each damping (eta); a table is the same
+// at every damping.
+std::vector<ReferenceCurve> compare_with_target(const ResponseSpectrum& spectrum, const TargetSpectrum& target) {
+  std::vector<ReferenceCurve> curves;
+  for (std::size_t d = 0; d < spectrum.dampings.size(); ++d) {
+    const double zeta = spectrum.dampings[d];
+    ReferenceCurve curve;
+    char label[96];
+    std::snprintf(label, sizeof label, "%s (%g %%)", target.name.c_str(), 100.0 * zeta);
+    curve.label = label;
+    double low = 0.0, high = 0.0, sum = 0.0, t_low = 0.0, t_high = 0.0;
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < spectrum.periods.size(); ++i) {
+      const double period = spectrum.periods[i];
+      if (!(period > 0.0) || period < target.min_period() || period > target.max_period()) continue;
+      const double psa = target.psa_at(period, zeta), ratio = spectrum.at(d, i).psa / psa;
+      curve.period.push_back(period);
+      curve.psa.push_back(psa);
+      if (count == 0 || ratio < low) low = ratio, t_low = period;
+      if (count == 0 || ratio > high) high = ratio, t_high = period;
+      sum += ratio;
+      ++count;
+    }
+    if (count == 0) {
+      std::cerr << "target " << target.name << ": no period of the spectrum is inside the target's\n";
+      return {};
+    }
+    std::fprintf(stderr, "target %s, damping %g %%: PSA/target from %.4g (T = %g s) to %.4g (T = %g s), mean %.4g over %zu periods\n",
+                 target.name.c_str(), 100.0 * zeta, low, t_low, high, t_high, sum / static_cast<double>(count), count);
+    curves.push_back(std::move(curve));
+  }
+  return curves;
+}
+
 int spectrum_command(const SpectrumArgs& args) {
   RecordFormat format;
   if (!args.units.empty()) {
@@ -154,6 +195,14 @@ int spectrum_command(const SpectrumArgs& args) {
   }
   std::string error;
   if (!options.IsValid(&error)) throw InputError(error);
+  std::optional<TargetSpectrum> target;
+  if (!args.target.empty()) {
+    try {
+      target = parse_target_spectrum(args.target);
+    } catch (const InputError& e) {
+      throw InputError(std::string("--target: ") + e.what());
+    }
+  }
 
   const Record record = read_record(args.record, format);
   const ResponseSpectrum spectrum = response_spectrum(record, options);
@@ -167,6 +216,9 @@ int spectrum_command(const SpectrumArgs& args) {
     std::cout.flush();
   }
 
+  std::vector<ReferenceCurve> references;
+  if (target) references = compare_with_target(spectrum, *target);
+
   if (!args.plot.empty()) {
     bool any_positive = false;
     for (double t : spectrum.periods) any_positive = any_positive || t > 0.0;
@@ -177,7 +229,7 @@ int spectrum_command(const SpectrumArgs& args) {
     style.format = fs::path(args.plot).extension() == ".svg" ? "svg" : "png";
     style.height = 900;
     try {
-      plot_spectrum(spectrum, args.plot, style, fs::path(args.record).filename().string());
+      plot_spectrum(spectrum, args.plot, style, fs::path(args.record).filename().string(), references);
     } catch (const InputError& e) {  // gnuplot missing or failed: the spectrum itself is fine
       std::cerr << "error: --plot " << e.what() << note << "\n";
       return 1;
@@ -209,6 +261,9 @@ const Registration registration(20, [](CLI::App& app) -> Runner {
   sub->add_option("--threads", args->threads, "Worker threads (default 0: all cores)");
   sub->add_option("--out", args->out, "CSV file (default: stdout)");
   sub->add_option("--plot", args->plot, "Also draw PSA and SD against period with gnuplot (.png or .svg)");
+  sub->add_option("--target", args->target,
+                  "Compare PSA with a target spectrum: ec8:T[:AG[:TYPE]] or a two-column file period [s], PSA [g] "
+                  "(ratios on stderr; dashed on the plot)");
   return [args]() { return spectrum_command(*args); };
 });
 

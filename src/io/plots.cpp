@@ -609,11 +609,13 @@ std::string damping_label(double zeta) {
 }
 
 void draw_spectra(const std::vector<SpectrumCurve>& curves, const std::string& title, const fs::path& image,
-                  const PlotStyle& style) {
+                  const PlotStyle& style, const std::vector<ReferenceCurve>& references = {}) {
   std::ostringstream s;
   s << kPreamble;
   for (std::size_t d = 0; d < curves.size(); ++d)
     datablock(s, "s" + std::to_string(d), {curves[d].period, curves[d].psa, curves[d].sd});
+  for (std::size_t r = 0; r < references.size(); ++r)
+    datablock(s, "r" + std::to_string(r), {references[r].period, references[r].psa});
   s << "set multiplot layout 2,1 title " << gnuplot_quote("Elastic response spectra: " + title)
     << " noenhanced font ',12' margins 0.1,0.97,0.09,0.92 spacing 0,0.03\n"
     << "set logscale x\nset format x ''\nset key top right\nset mxtics 10\n"
@@ -623,6 +625,10 @@ void draw_spectra(const std::vector<SpectrumCurve>& curves, const std::string& t
     for (std::size_t d = 0; d < curves.size(); ++d)
       s << (d ? ", " : "") << "$s" << d << " using 1:" << column << " with lines lt " << d + 1 << " title "
         << gnuplot_quote(curves[d].label);
+    if (column == 2)
+      for (std::size_t r = 0; r < references.size(); ++r)
+        s << ", $r" << r << " using 1:2 with lines lt " << r + 1 << " dt 2 lw 1.5 title "
+          << gnuplot_quote(references[r].label) << " noenhanced";
     s << "\n";
   };
   s << "set ylabel 'PSA [g]'\n";
@@ -660,7 +666,7 @@ std::vector<SpectrumCurve> spectrum_curves(const std::vector<double>& period, co
 }  // namespace
 
 void plot_spectrum(const ResponseSpectrum& spectrum, const fs::path& image, const PlotStyle& style,
-                   const std::string& title) {
+                   const std::string& title, const std::vector<ReferenceCurve>& references) {
   std::vector<double> period, damping, psa, sd;
   for (const SpectralValues& v : spectrum.values) {
     period.push_back(v.period);
@@ -670,7 +676,7 @@ void plot_spectrum(const ResponseSpectrum& spectrum, const fs::path& image, cons
   }
   const std::vector<SpectrumCurve> curves = spectrum_curves(period, damping, psa, sd);
   if (curves.empty()) throw InputError(image.string() + ": no period > 0 s to plot");
-  draw_spectra(curves, title, image, style);
+  draw_spectra(curves, title, image, style, references);
 }
 
 void plot_spectrum_csv(const fs::path& csv, const fs::path& image, const PlotStyle& style) {
