@@ -112,6 +112,30 @@ TEST_CASE("a filtered-noise scene matched to EC8 type 2 at 2 % damping; its keys
   CHECK(error_of({"ground.match_ag=-0.1"}).find("ground.match_ag") != std::string::npos);
 }
 
+TEST_CASE("grounds are built once per process and rebuilt when what they come from changes", "[ground][cache]") {
+  // Sweeps load the same ground for every run: a matched synthetic motion or a processed
+  // record is built once. Another seed, or a changed record file, is another ground.
+  const std::vector<std::string> short_run = {"solver.t_end=1"};
+  const Scene a = load_scene(kScenes + "si-noise.toml", short_run), b = load_scene(kScenes + "si-noise.toml", short_run);
+  CHECK(a.ground.get() == b.ground.get());
+  const Scene c = load_scene(kScenes + "si-noise.toml", {"solver.t_end=1", "ground.seed=8"});
+  CHECK(c.ground.get() != a.ground.get());
+  CHECK(c.ground->ag(1.0) != a.ground->ag(1.0));
+
+  const auto file = test::write_temp("cache-record.txt", "0 0\n0.01 0.1\n0.02 0.2\n0.03 0.1\n0.04 0\n");
+  auto record_scene = [&] {
+    return load_scene(kScenes + "si-record.toml", {"ground.file=\"" + file.string() + "\"", "solver.t_end=0.1"});
+  };
+  const Scene first = record_scene(), again = record_scene();
+  CHECK(first.ground.get() == again.ground.get());
+  // New content (and length): the file's stamp changes, so the ground is read again.
+  test::write_temp("cache-record.txt", "0 0\n0.01 -0.3\n0.02 -0.6\n0.03 -0.3\n0.04 0\n0.05 0\n");
+  const Scene changed = record_scene();
+  CHECK(changed.ground.get() != first.ground.get());
+  const double t = 0.02 / changed.scales.time;  // the record's peak sample, dimensionless
+  CHECK(changed.ground->ag(t) * first.ground->ag(t) < 0.0);  // the sign flipped with the file
+}
+
 TEST_CASE("the project's own scenes run from a clean checkout (no ../shared needed)", "[ground][scenes]") {
   for (const char* name : {"si-record.toml", "si-noise.toml"}) {
     INFO(name);

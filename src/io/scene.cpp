@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <map>
 #include <optional>
@@ -9,6 +10,7 @@
 #include <toml++/toml.h>
 
 #include "../detail/nearest.hpp"
+#include "ground_cache.hpp"
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
 #include "adjoin/ground/processing.hpp"
@@ -298,6 +300,17 @@ std::string rod_key_of(const std::string& message) {
   return "model";
 }
 
+// What a record or synthetic ground is built from, as text: the [ground] table after the
+// overrides, the time scale, and `extra` (file stamps). The key of the ground cache.
+std::string ground_key(const SceneReader& r, double time_scale, const std::string& extra) {
+  std::ostringstream key;
+  key << toml::toml_formatter(*r.table()["ground"].as_table());
+  char scale[32];
+  std::snprintf(scale, sizeof scale, "%.17g", time_scale);
+  key << "\n" << scale << "\n" << extra;
+  return key.str();
+}
+
 // The time scale of a ground motion given in seconds: T0 for SI scenes, ground.time_scale
 // (default 1 s) for dimensionless ones.
 double record_time_scale(const SceneReader& r, const Scales& scales) {
@@ -362,13 +375,15 @@ std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, con
   if (r.has("ground.scale_pga")) processing.target_pga = r.number("ground.scale_pga") * kStandardGravity;
 
   const double time_scale = record_time_scale(r, scales);
-  Record record = read_record(file, format);  // InputError names the file and line
-  try {
-    record = process(record, processing);
-  } catch (const InputError& e) {
-    r.fail("ground", e.what());
-  }
-  return std::make_shared<RecordMotion>(std::move(record), time_scale, kStandardGravity);
+  return detail::cached_ground(ground_key(r, time_scale, detail::file_stamp(file)), [&]() -> std::shared_ptr<const GroundMotion> {
+    Record record = read_record(file, format);  // InputError names the file and line
+    try {
+      record = process(record, processing);
+    } catch (const InputError& e) {
+      r.fail("ground", e.what());
+    }
+    return std::make_shared<RecordMotion>(std::move(record), time_scale, kStandardGravity);
+  });
 }
 
 // source = "filtered-noise": white noise shaped by a Kanai-Tajimi or Clough-Penzien spectrum
@@ -410,7 +425,10 @@ std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, cons
   for (const char* key : {"ground.match_ag", "ground.match_band", "ground.match_tolerance", "ground.match_ec8_type",
                           "ground.match_damping"})
     if (r.has(key) && !match) r.fail(key, std::string(key) + " needs ground.match_ec8 or ground.match_table");
-  if (!match) return std::make_shared<RecordMotion>(synthesize(o), time_scale, kStandardGravity);
+  if (!match)
+    return detail::cached_ground(ground_key(r, time_scale, ""), [&]() -> std::shared_ptr<const GroundMotion> {
+      return std::make_shared<RecordMotion>(synthesize(o), time_scale, kStandardGravity);
+    });
 
   MatchOptions m;
   if (r.has("ground.match_ec8") && r.has("ground.match_table"))
@@ -447,9 +465,12 @@ std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, cons
                                                                      : "ground.match_band";
     r.fail(key, "ground matching: " + error);
   }
-  MatchReport report;
-  Record matched = synthesize_matched(o, m, &report);
-  return std::make_shared<RecordMotion>(std::move(matched), time_scale, kStandardGravity);
+  const std::string table_stamp = r.has("ground.match_ec8") ? std::string() : detail::file_stamp(m.target.name);
+  return detail::cached_ground(ground_key(r, time_scale, table_stamp), [&]() -> std::shared_ptr<const GroundMotion> {
+    MatchReport report;
+    Record matched = synthesize_matched(o, m, &report);
+    return std::make_shared<RecordMotion>(std::move(matched), time_scale, kStandardGravity);
+  });
 }
 
 Scene build_scene(const SceneReader& r, const std::string& name) {

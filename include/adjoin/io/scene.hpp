@@ -8,6 +8,11 @@
 // types and the model's restrictions, and converts an SI scene to the solver's dimensionless
 // form. Every problem is an InputError whose message starts with "FILE:LINE:" (or
 // "--set KEY=VALUE:") and names the key and what is expected.
+//
+// Record and synthetic grounds are built once per process: scenes whose [ground] section (and
+// time scale) are the same share one immutable GroundMotion, so a sweep reads, processes or
+// synthesises and matches its motions once, not once per run. A record or target-table file
+// whose size or modification time changed is read again. At most 32 grounds are kept.
 #include <filesystem>
 #include <memory>
 #include <optional>
