@@ -7,8 +7,11 @@
 // or adjoin::NumericalError (exit 3); main() turns those into "error: ..." on stderr.
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <iostream>
 #include <string>
 #include <vector>
+
+#include "adjoin/errors.hpp"
 
 namespace adjoin::cli {
 
@@ -24,5 +27,17 @@ struct RegisteredCommand {
   Setup setup;
 };
 std::vector<RegisteredCommand>& registry();
+
+// Draws a --plot figure after the command's own output is safely written. gnuplot missing or
+// failing is reported ("error: --plot ...; <written>") with exit status 1: the output is fine.
+inline int draw_figure(const std::function<void()>& draw, const std::string& written) {
+  try {
+    draw();
+  } catch (const InputError& e) {
+    std::cerr << "error: --plot " << e.what() << "; " << written << "\n";
+    return 1;
+  }
+  return 0;
+}
 
 }  // namespace adjoin::cli

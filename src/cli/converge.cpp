@@ -34,6 +34,10 @@ std::string cell(double v, const char* format = "%.3e") {
 }
 
 int converge_command(const ConvergeArgs& args) {
+  if (!args.plot.empty()) {  // a bad image name is found before the ladder runs
+    PlotStyle style;
+    plot_target(args.plot, {}, "", &style, "--plot");
+  }
   const Scene scene = load_scene(args.scene, args.overrides);
   ConvergenceOptions options;
   if (!args.schemes.empty()) {
@@ -93,9 +97,8 @@ int converge_command(const ConvergeArgs& args) {
   }
   std::printf("wrote %s", csv_path.string().c_str());
   if (!args.no_plot) {
-    const std::filesystem::path image = args.plot.empty() ? dir / "work-precision.png" : std::filesystem::path(args.plot);
     PlotStyle style;
-    style.format = image.extension() == ".svg" ? "svg" : "png";
+    const std::filesystem::path image = plot_target(args.plot, dir / "work-precision.png", "", &style, "--plot");
     plot_convergence_csv(csv_path, image, style, scene.name + " (reference: " + result.reference + ")");
     std::printf(", %s", image.string().c_str());
   }

@@ -229,10 +229,8 @@ std::vector<double> frequency_points(const std::string& text) {
 int fourier_command(const RecordArgs& args) {
   if (args.smooth < 0.0 || !std::isfinite(args.smooth))
     throw InputError("--smooth " + number(args.smooth) + ": expected the Konno-Ohmachi bandwidth b > 0 (40 is usual)");
-  if (!args.plot.empty()) {
-    const std::string ext = std::filesystem::path(args.plot).extension().string();
-    if (ext != ".png" && ext != ".svg") throw InputError("--plot " + args.plot + ": expected a file name ending in .png or .svg");
-  }
+  PlotStyle style;
+  if (!args.plot.empty()) plot_target(args.plot, {}, "", &style, "--plot");
   const bool smoothing = args.smooth > 0.0 || !args.frequencies.empty();
   std::vector<double> centres;
   if (!args.frequencies.empty()) centres = frequency_points(args.frequencies);
@@ -270,19 +268,13 @@ int fourier_command(const RecordArgs& args) {
     out.stream() << csv.str();
     out.commit();
   }
-  if (!args.plot.empty()) {
-    PlotStyle style;
-    style.format = std::filesystem::path(args.plot).extension() == ".svg" ? "svg" : "png";
-    try {
-      plot_fourier(raw, smoothing ? &smoothed : nullptr, args.plot, style,
-                   std::filesystem::path(args.files.at(0)).filename().string());
-    } catch (const InputError& e) {  // gnuplot missing or failed: the spectrum itself is fine
-      std::cerr << "error: --plot " << e.what()
-                << (args.out.empty() ? std::string("; the spectrum was printed") : "; the spectrum was written to " + args.out)
-                << "\n";
-      return 1;
-    }
-  }
+  if (!args.plot.empty())
+    return draw_figure(
+        [&] {
+          plot_fourier(raw, smoothing ? &smoothed : nullptr, args.plot, style,
+                       std::filesystem::path(args.files.at(0)).filename().string());
+        },
+        args.out.empty() ? "the spectrum was printed" : "the spectrum was written to " + args.out);
   return 0;
 }
 

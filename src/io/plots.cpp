@@ -207,7 +207,7 @@ void parse_plot_size(const std::string& text, PlotStyle* style, const std::strin
 }
 
 fs::path plot_target(const std::string& out, const fs::path& fallback, const std::string& explicit_format,
-                     PlotStyle* style) {
+                     PlotStyle* style, const std::string& option) {
   if (!explicit_format.empty()) plot_extension(explicit_format);
   if (out.empty()) {
     if (!explicit_format.empty()) style->format = explicit_format;
@@ -217,10 +217,10 @@ fs::path plot_target(const std::string& out, const fs::path& fallback, const std
   }
   const std::string ext = fs::path(out).extension().string();
   if (ext != ".png" && ext != ".svg")
-    throw InputError("--out " + out + ": expected a file name ending in .png or .svg");
+    throw InputError(option + " " + out + ": expected a file name ending in .png or .svg");
   const std::string format = ext.substr(1);
   if (!explicit_format.empty() && explicit_format != format)
-    throw InputError("--out " + out + " and --format " + explicit_format + " disagree (expected the same image format)");
+    throw InputError(option + " " + out + " and --format " + explicit_format + " disagree (expected the same image format)");
   style->format = format;
   return out;
 }

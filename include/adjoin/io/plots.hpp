@@ -60,8 +60,10 @@ std::string plot_extension(const std::string& format, const std::string& option 
 void parse_plot_size(const std::string& text, PlotStyle* style, const std::string& option = "--size");
 // For a single-image command: the image path (`out`, or `fallback` with the format's
 // extension); the extension of `out` must be .png or .svg and agree with an explicit format.
+// `option` names `out` in messages.
 std::filesystem::path plot_target(const std::string& out, const std::filesystem::path& fallback,
-                                  const std::string& explicit_format, PlotStyle* style);
+                                  const std::string& explicit_format, PlotStyle* style,
+                                  const std::string& option = "--out");
 
 // Runs a gnuplot script (which must not set terminal or output) to make `image` at the
 // style's size, through a temporary file renamed into place. UTF-8 text; enhanced text mode
