@@ -1,5 +1,5 @@
 // Parse speed of the record readers (bytes per second as reported by Google Benchmark): two
-// PEER AT2 records of the shared folder, read into memory first, and a generated CSV of 10^6
+// PEER AT2 records of records/real, read into memory first, and a generated CSV of 10^6
 // rows. Run: build/bench/bench_readers
 #include <benchmark/benchmark.h>
 
@@ -37,13 +37,13 @@ void parse_text(benchmark::State& state, const std::string& text, const std::str
 }
 
 void BM_at2_chichi(benchmark::State& state) {
-  static const std::string path = std::string(ADJOIN_SHARED_RECORDS) + "/peer/RSN1546_CHICHI_TCU122-N.AT2";
+  static const std::string path = std::string(ADJOIN_REAL_RECORDS) + "/peer/RSN1546_CHICHI_TCU122-N.AT2";
   static const std::string text = slurp(path);
   parse_text(state, text, path, {});
 }
 
 void BM_at2_chino_hills(benchmark::State& state) {
-  static const std::string path = std::string(ADJOIN_SHARED_RECORDS) + "/peer/RSN8883_14383980_13849090.AT2";
+  static const std::string path = std::string(ADJOIN_REAL_RECORDS) + "/peer/RSN8883_14383980_13849090.AT2";
   static const std::string text = slurp(path);
   parse_text(state, text, path, {});
 }

@@ -24,7 +24,7 @@ namespace {
 
 std::vector<double> chichi_12000() {
   static const std::vector<double> accel = [] {
-    const auto path = std::filesystem::path(ADJOIN_SHARED_RECORDS) / "peer" / "RSN1546_CHICHI_TCU122-N.AT2";
+    const auto path = std::filesystem::path(ADJOIN_REAL_RECORDS) / "peer" / "RSN1546_CHICHI_TCU122-N.AT2";
     adjoin::Record record = adjoin::read_record(path);
     record.accel.resize(12000);
     return record.accel;
@@ -98,7 +98,7 @@ BENCHMARK(Scaling)
 // amplitudes (18,000 samples: 9,001 frequencies) at 200 log-spaced centres, b = 40: the
 // direct sum costs centres x frequencies, reported per product.
 void KonnoOhmachi(benchmark::State& state) {
-  const auto path = std::filesystem::path(ADJOIN_SHARED_RECORDS) / "peer" / "RSN1546_CHICHI_TCU122-N.AT2";
+  const auto path = std::filesystem::path(ADJOIN_REAL_RECORDS) / "peer" / "RSN1546_CHICHI_TCU122-N.AT2";
   const adjoin::FourierSpectrum fas = adjoin::fourier_amplitude_spectrum(adjoin::read_record(path));
   const std::vector<double> centres = adjoin::period_range(0.1, 50.0, 200, adjoin::PeriodSpacing::log);
   for (auto _ : state) {

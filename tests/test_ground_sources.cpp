@@ -16,7 +16,7 @@ using namespace adjoin;
 
 namespace {
 const std::string kScenes = std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/";
-const std::string kElCentro = std::string(ADJOIN_SHARED_RECORDS) + "/two-column/elCentro.txt";
+const std::string kElCentro = std::string(ADJOIN_REAL_RECORDS) + "/two-column/elCentro.txt";
 
 // The message of loading scene `name` with overrides, or "no error".
 std::string scene_error(const std::string& name, const std::vector<std::string>& overrides) {
@@ -139,7 +139,7 @@ TEST_CASE("grounds are built once per process and rebuilt when what they come fr
   CHECK(changed.ground->ag(t) * first.ground->ag(t) < 0.0);  // the sign flipped with the file
 }
 
-TEST_CASE("the project's own scenes run from a clean checkout (no ../shared needed)", "[ground][scenes]") {
+TEST_CASE("the project's own scenes run from a clean checkout (nothing outside the checkout needed)", "[ground][scenes]") {
   for (const char* name : {"si-record.toml", "si-noise.toml"}) {
     INFO(name);
     const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / name;

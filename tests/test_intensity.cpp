@@ -199,7 +199,7 @@ TEST_CASE("spectrum intensities equal an adaptive quadrature of the spectrum (GS
   // An independent integration of the same integrand: GSL's adaptive Gauss-Kronrod rule calls
   // the one-oscillator spectrum wherever it wants, so Simpson's fixed 0.005 s grid is checked
   // against a quadrature whose error is controlled.
-  const Record record = read_record(std::filesystem::path(ADJOIN_SHARED_RECORDS) / "peer" / "RSN1044_DirRot2.AT2");
+  const Record record = read_record(std::filesystem::path(ADJOIN_REAL_RECORDS) / "peer" / "RSN1044_DirRot2.AT2");
   struct Integrand {
     const Record* record;
     bool psa;

@@ -1,4 +1,4 @@
-// `adjoin record info` through the command line: the shared records (npts and dt from the
+// `adjoin record info` through the command line: the project's real records (npts and dt from the
 // records README, PGA checked against a plain stream read of the file), a synthetic sine with
 // closed-form intensity measures, and defective files (exit 2, "error:", file and line).
 // `adjoin record fourier`: its CSV against the library's spectra.
@@ -28,7 +28,7 @@ using Catch::Matchers::StartsWith;
 namespace {
 
 namespace fs = std::filesystem;
-const std::string records = ADJOIN_SHARED_RECORDS;
+const std::string records = ADJOIN_REAL_RECORDS;
 const fs::path tmp = fs::path(ADJOIN_TEST_TMP) / "record_cli";
 constexpr double g = 9.80665;
 

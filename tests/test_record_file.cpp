@@ -15,7 +15,7 @@ using Catch::Matchers::Contains;
 namespace {
 
 constexpr double g = 9.80665;
-const std::string records = ADJOIN_SHARED_RECORDS;
+const std::string records = ADJOIN_REAL_RECORDS;
 
 RecordFormat with_units(AccelUnit unit, RecordFormat::Kind kind = RecordFormat::Kind::automatic) {
   RecordFormat f;
@@ -58,7 +58,7 @@ TEST_CASE("accel units: factors, names, round trip", "[record_file]") {
   CHECK_FALSE(parse_accel_unit("m/s", &u));
 }
 
-TEST_CASE("AT2 files of the shared records: NPTS, DT and units as in the README", "[record_file]") {
+TEST_CASE("AT2 files of the real records: NPTS, DT and units as in the README", "[record_file]") {
   struct Case {
     const char* file;
     double dt;
@@ -150,7 +150,7 @@ TEST_CASE("AT2 defects name the line", "[record_file]") {
   CHECK_THAT(error_of("a\nb\nc\n", at2), Contains("bad.txt:3:") && Contains("NPTS"));
 }
 
-TEST_CASE("two-column files of the shared records", "[record_file]") {
+TEST_CASE("two-column files of the real records", "[record_file]") {
   struct Case {
     const char* file;
     AccelUnit unit;

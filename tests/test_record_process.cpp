@@ -12,7 +12,7 @@
 using namespace adjoin;
 
 TEST_CASE("record process: baseline, band-pass, resampling and PGA scaling, read back exactly", "[record][process]") {
-  const std::string in = std::string(ADJOIN_SHARED_RECORDS) + "/two-column/elcentro_NS_full.dat";
+  const std::string in = std::string(ADJOIN_REAL_RECORDS) + "/two-column/elcentro_NS_full.dat";
   const auto out = std::filesystem::path(ADJOIN_TEST_TMP) / "processed.txt";
   const auto r = test::run_cli("record process '" + in + "' --units g --baseline 0 --bandpass 0.1:20 --resample 0.01 "
                                "--scale-pga 0.3 --out '" + out.string() + "'");
@@ -48,7 +48,7 @@ TEST_CASE("record process: baseline, band-pass, resampling and PGA scaling, read
 }
 
 TEST_CASE("record process: bad options exit 2 and name the option", "[record][process]") {
-  const std::string in = std::string(ADJOIN_SHARED_RECORDS) + "/two-column/elCentro.txt";
+  const std::string in = std::string(ADJOIN_REAL_RECORDS) + "/two-column/elCentro.txt";
   const auto out = std::filesystem::path(ADJOIN_TEST_TMP) / "bad.txt";
   for (const auto& [options, expect] : std::vector<std::pair<std::string, std::string>>{
            {"--bandpass 0.1", "--bandpass 0.1"},

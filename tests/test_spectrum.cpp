@@ -174,7 +174,7 @@ double check_closed_form(const ClosedForm& exact, double dt, const std::vector<d
 
 std::vector<fs::path> peer_records() {
   std::vector<fs::path> files;
-  for (const auto& entry : fs::directory_iterator(fs::path(ADJOIN_SHARED_RECORDS) / "peer"))
+  for (const auto& entry : fs::directory_iterator(fs::path(ADJOIN_REAL_RECORDS) / "peer"))
     if (entry.path().extension() == ".AT2") files.push_back(entry.path());
   std::sort(files.begin(), files.end());
   return files;
@@ -347,7 +347,7 @@ TEST_CASE("options: validation and periods", "[spectrum]") {
 }
 
 TEST_CASE("threads give the same numbers as one thread", "[spectrum]") {
-  const Record record = read_record(fs::path(ADJOIN_SHARED_RECORDS) / "peer" / "RSN1044_DirRot2.AT2");
+  const Record record = read_record(fs::path(ADJOIN_REAL_RECORDS) / "peer" / "RSN1044_DirRot2.AT2");
   SpectrumOptions one;
   one.threads = 1;
   one.dampings = {0.02, 0.05};
@@ -366,7 +366,7 @@ TEST_CASE("threads give the same numbers as one thread", "[spectrum]") {
 TEST_CASE("oscillators stepped four and eight at a time equal the one-oscillator recursion", "[spectrum]") {
   // The spectrum advances oscillators with equal sub-step counts together in vector lanes;
   // a lane must compute exactly what one oscillator alone computes, wherever it sits.
-  const Record record = read_record(fs::path(ADJOIN_SHARED_RECORDS) / "peer" / "RSN1044_DirRot2.AT2");
+  const Record record = read_record(fs::path(ADJOIN_REAL_RECORDS) / "peer" / "RSN1044_DirRot2.AT2");
   SpectrumOptions options;
   options.threads = 1;
   options.dampings = {0.0, 0.02, 0.05, 0.2};
@@ -401,7 +401,7 @@ TEST_CASE("peaks between sub-steps: exact search equals a 2000-points-per-period
   // Sampled at N points per period, a peak is missed by at most 1 - cos(pi / N): 1.2e-6 at
   // N = 2000. At the default 10 points the sampled peaks are low by up to ~3 % on these
   // records; the turning-point search removes that.
-  const Record record = read_record(fs::path(ADJOIN_SHARED_RECORDS) / "peer" / "RSN175_IMPVALL.H_H-E12140.AT2");
+  const Record record = read_record(fs::path(ADJOIN_REAL_RECORDS) / "peer" / "RSN175_IMPVALL.H_H-E12140.AT2");
   SpectrumOptions fine;
   fine.refine_peaks = false;
   fine.points_per_period = 2000.0;
@@ -452,7 +452,7 @@ TEST_CASE("PEER records: agreement with Newmark average acceleration at dt/50", 
 TEST_CASE("El Centro 1940 NS, 2 % damping: SD as published by Chopra", "[spectrum]") {
   RecordFormat format;
   format.units = AccelUnit::g;
-  const Record record = read_record(fs::path(ADJOIN_SHARED_RECORDS) / "two-column" / "elCentro.txt", format);
+  const Record record = read_record(fs::path(ADJOIN_REAL_RECORDS) / "two-column" / "elCentro.txt", format);
   SpectrumOptions options;
   options.periods = {0.5, 1.0, 2.0};
   options.dampings = {0.02};
@@ -473,7 +473,7 @@ TEST_CASE("adjoin spectrum: CSV to a file and to stdout", "[spectrum][cli]") {
   fs::create_directories(tmp);
   const fs::path out = tmp / "elcentro.csv";
   fs::remove(out);
-  const std::string record = std::string(ADJOIN_SHARED_RECORDS) + "/two-column/elCentro.txt";
+  const std::string record = std::string(ADJOIN_REAL_RECORDS) + "/two-column/elCentro.txt";
   const std::string cli = ADJOIN_CLI;
   REQUIRE(run(cli + " spectrum '" + record + "' --units g --damping 0.05,0.02 --range 0.1:2:20:log --out '" +
               out.string() + "'") == 0);
@@ -515,7 +515,7 @@ TEST_CASE("adjoin spectrum --peaks samples: the exact response's largest sampled
   // sub-steps (T = dt would otherwise get 10), no search between samples.
   const fs::path tmp = fs::path(ADJOIN_TEST_TMP) / "spectrum";
   fs::create_directories(tmp);
-  const fs::path file = fs::path(ADJOIN_SHARED_RECORDS) / "two-column" / "elCentro.txt";
+  const fs::path file = fs::path(ADJOIN_REAL_RECORDS) / "two-column" / "elCentro.txt";
   RecordFormat format;
   format.units = AccelUnit::g;
   const Record record = read_record(file, format);
@@ -547,7 +547,7 @@ TEST_CASE("adjoin spectrum --target: PSA against an EC8 spectrum, per damping", 
   // The printed ratios are those of the CSV's PSA to the code's spectrum with eta(damping).
   const fs::path tmp = fs::path(ADJOIN_TEST_TMP) / "spectrum";
   fs::create_directories(tmp);
-  const std::string record = std::string(ADJOIN_SHARED_RECORDS) + "/peer/RSN1044_DirRot2.AT2";
+  const std::string record = std::string(ADJOIN_REAL_RECORDS) + "/peer/RSN1044_DirRot2.AT2";
   const fs::path csv = tmp / "target.csv", err = tmp / "target.err";
   REQUIRE(run(std::string(ADJOIN_CLI) + " spectrum '" + record + "' --periods 0.1,0.3,0.6,1.5 --damping 0.05,0.02 " +
               "--target ec8:C:0.3:2 --out '" + csv.string() + "' 2> '" + err.string() + "'") == 0);
@@ -586,7 +586,7 @@ TEST_CASE("adjoin spectrum --target: PSA against an EC8 spectrum, per damping", 
 TEST_CASE("adjoin spectrum: plot with gnuplot", "[spectrum][cli]") {
   const fs::path tmp = fs::path(ADJOIN_TEST_TMP) / "spectrum";
   fs::create_directories(tmp);
-  const std::string record = std::string(ADJOIN_SHARED_RECORDS) + "/peer/RSN175_IMPVALL.H_H-E12140.AT2";
+  const std::string record = std::string(ADJOIN_REAL_RECORDS) + "/peer/RSN175_IMPVALL.H_H-E12140.AT2";
   const std::string cli = ADJOIN_CLI;
   const fs::path csv = tmp / "impvall.csv";
   for (const char* name : {"impvall.png", "impvall.svg"}) {
@@ -619,7 +619,7 @@ TEST_CASE("adjoin spectrum: plot with gnuplot", "[spectrum][cli]") {
 TEST_CASE("adjoin spectrum: bad input exits 2 with error:", "[spectrum][cli]") {
   const fs::path tmp = fs::path(ADJOIN_TEST_TMP) / "spectrum";
   fs::create_directories(tmp);
-  const std::string record = std::string(ADJOIN_SHARED_RECORDS) + "/two-column/elCentro.txt";
+  const std::string record = std::string(ADJOIN_REAL_RECORDS) + "/two-column/elCentro.txt";
   const std::string cli = ADJOIN_CLI;
   const fs::path err = tmp / "bad.err";
   struct Case {

@@ -361,7 +361,7 @@ TEST_CASE("EC8 elastic spectra, types 1 and 2, and the damping correction", "[sy
 }
 
 TEST_CASE("Target tables: the ASCE 7 file, and defects", "[synth]") {
-  const auto file = std::filesystem::path(ADJOIN_SHARED_RECORDS) / "targets" / "ASCE7.txt";
+  const auto file = std::filesystem::path(ADJOIN_REAL_RECORDS) / "targets" / "ASCE7.txt";
   const TargetSpectrum t = load_target_spectrum(file);
   CHECK(t.periods.size() == 15000);
   CHECK(t.psa_at(0.5) == 1.422);
@@ -466,7 +466,7 @@ TEST_CASE("Spectrum matching to the ASCE 7 table", "[synth]") {
   o.dt = 0.01;
   o.seed = 11;
   MatchOptions m;
-  m.target = load_target_spectrum(std::filesystem::path(ADJOIN_SHARED_RECORDS) / "targets" / "ASCE7.txt");
+  m.target = load_target_spectrum(std::filesystem::path(ADJOIN_REAL_RECORDS) / "targets" / "ASCE7.txt");
   m.period_min = 0.1;
   m.period_max = 3.0;
   m.band_points = 60;
@@ -478,7 +478,7 @@ TEST_CASE("Spectrum matching to the ASCE 7 table", "[synth]") {
 }
 
 TEST_CASE("Matching a recorded motion keeps its length and phases' timing", "[synth]") {
-  const auto file = std::filesystem::path(ADJOIN_SHARED_RECORDS) / "two-column" / "elCentro.txt";
+  const auto file = std::filesystem::path(ADJOIN_REAL_RECORDS) / "two-column" / "elCentro.txt";
   RecordFormat f;
   f.units = AccelUnit::g;
   const Record seed = read_record(file, f);

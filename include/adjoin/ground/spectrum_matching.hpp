@@ -27,7 +27,7 @@
 //  - A table of (period [s], PSA [g]) rows, periods strictly increasing, PSA > 0 (a first row
 //    at T = 0 may hold the PGA), interpolated linearly in period, taken to be at the
 //    matching's damping; text with one row per line,
-//    blank/tab/','/';' separated, '#' or '%' comment lines (e.g. ../shared/records/targets/
+//    blank/tab/','/';' separated, '#' or '%' comment lines (e.g. records/real/targets/
 //    ASCE7.txt).
 //
 // Algorithm (Fourier-amplitude scaling). The seed (n samples) is zero-padded to an FFT length
