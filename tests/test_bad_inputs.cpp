@@ -22,13 +22,19 @@
 //   absent = ["{tmp}/out"]                # paths that must not exist afterwards
 //   exists = ["{tmp}/a.csv"]              # paths that must exist afterwards
 //   finite = ["{tmp}/a.csv"]              # files with no nan/inf token (must exist)
+//   same_as_before = ["{tmp}/out/a.json"] # files the command must leave as they were
 //   cwd = "{tmp}/a/b"                     # working folder (default {tmp}; created)
 //   env = { NAME = "value" }              # extra environment
 //   [[case.file]]                         # made before the command, in order
 //   path = "{tmp}/scene.toml"
-//   text = "..."        # or hex = "00ff..", or copy = "{scenes}/paper-strong.toml",
-//                       # or kind = "dir" | "fifo" | "readonly-dir"
-//   append = "..."      # with copy: text appended to the copied file
+//   hex = "00ff.."      # content, in this order: hex bytes, a copied file, text, append
+//   copy = "{scenes}/paper-strong.toml"
+//   text = "..."
+//   append = "..."
+//   size = 1000000      # then resized (sparse zeros) to this many bytes
+//   kind = "dir" | "fifo" | "readonly-dir"   # instead of a file (root ignores read-only
+//                                            # folders: CI may run as root, so a case must not
+//                                            # rely on one being refused)
 //
 // Placeholders: {tmp} the case's own empty folder, {records} records/real, {scenes}
 // records/scenes, {source} the source tree.
@@ -97,11 +103,12 @@ void make_file(const toml::table& f, const Placeholders& p) {
     REQUIRE(::mkfifo(path.c_str(), 0600) == 0);
   } else {
     std::string content;
-    if (auto copy = f["copy"].value<std::string>()) content = adjoin::test::slurp(p(*copy));
-    if (auto text = f["text"].value<std::string>()) content += p(*text);
     if (auto hex = f["hex"].value<std::string>()) content += from_hex(*hex);
+    if (auto copy = f["copy"].value<std::string>()) content += adjoin::test::slurp(p(*copy));
+    if (auto text = f["text"].value<std::string>()) content += p(*text);
     if (auto append = f["append"].value<std::string>()) content += p(*append);
     std::ofstream(path, std::ios::binary) << content;
+    if (auto size = f["size"].value<std::int64_t>()) fs::resize_file(path, static_cast<std::uintmax_t>(*size));  // sparse
   }
 }
 
@@ -198,6 +205,9 @@ TEST_CASE("the catalogue of bad and extreme inputs keeps the contract", "[bad_in
       if (const auto* e = c["env"].as_table())
         for (const auto& [k, v] : *e) env[std::string(k.str())] = p(*v.value<std::string>());
 
+      std::map<std::string, std::string> before;  // same_as_before: contents to compare
+      for (const auto& path : strings(c, "same_as_before", p)) before[path] = adjoin::test::slurp(path);
+
       const Outcome o = run_case(strings(c, "args", p), cwd, env, scratch);
       INFO("stderr: " << o.err);
       const int expected = static_cast<int>(c["exit"].value_or(std::int64_t{-1}));
@@ -220,6 +230,10 @@ TEST_CASE("the catalogue of bad and extreme inputs keeps the contract", "[bad_in
         INFO("must exist and be finite: " << path);
         REQUIRE(fs::exists(path));
         CHECK(!has_non_finite(adjoin::test::slurp(path)));
+      }
+      for (const auto& [path, content] : before) {
+        INFO("must be left as it was: " << path);
+        CHECK(adjoin::test::slurp(path) == content);
       }
       for (const auto& t : temporaries(tmp)) {
         INFO("temporary file left: " << t.string());

@@ -39,6 +39,7 @@ int converge_command(const ConvergeArgs& args) {
     plot_target(args.plot, {}, "", &style, "--plot");
   }
   const Scene scene = load_scene(args.scene, args.overrides);
+  for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
   ConvergenceOptions options;
   if (!args.schemes.empty()) {
     options.schemes.clear();

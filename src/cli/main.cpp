@@ -1,10 +1,13 @@
 // adjoin: the command-line program. Parses the command line, dispatches to a command and maps
-// failures to exit statuses: 0 success, 2 bad input, 3 numerical failure.
+// failures to exit statuses: 0 success, 2 bad input, 3 numerical failure (and, for the
+// exceptions nobody foresaw, 3 with "internal": the contract has no other status).
 #include <algorithm>
 #include <exception>
+#include <new>
 #include <iostream>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/text_file.hpp"
 #include "command.hpp"
 
 namespace adjoin::cli {
@@ -47,7 +50,7 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "error: " << e.what() << " (see adjoin --help)\n";
+    std::cerr << "error: " << printable_message(e.what()) << " (see adjoin --help)\n";
     return kExitInputError;
   }
 
@@ -56,13 +59,19 @@ int main(int argc, char** argv) {
       if (sub->parsed()) return runner();
     return 0;
   } catch (const InputError& e) {
-    std::cerr << "error: " << e.what() << "\n";
+    std::cerr << "error: " << printable_message(e.what()) << "\n";
     return kExitInputError;
   } catch (const NumericalError& e) {
-    std::cerr << "error: numerical failure: " << e.what() << "\n";
+    std::cerr << "error: numerical failure: " << printable_message(e.what()) << "\n";
+    return kExitNumericalError;
+  } catch (const std::bad_alloc&) {
+    // Inputs are sized up front (records, runs, sweeps refuse what would not fit); reaching
+    // this means an estimate missed a case.
+    std::cerr << "error: numerical failure: out of memory; reduce the problem's size (steps, samples, runs)\n";
     return kExitNumericalError;
   } catch (const std::exception& e) {
-    std::cerr << "error: internal: " << e.what() << "\n";
-    return 1;
+    // A bug, not the user's fault; still within the documented exit statuses.
+    std::cerr << "error: internal: " << printable_message(e.what()) << " (please report this)\n";
+    return kExitNumericalError;
   }
 }

@@ -2,6 +2,8 @@
 
 #include <charconv>
 
+#include "../detail/finite_output.hpp"
+
 namespace adjoin {
 
 EnergyCsvWriter::EnergyCsvWriter(std::ostream& out, const Scales& scales, std::size_t every)
@@ -22,8 +24,10 @@ void EnergyCsvWriter::observe(const State& s) {
   const EnergyBalance& e = energy_.balance();
   const double k = scales_.energy;
   const double values[] = {e.t * scales_.time, e.input * k, e.kinetic * k, e.rod1 * k, e.rod2 * k, e.friction * k, e.residual * k};
+  static const char* const columns[] = {"t", "input", "kinetic", "rod1", "rod2", "friction", "residual"};
   char number[32];
   for (std::size_t i = 0; i < 7; ++i) {
+    detail::require_finite_output(values[i], "energy.csv", columns[i], e.t * scales_.time, e.t);
     auto [end, ec] = std::to_chars(number, number + sizeof number, values[i]);
     buffer_.append(number, end);
     buffer_.push_back(i + 1 < 7 ? ',' : '\n');

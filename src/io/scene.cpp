@@ -18,6 +18,8 @@
 #include "adjoin/ground/record_motion.hpp"
 #include "adjoin/ground/spectrum_matching.hpp"
 #include "adjoin/ground/synthesis.hpp"
+#include "adjoin/io/text_file.hpp"
+#include "adjoin/solver/simulate.hpp"
 
 namespace adjoin {
 namespace {
@@ -100,6 +102,11 @@ const std::map<std::string, std::vector<std::string>>& ground_keys() {
 }
 
 using detail::nearest;
+
+std::string trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t"), last = s.find_last_not_of(" \t");
+  return first == std::string::npos ? std::string() : s.substr(first, last - first + 1);
+}
 
 const char* kind_name(Kind kind) {
   switch (kind) {
@@ -241,8 +248,10 @@ void apply_override(toml::table& table, const std::string& text, std::map<std::s
   const std::string origin = "--set " + text;
   if (eq == std::string::npos || eq == 0)
     throw InputError(origin + ": expected KEY=VALUE with a dotted key, e.g. solver.h=0.001");
-  std::string key = text.substr(0, eq);
-  const std::string value = text.substr(eq + 1);
+  // "solver.h = 0.01" (spaces around '=', as in the scene file) means "solver.h=0.01".
+  std::string key = trim(text.substr(0, eq));
+  const std::string value = trim(text.substr(eq + 1));
+  if (key.empty()) throw InputError(origin + ": expected KEY=VALUE with a dotted key, e.g. solver.h=0.001");
   toml::table holder;
   try {
     holder = toml::parse("v = " + value);
@@ -257,11 +266,15 @@ void apply_override(toml::table& table, const std::string& text, std::map<std::s
     parts.push_back(part);
   }
   toml::table* current = &table;
+  std::string path;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    path += (path.empty() ? "" : ".") + parts[i];
     auto* next = current->get(parts[i]);
     if (!next) {
+      // A table the override creates is the override's: an error about it names the --set.
       current->insert(parts[i], toml::table{});
       next = current->get(parts[i]);
+      origins.emplace(path, origin);
     }
     if (!next->is_table()) throw InputError(origin + ": " + parts[i] + " is not a table");
     current = next->as_table();
@@ -473,6 +486,50 @@ std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, cons
   });
 }
 
+// A run that cannot fit in memory is refused before it starts (it would otherwise fail after
+// minutes, or push the machine into swap): the solver's history plus the accelerations kept
+// for in-run spectra, against 80 % of the machine's memory.
+void check_memory(const SceneReader& r, const Scene& scene) {
+  const double steps = static_cast<double>(scene.solver.steps());
+  double need = estimated_history_bytes(scene.solver, scene.model);
+  if (scene.output.spectra) need += 3.0 * 8.0 * (steps + 1.0);
+  const double have = physical_memory_bytes();
+  if (have <= 0.0 || need <= 0.8 * have) return;
+  std::ostringstream s;
+  s.precision(3);
+  s << "solver.t_end / solver.h = " << steps << " steps would need about " << need / 1e9
+    << " GB of memory (the " << to_string(scene.solver.history) << " history"
+    << (scene.output.spectra ? " and the accelerations kept for output.spectra" : "") << "), more than the "
+    << 0.8 * have / 1e9 << " GB this machine can give (80 % of " << have / 1e9
+    << " GB); raise solver.h or shorten solver.t_end";
+  r.fail(r.has("solver.h") ? "solver.h" : "solver", s.str());
+}
+
+void add_warnings(const SceneReader& r, Scene& scene) {
+  const double T = scene.scales.time;
+  const std::string unit = scene.scales.si ? " s" : "";
+  const auto number = [](double v) { return format_number(v); };
+  const double dt = scene.ground->sample_interval();
+  if (dt > 0.0 && scene.solver.h > dt * (1.0 + 1e-9))
+    scene.warnings.push_back(r.where("solver.h") + "solver.h = " + number(scene.solver.h * T) + unit +
+                             " is coarser than the record's sampling interval " + number(dt * T) + unit +
+                             ": the solver steps over record samples and can miss its peaks; use solver.h <= " +
+                             number(dt * T));
+  const double duration = scene.ground->duration();
+  if (std::isfinite(duration) && scene.solver.t_end < duration * (1.0 - 1e-9))
+    scene.warnings.push_back(r.where("solver.t_end") + "solver.t_end = " + number(scene.solver.t_end * T) + unit +
+                             " ends before the ground motion does (" + number(duration * T) + unit +
+                             "): the rest of the motion is not applied");
+  if (r.overridden("ground.file") && !r.overridden("ground.scale_pga") && r.has("ground.scale_pga"))
+  {
+    std::string at = r.where("ground.scale_pga");
+    at = at.substr(0, at.size() - 2);  // "FILE:LINE"
+    scene.warnings.push_back(r.where("ground.file") + "the scene scales its record to ground.scale_pga = " +
+                             number(r.number("ground.scale_pga")) + " g (" + at +
+                             "), so the new record is scaled to that PGA too; add --unset ground.scale_pga to keep its own amplitude");
+  }
+}
+
 Scene build_scene(const SceneReader& r, const std::string& name) {
   Scene scene;
   scene.name = r.string("name", "");
@@ -506,13 +563,36 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
     for (auto [key, value] : {std::pair{"model.m1", m1}, {"model.m2", m2}, {"model.k1", k1}, {"model.k2", k2}})
       if (!(std::isfinite(value) && value > 0.0))
         r.fail(key, std::string(key) + " = " + format_number(value) + " must be positive");
+    // SI values are scaled by T0 = sqrt(m1/k1), X0 = m1 g/k1 and m1 g X0 (energies): inside
+    // these ranges every scale and every reported SI number stays finite.
+    const auto in_range = [&](const char* key, double value, double lo, double hi, const char* unit) {
+      if (!(value >= lo && value <= hi))
+        r.fail(key, std::string(key) + " = " + format_number(value) + " must lie in [" + format_number(lo) + ", " +
+                        format_number(hi) + "] " + unit);
+    };
+    in_range("model.m1", m1, 1e-3, 1e12, "kg");
+    in_range("model.m2", m2, 1e-3, 1e12, "kg");
+    in_range("model.k1", k1, 1e-3, 1e15, "N/m");
+    in_range("model.k2", k2, 1e-3, 1e15, "N/m");
     if (!(std::isfinite(slip) && slip >= 0.0))
       r.fail("model.slip_force", "model.slip_force = " + format_number(slip) + " must be zero or positive [N]");
+    if (!(m1 / m2 >= 1.0 / kMaxRatio && m1 / m2 <= kMaxRatio))
+      r.fail("model.m2", "model.m1 / model.m2 = " + format_number(m1 / m2) + " must lie in [" +
+                             format_number(1.0 / kMaxRatio) + ", " + format_number(kMaxRatio) + "]");
+    if (!(k2 / k1 >= 1.0 / kMaxRatio && k2 / k1 <= kMaxRatio))
+      r.fail("model.k2", "model.k2 / model.k1 = " + format_number(k2 / k1) + " must lie in [" +
+                             format_number(1.0 / kMaxRatio) + ", " + format_number(kMaxRatio) + "]");
+    if (!(slip <= kMaxRatio * m1 * kStandardGravity))
+      r.fail("model.slip_force", "model.slip_force = " + format_number(slip) + " N must be at most " +
+                                     format_number(kMaxRatio) + " m1 g = " + format_number(kMaxRatio * m1 * kStandardGravity) + " N");
     scene.scales = Scales::SI(m1, k1);
     m.rho = m1 / m2;
     m.eps = k2 / k1;
     m.mu = slip / (m1 * kStandardGravity);
     m.gap0 = r.number("model.gap0") / scene.scales.length;
+    if (!(std::abs(m.gap0) <= kMaxRatio))
+      r.fail("model.gap0", "model.gap0 = " + format_number(r.number("model.gap0")) + " m must lie within +-" +
+                               format_number(kMaxRatio * scene.scales.length) + " m (1e6 X0, X0 = m1 g / k1)");
   } else {
     r.fail("model.units", "model.units = \"" + units + "\" must be \"dimensionless\" or \"SI\"");
   }
@@ -594,15 +674,20 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
       if (!(d >= 0.0 && d < 1.0))
         r.fail("output.spectra.damping", "output.spectra.damping: " + format_number(d) + " must be a damping ratio in [0, 1)");
     spectra.periods = r.numbers("output.spectra.periods");
+    // Periods far outside the range of structures (in the scene's time unit) only lose
+    // digits: 1e-200 once gave NaN spectra.
     for (double t : spectra.periods)
-      if (!(std::isfinite(t) && t >= 0.0))
-        r.fail("output.spectra.periods", "output.spectra.periods: " + format_number(t) + " must be zero or a positive period");
+      if (!(t == 0.0 || (t >= 1e-4 && t <= 1e4)))
+        r.fail("output.spectra.periods", "output.spectra.periods: " + format_number(t) +
+                                             " must be 0 (the peak acceleration) or lie in [0.0001, 10000]");
     out.spectra = spectra;
   }
   scene.output.timeseries = r.boolean("output.timeseries", false);
   const std::int64_t every = r.integer("output.every", 1);
   if (every < 1) r.fail("output.every", "output.every = " + std::to_string(every) + " must be 1 or more");
   scene.output.every = static_cast<std::size_t>(every);
+  check_memory(r, scene);
+  add_warnings(r, scene);
   return scene;
 }
 
@@ -641,12 +726,50 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   return build_scene(reader, name);
 }
 
-Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) throw InputError(file.string() + ": cannot open the scene file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  Scene scene = parse_scene(buffer.str(), file.string(), overrides);
+std::vector<std::string> implied_unsets(const std::string& key, const std::string& value,
+                                        const std::string& current_source) {
+  std::vector<std::string> out;
+  const auto unquoted = [](std::string v) {
+    if (v.size() >= 2 && (v.front() == '"' || v.front() == '\'') && v.back() == v.front()) v = v.substr(1, v.size() - 2);
+    return v;
+  };
+  for (const char* rod : {"model.rod1", "model.rod2"})
+    if (key == std::string(rod) + ".elastic" && value == "true")
+      for (const char* k : {".order", ".tau_x", ".tau_f"}) out.push_back(std::string(rod) + k);
+  if (key == "ground.source" && unquoted(value) != current_source) out.push_back("ground");
+  return out;
+}
+
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                 const std::vector<std::string>& unsets) {
+  const std::string text = read_text_file(file, "scene");
+  std::vector<std::string> removed;
+  if (!unsets.empty() || !overrides.empty()) {
+    toml::table table;
+    try {
+      table = toml::parse(text, file.string());
+    } catch (const toml::parse_error&) {
+      return parse_scene(text, file.string(), overrides);  // words the syntax error
+    }
+    for (const auto& key : unsets) {
+      if (!table.at_path(key)) {
+        std::vector<std::string> present;
+        for (const auto& k : known_scene_keys())
+          if (table.at_path(k)) present.push_back(k);
+        throw InputError("--unset " + key + ": the scene has no key or section " + key +
+                         (present.empty() ? std::string() : "; did you mean " + nearest(key, present) + "?"));
+      }
+      removed.push_back(key);
+    }
+    const std::string source = table.at_path("ground.source").value_or(std::string());
+    for (const auto& o : overrides) {
+      const auto eq = o.find('=');
+      if (eq == std::string::npos) continue;  // parse_scene words it
+      for (auto& k : implied_unsets(trim(o.substr(0, eq)), trim(o.substr(eq + 1)), source))
+        if (table.at_path(k)) removed.push_back(k);
+    }
+  }
+  Scene scene = parse_scene(text, file.string(), overrides, removed);
   scene.file = file;
   return scene;
 }

@@ -4,10 +4,23 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "../detail/finite_output.hpp"
+
 namespace adjoin {
 namespace {
 
 using nlohmann::ordered_json;
+
+// Every number of the summary must be finite: nlohmann writes NaN and Inf as null, which a
+// reader would take for "not computed".
+void require_finite(const ordered_json& j, const std::string& path, double t_end_seconds, double t_end) {
+  if (j.is_number_float() && !std::isfinite(j.get<double>()))
+    detail::non_finite_output("summary.json", path, j.get<double>(), t_end_seconds, t_end);
+  if (j.is_object())
+    for (const auto& [key, value] : j.items()) require_finite(value, path.empty() ? key : path + "." + key, t_end_seconds, t_end);
+  if (j.is_array())
+    for (std::size_t i = 0; i < j.size(); ++i) require_finite(j[i], path + "[" + std::to_string(i) + "]", t_end_seconds, t_end);
+}
 
 ordered_json peak(const Peak& p, double scale, double time_scale) {
   return ordered_json{{"max_abs", p.max_abs * scale}, {"t", p.t * time_scale}};
@@ -89,6 +102,8 @@ std::string summary_json(const Scene& scene, const RunReport& r) {
     }
     j["spectra"] = spectra;
   }
+  const double t_end = static_cast<double>(r.solver.steps) * r.solver.h;
+  require_finite(j, "", t_end * k.time, t_end);
   return j.dump(2) + "\n";
 }
 
@@ -150,9 +165,15 @@ std::string spectra_csv(const RunReport& report) {
   s.precision(10);
   s << "signal,period,damping,sd,sv,sa,psv,psa\n";
   for (const auto& sig : report.spectra)
-    for (const auto& v : sig.spectrum.values)
+    for (const auto& v : sig.spectrum.values) {
+      for (double x : {v.sd, v.sv, v.sa, v.psv, v.psa})
+        if (!std::isfinite(x))
+          throw NumericalError("spectra.csv: the " + sig.signal + " spectrum is non-finite at period " +
+                                   std::to_string(v.period) + "; check the scene's scales and output.spectra.periods",
+                               0.0);
       s << sig.signal << ',' << v.period << ',' << v.damping << ',' << v.sd << ',' << v.sv << ',' << v.sa << ','
         << v.psv << ',' << v.psa << '\n';
+    }
   return s.str();
 }
 

@@ -2,6 +2,8 @@
 
 #include <charconv>
 
+#include "../detail/finite_output.hpp"
+
 namespace adjoin {
 
 TimeSeriesCsvWriter::TimeSeriesCsvWriter(std::ostream& out, const Scales& scales, std::size_t every)
@@ -24,8 +26,11 @@ void TimeSeriesCsvWriter::observe(const State& s) {
                            s.v1 * k.velocity, s.v2 * k.velocity, s.f1 * k.force,
                            s.f2 * k.force,   s.q * k.force,     s.ag * k.acceleration,
                            (gap0_ + s.x2 - s.x1) * k.length};
+  static const char* const columns[] = {"t", "x1", "x2", "v1", "v2", "f1", "f2", "q", "ag", "gap"};
   char number[32];
-  for (double v : values) {
+  for (std::size_t i = 0; i < std::size(values); ++i) {
+    const double v = values[i];
+    detail::require_finite_output(v, "timeseries.csv", columns[i], s.t * k.time, s.t);
     auto [end, ec] = std::to_chars(number, number + sizeof number, v);
     buffer_.append(number, end);
     buffer_.push_back(',');

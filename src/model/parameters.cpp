@@ -37,6 +37,9 @@ bool Rod::IsValid(const std::string& prefix, std::string* error) const {
   if (!(tau_x > tau_f))
     return fail(error, prefix + ".tau_x = " + format(tau_x) + " must be greater than tau_f = " +
                            format(tau_f) + " (second law)");
+  if (tau_x > kMaxRelaxationTime)
+    return fail(error, prefix + ".tau_x = " + format(tau_x) + " is beyond the supported " +
+                           format(kMaxRelaxationTime) + " (the rod's memory terms would overflow)");
   return true;
 }
 
@@ -51,6 +54,20 @@ bool Model::IsValid(std::string* error) const {
     return fail(error, "model.eps = " + format(eps) + " must be positive (stiffness ratio k2/k1)");
   if (!(mu >= 0.0))
     return fail(error, "model.mu = " + format(mu) + " must be zero or positive (slip force)");
+  // Beyond these ranges energies per unit m1 (v2^2 / rho, eps x2^2) overflow or lose every
+  // digit; no pair of real structures is that unequal.
+  if (rho < 1.0 / kMaxRatio || rho > kMaxRatio)
+    return fail(error, "model.rho = " + format(rho) + " must lie in [" + format(1.0 / kMaxRatio) + ", " +
+                           format(kMaxRatio) + "] (mass ratio m1/m2)");
+  if (eps < 1.0 / kMaxRatio || eps > kMaxRatio)
+    return fail(error, "model.eps = " + format(eps) + " must lie in [" + format(1.0 / kMaxRatio) + ", " +
+                           format(kMaxRatio) + "] (stiffness ratio k2/k1)");
+  if (mu > kMaxRatio)
+    return fail(error, "model.mu = " + format(mu) + " must be at most " + format(kMaxRatio) +
+                           " (slip force / (m1 g); a larger one never slips: use a large finite value)");
+  if (std::abs(gap0) > kMaxRatio)
+    return fail(error, "model.gap0 = " + format(gap0) + " must lie in [-" + format(kMaxRatio) + ", " +
+                           format(kMaxRatio) + "] (in units of X0 = m1 g / k1)");
   return rod1.IsValid("model.rod1", error) && rod2.IsValid("model.rod2", error);
 }
 

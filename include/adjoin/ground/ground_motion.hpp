@@ -22,6 +22,8 @@ class GroundMotion {
   virtual std::string describe() const = 0;
   // The time after which the source is identically zero (infinity if it never is).
   virtual double duration() const { return std::numeric_limits<double>::infinity(); }
+  // The sampling interval of a sampled source (a record), dimensionless; 0 for a function.
+  virtual double sample_interval() const { return 0.0; }
 };
 
 }  // namespace adjoin

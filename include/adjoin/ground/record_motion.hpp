@@ -24,6 +24,7 @@ class RecordMotion final : public GroundMotion {
   double ag(double t) const override;
   std::string describe() const override;
   double duration() const override;
+  double sample_interval() const override { return record_.dt / time_scale_; }
 
   const Record& record() const { return record_; }
   double time_scale() const { return time_scale_; }

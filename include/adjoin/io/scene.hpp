@@ -55,11 +55,23 @@ struct Scene {
   std::shared_ptr<const GroundMotion> ground;
   SolverOptions solver;        // dimensionless h and t_end
   OutputOptions output;
+  // Valid but probably unintended choices ("solver.h is coarser than the record's dt"): the
+  // command line prints them on stderr as "warning: ..." and the run goes on.
+  std::vector<std::string> warnings;
 };
 
 // Reads and checks a scene file; `overrides` are "dotted.key=value" strings (TOML values; a
-// bare word is taken as a string).
-Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+// bare word is taken as a string), `unsets` dotted keys or sections removed first (`--unset`;
+// each must exist). Overrides restructure the scene as a sweep's edits do
+// (implied_unsets): `ground.source` set to another source drops the old source's [ground]
+// keys, `model.rodN.elastic = true` drops the rod's order and relaxation times.
+Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {},
+                 const std::vector<std::string>& unsets = {});
+
+// The keys an edit `key = value` (value as TOML text) makes obsolete in a scene whose current
+// ground source is `current_source`: one rule for --set and for sweeps.
+std::vector<std::string> implied_unsets(const std::string& key, const std::string& value,
+                                        const std::string& current_source);
 // The same from TOML text; `name` stands for the file in messages. `removed` are dotted keys
 // taken out of the text before the overrides apply (sweeps' `unset`); messages about the rest
 // still cite the text's own lines.

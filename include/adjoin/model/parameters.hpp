@@ -8,11 +8,17 @@
 //     q in mu Sign(x1' - x2')
 //
 // Model::IsValid enforces the thermodynamic restrictions (0 < order < 1, tau_f > 0,
-// tau_x > tau_f) and the physical ones (eps > 0, rho > 0, mu >= 0). Its messages name the
-// scene key so that a user can find the offending line.
+// tau_x > tau_f) and the physical ones (eps > 0, rho > 0, mu >= 0), and the ranges within
+// which every reported number stays finite (kMaxRatio below). Its messages name the scene key
+// so that a user can find the offending line.
 #include <string>
 
 namespace adjoin {
+
+// The ranges the model supports: ratios rho, eps in [1/kMaxRatio, kMaxRatio], mu and |gap0|
+// at most kMaxRatio, relaxation times tau_x at most kMaxRelaxationTime.
+inline constexpr double kMaxRatio = 1e6;
+inline constexpr double kMaxRelaxationTime = 1e12;
 
 // One fractional Zener rod. `elastic` rods have f = stiffness * x and carry no history;
 // order and the relaxation times are then ignored.

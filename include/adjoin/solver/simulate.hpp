@@ -34,4 +34,12 @@ struct SolverSummary {
 SolverSummary simulate(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                        Observer& observer);
 
+// An upper bound of the memory simulate() will hold (SolverSummary::history_bytes: the rods'
+// history engines, which grow with the number of steps), known before the run, so that a run
+// too large for the machine can be refused up front rather than fail after minutes.
+double estimated_history_bytes(const SolverOptions& options, const Model& model);
+
+// The machine's physical memory in bytes (0 if unknown).
+double physical_memory_bytes();
+
 }  // namespace adjoin

@@ -1,0 +1,50 @@
+#include "adjoin/io/run_files.hpp"
+
+#include <algorithm>
+#include <memory>
+#include <system_error>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/io/atomic_file.hpp"
+#include "adjoin/io/energy_csv.hpp"
+#include "adjoin/io/summary.hpp"
+#include "adjoin/io/timeseries_csv.hpp"
+
+namespace adjoin {
+
+const std::vector<std::string>& run_file_names() {
+  static const std::vector<std::string> names = {"summary.json", "timeseries.csv", "energy.csv", "spectra.csv"};
+  return names;
+}
+
+RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) throw InputError(dir.string() + ": cannot create the output folder: " + error.message());
+
+  FileSet set(dir, run_file_names());
+  // Streamed outputs: each writer sees the grid points as they are computed.
+  std::vector<std::unique_ptr<Observer>> writers;
+  ObserverList streams;
+  if (scene.output.timeseries) {
+    writers.push_back(std::make_unique<TimeSeriesCsvWriter>(set.open("timeseries.csv"), scene.scales, scene.output.every));
+    streams.add(writers.back().get());
+  }
+  if (scene.output.energy_history) {
+    writers.push_back(std::make_unique<EnergyCsvWriter>(set.open("energy.csv"), scene.scales, scene.output.every));
+    streams.add(writers.back().get());
+  }
+  RunFiles files;
+  files.report = run_scene(scene, writers.empty() ? nullptr : &streams);
+  if (!files.report.spectra.empty()) set.open("spectra.csv") << spectra_csv(files.report);
+  set.open("summary.json") << summary_json(scene, files.report);
+  files.written = set.commit();
+  const auto rank = [](const std::filesystem::path& p) {
+    const auto& names = run_file_names();
+    return std::find(names.begin(), names.end(), p.filename().string()) - names.begin();
+  };
+  std::sort(files.written.begin(), files.written.end(), [&](const auto& a, const auto& b) { return rank(a) < rank(b); });
+  return files;
+}
+
+}  // namespace adjoin
