@@ -1,28 +1,74 @@
-// Fuzzes the scene loader (TOML, key checking, validation, SI scaling): any text must load or
-// raise InputError, never crash, hang or trip a sanitizer. Scenes that load are not solved.
+// Fuzzes the scene loader (TOML, key checking, validation, SI scaling, and the ground sources
+// with their processing): any input must load or raise InputError, never crash, hang or trip
+// a sanitizer. Scenes that load are not solved.
 //
-// Scenes whose ground is a record or synthetic noise are skipped: loading them reads a file
-// named by the input (which could be /dev/zero) or synthesizes up to 2^26 samples, work that
-// is valid but unbounded; the record readers have their own fuzzer (fuzz_record.cpp) and the
-// synthesis its own tests.
+// Input: a scene, optionally followed by a line "#---record---" and the text of a record
+// file. A scene whose ground is a record reads that record (written to a scratch file the
+// harness names in ground.file), so the readers are fuzzed together with the scene's
+// processing keys (window, baseline, padding, filters, resampling, scaling). Work is bounded
+// so each input runs in milliseconds: inputs are at most libFuzzer's -max_len, and scenes
+// that ask for very long padding, very fine resampling or more than 2^15 synthetic samples
+// are skipped (valid but slow, not interesting to the fuzzer).
+#include <unistd.h>
+
+#include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <string>
 #include <toml++/toml.h>
 
 #include "adjoin/errors.hpp"
 #include "adjoin/io/scene.hpp"
 
+namespace {
+
+const std::string kSeparator = "#---record---\n";
+
+double number_or(const toml::table& t, const char* path, double fallback) {
+  const auto node = t.at_path(path);
+  if (!node) return fallback;
+  if (auto v = node.value<double>()) return *v;
+  return fallback;
+}
+
+// Valid but slow grounds: skipped, see the header.
+bool too_much_work(const toml::table& t, const std::string& source) {
+  if (source == "record") {
+    if (number_or(t, "ground.pad_before", 0) > 200 || number_or(t, "ground.pad_after", 0) > 200) return true;
+    if (t.at_path("ground.resample_dt") && !(number_or(t, "ground.resample_dt", 1) >= 1e-3)) return true;
+    if (t.at_path("ground.dt") && !(number_or(t, "ground.dt", 1) >= 1e-4)) return true;
+  }
+  if (source == "filtered-noise") {
+    const double duration = number_or(t, "ground.duration", 20.0), dt = number_or(t, "ground.dt", 0.005);
+    if (!(dt > 0) || !(duration / dt < 32768.0)) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  const std::string text(reinterpret_cast<const char*>(data), size);
+  std::string text(reinterpret_cast<const char*>(data), size);
+  std::string record;
+  if (const auto at = text.find(kSeparator); at != std::string::npos) {
+    record = text.substr(at + kSeparator.size());
+    text.resize(at);
+  }
+  std::vector<std::string> overrides;
   try {
     const toml::table table = toml::parse(text);
-    const auto source = table.at_path("ground.source").value<std::string>();
-    if (source && (*source == "record" || *source == "filtered-noise")) return 0;
+    const std::string source = table.at_path("ground.source").value_or(std::string());
+    if (too_much_work(table, source)) return 0;
+    if (source == "record") {
+      static const std::string file = "/tmp/adjoin-fuzz-scene-record." + std::to_string(::getpid());
+      std::ofstream(file, std::ios::binary | std::ios::trunc) << record;
+      overrides.push_back("ground.file=\"" + file + "\"");
+    }
   } catch (const toml::parse_error&) {
     // not TOML: the loader must say so
   }
   try {
-    const adjoin::Scene scene = adjoin::parse_scene(text, "/nonexistent/fuzz.toml");
+    const adjoin::Scene scene = adjoin::parse_scene(text, "/nonexistent/fuzz.toml", overrides);
     (void)scene;
   } catch (const adjoin::InputError&) {
   }
