@@ -1,18 +1,23 @@
 #include "adjoin/observe/peaks.hpp"
 
+#include <cmath>
+
 namespace adjoin {
 
 void PeakObserver::begin(const RunInfo&) {
   peaks_ = Peaks{};
-  for (SmoothPeak* p : {&x1_, &x2_, &f1_, &f2_, &drift_}) p->reset();
+  for (SmoothPeak* p : {&f1_, &f2_}) p->reset();
+  for (DerivativePeak* p : {&x1_, &x2_, &drift_}) p->reset();
 }
 
 void PeakObserver::observe(const State& s) {
-  x1_.update(s.x1, s.t);
-  x2_.update(s.x2, s.t);
+  // Relative accelerations x'' = (absolute) + a_g.
+  const double acc1 = s.a1 + s.ag, acc2 = s.a2 + s.ag;
+  x1_.update({s.t, s.x1, s.v1, acc1}, s.t_switch);
+  x2_.update({s.t, s.x2, s.v2, acc2}, s.t_switch);
+  drift_.update({s.t, s.x1 - s.x2, s.v1 - s.v2, acc1 - acc2}, s.t_switch);
   f1_.update(s.f1, s.t);
   f2_.update(s.f2, s.t);
-  drift_.update(s.x1 - s.x2, s.t);
   peaks_.x1 = x1_.peak();
   peaks_.x2 = x2_.peak();
   peaks_.f1 = f1_.peak();
@@ -22,7 +27,8 @@ void PeakObserver::observe(const State& s) {
   peaks_.v2.update(s.v2, s.t);
   peaks_.a1.update(s.a1, s.t);
   peaks_.a2.update(s.a2, s.t);
-  peaks_.q.update(s.q, s.t);
+  // q reaches a new largest value where the damper starts to slip: at the located switch.
+  peaks_.q.update(s.q, std::isnan(s.t_switch) ? s.t : s.t_switch);
   peaks_.ag.update(s.ag, s.t);
 }
 

@@ -1,5 +1,7 @@
 #include "adjoin/observe/pounding.hpp"
 
+#include <cmath>
+
 #include "adjoin/observe/extremum.hpp"
 
 namespace adjoin {
@@ -7,37 +9,35 @@ namespace adjoin {
 void PoundingObserver::begin(const RunInfo& info) {
   gap0_ = info.model.gap0;
   started_ = false;
-  samples_ = 0;
   margin_ = PoundingMargin{};
 }
 
 void PoundingObserver::observe(const State& s) {
-  const double gap = gap0_ + s.x2 - s.x1;
-  // A local minimum at the previous sample: refine it between samples (extremum.hpp).
-  if (samples_ >= 2 && previous_gap_ <= before_previous_gap_ && previous_gap_ < gap &&
-      previous_gap_ <= margin_.min_gap) {
-    const Vertex v = parabola_vertex(previous_t_, s.t - previous_t_, before_previous_gap_, previous_gap_, gap);
-    if (v.y <= margin_.min_gap) {
+  const Sample now{s.t, gap0_ + s.x2 - s.x1, s.v2 - s.v1, s.a2 - s.a1};
+  // A minimum inside the step: the gap's derivative (the relative velocity) turns from
+  // negative to non-negative; refined from the derivatives, with the located switch as a kink
+  // (extremum.hpp).
+  if (started_ && previous_.dy < 0.0 && now.dy >= 0.0) {
+    const Vertex v = step_extremum(previous_, now, s.t_switch);
+    if (v.y < margin_.min_gap && v.y <= previous_.y && v.y <= now.y) {
       margin_.min_gap = v.y;
       margin_.t_min_gap = v.t;
     }
   }
-  if (!started_ || gap < margin_.min_gap) {
-    margin_.min_gap = gap;
+  // A sample below the minimum; a stuck, constant gap does not move its time (ties go to the
+  // first time the minimum was reached).
+  if (!started_ || now.y < margin_.min_gap - 1e-13 * (1.0 + std::abs(margin_.min_gap))) {
+    margin_.min_gap = now.y;
     margin_.t_min_gap = s.t;
   }
-  if (!margin_.contact && gap <= 0.0) {
+  if (!margin_.contact && now.y <= 0.0) {
     margin_.contact = true;
     double t = s.t;
-    if (started_ && previous_gap_ > 0.0)
-      t = previous_t_ + (s.t - previous_t_) * previous_gap_ / (previous_gap_ - gap);
+    if (started_ && previous_.y > 0.0) t = previous_.t + (s.t - previous_.t) * previous_.y / (previous_.y - now.y);
     margin_.t_first_contact = t;
   }
-  before_previous_gap_ = previous_gap_;
-  previous_gap_ = gap;
-  previous_t_ = s.t;
+  previous_ = now;
   started_ = true;
-  ++samples_;
 }
 
 }  // namespace adjoin

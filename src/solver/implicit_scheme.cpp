@@ -20,10 +20,13 @@
 // is split at the located zero crossing.
 //
 // Trapezoidal mechanics is A-stable and the rods are implicit, so the step is stable for any
-// h (no explicit stability bound). Reported q at t_{n+1} is the step's Q; in the step of a
-// slip reversal it is the average of the force that flips from one limit to the other.
+// h (no explicit stability bound). The reported q at t_{n+1} is the damper force at that
+// instant (the stick force (rho f2 - f1)/(rho + 1) while stuck, +-mu while slipping), not the
+// step's average Q, so q, the accelerations and the switching instants located from them are
+// second order.
 #include <cmath>
 #include <limits>
+#include <utility>
 #include <sstream>
 
 #include "adjoin/errors.hpp"
@@ -46,30 +49,60 @@ struct Relay {
   double theta;  // fraction of the step before the phase changed (1 if it did not)
 };
 
+// The damper's stick force (rho f2 - f1)/(rho + 1): the force that keeps the blocks together.
+double stick_force(double f1, double f2, double rho) { return (rho * f2 - f1) / (rho + 1.0); }
+
 // The damper over one step, given the free relative velocity w0 (what w_{n+1} would be with
 // Q = 0) and w_{n+1} = w0 - s Q.
 //
 // From stick: the closed-form relay (stick if |w0| <= mu s).
 // From slip in direction d: if slipping on would not bring w to zero, Q = mu d. Otherwise w
-// reaches zero at the fraction theta of the step (linear in time), and for the rest of the
-// step the blocks stick if the force that takes, (w0/s - mu d theta)/(1 - theta), is within
-// the cone, or slip the other way. Splitting the step's impulse at theta (instead of giving
-// the whole step one limit) keeps reversals second order.
-Relay resolve_relay(double w0, double s, double mu, Phase before, double w_before, double q_before, bool first) {
+// reaches zero at the fraction theta of the step (linear in time). What happens next is
+// decided by the stick force at that instant, `stick_force_at(theta)` (from the state
+// interpolated along the slip), as the physics decides it: the blocks stick if it lies in
+// the cone [-mu, mu], and slip the other way if not. (Deciding from the force averaged over
+// the rest of the step, which divides by 1 - theta, made spurious sticks shorter than a step
+// at near-threshold reversals.) Splitting the step's impulse at theta keeps reversals second
+// order.
+template <class StickForceAt>
+Relay resolve_relay(double w0, double s, double mu, Phase before, double w_before, bool first,
+                    const StickForceAt& stick_force_at) {
   if (before == Phase::stick || first) {
     if (std::abs(w0) <= mu * s) return {w0 / s, Phase::stick, 1.0};
-    const double target = w0 > 0.0 ? mu : -mu, needed = w0 / s;
-    // The force needed to stick went from q_before (inside the cone) to `needed` (outside).
-    // Both are step averages, i.e. values at the middle of their steps, half a step apart.
-    const double crossing = clamp01((target - q_before) / (needed - q_before));
-    return {target, slip_towards(w0), clamp01(crossing - 0.5)};
+    return {w0 > 0.0 ? mu : -mu, slip_towards(w0), 0.0};  // the caller locates the onset
   }
   const double d = before == Phase::slip_right ? 1.0 : -1.0;
   const double w_end = w0 - s * mu * d;  // slipping on for the whole step
   if (w_end * d > 0.0) return {mu * d, before, 1.0};
   const double theta = w_before != w_end ? clamp01(w_before / (w_before - w_end)) : 1.0;
-  if (std::abs(w0 / s - mu * d * theta) <= mu * (1.0 - theta)) return {w0 / s, Phase::stick, theta};
+  if (std::abs(stick_force_at(theta)) <= mu) return {w0 / s, Phase::stick, theta};
   return {mu * d * (2.0 * theta - 1.0), d > 0.0 ? Phase::slip_left : Phase::slip_right, theta};
+}
+
+// Where the stick force q(t) reaches `target` (+-mu) near t_n: the root of the parabola
+// through (t_n - h, q_prev), (t_n, q_now), (t_n + h, q_next) (or of the line through the last
+// two when q_prev is not a stick force), as a time offset from t_n in units of h, within
+// [-1, 1]. Second-order interpolation of grid values gives the instant at order 2 or better.
+double locate_onset(double target, bool have_prev, double q_prev, double q_now, double q_next) {
+  const double c = q_now - target;
+  const double b = have_prev ? 0.5 * (q_next - q_prev) : q_next - q_now;
+  const double a = have_prev ? 0.5 * (q_next - 2.0 * q_now + q_prev) : 0.0;
+  auto in_range = [](double x) { return std::isfinite(x) && x >= -1.0 && x <= 1.0; };
+  double best = std::numeric_limits<double>::quiet_NaN();
+  auto consider = [&](double x) {
+    if (in_range(x) && (!std::isfinite(best) || std::abs(x - 0.5) < std::abs(best - 0.5))) best = x;
+  };
+  if (std::abs(a) > 1e-14 * (std::abs(b) + std::abs(c))) {
+    const double disc = b * b - 4.0 * a * c;
+    if (disc >= 0.0) {
+      const double r = std::sqrt(disc);
+      const double q = -0.5 * (b + (b >= 0.0 ? r : -r));  // the stable quadratic formula
+      if (q != 0.0) consider(c / q);
+      consider(q / a);
+    }
+  }
+  if (!std::isfinite(best) && b != 0.0) consider(-c / b);
+  return std::isfinite(best) ? best : 1.0;
 }
 
 }  // namespace
@@ -101,6 +134,8 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
   rod1.commit(0.0, 0.0);
   rod2.commit(0.0, 0.0);
   observer.observe(now);
+  bool previous_stuck = false;  // the grid point before `now` was stuck, and its stick force
+  double previous_q = 0.0;
 
   for (std::size_t n = 0; n < n_steps; ++n) {
     State next;
@@ -114,32 +149,64 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
     const double a2 = (now.v2 + impulse_ground - 0.5 * rho * h * now.f2 -
                        0.5 * rho * h * (k2 * (now.x2 + 0.5 * h * now.v2) + r2)) / d2;
 
+    // The rod forces at t_{n+1} if the step ends with velocities (u1, u2).
+    const auto end_forces = [&](double u1, double u2) {
+      const double x1 = now.x1 + 0.5 * h * (now.v1 + u1), x2 = now.x2 + 0.5 * h * (now.v2 + u2);
+      return std::pair{k1 * x1 + r1, k2 * x2 + r2};
+    };
     double q = 0.0;
     if (damper) {
-      const Relay r = resolve_relay(a1 - a2, s, mu, now.phase, now.v1 - now.v2, now.q, n == 0);
+      const double stuck_v = (a1 * b2 + a2 * b1) / s;  // the one velocity if the blocks stick
+      // The stick force at the fraction theta of a step spent slipping on in the current
+      // direction: the rod forces interpolated between t_n and that slip's end.
+      const auto stick_force_at = [&](double theta) {
+        const double d = now.phase == Phase::slip_right ? 1.0 : -1.0;
+        const auto [f1e, f2e] = end_forces(a1 - b1 * mu * d, a2 + b2 * mu * d);
+        return stick_force(now.f1 + theta * (f1e - now.f1), now.f2 + theta * (f2e - now.f2), rho);
+      };
+      const Relay r = resolve_relay(a1 - a2, s, mu, now.phase, now.v1 - now.v2, n == 0, stick_force_at);
       q = r.q;
       next.phase = r.phase;
       if (r.phase == Phase::stick) {
-        next.v1 = next.v2 = (a1 * b2 + a2 * b1) / s;  // exactly one velocity
+        next.v1 = next.v2 = stuck_v;  // exactly one velocity
       } else {
         next.v1 = a1 - b1 * q;
         next.v2 = a2 + b2 * q;
       }
-      if (options.locate_switches && next.phase != now.phase && n > 0) next.t_switch = now.t + r.theta * h;
+      if (options.locate_switches && next.phase != now.phase && n > 0) {
+        double theta = r.theta;
+        if (now.phase == Phase::stick) {
+          // Stick -> slip: where the stick force (grid values, and the value at t_{n+1} had
+          // the blocks stuck on) reaches the limit. It may lie in the previous step, since
+          // stick is decided on the step's average force.
+          const auto [f1e, f2e] = end_forces(stuck_v, stuck_v);
+          theta = locate_onset(q, previous_stuck, previous_q, now.q, stick_force(f1e, f2e, rho));
+        }
+        next.t_switch = now.t + theta * h;
+      }
     } else {
       next.v1 = a1;
       next.v2 = a2;
       const double w = a1 - a2;
       next.phase = w > 0.0 ? Phase::slip_right : (w < 0.0 ? Phase::slip_left : Phase::stick);
+      // Without a damper a "phase" is the sign of the relative velocity: its changes are
+      // located where w crosses zero (linear interpolation, second order).
+      const double w_now = now.v1 - now.v2;
+      if (options.locate_switches && next.phase != now.phase && n > 0 && w_now != w)
+        next.t_switch = now.t + clamp01(w_now / (w_now - w)) * h;
     }
 
     next.x1 = now.x1 + 0.5 * h * (now.v1 + next.v1);
     next.x2 = now.x2 + 0.5 * h * (now.v2 + next.v2);
     next.f1 = k1 * next.x1 + r1;
     next.f2 = k2 * next.x2 + r2;
-    next.q = q;
-    next.a1 = -next.f1 - q;
-    next.a2 = rho * (q - next.f2);
+    // The reported damper force is its value at t_{n+1} (not the step's average Q, which is
+    // the force half a step earlier): the stick force while stuck, the limit while slipping.
+    if (damper)
+      next.q = next.phase == Phase::stick ? stick_force(next.f1, next.f2, rho)
+                                          : (next.phase == Phase::slip_right ? mu : -mu);
+    next.a1 = -next.f1 - next.q;
+    next.a2 = rho * (next.q - next.f2);
     if (!(std::abs(next.x1) < kRunaway && std::abs(next.x2) < kRunaway && std::abs(next.f1) < kRunaway &&
           std::abs(next.f2) < kRunaway && std::isfinite(next.v1 + next.v2))) {
       std::ostringstream m;
@@ -152,6 +219,8 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
     rod2.commit(next.x2, next.f2);
 
     observer.observe(next);
+    previous_stuck = now.phase == Phase::stick && n > 0;
+    previous_q = now.q;
     now = next;
   }
   observer.end();

@@ -1,8 +1,23 @@
 #pragma once
-// The extremum of a smooth sampled signal between its samples: the vertex of the parabola
-// through three equally spaced samples (t1 - h, y0), (t1, y1), (t1 + h, y2) whose middle one
-// is a local extremum. Its error is O(h^3) against O(h^2) for the sample itself, so a peak or
-// a minimum gap converges at the solver's own order rather than at the sampling's.
+// Extrema of a sampled signal between its samples.
+//
+// parabola_vertex: the vertex of the parabola through three equally spaced samples
+// (t1 - h, y0), (t1, y1), (t1 + h, y2) whose middle one is a local extremum. Its error is
+// O(h^3) against O(h^2) for the sample itself, so a peak converges at the solver's own order
+// rather than at the sampling's, provided the signal is smooth there.
+//
+// step_extremum: the extremum inside one step [a.t, b.t] of a signal whose derivative is
+// known at the samples (a displacement and its velocity) and changes sign in the step. A
+// response's derivative has kinks where the damper switches (the acceleration jumps with the
+// damper force), and the extremum of the gap or the stroke sits exactly on such a switch
+// (where the relative velocity reaches zero). A parabola spanning the kink is then only first
+// order. So: in a step without a switch, the extremum of the cubic Hermite interpolant of
+// (y, y') at both ends (O(h^4) in the value, O(h^3) in time); in a step with a located switch
+// t_kink, the derivative is extrapolated from each side with its own one-sided second
+// derivative (y'' at a from the left piece, at b from the right), which is exact to O(h^2)
+// on either side of the kink, and the root is taken on the side where it lies.
+#include <cmath>
+
 namespace adjoin {
 
 struct Vertex {
@@ -16,6 +31,57 @@ inline Vertex parabola_vertex(double t1, double h, double y0, double y1, double 
   if (delta > 0.5) delta = 0.5;
   if (delta < -0.5) delta = -0.5;
   return {t1 + delta * h, y1 - 0.25 * (y0 - y2) * delta};
+}
+
+// A sample of a signal with its first and second time derivatives.
+struct Sample {
+  double t, y, dy, ddy;
+};
+
+inline Vertex step_extremum(const Sample& a, const Sample& b, double t_kink) {
+  const double h = b.t - a.t;
+  if (std::isfinite(t_kink) && t_kink > a.t && t_kink < b.t) {
+    // Left piece: y'(t) = a.dy + a.ddy (t - a.t) on [a.t, t_kink].
+    const double end_left = a.dy + a.ddy * (t_kink - a.t);
+    if (a.dy == 0.0) return {a.t, a.y};
+    if (end_left * a.dy <= 0.0) {
+      const double tau = a.ddy != 0.0 ? -a.dy / a.ddy : t_kink - a.t;
+      return {a.t + tau, a.y + a.dy * tau + 0.5 * a.ddy * tau * tau};
+    }
+    // Right piece: y'(t) = b.dy + b.ddy (t - b.t) on [t_kink, b.t].
+    const double start_right = b.dy + b.ddy * (t_kink - b.t);
+    if (start_right * b.dy <= 0.0 && b.ddy != 0.0) {
+      const double tau = -b.dy / b.ddy;  // <= 0
+      if (a.t + h + tau >= t_kink) return {b.t + tau, b.y + b.dy * tau + 0.5 * b.ddy * tau * tau};
+    }
+    // The derivative changes sign at the kink itself (it reaches zero there).
+    const double tau = t_kink - a.t;
+    return {t_kink, a.y + a.dy * tau + 0.5 * a.ddy * tau * tau};
+  }
+  // Cubic Hermite on s = (t - a.t) / h in [0, 1]: y'(s) h = A s^2 + B s + C.
+  const double A = 6.0 * (a.y - b.y) + 3.0 * h * (a.dy + b.dy);
+  const double B = -6.0 * (a.y - b.y) - h * (4.0 * a.dy + 2.0 * b.dy);
+  const double C = h * a.dy;
+  double s = -1.0;
+  auto take = [&](double r) {
+    if (std::isfinite(r) && r >= 0.0 && r <= 1.0 && (s < 0.0 || r < s)) s = r;  // the first root
+  };
+  if (std::abs(A) > 1e-14 * (std::abs(B) + std::abs(C))) {
+    const double disc = B * B - 4.0 * A * C;
+    if (disc >= 0.0) {
+      const double r = std::sqrt(disc);
+      const double q = -0.5 * (B + (B >= 0.0 ? r : -r));
+      if (q != 0.0) take(C / q);
+      take(q / A);
+    }
+  } else if (B != 0.0) {
+    take(-C / B);
+  }
+  if (s < 0.0) s = std::abs(a.dy) <= std::abs(b.dy) ? 0.0 : 1.0;
+  const double s2 = s * s, s3 = s2 * s;
+  const double y = (2 * s3 - 3 * s2 + 1) * a.y + (s3 - 2 * s2 + s) * h * a.dy + (-2 * s3 + 3 * s2) * b.y +
+                   (s3 - s2) * h * b.dy;
+  return {a.t + s * h, y};
 }
 
 }  // namespace adjoin

@@ -1,10 +1,15 @@
 #pragma once
 // Peak absolute values of the response and the times they occur (first occurrence).
 //
-// Displacements, rod forces and the damper stroke are smooth, so their peaks are refined
-// between samples by a parabola through the three samples around a local maximum of |y|
-// (observe/extremum.hpp). Velocities, accelerations and q have kinks or jumps at phase
-// changes; their peaks are the largest samples.
+// Displacements and the damper stroke are refined between samples from their derivatives (the
+// velocities), with the damper's located switching instants as kinks (step_extremum in
+// observe/extremum.hpp), so their peaks and times are second order even where a peak sits on a
+// switch. Rod forces are refined by a parabola through the three samples around a local
+// maximum of |y|. Velocities, accelerations and q have kinks or jumps at phase changes; their
+// peaks are the largest samples, and q's time is the located switch where it reaches its
+// limit.
+#include <cmath>
+
 #include "adjoin/observe/extremum.hpp"
 #include "adjoin/observe/observer.hpp"
 
@@ -44,6 +49,30 @@ class SmoothPeak {
   int count_ = 0;
 };
 
+// A peak of |y| for a signal whose derivative is sampled too (Sample), refined in each step
+// where the derivative changes sign; `t_kink` is the located switch inside the step that ends
+// at the sample (NaN if none).
+class DerivativePeak {
+ public:
+  void reset() { *this = DerivativePeak{}; }
+  void update(const Sample& s, double t_kink) {
+    if (have_ && previous_.dy != 0.0 && previous_.dy * s.dy <= 0.0) {
+      const Vertex v = step_extremum(previous_, s, t_kink);
+      const double refined = std::abs(v.y);
+      if (refined >= std::abs(previous_.y) && refined >= std::abs(s.y)) peak_.update(v.y, v.t);
+    }
+    peak_.update(s.y, s.t);
+    previous_ = s;
+    have_ = true;
+  }
+  const Peak& peak() const { return peak_; }
+
+ private:
+  Peak peak_;
+  Sample previous_{};
+  bool have_ = false;
+};
+
 struct Peaks {
   Peak x1, x2, v1, v2, a1, a2, f1, f2, q, ag;
   Peak drift;  // |x1 - x2|, the damper's stroke
@@ -57,7 +86,8 @@ class PeakObserver final : public Observer {
 
  private:
   Peaks peaks_;
-  SmoothPeak x1_, x2_, f1_, f2_, drift_;
+  SmoothPeak f1_, f2_;
+  DerivativePeak x1_, x2_, drift_;
 };
 
 }  // namespace adjoin

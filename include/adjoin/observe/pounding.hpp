@@ -1,10 +1,12 @@
 #pragma once
 // The pounding margin: the gap xi(t) = gap0 + x2 - x1 between the blocks. xi <= 0 means the
 // structures pound, where the model no longer holds. The minimum is refined between samples
-// by a parabola through the three samples around it (extremum.hpp); the first contact time
-// is interpolated linearly between the grid points that bracket it.
+// from the gap's derivatives, with the damper's located switch as a kink (step_extremum in
+// extremum.hpp: second order even when the minimum sits on a switch); the first contact
+// time is interpolated linearly between the grid points that bracket it.
 #include <optional>
 
+#include "adjoin/observe/extremum.hpp"
 #include "adjoin/observe/observer.hpp"
 
 namespace adjoin {
@@ -25,8 +27,7 @@ class PoundingObserver final : public Observer {
  private:
   double gap0_ = 0.0;
   bool started_ = false;
-  double previous_gap_ = 0.0, before_previous_gap_ = 0.0, previous_t_ = 0.0;
-  std::size_t samples_ = 0;
+  Sample previous_{};  // the gap, its rate and its acceleration at the previous sample
   PoundingMargin margin_;
 };
 
