@@ -20,10 +20,21 @@
 // is split at the located zero crossing.
 //
 // Trapezoidal mechanics is A-stable and the rods are implicit, so the step is stable for any
-// h (no explicit stability bound). The reported q at t_{n+1} is the damper force at that
+// h (no explicit stability bound). But it does not damp modes the step does not resolve
+// (omega h >> 1): a switch (a jump of the damper force) excites the stiffest mode, which then
+// rings with undiminished amplitude and can drive the relative velocity through zero again
+// and again, i.e. spurious switches (chatter). So the step after a switch is taken with
+// backward-Euler mechanics (theta = 1 in x_{n+1} = x_n + h((1 - theta) v_n + theta v_{n+1})
+// and the same for v), which damps a mode by 1/sqrt(1 + (omega h)^2) in one step: the
+// restart that circuit simulators make after every breakpoint. One first-order step per
+// switch keeps the scheme second order (finitely many O(h^2) local errors), at the price of
+// larger error constants on the quantities near a switch; "implicit" does it only when the
+// stiffest mode is unresolved (omega h > kResolvedOmegaH), "implicit-damped" after every
+// switch. The reported q at t_{n+1} is the damper force at that
 // instant (the stick force (rho f2 - f1)/(rho + 1) while stuck, +-mu while slipping), not the
 // step's average Q, so q, the accelerations and the switching instants located from them are
 // second order.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -38,6 +49,9 @@ namespace adjoin::detail {
 namespace {
 
 constexpr double kRunaway = 1e12;
+// Modes with omega h above this are not resolved by the step: trapezoidal mechanics passes
+// them undamped (its amplification tends to -1), so what a switch excites rings on.
+constexpr double kResolvedOmegaH = 1.0;
 
 Phase slip_towards(double w) { return w > 0.0 ? Phase::slip_right : Phase::slip_left; }
 
@@ -48,9 +62,6 @@ struct Relay {
   Phase phase;   // at the end of the step
   double theta;  // fraction of the step before the phase changed (1 if it did not)
 };
-
-// The damper's stick force (rho f2 - f1)/(rho + 1): the force that keeps the blocks together.
-double stick_force(double f1, double f2, double rho) { return (rho * f2 - f1) / (rho + 1.0); }
 
 // The damper over one step, given the free relative velocity w0 (what w_{n+1} would be with
 // Q = 0) and w_{n+1} = w0 - s Q.
@@ -113,7 +124,7 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
   const std::size_t n_steps = options.steps();
   const double rho = model.rho, mu = model.mu;
   const bool damper = mu > 0.0;
-  const bool second_order = options.scheme == Scheme::implicit;
+  const bool second_order = options.scheme != Scheme::implicit_gl;
 
   auto weights = [&](const Rod& rod) {
     if (rod.elastic) return std::vector<double>{};
@@ -122,9 +133,12 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
   RodLaw rod1(model.rod1, 1.0, h, options.history, weights(model.rod1));
   RodLaw rod2(model.rod2, model.eps, h, options.history, weights(model.rod2));
   const double k1 = rod1.stiffness(), k2 = rod2.stiffness();
-  const double d1 = 1.0 + 0.25 * h * h * k1;
-  const double d2 = 1.0 + 0.25 * rho * h * h * k2;
-  const double b1 = h / d1, b2 = rho * h / d2, s = b1 + b2;
+  // Backward-Euler steps after a switch (see the header): always for implicit-damped; for the
+  // other implicit schemes when the stiffest mode is not resolved by the step.
+  const double omega_h = h * std::sqrt(std::max({k1, rho * k2, (k1 + rho * k2) / (1.0 + rho)}));
+  const int damped_steps =
+      options.scheme == Scheme::implicit_damped || omega_h > kResolvedOmegaH ? 1 : 0;
+  int damped_left = 0;
 
   observer.begin(RunInfo{model, h, n_steps});
 
@@ -142,16 +156,24 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
     next.t = static_cast<double>(n + 1) * h;
     next.ag = ground.ag(next.t);
     const double r1 = rod1.offset(), r2 = rod2.offset();
-    const double impulse_ground = 0.5 * h * (now.ag + next.ag);
+    // The mechanics' weight of the step's end: 1/2 trapezoidal, 1 backward Euler.
+    const double th = damped_left > 0 ? 1.0 : 0.5;
+    if (damped_left > 0) --damped_left;
+    const double d1 = 1.0 + th * th * h * h * k1;
+    const double d2 = 1.0 + th * th * rho * h * h * k2;
+    const double b1 = h / d1, b2 = rho * h / d2, s = b1 + b2;
+    const double impulse_ground = h * ((1.0 - th) * now.ag + th * next.ag);
 
     // Velocities affine in the damper force Q: v1 = a1 - b1 Q, v2 = a2 + b2 Q.
-    const double a1 = (now.v1 + impulse_ground - 0.5 * h * now.f1 - 0.5 * h * (k1 * (now.x1 + 0.5 * h * now.v1) + r1)) / d1;
-    const double a2 = (now.v2 + impulse_ground - 0.5 * rho * h * now.f2 -
-                       0.5 * rho * h * (k2 * (now.x2 + 0.5 * h * now.v2) + r2)) / d2;
+    const double a1 = (now.v1 + impulse_ground - (1.0 - th) * h * now.f1 -
+                       th * h * (k1 * (now.x1 + (1.0 - th) * h * now.v1) + r1)) / d1;
+    const double a2 = (now.v2 + impulse_ground - (1.0 - th) * rho * h * now.f2 -
+                       th * rho * h * (k2 * (now.x2 + (1.0 - th) * h * now.v2) + r2)) / d2;
 
     // The rod forces at t_{n+1} if the step ends with velocities (u1, u2).
     const auto end_forces = [&](double u1, double u2) {
-      const double x1 = now.x1 + 0.5 * h * (now.v1 + u1), x2 = now.x2 + 0.5 * h * (now.v2 + u2);
+      const double x1 = now.x1 + h * ((1.0 - th) * now.v1 + th * u1);
+      const double x2 = now.x2 + h * ((1.0 - th) * now.v2 + th * u2);
       return std::pair{k1 * x1 + r1, k2 * x2 + r2};
     };
     double q = 0.0;
@@ -162,7 +184,7 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
       const auto stick_force_at = [&](double theta) {
         const double d = now.phase == Phase::slip_right ? 1.0 : -1.0;
         const auto [f1e, f2e] = end_forces(a1 - b1 * mu * d, a2 + b2 * mu * d);
-        return stick_force(now.f1 + theta * (f1e - now.f1), now.f2 + theta * (f2e - now.f2), rho);
+        return stick_force(model, now.f1 + theta * (f1e - now.f1), now.f2 + theta * (f2e - now.f2));
       };
       const Relay r = resolve_relay(a1 - a2, s, mu, now.phase, now.v1 - now.v2, n == 0, stick_force_at);
       q = r.q;
@@ -180,7 +202,7 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
           // the blocks stuck on) reaches the limit. It may lie in the previous step, since
           // stick is decided on the step's average force.
           const auto [f1e, f2e] = end_forces(stuck_v, stuck_v);
-          theta = locate_onset(q, previous_stuck, previous_q, now.q, stick_force(f1e, f2e, rho));
+          theta = locate_onset(q, previous_stuck, previous_q, now.q, stick_force(model, f1e, f2e));
         }
         next.t_switch = now.t + theta * h;
       }
@@ -196,14 +218,15 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
         next.t_switch = now.t + clamp01(w_now / (w_now - w)) * h;
     }
 
-    next.x1 = now.x1 + 0.5 * h * (now.v1 + next.v1);
-    next.x2 = now.x2 + 0.5 * h * (now.v2 + next.v2);
+    next.x1 = now.x1 + h * ((1.0 - th) * now.v1 + th * next.v1);
+    next.x2 = now.x2 + h * ((1.0 - th) * now.v2 + th * next.v2);
+    if (damper && next.phase != now.phase && n > 0) damped_left = damped_steps;
     next.f1 = k1 * next.x1 + r1;
     next.f2 = k2 * next.x2 + r2;
     // The reported damper force is its value at t_{n+1} (not the step's average Q, which is
     // the force half a step earlier): the stick force while stuck, the limit while slipping.
     if (damper)
-      next.q = next.phase == Phase::stick ? stick_force(next.f1, next.f2, rho)
+      next.q = next.phase == Phase::stick ? stick_force(model, next.f1, next.f2)
                                           : (next.phase == Phase::slip_right ? mu : -mu);
     next.a1 = -next.f1 - next.q;
     next.a2 = rho * (next.q - next.f2);

@@ -5,23 +5,42 @@
 
 namespace adjoin {
 
+namespace {
+
+// Every scheme and its name, in one place.
+struct SchemeName {
+  Scheme scheme;
+  const char* name;
+};
+constexpr SchemeName kSchemes[] = {
+    {Scheme::implicit, "implicit"},
+    {Scheme::implicit_damped, "implicit-damped"},
+    {Scheme::implicit_gl, "implicit-gl"},
+    {Scheme::paper, "paper"},
+};
+
+}  // namespace
+
 std::string to_string(Scheme scheme) {
-  switch (scheme) {
-    case Scheme::paper: return "paper";
-    case Scheme::implicit: return "implicit";
-    case Scheme::implicit_gl: return "implicit-gl";
-  }
+  for (const auto& s : kSchemes)
+    if (s.scheme == scheme) return s.name;
   return "?";
 }
 
 bool parse_scheme(const std::string& name, Scheme* scheme) {
-  if (name == "paper") { *scheme = Scheme::paper; return true; }
-  if (name == "implicit") { *scheme = Scheme::implicit; return true; }
-  if (name == "implicit-gl") { *scheme = Scheme::implicit_gl; return true; }
+  for (const auto& s : kSchemes)
+    if (name == s.name) { *scheme = s.scheme; return true; }
   return false;
 }
 
-std::string scheme_names() { return "\"implicit\" (default), \"implicit-gl\", \"paper\""; }
+std::string scheme_names() {
+  std::string out;
+  for (const auto& s : kSchemes) {
+    out += (out.empty() ? "\"" : ", \"") + std::string(s.name) + "\"";
+    if (s.scheme == SolverOptions{}.scheme) out += " (default)";
+  }
+  return out;
+}
 
 std::size_t SolverOptions::steps() const {
   // The smallest N with N h >= t_end, forgiving the rounding in t_end / h.

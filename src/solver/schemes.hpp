@@ -12,7 +12,7 @@ namespace adjoin::detail {
 std::size_t run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                       Observer& observer);
 
-// "implicit" and "implicit-gl".
+// "implicit", "implicit-damped" and "implicit-gl".
 std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                          Observer& observer);
 

@@ -33,6 +33,7 @@ SolverSummary simulate(const SolverOptions& options, const Model& model, const G
   switch (options.scheme) {
     case Scheme::paper: history_bytes = detail::run_paper_scheme(options, model, ground, observer); break;
     case Scheme::implicit:
+    case Scheme::implicit_damped:
     case Scheme::implicit_gl: history_bytes = detail::run_implicit_scheme(options, model, ground, observer); break;
   }
   const auto stop = std::chrono::steady_clock::now();
