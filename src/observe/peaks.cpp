@@ -6,7 +6,7 @@ namespace adjoin {
 
 void PeakObserver::begin(const RunInfo&) {
   peaks_ = Peaks{};
-  for (SmoothPeak* p : {&f1_, &f2_}) p->reset();
+  for (SmoothPeak* p : {&f1_, &f2_, &stuck_q_}) p->reset();
   for (DerivativePeak* p : {&x1_, &x2_, &drift_}) p->reset();
 }
 
@@ -29,6 +29,14 @@ void PeakObserver::observe(const State& s) {
   peaks_.a2.update(s.a2, s.t);
   // q reaches a new largest value where the damper starts to slip: at the located switch.
   peaks_.q.update(s.q, std::isnan(s.t_switch) ? s.t : s.t_switch);
+  // While stuck, q is the smooth stick force: refine its peaks between samples (the largest
+  // stick force is the threshold below which the damper would have slipped).
+  if (s.phase == Phase::stick) {
+    stuck_q_.update(s.q, s.t);
+    if (stuck_q_.peak().max_abs > peaks_.q.max_abs) peaks_.q = stuck_q_.peak();
+  } else {
+    stuck_q_.reset();
+  }
   peaks_.ag.update(s.ag, s.t);
 }
 

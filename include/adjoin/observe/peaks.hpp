@@ -5,9 +5,9 @@
 // velocities), with the damper's located switching instants as kinks (step_extremum in
 // observe/extremum.hpp), so their peaks and times are second order even where a peak sits on a
 // switch. Rod forces are refined by a parabola through the three samples around a local
-// maximum of |y|. Velocities, accelerations and q have kinks or jumps at phase changes; their
-// peaks are the largest samples, and q's time is the located switch where it reaches its
-// limit.
+// maximum of |y|. Velocities and accelerations have kinks or jumps at phase changes; their
+// peaks are the largest samples. q is refined by a parabola while stuck (the stick force is
+// smooth), and its time is the located switch where it reaches its limit.
 #include <cmath>
 
 #include "adjoin/observe/extremum.hpp"
@@ -86,7 +86,7 @@ class PeakObserver final : public Observer {
 
  private:
   Peaks peaks_;
-  SmoothPeak f1_, f2_;
+  SmoothPeak f1_, f2_, stuck_q_;
   DerivativePeak x1_, x2_, drift_;
 };
 
