@@ -28,7 +28,8 @@ int run_command(const RunArgs& args) {
   const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args.out);
   const RunFiles files = run_to_folder(scene, dir);
   if (!args.quiet) {
-    std::cout << brief_report(scene, files.report);
+    std::cout << brief_report(scene, files.report, files.estimate ? &*files.estimate : nullptr,
+                              files.tolerant ? &*files.tolerant : nullptr);
     std::cout << "wrote ";
     for (std::size_t i = 0; i < files.written.size(); ++i) std::cout << (i ? ", " : "") << files.written[i].string();
     std::cout << "\n";

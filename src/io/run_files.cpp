@@ -35,9 +35,18 @@ RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir) {
     streams.add(writers.back().get());
   }
   RunFiles files;
-  files.report = run_scene(scene, writers.empty() ? nullptr : &streams);
+  Observer* extra = writers.empty() ? nullptr : &streams;
+  if (scene.accuracy.tolerance) {
+    files.tolerant = run_to_tolerance(scene, *scene.accuracy.tolerance, extra);
+    files.report = files.tolerant->report;
+    files.estimate = files.tolerant->estimate;
+  } else {
+    files.report = run_scene(scene, extra);
+    if (scene.accuracy.error_estimate) files.estimate = estimate_error(scene, files.report);
+  }
   if (!files.report.spectra.empty()) set.open("spectra.csv") << spectra_csv(files.report);
-  set.open("summary.json") << summary_json(scene, files.report);
+  set.open("summary.json") << summary_json(scene, files.report, files.estimate ? &*files.estimate : nullptr,
+                                           files.tolerant ? &*files.tolerant : nullptr);
   files.written = set.commit();
   const auto rank = [](const std::filesystem::path& p) {
     const auto& names = run_file_names();

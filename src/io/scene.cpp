@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <numbers>
 #include <optional>
 #include <sstream>
 #include <toml++/toml.h>
@@ -73,6 +74,7 @@ const std::vector<KeySpec>& schema() {
       {"solver.scheme", Kind::string},    {"solver.history", Kind::string},
       {"solver.h", Kind::number},         {"solver.t_end", Kind::number},
       {"solver.locate_switches", Kind::boolean},
+      {"solver.error_estimate", Kind::boolean}, {"solver.tolerance", Kind::number},
       {"output.timeseries", Kind::boolean}, {"output.every", Kind::integer},
       {"output.peaks", Kind::boolean},      {"output.phases", Kind::boolean},
       {"output.pounding", Kind::boolean},   {"output.energy", Kind::boolean},
@@ -505,6 +507,50 @@ void check_memory(const SceneReader& r, const Scene& scene) {
   r.fail(r.has("solver.h") ? "solver.h" : "solver", s.str());
 }
 
+// solver.h or solver.tolerance (or neither: tolerance 1e-6), solver.t_end (or the rule below),
+// solver.error_estimate. Every default is stated in scene.accuracy's rules so that the summary
+// and the terminal can say what was chosen.
+void read_step_and_horizon(const SceneReader& r, Scene& scene) {
+  SolverOptions& o = scene.solver;
+  AccuracyOptions& a = scene.accuracy;
+  const double T = scene.scales.time;
+  const std::string unit = scene.scales.si ? " s" : "";
+  a.error_estimate = r.boolean("solver.error_estimate", true);
+  if (r.has("solver.t_end")) {
+    o.t_end = r.number("solver.t_end") / T;
+  } else if (!std::isfinite(scene.ground->duration())) {
+    o.t_end = 16.0;  // the paper's horizon for its decaying sine (dimensionless)
+    a.t_end_rule = "16 (dimensionless), the paper's horizon for the decaying sine";
+  } else {
+    // The motion, then free vibration: five periods of the slowest mode of the blocks on
+    // their relaxed rods (block 1 alone, block 2 alone, or both stuck together), for the
+    // response to decay through the rods' and the damper's dissipation.
+    const Model& m = scene.model;
+    const double omega2 = std::min({1.0, m.rho * m.eps, m.rho * (1.0 + m.eps) / (1.0 + m.rho)});
+    const double period = 2.0 * std::numbers::pi / std::sqrt(omega2);
+    o.t_end = scene.ground->duration() + 5.0 * period;
+    char rule[160];
+    std::snprintf(rule, sizeof rule, "the ground motion's %.4g%s + 5 x the slowest natural period %.4g%s",
+                  scene.ground->duration() * T, unit.c_str(), period * T, unit.c_str());
+    a.t_end_rule = rule;
+  }
+  if (r.has("solver.h") && r.has("solver.tolerance"))
+    r.fail("solver.tolerance", "give solver.h or solver.tolerance, not both (the tolerance chooses the step)");
+  if (r.has("solver.h")) {
+    o.h = r.number("solver.h") / T;
+    return;
+  }
+  const double tolerance = r.number("solver.tolerance", 1e-6);
+  if (!(tolerance >= 1e-12 && tolerance <= 0.1))
+    r.fail("solver.tolerance", "solver.tolerance = " + format_number(tolerance) +
+                                   " must lie in [1e-12, 0.1] (relative error of the reported peaks)");
+  a.tolerance = tolerance;
+  a.h_rule = "chosen for solver.tolerance = " + format_number(tolerance) + (r.has("solver.tolerance") ? "" : " (the default)");
+  // A first guess for the checks below; run_to_tolerance picks the step.
+  o.h = o.t_end / 4000.0;
+  if (const double dt = scene.ground->sample_interval(); dt > 0.0) o.h = std::min(o.h, dt);
+}
+
 void add_warnings(const SceneReader& r, Scene& scene) {
   const double T = scene.scales.time;
   const std::string unit = scene.scales.si ? " s" : "";
@@ -537,7 +583,7 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
     scene.name = std::filesystem::path(name).stem().string();
     if (scene.name.empty()) scene.name = "scene";
   }
-  for (const auto& table : {"model", "ground", "solver"})
+  for (const auto& table : {"model", "ground"})
     if (!r.has(table)) r.fail(table, std::string("missing section [") + table + "]");
 
   // ---- model, in the scene's units ----
@@ -652,8 +698,7 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
   if (!parse_history_engine(history, &o.history))
     r.fail("solver.history", "solver.history = \"" + history + "\" must be \"direct\" or \"fft\"");
   o.locate_switches = r.boolean("solver.locate_switches", o.locate_switches);
-  o.h = r.number("solver.h") / scene.scales.time;
-  o.t_end = r.number("solver.t_end") / scene.scales.time;
+  read_step_and_horizon(r, scene);
   if (!o.IsValid(&error)) r.fail(error.substr(0, error.find(' ')), error);
 
   // ---- output ----

@@ -1,5 +1,6 @@
 #include "adjoin/io/summary.hpp"
 
+#include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -22,13 +23,46 @@ void require_finite(const ordered_json& j, const std::string& path, double t_end
     for (std::size_t i = 0; i < j.size(); ++i) require_finite(j[i], path + "[" + std::to_string(i) + "]", t_end_seconds, t_end);
 }
 
+ordered_json peak_error(const PeakError& e, double scale, double time_scale) {
+  return ordered_json{{"max_abs", e.max_abs * scale}, {"t", e.t * time_scale}};
+}
+
+// Estimated absolute errors of the reported values, in the scene's units.
+ordered_json error_estimate_json(const ErrorEstimate& e, const Scales& k) {
+  if (!e.available) return ordered_json{{"available", false}, {"reason", e.reason}};
+  ordered_json switches = nullptr;
+  if (e.switches_matched) {
+    switches = ordered_json::array();
+    for (double s : e.switches) switches.push_back(s * k.time);
+  }
+  return ordered_json{
+      {"available", true},
+      {"method", "richardson"},
+      {"companion_h", e.companion_h * k.time},
+      {"order", e.order},
+      {"companion_wall_seconds", e.companion_wall_seconds},
+      {"max_relative_peak", e.max_relative_peak},
+      {"peaks", ordered_json{{"x1", peak_error(e.x1, k.length, k.time)},
+                             {"x2", peak_error(e.x2, k.length, k.time)},
+                             {"drift", peak_error(e.drift, k.length, k.time)},
+                             {"f1", peak_error(e.f1, k.force, k.time)},
+                             {"f2", peak_error(e.f2, k.force, k.time)},
+                             {"q", peak_error(e.q, k.force, k.time)}}},
+      {"min_gap", e.min_gap * k.length},
+      {"t_min_gap", e.t_min_gap * k.time},
+      {"friction", e.friction * k.energy},
+      {"switches", switches},
+      {"switches_note", e.switches_matched ? "" : "the companion run found other phases; instants not estimated"}};
+}
+
 ordered_json peak(const Peak& p, double scale, double time_scale) {
   return ordered_json{{"max_abs", p.max_abs * scale}, {"t", p.t * time_scale}};
 }
 
 }  // namespace
 
-std::string summary_json(const Scene& scene, const RunReport& r) {
+std::string summary_json(const Scene& scene, const RunReport& r, const ErrorEstimate* estimate,
+                         const TolerantRun* tolerant) {
   const Scales& k = scene.scales;
   ordered_json j;
   j["scene"] = scene.name;
@@ -39,6 +73,15 @@ std::string summary_json(const Scene& scene, const RunReport& r) {
                              {"steps", r.solver.steps},
                              {"wall_seconds", r.solver.wall_seconds},
                              {"t_end", static_cast<double>(r.solver.steps) * r.solver.h * k.time}};
+  if (!scene.accuracy.h_rule.empty()) j["solver"]["h_rule"] = scene.accuracy.h_rule;
+  if (!scene.accuracy.t_end_rule.empty()) j["solver"]["t_end_rule"] = scene.accuracy.t_end_rule;
+  if (tolerant) {
+    ordered_json ladder = ordered_json::array();
+    for (double h : tolerant->ladder) ladder.push_back(h * k.time);
+    j["solver"]["tolerance"] = tolerant->tolerance;
+    j["solver"]["steps_tried"] = ladder;
+    j["solver"]["tolerance_met"] = tolerant->met;
+  }
   j["ground"] = scene.ground->describe();
   const OutputOptions& asked = scene.output;
   if (asked.phases) {
@@ -102,12 +145,14 @@ std::string summary_json(const Scene& scene, const RunReport& r) {
     }
     j["spectra"] = spectra;
   }
+  if (estimate) j["error_estimate"] = error_estimate_json(*estimate, k);
   const double t_end = static_cast<double>(r.solver.steps) * r.solver.h;
   require_finite(j, "", t_end * k.time, t_end);
   return j.dump(2) + "\n";
 }
 
-std::string brief_report(const Scene& scene, const RunReport& r) {
+std::string brief_report(const Scene& scene, const RunReport& r, const ErrorEstimate* estimate,
+                         const TolerantRun* tolerant) {
   const Scales& k = scene.scales;
   const bool si = k.si;
   auto u = [&](const char* unit) { return si ? std::string(" ") + unit : std::string(); };
@@ -117,6 +162,19 @@ std::string brief_report(const Scene& scene, const RunReport& r) {
   std::snprintf(line, sizeof line, "solver %s/%s, h = %g%s, %zu steps, %.3f s wall\n", r.solver.scheme.c_str(),
                 r.solver.history.c_str(), r.solver.h * k.time, u("s").c_str(), r.solver.steps, r.solver.wall_seconds);
   s << line;
+  if (!scene.accuracy.h_rule.empty() || !scene.accuracy.t_end_rule.empty()) {
+    s << "       ";
+    if (!scene.accuracy.h_rule.empty()) {
+      s << "h " << scene.accuracy.h_rule;
+      if (tolerant) {
+        s << " (" << tolerant->ladder.size() << (tolerant->ladder.size() == 1 ? " run" : " runs")
+          << (tolerant->met ? "" : "; NOT met, see error_estimate") << ")";
+      }
+      if (!scene.accuracy.t_end_rule.empty()) s << "; ";
+    }
+    if (!scene.accuracy.t_end_rule.empty()) s << "t_end = " << scene.accuracy.t_end_rule;
+    s << "\n";
+  }
   if (scene.output.phases) {
     s << "phases (" << r.phases.size() << "):";
     const std::size_t shown = 8;
@@ -156,6 +214,25 @@ std::string brief_report(const Scene& scene, const RunReport& r) {
                   si ? " [J]" : " (per unit m1)", e.input * k.energy, e.kinetic * k.energy, e.rod1 * k.energy,
                   e.rod2 * k.energy, e.friction * k.energy, e.residual * k.energy);
     s << line;
+  }
+  if (estimate) {
+    if (!estimate->available) {
+      s << "error estimate: not available (" << estimate->reason << ")\n";
+    } else {
+      double worst_switch = 0.0;
+      for (double e : estimate->switches) worst_switch = std::max(worst_switch, e);
+      std::snprintf(line, sizeof line, "error estimate (companion h = %g%s): peaks %.2g relative, min gap %.2g%s, friction %.2g%s",
+                    estimate->companion_h * k.time, u("s").c_str(), estimate->max_relative_peak, estimate->min_gap * k.length,
+                    u("m").c_str(), estimate->friction * k.energy, u("J").c_str());
+      s << line;
+      if (estimate->switches_matched && !estimate->switches.empty()) {
+        std::snprintf(line, sizeof line, ", switches %.2g%s", worst_switch * k.time, u("s").c_str());
+        s << line;
+      } else if (!estimate->switches_matched) {
+        s << ", switches: not estimated (the companion run found other phases)";
+      }
+      s << "\n";
+    }
   }
   return s.str();
 }

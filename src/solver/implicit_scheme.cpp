@@ -150,6 +150,7 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
   observer.observe(now);
   bool previous_stuck = false;  // the grid point before `now` was stuck, and its stick force
   double previous_q = 0.0;
+  double now_stick_q = 0.0;     // the stick force at `now` (unclamped; = now.q while inside the cone)
 
   for (std::size_t n = 0; n < n_steps; ++n) {
     State next;
@@ -202,7 +203,7 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
           // the blocks stuck on) reaches the limit. It may lie in the previous step, since
           // stick is decided on the step's average force.
           const auto [f1e, f2e] = end_forces(stuck_v, stuck_v);
-          theta = locate_onset(q, previous_stuck, previous_q, now.q, stick_force(model, f1e, f2e));
+          theta = locate_onset(q, previous_stuck, previous_q, now_stick_q, stick_force(model, f1e, f2e));
         }
         next.t_switch = now.t + theta * h;
       }
@@ -225,8 +226,12 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
     next.f2 = k2 * next.x2 + r2;
     // The reported damper force is its value at t_{n+1} (not the step's average Q, which is
     // the force half a step earlier): the stick force while stuck, the limit while slipping.
+    // Stick is decided on the step's average force, so the stick force at the last stuck grid
+    // point before an onset can exceed mu by O(h): the damper is slipping there already, and
+    // its force is the limit. Clamping reports exactly that (and keeps |q| <= mu).
+    const double next_stick_q = stick_force(model, next.f1, next.f2);
     if (damper)
-      next.q = next.phase == Phase::stick ? stick_force(model, next.f1, next.f2)
+      next.q = next.phase == Phase::stick ? std::clamp(next_stick_q, -mu, mu)
                                           : (next.phase == Phase::slip_right ? mu : -mu);
     next.a1 = -next.f1 - next.q;
     next.a2 = rho * (next.q - next.f2);
@@ -243,7 +248,8 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
 
     observer.observe(next);
     previous_stuck = now.phase == Phase::stick && n > 0;
-    previous_q = now.q;
+    previous_q = now_stick_q;
+    now_stick_q = next_stick_q;
     now = next;
   }
   observer.end();

@@ -11,15 +11,22 @@ namespace {
 struct SchemeName {
   Scheme scheme;
   const char* name;
+  int order;
 };
 constexpr SchemeName kSchemes[] = {
-    {Scheme::implicit, "implicit"},
-    {Scheme::implicit_damped, "implicit-damped"},
-    {Scheme::implicit_gl, "implicit-gl"},
-    {Scheme::paper, "paper"},
+    {Scheme::implicit, "implicit", 2},
+    {Scheme::implicit_damped, "implicit-damped", 2},
+    {Scheme::implicit_gl, "implicit-gl", 1},
+    {Scheme::paper, "paper", 1},
 };
 
 }  // namespace
+
+int scheme_order(Scheme scheme) {
+  for (const auto& s : kSchemes)
+    if (s.scheme == scheme) return s.order;
+  return 1;
+}
 
 std::string to_string(Scheme scheme) {
   for (const auto& s : kSchemes)

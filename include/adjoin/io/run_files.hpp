@@ -4,6 +4,10 @@
 //
 //     RunFiles files = run_to_folder(scene, "out/paper-strong");
 //
+// The step is the scene's solver.h, or chosen for solver.tolerance (run_to_tolerance); the
+// run's error is estimated from a companion run at about 2h unless solver.error_estimate =
+// false (study/error_estimate.hpp).
+//
 // Always summary.json; timeseries.csv (output.timeseries), energy.csv (output.energy_history)
 // and spectra.csv ([output.spectra]) when asked. The streamed files are written while the
 // solver runs; all of them are committed as one set (io/atomic_file.hpp FileSet): a run that
@@ -11,15 +15,20 @@
 // succeeds leaves exactly its own files (outputs of an earlier run that this one does not
 // write are removed).
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "adjoin/io/scene.hpp"
+#include "adjoin/study/error_estimate.hpp"
 #include "adjoin/study/run.hpp"
 
 namespace adjoin {
 
 struct RunFiles {
   RunReport report;
+  std::optional<ErrorEstimate> estimate;  // when the scene asks (solver.error_estimate)
+  std::optional<TolerantRun> tolerant;    // when the step was chosen for a tolerance (its
+                                          // report and estimate are the two above)
   std::vector<std::filesystem::path> written;  // in the order of run_file_names()
 };
 

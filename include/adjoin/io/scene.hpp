@@ -47,6 +47,19 @@ struct OutputOptions {
   std::optional<SpectraOutput> spectra;  // [output.spectra]: write spectra.csv
 };
 
+// How a run checks its own accuracy, and how its step and horizon were chosen.
+struct AccuracyOptions {
+  // solver.error_estimate (default true): `adjoin run` estimates the error of its reported
+  // values from a companion run at about 2h (study/error_estimate.hpp). Sweeps and
+  // convergence ladders do not (their own comparisons are the point, and sweeps are many).
+  bool error_estimate = true;
+  // solver.tolerance: the step is chosen to meet it (relative error of the peaks), instead of
+  // solver.h. When neither is given the tolerance is 1e-6.
+  std::optional<double> tolerance;
+  // How h and t_end were chosen, in words, when the scene did not give them ("" if it did).
+  std::string h_rule, t_end_rule;
+};
+
 struct Scene {
   std::string name;
   std::filesystem::path file;  // where it was read from (empty if built in code)
@@ -55,6 +68,7 @@ struct Scene {
   std::shared_ptr<const GroundMotion> ground;
   SolverOptions solver;        // dimensionless h and t_end
   OutputOptions output;
+  AccuracyOptions accuracy;
   // Valid but probably unintended choices ("solver.h is coarser than the record's dt"): the
   // command line prints them on stderr as "warning: ..." and the run goes on.
   std::vector<std::string> warnings;

@@ -27,13 +27,16 @@ enum class Scheme {
 };
 
 std::string to_string(Scheme scheme);
+// The order of convergence of a scheme's reported values: 2 for "implicit" and
+// "implicit-damped", 1 for "implicit-gl" and "paper".
+int scheme_order(Scheme scheme);
 bool parse_scheme(const std::string& name, Scheme* scheme);
 // Names accepted by parse_scheme, for error messages.
 std::string scheme_names();
 
 struct SolverOptions {
   Scheme scheme = Scheme::implicit;
-  HistoryEngine history = HistoryEngine::direct;
+  HistoryEngine history = HistoryEngine::fft;  // O(N log^2 N); "direct" is the O(N^2) reference
   double h = 0.002;      // dimensionless time step
   double t_end = 16.0;   // dimensionless horizon
   // Explicit schemes refuse a step beyond their stability bound before they start. Turning
