@@ -17,16 +17,25 @@ void PoundingObserver::observe(const State& s) {
   // A minimum inside the step: the gap's derivative (the relative velocity) turns from
   // negative to non-negative; refined from the derivatives, with the located switch as a kink
   // (extremum.hpp).
+  bool plateau = false;
   if (started_ && previous_.dy < 0.0 && now.dy >= 0.0) {
-    const Vertex v = step_extremum(previous_, now, s.t_switch);
-    if (v.y < margin_.min_gap && v.y <= previous_.y && v.y <= now.y) {
+    if (now.dy == 0.0 && std::isfinite(s.t_switch)) {
+      // The gap stops closing at the kink (the damper sticks: a plateau from t_switch on).
+      // The plateau's value is the sample's, its start the kink.
+      if (now.y < margin_.min_gap - 1e-13 * (1.0 + std::abs(margin_.min_gap))) {
+        margin_.min_gap = now.y;
+        margin_.t_min_gap = s.t_switch;
+      }
+      plateau = true;
+    } else if (const Vertex v = step_extremum(previous_, now, s.t_switch);
+               v.y < margin_.min_gap && v.y <= previous_.y && v.y <= now.y) {
       margin_.min_gap = v.y;
       margin_.t_min_gap = v.t;
     }
   }
   // A sample below the minimum; a stuck, constant gap does not move its time (ties go to the
   // first time the minimum was reached).
-  if (!started_ || now.y < margin_.min_gap - 1e-13 * (1.0 + std::abs(margin_.min_gap))) {
+  if (!started_ || (!plateau && now.y < margin_.min_gap - 1e-13 * (1.0 + std::abs(margin_.min_gap)))) {
     margin_.min_gap = now.y;
     margin_.t_min_gap = s.t;
   }

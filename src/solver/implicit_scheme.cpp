@@ -66,7 +66,8 @@ struct Relay {
 // The damper over one step, given the free relative velocity w0 (what w_{n+1} would be with
 // Q = 0) and w_{n+1} = w0 - s Q.
 //
-// From stick: the closed-form relay (stick if |w0| <= mu s).
+// From stick: stuck on (the caller decides an onset from the stick force at the step's end);
+// at the first step, from rest, the closed-form relay (stick if |w0| <= mu s).
 // From slip in direction d: if slipping on would not bring w to zero, Q = mu d. Otherwise w
 // reaches zero at the fraction theta of the step (linear in time). What happens next is
 // decided by the stick force at that instant, `stick_force_at(theta)` (from the state
@@ -78,10 +79,11 @@ struct Relay {
 template <class StickForceAt>
 Relay resolve_relay(double w0, double s, double mu, Phase before, double w_before, bool first,
                     const StickForceAt& stick_force_at) {
-  if (before == Phase::stick || first) {
+  if (first) {
     if (std::abs(w0) <= mu * s) return {w0 / s, Phase::stick, 1.0};
-    return {w0 > 0.0 ? mu : -mu, slip_towards(w0), 0.0};  // the caller locates the onset
+    return {w0 > 0.0 ? mu : -mu, slip_towards(w0), 0.0};
   }
+  if (before == Phase::stick) return {w0 / s, Phase::stick, 1.0};  // the caller checks the end
   const double d = before == Phase::slip_right ? 1.0 : -1.0;
   const double w_end = w0 - s * mu * d;  // slipping on for the whole step
   if (w_end * d > 0.0) return {mu * d, before, 1.0};
@@ -93,12 +95,12 @@ Relay resolve_relay(double w0, double s, double mu, Phase before, double w_befor
 // Where the stick force q(t) reaches `target` (+-mu) near t_n: the root of the parabola
 // through (t_n - h, q_prev), (t_n, q_now), (t_n + h, q_next) (or of the line through the last
 // two when q_prev is not a stick force), as a time offset from t_n in units of h, within
-// [-1, 1]. Second-order interpolation of grid values gives the instant at order 2 or better.
-double locate_onset(double target, bool have_prev, double q_prev, double q_now, double q_next) {
+// [lo, 1]. Second-order interpolation of grid values gives the instant at order 2 or better.
+double locate_onset(double target, bool have_prev, double q_prev, double q_now, double q_next, double lo) {
   const double c = q_now - target;
   const double b = have_prev ? 0.5 * (q_next - q_prev) : q_next - q_now;
   const double a = have_prev ? 0.5 * (q_next - 2.0 * q_now + q_prev) : 0.0;
-  auto in_range = [](double x) { return std::isfinite(x) && x >= -1.0 && x <= 1.0; };
+  auto in_range = [lo](double x) { return std::isfinite(x) && x >= lo && x <= 1.0; };
   double best = std::numeric_limits<double>::quiet_NaN();
   auto consider = [&](double x) {
     if (in_range(x) && (!std::isfinite(best) || std::abs(x - 0.5) < std::abs(best - 0.5))) best = x;
@@ -151,6 +153,7 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
   bool previous_stuck = false;  // the grid point before `now` was stuck, and its stick force
   double previous_q = 0.0;
   double now_stick_q = 0.0;     // the stick force at `now` (unclamped; = now.q while inside the cone)
+  double stick_start_t = 0.0, stick_start_q = 0.0;  // where the last stick began, and its force
 
   for (std::size_t n = 0; n < n_steps; ++n) {
     State next;
@@ -188,24 +191,61 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
         return stick_force(model, now.f1 + theta * (f1e - now.f1), now.f2 + theta * (f2e - now.f2));
       };
       const Relay r = resolve_relay(a1 - a2, s, mu, now.phase, now.v1 - now.v2, n == 0, stick_force_at);
+      if (r.phase == Phase::stick && now.phase != Phase::stick) {
+        stick_start_t = now.t + r.theta * h;
+        stick_start_q = stick_force_at(r.theta);
+      }
       q = r.q;
       next.phase = r.phase;
-      if (r.phase == Phase::stick) {
+      double onset = -1.0;  // where a stick -> slip happens in this step, as a fraction of it
+      if (now.phase == Phase::stick && n > 0 && std::abs(now_stick_q) > mu) {
+        // A stick that began inside the last step (from a reversal whose crossing lay in the
+        // cone) and whose stick force left the cone before t_n: the blocks slip already. The
+        // onset lies between the stick's start and t_n, on the line between the stick forces
+        // there; this step slips throughout.
+        const double d = now_stick_q > 0.0 ? 1.0 : -1.0;
+        if ((a1 - a2 - s * mu * d) * d > 0.0) {
+          q = mu * d;
+          next.phase = slip_towards(d);
+          if (stick_start_t > now.t - h) {
+            const double f = (mu * d - stick_start_q) / (now_stick_q - stick_start_q);
+            onset = (stick_start_t + clamp01(f) * (now.t - stick_start_t) - now.t) / h;
+          } else {
+            // A longer stick whose last step was (barely) too short to slip: the onset lies in
+            // that step.
+            const auto [f1e, f2e] = end_forces(stuck_v, stuck_v);
+            onset = locate_onset(mu * d, previous_stuck, previous_q, now_stick_q, stick_force(model, f1e, f2e), -1.0);
+            onset = std::min(onset, 0.0);
+          }
+        }
+      } else if (now.phase == Phase::stick && n > 0) {
+        // Stuck at t_n (so |stick force| <= mu there). The blocks slip from where the stick
+        // force, had they stayed stuck, leaves the cone; decided at the grid point t_{n+1}
+        // (not on the step's average force, which would snap onsets to the grid or put them
+        // in the step before) and located on a parabola of grid stick forces.
+        const auto [f1e, f2e] = end_forces(stuck_v, stuck_v);
+        const double q_end = stick_force(model, f1e, f2e);
+        if (std::abs(q_end) > mu) {
+          const double d = q_end > 0.0 ? 1.0 : -1.0;
+          const double theta = locate_onset(mu * d, previous_stuck, previous_q, now_stick_q, q_end, 0.0);
+          // The step's average force: the stick force (about linear) up to the onset, the
+          // limit after it.
+          const double q_slip = theta * 0.5 * (std::clamp(now_stick_q, -mu, mu) + mu * d) + (1.0 - theta) * mu * d;
+          if ((a1 - a2 - s * q_slip) * d > 0.0) {
+            q = q_slip;
+            next.phase = slip_towards(d);
+            onset = theta;
+          }
+        }
+      }
+      if (next.phase == Phase::stick) {
         next.v1 = next.v2 = stuck_v;  // exactly one velocity
       } else {
         next.v1 = a1 - b1 * q;
         next.v2 = a2 + b2 * q;
       }
       if (options.locate_switches && next.phase != now.phase && n > 0) {
-        double theta = r.theta;
-        if (now.phase == Phase::stick) {
-          // Stick -> slip: where the stick force (grid values, and the value at t_{n+1} had
-          // the blocks stuck on) reaches the limit. It may lie in the previous step, since
-          // stick is decided on the step's average force.
-          const auto [f1e, f2e] = end_forces(stuck_v, stuck_v);
-          theta = locate_onset(q, previous_stuck, previous_q, now_stick_q, stick_force(model, f1e, f2e));
-        }
-        next.t_switch = now.t + theta * h;
+        next.t_switch = now.t + (now.phase == Phase::stick ? onset : r.theta) * h;
       }
     } else {
       next.v1 = a1;
@@ -226,9 +266,10 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
     next.f2 = k2 * next.x2 + r2;
     // The reported damper force is its value at t_{n+1} (not the step's average Q, which is
     // the force half a step earlier): the stick force while stuck, the limit while slipping.
-    // Stick is decided on the step's average force, so the stick force at the last stuck grid
-    // point before an onset can exceed mu by O(h): the damper is slipping there already, and
-    // its force is the limit. Clamping reports exactly that (and keeps |q| <= mu).
+    // A stick that began inside this step (at a reversal) can end in the next one with its
+    // grid stick force already beyond mu: the damper slips there already (the next step
+    // locates the onset before t_{n+1}), and its force is the limit. Clamping reports exactly
+    // that (and keeps |q| <= mu).
     const double next_stick_q = stick_force(model, next.f1, next.f2);
     if (damper)
       next.q = next.phase == Phase::stick ? std::clamp(next_stick_q, -mu, mu)

@@ -18,9 +18,11 @@ namespace adjoin {
 struct Peak {
   double max_abs = 0.0;
   double t = 0.0;
+  // Ties go to the first time: a value must exceed the peak by more than rounding (1e-12
+  // relative) to move it, so a plateau (a stuck damper's constant stroke) keeps its start.
   void update(double value, double time) {
     const double a = value < 0.0 ? -value : value;
-    if (a > max_abs) { max_abs = a; t = time; }
+    if (a > max_abs * (1.0 + 1e-12)) { max_abs = a; t = time; }
   }
 };
 
@@ -57,6 +59,13 @@ class DerivativePeak {
   void reset() { *this = DerivativePeak{}; }
   void update(const Sample& s, double t_kink) {
     if (have_ && previous_.dy != 0.0 && previous_.dy * s.dy <= 0.0) {
+      if (s.dy == 0.0 && std::isfinite(t_kink)) {
+        // The signal stops at the kink (the damper sticks: a plateau from t_kink on). The
+        // plateau's value is the sample's, its start the kink.
+        peak_.update(s.y, t_kink);
+        previous_ = s;
+        return;
+      }
       const Vertex v = step_extremum(previous_, s, t_kink);
       const double refined = std::abs(v.y);
       if (refined >= std::abs(previous_.y) && refined >= std::abs(s.y)) peak_.update(v.y, v.t);

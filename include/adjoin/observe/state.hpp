@@ -22,9 +22,8 @@ struct State {
   // paper scheme the phase it decided at t for the step that starts there.
   Phase phase = Phase::stick;
   // If the phase changed during the step that ends at t and the scheme located the switch:
-  // its time (t - 2h < t_switch <= t: a stick -> slip onset may be found in the step before,
-  // since stick is decided on the step's average force). Otherwise NaN: the switch is taken
-  // at t.
+  // its time (t - 2h < t_switch <= t: the onset that ends a stick shorter than a step, which
+  // began in the step before, may lie there). Otherwise NaN: the switch is taken at t.
   double t_switch = std::numeric_limits<double>::quiet_NaN();
 };
 
