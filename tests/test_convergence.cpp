@@ -74,6 +74,7 @@ TEST_CASE("adjoin converge writes the table, the CSV and the plot", "[convergenc
   CHECK(csv.rfind("scheme,history,h,steps,wall_seconds,error,order,err_peak_x1,err_min_gap,err_friction\n", 0) == 0);
   CHECK(std::count(csv.begin(), csv.end(), '\n') == 5);
   CHECK(std::filesystem::file_size(dir / "work-precision.png") > 1000);
+  CHECK(!std::filesystem::exists(dir / "convergence-quantities.csv"));  // the analytic reference has only the trajectory
 
   const auto bad = test::run_cli(std::string("converge ") + ADJOIN_SOURCE_DIR + "/records/scenes/paper-weak.toml --schemes fast");
   CHECK(bad.status == 2);
@@ -81,4 +82,33 @@ TEST_CASE("adjoin converge writes the table, the CSV and the plot", "[convergenc
   const auto uneven = test::run_cli(std::string("converge ") + ADJOIN_SOURCE_DIR + "/records/scenes/paper-weak.toml --steps 0.004,0.003 --no-plot");
   CHECK(uneven.status == 2);
   CHECK(uneven.err.find("integer") != std::string::npos);
+}
+
+TEST_CASE("strong scene: the order of every reported quantity, switching instants included", "[convergence]") {
+  ConvergenceOptions o;
+  o.schemes = {Scheme::implicit};
+  o.engines = {HistoryEngine::fft};
+  o.steps = {0.004, 0.002, 0.001, 0.0005};
+  const auto r = run_convergence(paper_scene("strong"), o);
+  REQUIRE(r.rows.size() == 4);
+  const auto& coarse = r.rows.front().quantities;
+  const auto& fine = r.rows.back().quantities;
+  REQUIRE(coarse.size() == fine.size());
+  int switches = 0, checked = 0;
+  for (std::size_t i = 0; i < fine.size(); ++i) {
+    INFO(fine[i].name << ": " << coarse[i].error << " at h = 0.004, " << fine[i].error << " at h = 0.0005");
+    REQUIRE(coarse[i].name == fine[i].name);
+    CHECK(!r.rows.back().switches_differ);
+    if (fine[i].name.rfind("switch", 0) == 0) ++switches;
+    if (fine[i].name == "peak q") {  // the damper's limit mu, exactly
+      CHECK(fine[i].error == 0.0);
+      continue;
+    }
+    // Second order over the ladder (8x smaller h): the error falls by at least 8^1.7 = 34.
+    ++checked;
+    CHECK(fine[i].error < coarse[i].error / 34.0);
+    CHECK(std::isfinite(fine[i].order));
+  }
+  CHECK(switches == 7);
+  CHECK(checked >= 21);
 }

@@ -3,6 +3,7 @@
 //
 // Error against run time for each scheme and history engine on a ladder of steps: prints a
 // table, writes DIR/convergence.csv and draws DIR/work-precision.png (gnuplot).
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -31,6 +32,68 @@ std::string cell(double v, const char* format = "%.3e") {
   char text[32];
   std::snprintf(text, sizeof text, format, v);
   return text;
+}
+
+// convergence-quantities.csv: every reported quantity's error and observed order on each rung
+// (instants in the scene's time unit). False (and nothing written) against an analytic
+// reference, which gives only the trajectory.
+bool write_quantities(const ConvergenceResult& result, double time_unit, const std::filesystem::path& path) {
+  bool any = false;
+  for (const auto& r : result.rows) any = any || !r.quantities.empty();
+  std::error_code ignored;
+  if (!any) {
+    std::filesystem::remove(path, ignored);  // not a stale one from an earlier run beside the new table
+    return false;
+  }
+  AtomicFile csv(path);
+  csv.stream() << "scheme,history,h,quantity,kind,error,order\n";
+  for (const auto& r : result.rows)
+    for (const auto& q : r.quantities)
+      csv.stream() << r.scheme << "," << r.history << "," << cell(r.h * time_unit, "%.10g") << "," << q.name << ","
+                   << (q.instant ? "absolute" : "relative") << "," << cell(q.error * (q.instant ? time_unit : 1.0), "%.6e")
+                   << "," << (std::isnan(q.order) ? "" : cell(q.order, "%.4f")) << "\n";
+  csv.commit();
+  return true;
+}
+
+// One table per (scheme, history) ladder: a row per quantity, a column per step, "error
+// (order)". Switching instants beyond the first 12 are in the CSV only.
+void print_quantities(const ConvergenceResult& result, double time_unit) {
+  for (std::size_t begin = 0; begin < result.rows.size();) {
+    std::size_t end = begin;
+    while (end < result.rows.size() && result.rows[end].scheme == result.rows[begin].scheme &&
+           result.rows[end].history == result.rows[begin].history)
+      ++end;
+    const auto& first = result.rows[begin];
+    std::printf("\nevery reported quantity, %s/%s: error (observed order); values relative, instants in the "
+                "scene's time unit\n%-16s", first.scheme.c_str(), first.history.c_str(), "h =");
+    for (std::size_t i = begin; i < end; ++i) std::printf(" %20.4g", result.rows[i].h * time_unit);
+    std::printf("\n");
+    std::vector<std::string> names;
+    for (std::size_t i = begin; i < end; ++i)
+      for (const auto& q : result.rows[i].quantities)
+        if (std::find(names.begin(), names.end(), q.name) == names.end()) names.push_back(q.name);
+    int switches = 0, hidden = 0;
+    for (const auto& name : names) {
+      if (name.rfind("switch", 0) == 0 && ++switches > 12) { ++hidden; continue; }
+      std::printf("%-16s", name.c_str());
+      for (std::size_t i = begin; i < end; ++i) {
+        std::string text = "-";
+        for (const auto& q : result.rows[i].quantities)
+          if (q.name == name)
+            text = cell(q.error * (q.instant ? time_unit : 1.0), "%.2e") + " (" + cell(q.order, "%.2f") + ")";
+        std::printf(" %20s", text.c_str());
+      }
+      std::printf("\n");
+    }
+    if (hidden > 0) std::printf("(%d more switching instants in convergence-quantities.csv)\n", hidden);
+    for (std::size_t i = begin; i < end; ++i)
+      if (result.rows[i].switches_differ)
+        std::printf("h = %.4g: the sequence of phases differs from the reference's; its switching instants are not compared\n",
+                    result.rows[i].h * time_unit);
+    begin = end;
+  }
+  std::printf("\n");
 }
 
 int converge_command(const ConvergeArgs& args) {
@@ -96,7 +159,10 @@ int converge_command(const ConvergeArgs& args) {
                 r.h * scene.scales.time, r.steps, r.wall_seconds, cell(r.error).c_str(), cell(r.order, "%.2f").c_str(),
                 cell(r.peak_x1).c_str(), cell(r.min_gap).c_str(), cell(r.friction).c_str());
   }
+  const auto quantities_path = dir / "convergence-quantities.csv";
+  if (write_quantities(result, scene.scales.time, quantities_path)) print_quantities(result, scene.scales.time);
   std::printf("wrote %s", csv_path.string().c_str());
+  if (std::filesystem::exists(quantities_path)) std::printf(", %s", quantities_path.string().c_str());
   if (!args.no_plot) {
     PlotStyle style;
     const std::filesystem::path image = plot_target(args.plot, dir / "work-precision.png", "", &style, "--plot");

@@ -37,12 +37,41 @@ class CoarseGrid final : public Observer {
   std::size_t count_ = 0;
 };
 
+// Every reported quantity of a run, by name (see the header).
+std::vector<QuantityError> reported_quantities(const RunReport& r) {
+  std::vector<QuantityError> out;
+  auto value = [&](const std::string& name, double v) { out.push_back({name, false, v, kNaN}); };
+  auto instant = [&](const std::string& name, double t) { out.push_back({name, true, t, kNaN}); };
+  const std::pair<const char*, const Peak*> peaks[] = {{"x1", &r.peaks.x1},   {"x2", &r.peaks.x2}, {"stroke", &r.peaks.drift},
+                                                       {"f1", &r.peaks.f1},   {"f2", &r.peaks.f2}, {"q", &r.peaks.q}};
+  for (const auto& [name, p] : peaks) {
+    value(std::string("peak ") + name, p->max_abs);
+    instant(std::string("t peak ") + name, p->t);
+  }
+  if (r.pounding) {
+    value("min gap", r.pounding->min_gap);
+    instant("t min gap", r.pounding->t_min_gap);
+  }
+  if (r.energy) value("friction", r.energy->friction);
+  value("final q", r.final.q);
+  for (std::size_t i = 1; i < r.phases.size(); ++i) instant("switch " + std::to_string(i), r.phases[i].t_start);
+  return out;
+}
+
+bool same_phases(const RunReport& a, const RunReport& b) {
+  if (a.phases.size() != b.phases.size()) return false;
+  for (std::size_t i = 0; i < a.phases.size(); ++i)
+    if (a.phases[i].state != b.phases[i].state) return false;
+  return true;
+}
+
 struct Reference {
   std::string description;
   std::vector<double> x1, x2;  // on the coarsest grid
   double scale = 1.0;          // max |x_ref|
   bool has_summary = false;
   double peak_x1 = 0.0, min_gap = 0.0, friction = 0.0;
+  RunReport report;  // the finer run (has_summary)
 };
 
 std::size_t stride_of(double coarse, double h) {
@@ -138,6 +167,7 @@ ConvergenceResult run_convergence(const Scene& scene, const ConvergenceOptions& 
     ref.peak_x1 = r.peaks.x1.max_abs;
     ref.min_gap = r.pounding->min_gap;
     ref.friction = r.energy->friction;
+    ref.report = r;
     ref.description = "a finer run: implicit/" + to_string(s.solver.history) + " at h = " + number(h_ref);
   }
   ref.scale = 0.0;
@@ -150,6 +180,7 @@ ConvergenceResult run_convergence(const Scene& scene, const ConvergenceOptions& 
   for (Scheme scheme : options.schemes) {
     for (HistoryEngine engine : options.engines) {
       double previous = kNaN;
+      std::vector<QuantityError> previous_quantities;
       for (double h : steps) {
         ConvergenceRow row;
         row.scheme = to_string(scheme);
@@ -171,11 +202,26 @@ ConvergenceResult run_convergence(const Scene& scene, const ConvergenceOptions& 
           row.peak_x1 = ref.has_summary ? relative(r.peaks.x1.max_abs, ref.peak_x1) : kNaN;
           row.min_gap = ref.has_summary ? relative(r.pounding->min_gap, ref.min_gap) : kNaN;
           row.friction = ref.has_summary && ref.friction > 0.0 ? relative(r.energy->friction, ref.friction) : kNaN;
+          if (ref.has_summary) {
+            row.switches_differ = !same_phases(r, ref.report);
+            const auto mine = reported_quantities(r), theirs = reported_quantities(ref.report);
+            for (std::size_t i = 0; i < mine.size() && i < theirs.size(); ++i) {
+              if (mine[i].name != theirs[i].name || (row.switches_differ && mine[i].name.rfind("switch", 0) == 0)) continue;
+              QuantityError q = mine[i];
+              q.error = q.instant ? std::abs(mine[i].error - theirs[i].error) : relative(mine[i].error, theirs[i].error);
+              for (const auto& p : previous_quantities)
+                if (p.name == q.name && p.error > 0.0 && q.error > 0.0)
+                  q.order = std::log(p.error / q.error) / std::log(result.rows.back().h / h);
+              row.quantities.push_back(q);
+            }
+            previous_quantities = row.quantities;
+          }
         } catch (const NumericalError& e) {
           row.failed = true;
           row.message = e.what();
           row.error = row.order = row.peak_x1 = row.min_gap = row.friction = kNaN;
           previous = kNaN;
+          previous_quantities.clear();
         }
         result.rows.push_back(row);
       }

@@ -17,6 +17,12 @@
 //  - peak_x1, min_gap, friction: relative errors of those summary values (against the fine
 //    run; against the exact solution only the trajectory error is given).
 // The observed order is log2 of the ratio of successive errors over a halving of h.
+//
+// Against a finer run, every reported quantity is compared too (ConvergenceRow::quantities):
+// the peaks of x1, x2, the stroke, f1, f2 and q with their times, the minimum gap and its
+// time, the friction energy, final.q, and each switching instant (when the run has the
+// reference's sequence of phases; otherwise the row says the switch count differs). Values
+// are relative errors, instants absolute (dimensionless time); each with its observed order.
 #include <string>
 #include <vector>
 
@@ -32,6 +38,13 @@ struct ConvergenceOptions {
   bool IsValid(std::string* error) const;
 };
 
+struct QuantityError {
+  std::string name;     // "peak x1", "t peak x1", "min gap", "switch 3", ...
+  bool instant = false;  // an instant (absolute error in time) rather than a value (relative)
+  double error = 0.0;
+  double order = 0.0;    // NaN for the first rung or when the previous rung lacks it
+};
+
 struct ConvergenceRow {
   std::string scheme, history;
   double h = 0.0;  // dimensionless
@@ -40,6 +53,8 @@ struct ConvergenceRow {
   double error = 0.0;
   double order = 0.0;  // NaN for the first row of a (scheme, history) ladder
   double peak_x1 = 0.0, min_gap = 0.0, friction = 0.0;  // relative errors; NaN if not available
+  std::vector<QuantityError> quantities;  // empty against an analytic reference
+  bool switches_differ = false;  // the run's sequence of phases is not the reference's
   bool failed = false;  // the run stopped with a NumericalError (e.g. the paper scheme beyond its bound)
   std::string message;
 };
