@@ -3,9 +3,12 @@
 // to a tolerance meets it.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
+#include "adjoin/io/run_files.hpp"
 #include "adjoin/study/error_estimate.hpp"
 #include "scene_helpers.hpp"
 
@@ -128,5 +131,28 @@ TEST_CASE("a run to a tolerance meets it, and says which steps it tried", "[erro
                          {t.report.peaks.f1, ref.peaks.f1}, {t.report.peaks.f2, ref.peaks.f2},
                          {t.report.peaks.drift, ref.peaks.drift}, {t.report.peaks.q, ref.peaks.q}})
       CHECK(std::abs(p.max_abs - pr.max_abs) <= tolerance * pr.max_abs);
+  }
+}
+
+TEST_CASE("a run to a tolerance streams only the kept rung into its files", "[error_estimate][tolerance]") {
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "tolerance-files";
+  std::filesystem::remove_all(dir);
+  Scene scene = paper_scene("strong", {"solver.scheme=implicit", "solver.history=fft", "output.timeseries=true",
+                                       "output.energy_history=true", "output.every=1"});
+  scene.accuracy.tolerance = 1e-6;
+  const RunFiles files = run_to_folder(scene, dir);
+  REQUIRE(files.tolerant);
+  CHECK(files.tolerant->ladder.size() >= 2);  // rungs were tried before the kept one
+  for (const char* name : {"timeseries.csv", "energy.csv"}) {
+    INFO(name);
+    std::ifstream in(dir / name);
+    std::string line, last;
+    std::size_t rows = 0, headers = 0;
+    while (std::getline(in, line)) {
+      if (line.rfind("t,", 0) == 0) ++headers; else { ++rows; last = line; }
+    }
+    CHECK(headers == 1);
+    CHECK(rows == files.report.solver.steps + 1);  // every grid point of the kept rung, once
+    CHECK(std::stod(last.substr(0, last.find(','))) == Approx(16.0).margin(files.report.solver.h));  // the rung's last step
   }
 }

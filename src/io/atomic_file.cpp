@@ -44,6 +44,13 @@ AtomicFile::AtomicFile(std::filesystem::path target) : target_(std::move(target)
   if (!out_) throw InputError(target_.string() + ": cannot write here (check the folder exists and is writable)");
 }
 
+void AtomicFile::restart() {
+  out_.close();
+  out_.clear();
+  out_.open(temporary_, std::ios::binary | std::ios::trunc);
+  if (!out_) throw InputError(target_.string() + ": cannot write here (check the folder exists and is writable)");
+}
+
 AtomicFile::~AtomicFile() {
   if (!committed_) {
     out_.close();
@@ -78,6 +85,10 @@ FileSet::FileSet(std::filesystem::path dir, std::vector<std::string> members)
 std::ostream& FileSet::open(const std::string& name) {
   files_.emplace_back(name, std::make_unique<AtomicFile>(dir_ / name));
   return files_.back().second->stream();
+}
+
+void FileSet::restart() {
+  for (auto& [name, file] : files_) file->restart();
 }
 
 std::vector<std::filesystem::path> FileSet::commit() {

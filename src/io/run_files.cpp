@@ -17,6 +17,30 @@ const std::vector<std::string>& run_file_names() {
   return names;
 }
 
+namespace {
+
+// The streamed writers, started afresh with each run they see: a run to a tolerance streams
+// every rung it tries into the same files, and the rung it keeps is the last one written.
+// (Cheaper than running the kept rung again with the writers attached.)
+class RestartingStreams final : public Observer {
+ public:
+  RestartingStreams(FileSet& set, ObserverList& writers) : set_(set), writers_(writers) {}
+  void begin(const RunInfo& info) override {
+    if (started_) set_.restart();
+    started_ = true;
+    writers_.begin(info);
+  }
+  void observe(const State& s) override { writers_.observe(s); }
+  void end() override { writers_.end(); }
+
+ private:
+  FileSet& set_;
+  ObserverList& writers_;
+  bool started_ = false;
+};
+
+}  // namespace
+
 RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
@@ -35,7 +59,8 @@ RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir) {
     streams.add(writers.back().get());
   }
   RunFiles files;
-  Observer* extra = writers.empty() ? nullptr : &streams;
+  RestartingStreams restarting(set, streams);
+  Observer* extra = writers.empty() ? nullptr : &restarting;
   if (scene.accuracy.tolerance) {
     files.tolerant = run_to_tolerance(scene, *scene.accuracy.tolerance, extra);
     files.report = files.tolerant->report;

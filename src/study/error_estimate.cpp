@@ -87,13 +87,12 @@ TolerantRun run_to_tolerance(const Scene& scene, double tolerance, Observer* ext
                            0.0);
     const bool last = rung == 5;
     out.ladder.push_back(h);
-    // The extra observer (a streaming writer) sees only the run that is kept: try without it,
-    // and repeat the accepted rung with it.
-    RunReport r = run_scene(s);
+    // The extra observer (a streaming writer) sees every rung's run (not the companions);
+    // each begin() starts a new one, and the last it sees is the run that is kept.
+    RunReport r = run_scene(s, extra);
     ErrorEstimate e = estimate_error(s, r);
     const double achieved = e.available ? e.max_relative_peak : INFINITY;
     if (achieved <= tolerance || last) {
-      if (extra) r = run_scene(s, extra);
       out.report = std::move(r);
       out.estimate = std::move(e);
       out.h = h;

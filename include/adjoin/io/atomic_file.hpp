@@ -28,6 +28,9 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   std::ostream& stream() { return out_; }
+  // Empties the temporary to write it again from the start (the stream stays the same
+  // object, so writers holding it go on writing into the new content).
+  void restart();
   // Flushes, checks for write errors (InputError naming the file) and renames into place.
   void commit();
   // The two halves of commit(): finish() flushes and closes the temporary and checks that
@@ -48,6 +51,8 @@ class FileSet {
   FileSet(std::filesystem::path dir, std::vector<std::string> members);
   // Starts writing member `name`; the stream stays valid until commit().
   std::ostream& open(const std::string& name);
+  // Empties every opened member (AtomicFile::restart).
+  void restart();
   // All or none: finishes every opened member, then renames them all into place and removes
   // the members that were not opened. Returns the paths written, in the order opened.
   std::vector<std::filesystem::path> commit();

@@ -60,7 +60,8 @@ struct TolerantRun {
   bool met = false;              // estimate.max_relative_peak <= tolerance
 };
 
-// `scene.solver.h` is ignored; the rest of the scene is used as is.
+// `scene.solver.h` is ignored; the rest of the scene is used as is. `extra` sees the run of
+// every rung tried (its begin() starts each); the last one is the run reported.
 TolerantRun run_to_tolerance(const Scene& scene, double tolerance, Observer* extra = nullptr);
 
 }  // namespace adjoin
