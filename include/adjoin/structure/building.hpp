@@ -1,0 +1,90 @@
+#pragma once
+// The structure as data (SPEC §5): buildings A and B side by side on the same ground, their
+// storeys and storey devices, inherent damping, and the links and contacts between floors.
+// Plain values in SI units, sized at run time; no file formats, no numerics beyond checking.
+//
+// Floors are numbered 1..n from the bottom (the ground is floor 0); storey i joins floor i-1
+// to floor i. A storey's static stiffness is its spring plus the relaxed stiffness k of its
+// fractional Zener devices (the paper's storey is a Zener device alone, spring 0).
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+namespace adjoin::structure {
+
+// f + tau_f D^order f = k (d + tau_x D^order d): the paper's rod. 0 < order < 1,
+// tau_x > tau_f > 0 (tau in s^order), k > 0.
+struct Zener {
+  double k = 0.0, order = 0.5, tau_x = 0.0, tau_f = 0.0;
+};
+
+enum class DeviceType { spring, dashpot, zener };
+
+// A device in parallel with the spring of each listed storey (1-based).
+struct StoreyDevice {
+  DeviceType type = DeviceType::spring;
+  std::vector<int> storeys;
+  double k = 0.0;  // spring [N/m]
+  double c = 0.0;  // dashpot [N s/m]
+  Zener zener;
+};
+
+// Classical damping from the building's mass and elastic (static) stiffness.
+enum class DampingModel { none, modal, rayleigh };
+struct InherentDamping {
+  DampingModel model = DampingModel::none;
+  double ratio = 0.0;          // modal: every mode; rayleigh: at the two modes below
+  int mode_i = 1, mode_j = 2;  // rayleigh: 1-based mode numbers
+};
+
+struct Building {
+  std::string name;               // "A" or "B"
+  Eigen::VectorXd masses;         // floor masses [kg], bottom up
+  Eigen::VectorXd springs;        // storey springs [N/m], bottom up (0 where only devices stiffen)
+  std::vector<StoreyDevice> devices;
+  InherentDamping damping;
+
+  int floors() const { return static_cast<int>(masses.size()); }
+  // Spring plus the relaxed stiffness of each storey's Zener devices and springs.
+  Eigen::VectorXd static_stiffness() const;
+};
+
+enum class LinkType { friction, dashpot, spring, zener };
+
+// Between floor_a of A and floor_b of B; its force acts as -q on A's floor and +q on B's.
+struct Link {
+  LinkType type = LinkType::friction;
+  int floor_a = 1, floor_b = 1;
+  double slip_force = 0.0;  // friction [N]
+  double c = 0.0, k = 0.0;  // dashpot [N s/m], spring [N/m]
+  Zener zener;
+};
+
+// A pounding pair: clear gap at rest [m] between floor_a of A and floor_b of B (SPEC §6).
+struct Contact {
+  int floor_a = 1, floor_b = 1;
+  double gap = 0.0;
+};
+
+struct Structure {
+  Building a;
+  std::optional<Building> b;
+  std::vector<Link> links;
+  std::vector<Contact> contacts;
+
+  int dofs() const { return a.floors() + (b ? b->floors() : 0); }
+  // The index of floor `floor` (1-based) of building "A" or "B" in the stacked state.
+  int dof(char building, int floor) const { return building == 'A' ? floor - 1 : a.floors() + floor - 1; }
+  // Why the structure is not valid (sizes, ranges, floors out of range), with the field path
+  // ("building.A.masses[3]", "link[2].floors"), or true.
+  bool IsValid(std::string* error) const;
+};
+
+// The uniform storey stiffness that gives a building the fundamental period `period` [s]
+// (with its masses, and no other stiffness): exact, from the first eigenvalue at unit
+// stiffness.
+double stiffness_for_period(const Eigen::VectorXd& masses, double period);
+
+}  // namespace adjoin::structure

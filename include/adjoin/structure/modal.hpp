@@ -1,0 +1,51 @@
+#pragma once
+// Modal analysis before a run (SPEC §5): each building's natural periods, mass-normalised mode
+// shapes and modal damping ratios, and the coupled system's periods with the links free and
+// locked. Eigen's generalized self-adjoint eigensolver on (K, M); K from the static storey
+// stiffnesses (springs plus the relaxed stiffness of Zener devices).
+//
+// Damping ratios per mode n (mass-normalised shape phi_n, circular frequency w_n):
+//  - inherent: the ratio the building's classical damping gives the mode (modal: the ratio
+//    itself; Rayleigh C = a0 M + a1 K fitted at two modes: a0 / (2 w_n) + a1 w_n / 2);
+//  - devices: dashpots phi_n' C phi_n / (2 w_n); Zener storeys the equivalent ratio from the
+//    complex stiffness at the mode's frequency, K*(w) = k (1 + tau_x (i w)^a) / (1 + tau_f (i w)^a):
+//    phi_n' Im K*(w_n) phi_n / (2 phi_n' K phi_n), with the dynamic stiffening
+//    phi_n' Re K*(w_n) phi_n / phi_n' K phi_n reported beside it (modes are not recomputed
+//    with it: the periods are those of the static stiffness, as engineers quote them);
+//  - total: their sum.
+#include <Eigen/Dense>
+#include <complex>
+
+#include "adjoin/structure/building.hpp"
+
+namespace adjoin::structure {
+
+struct Modes {
+  Eigen::VectorXd omega;     // rad/s, ascending
+  Eigen::VectorXd periods;   // s
+  Eigen::MatrixXd shapes;    // columns, mass-normalised (phi' M phi = 1), roof component > 0
+  Eigen::VectorXd inherent_ratio, device_ratio, total_ratio;
+  Eigen::VectorXd zener_stiffening;  // phi' Re K*(w_n) phi / phi' K phi (1 without Zener devices)
+};
+
+// Shear-building matrices of one building: M (diagonal), K (tridiagonal, static stiffness),
+// the device dashpots' C, and the classical (inherent) damping matrix.
+Eigen::MatrixXd mass_matrix(const Building& b);
+Eigen::MatrixXd stiffness_matrix(const Eigen::VectorXd& storey_stiffness);
+Eigen::MatrixXd dashpot_matrix(const Building& b);
+Eigen::MatrixXd inherent_damping_matrix(const Building& b);
+// The complex storey stiffness of a building at circular frequency w (springs, device
+// springs, Zener devices).
+Eigen::MatrixXcd complex_stiffness_matrix(const Building& b, double w);
+std::complex<double> zener_stiffness(const Zener& z, double w);
+
+Modes building_modes(const Building& b);
+
+struct CoupledModes {
+  Eigen::VectorXd periods_free;    // links' friction dampers free (springs and Zener links at relaxed k)
+  Eigen::VectorXd periods_locked;  // friction dampers rigid (the two floors move together)
+};
+// Requires building B and at least one link for `periods_locked` to differ from free.
+CoupledModes coupled_modes(const Structure& s);
+
+}  // namespace adjoin::structure

@@ -1,0 +1,343 @@
+#include "adjoin/io/structure_file.hpp"
+
+#include <cmath>
+#include <set>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/io/text_file.hpp"
+#include "adjoin/model/units.hpp"
+
+namespace adjoin {
+namespace {
+
+using structure::Building;
+using structure::DampingModel;
+using structure::DeviceType;
+using structure::LinkType;
+
+// Reads the keys of one table, each named by its dotted path in messages with the line.
+class TableReader {
+ public:
+  TableReader(const toml::table& table, std::string path, std::string file)
+      : table_(table), path_(std::move(path)), file_(std::move(file)) {}
+
+  [[noreturn]] void fail(const std::string& key, const std::string& message) const {
+    const toml::node* node = key.empty() ? nullptr : table_.get(key);
+    const auto& source = node ? node->source() : table_.source();
+    std::ostringstream m;
+    m << file_;
+    if (source.begin.line > 0) m << ":" << source.begin.line;
+    m << ": " << (key.empty() ? path_ : path_ + "." + key) << ": " << message;
+    throw InputError(m.str());
+  }
+  bool has(const std::string& key) const { return table_.contains(key); }
+  void only(const std::set<std::string>& known) const {
+    for (const auto& [k, v] : table_) {
+      const std::string key(k.str());
+      if (known.count(key)) continue;
+      std::string list;
+      for (const auto& name : known) list += (list.empty() ? "" : ", ") + name;
+      fail(key, "unknown key; expected one of " + list);
+    }
+  }
+  double number(const std::string& key) const {
+    const toml::node* n = table_.get(key);
+    if (!n) fail("", "missing key " + key);
+    const auto v = n->value<double>();
+    if (!v || !std::isfinite(*v)) fail(key, "expected a finite number");
+    return *v;
+  }
+  double number(const std::string& key, double fallback) const { return has(key) ? number(key) : fallback; }
+  double positive(const std::string& key) const {
+    const double v = number(key);
+    if (!(v > 0.0)) fail(key, "expected a positive number");
+    return v;
+  }
+  int integer(const std::string& key, int lo, int hi) const {
+    const toml::node* n = table_.get(key);
+    if (!n) fail("", "missing key " + key);
+    const auto v = n->value_exact<std::int64_t>();
+    if (!v || *v < lo || *v > hi) fail(key, "expected a whole number from " + std::to_string(lo) + " to " + std::to_string(hi));
+    return static_cast<int>(*v);
+  }
+  std::string text(const std::string& key, const std::set<std::string>& allowed) const {
+    const toml::node* n = table_.get(key);
+    if (!n) fail("", "missing key " + key);
+    const auto v = n->value_exact<std::string>();
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";
+    if (!v || !allowed.count(*v)) fail(key, "expected one of " + list);
+    return *v;
+  }
+  std::vector<double> numbers(const std::string& key, std::size_t size) const {
+    const toml::array* a = table_.get_as<toml::array>(key);
+    if (!a) fail(key, "expected a list of numbers");
+    if (size && a->size() != size) fail(key, "expected " + std::to_string(size) + " values, one per storey (bottom up)");
+    std::vector<double> out;
+    for (const auto& e : *a) {
+      const auto v = e.value<double>();
+      if (!v || !std::isfinite(*v)) fail(key, "expected a list of finite numbers");
+      out.push_back(*v);
+    }
+    return out;
+  }
+  std::vector<int> integers(const std::string& key, std::size_t size) const {
+    const toml::array* a = table_.get_as<toml::array>(key);
+    if (!a || (size && a->size() != size)) fail(key, size ? "expected " + std::to_string(size) + " whole numbers" : "expected a list of whole numbers");
+    std::vector<int> out;
+    for (const auto& e : *a) {
+      const auto v = e.value_exact<std::int64_t>();
+      if (!v || *v < 1 || *v > 100000) fail(key, "expected whole numbers from 1");
+      out.push_back(static_cast<int>(*v));
+    }
+    return out;
+  }
+  const toml::table& table() const { return table_; }
+  const std::string& path() const { return path_; }
+  const std::string& file() const { return file_; }
+
+ private:
+  const toml::table& table_;
+  std::string path_, file_;
+};
+
+structure::Zener read_zener(const TableReader& r) {
+  structure::Zener z;
+  z.k = r.positive("stiffness");
+  z.order = r.number("order");
+  if (!(z.order > 0.0 && z.order < 1.0)) r.fail("order", "expected a fractional order in (0, 1)");
+  z.tau_f = r.positive("tau_f");
+  z.tau_x = r.positive("tau_x");
+  if (!(z.tau_x > z.tau_f)) r.fail("tau_x", "must exceed tau_f (the second law; tau_x = tau_f is a spring)");
+  return z;
+}
+
+Building read_building(const toml::table& root, const std::string& name, const std::string& file) {
+  const toml::table* t = root["building"][name].as_table();
+  TableReader r(*t, "building." + name, file);
+  r.only({"storeys", "mass", "masses", "stiffness", "stiffnesses", "period", "damping", "device"});
+  Building b;
+  b.name = name;
+  const int n = r.integer("storeys", 1, 200);
+  if (r.has("mass") == r.has("masses")) r.fail("", "give the floor masses as mass (every floor) or masses (a list), one of them");
+  b.masses = r.has("mass") ? Eigen::VectorXd::Constant(n, r.positive("mass")) : Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(r.numbers("masses", n).data(), n));
+  for (int i = 0; i < n; ++i)
+    if (!(b.masses[i] > 0.0)) r.fail("masses", "floor " + std::to_string(i + 1) + ": expected a positive mass (kg)");
+  const int given = r.has("stiffness") + r.has("stiffnesses") + r.has("period");
+  if (given > 1) r.fail("", "give one of stiffness, stiffnesses or period");
+  if (r.has("stiffness")) {
+    b.springs = Eigen::VectorXd::Constant(n, r.positive("stiffness"));
+  } else if (r.has("stiffnesses")) {
+    const auto k = r.numbers("stiffnesses", n);
+    b.springs = Eigen::Map<const Eigen::VectorXd>(k.data(), n);
+    for (int i = 0; i < n; ++i)
+      if (!(b.springs[i] >= 0.0)) r.fail("stiffnesses", "storey " + std::to_string(i + 1) + ": expected a non-negative stiffness (N/m)");
+  } else if (r.has("period")) {
+    b.springs = Eigen::VectorXd::Constant(n, structure::stiffness_for_period(b.masses, r.positive("period")));
+  } else {
+    b.springs = Eigen::VectorXd::Zero(n);  // the storeys' devices give the stiffness (checked below)
+  }
+  if (r.has("damping")) {
+    const toml::table* d = t->get_as<toml::table>("damping");
+    if (!d) r.fail("damping", "expected a table: { model = \"modal\", ratio = 0.05 }");
+    TableReader dr(*d, r.path() + ".damping", file);
+    dr.only({"model", "ratio", "modes"});
+    const std::string model = dr.text("model", {"none", "modal", "rayleigh"});
+    b.damping.model = model == "none" ? DampingModel::none : (model == "modal" ? DampingModel::modal : DampingModel::rayleigh);
+    if (b.damping.model != DampingModel::none) {
+      b.damping.ratio = dr.number("ratio");
+      if (!(b.damping.ratio >= 0.0 && b.damping.ratio < 1.0)) dr.fail("ratio", "expected a damping ratio in [0, 1) (0.05 is 5 %)");
+    }
+    if (b.damping.model == DampingModel::rayleigh) {
+      const auto modes = dr.has("modes") ? dr.integers("modes", 2) : std::vector<int>{1, 2};
+      b.damping.mode_i = modes[0];
+      b.damping.mode_j = modes[1];
+      if (modes[0] == modes[1] || modes[0] > n || modes[1] > n)
+        dr.fail(dr.has("modes") ? "modes" : "", "Rayleigh damping is fitted at two different modes of the " + std::to_string(n) + " the building has");
+    }
+  }
+  if (r.has("device")) {
+    const toml::array* devices = t->get_as<toml::array>("device");
+    if (!devices) r.fail("device", "expected [[building." + name + ".device]] tables");
+    int index = 0;
+    for (const auto& node : *devices) {
+      ++index;
+      const toml::table* dt = node.as_table();
+      if (!dt) r.fail("device", "expected [[building." + name + ".device]] tables");
+      TableReader dr(*dt, r.path() + ".device[" + std::to_string(index) + "]", file);
+      structure::StoreyDevice dev;
+      const std::string type = dr.text("type", {"zener", "dashpot", "spring"});
+      dev.storeys = dr.integers("storeys", 0);
+      for (int s : dev.storeys)
+        if (s > n) dr.fail("storeys", "storey " + std::to_string(s) + " is not in 1.." + std::to_string(n));
+      if (type == "spring") {
+        dr.only({"type", "storeys", "stiffness"});
+        dev.type = DeviceType::spring;
+        dev.k = dr.positive("stiffness");
+      } else if (type == "dashpot") {
+        dr.only({"type", "storeys", "c"});
+        dev.type = DeviceType::dashpot;
+        dev.c = dr.positive("c");
+      } else {
+        dr.only({"type", "storeys", "stiffness", "order", "tau_x", "tau_f"});
+        dev.type = DeviceType::zener;
+        dev.zener = read_zener(dr);
+      }
+      b.devices.push_back(dev);
+    }
+  }
+  const Eigen::VectorXd k = b.static_stiffness();
+  for (int i = 0; i < n; ++i)
+    if (!(k[i] > 0.0))
+      r.fail("", "storey " + std::to_string(i + 1) + " has no stiffness: give stiffness, stiffnesses or period, or a spring or Zener device on it");
+  return b;
+}
+
+double building_weight(const Building& b) { return b.masses.sum() * kStandardGravity; }
+
+}  // namespace
+
+bool is_building_scene(const std::filesystem::path& file) {
+  const std::string text = read_text_file(file, "scene");
+  try {
+    const toml::table root = toml::parse(text, file.string());
+    return root.contains("building");
+  } catch (const toml::parse_error&) {
+    return false;  // the scene loader reports the syntax error with its line
+  }
+}
+
+structure::Structure read_structure(const std::filesystem::path& path) {
+  const std::string file = path.string();
+  const std::string text = read_text_file(path, "scene");
+  toml::table root;
+  try {
+    root = toml::parse(text, file);
+  } catch (const toml::parse_error& e) {
+    std::ostringstream m;
+    m << file << ":" << e.source().begin.line << ": not valid TOML: " << e.description();
+    throw InputError(m.str());
+  }
+  TableReader top(root, "scene", file);
+  const toml::table* model = root["model"].as_table();
+  if (!model || root["model"]["units"].value<std::string>() != "SI")
+    top.fail("", "a building scene is in SI units: add [model] with units = \"SI\"");
+  const toml::table* buildings = root["building"].as_table();
+  if (!buildings) top.fail("", "missing section [building.A]");
+  TableReader br(*buildings, "building", file);
+  br.only({"A", "B"});
+  if (!buildings->get_as<toml::table>("A")) br.fail("", "missing section [building.A] (the left building)");
+  structure::Structure s;
+  s.a = read_building(root, "A", file);
+  if (buildings->get_as<toml::table>("B")) s.b = read_building(root, "B", file);
+
+  auto floors_of = [&](const TableReader& r) {
+    const auto f = r.integers("floors", 2);
+    if (!s.b) r.fail("", "links and contacts join building A to building B: add [building.B]");
+    if (f[0] > s.a.floors()) r.fail("floors", "floor " + std::to_string(f[0]) + " is not a floor of A (1.." + std::to_string(s.a.floors()) + ")");
+    if (f[1] > s.b->floors()) r.fail("floors", "floor " + std::to_string(f[1]) + " is not a floor of B (1.." + std::to_string(s.b->floors()) + ")");
+    return f;
+  };
+  if (const toml::array* links = root.get_as<toml::array>("link")) {
+    int index = 0;
+    for (const auto& node : *links) {
+      ++index;
+      const toml::table* lt = node.as_table();
+      if (!lt) top.fail("link", "expected [[link]] tables");
+      TableReader r(*lt, "link[" + std::to_string(index) + "]", file);
+      structure::Link l;
+      const auto f = floors_of(r);
+      l.floor_a = f[0];
+      l.floor_b = f[1];
+      const std::string type = r.text("type", {"friction", "dashpot", "spring", "zener"});
+      if (type == "friction") {
+        r.only({"floors", "type", "slip_force", "slip_ratio", "of"});
+        l.type = LinkType::friction;
+        if (r.has("slip_force") == r.has("slip_ratio")) r.fail("", "give slip_force [N] or slip_ratio with of = \"A\" or \"B\", one of them");
+        if (r.has("slip_force")) {
+          l.slip_force = r.positive("slip_force");
+        } else {
+          const double ratio = r.positive("slip_ratio");
+          const std::string of = r.text("of", {"A", "B"});
+          l.slip_force = ratio * building_weight(of == "A" ? s.a : *s.b);
+        }
+      } else if (type == "dashpot") {
+        r.only({"floors", "type", "c"});
+        l.type = LinkType::dashpot;
+        l.c = r.positive("c");
+      } else if (type == "spring") {
+        r.only({"floors", "type", "stiffness"});
+        l.type = LinkType::spring;
+        l.k = r.positive("stiffness");
+      } else {
+        r.only({"floors", "type", "stiffness", "order", "tau_x", "tau_f"});
+        l.type = LinkType::zener;
+        l.zener = read_zener(r);
+      }
+      s.links.push_back(l);
+    }
+  } else if (root.contains("link")) {
+    top.fail("link", "expected [[link]] tables");
+  }
+  if (const toml::array* contacts = root.get_as<toml::array>("contact")) {
+    int index = 0;
+    for (const auto& node : *contacts) {
+      ++index;
+      const toml::table* ct = node.as_table();
+      if (!ct) top.fail("contact", "expected [[contact]] tables");
+      TableReader r(*ct, "contact[" + std::to_string(index) + "]", file);
+      r.only({"floors", "gap", "model", "stiffness", "restitution", "damping"});
+      structure::Contact c;
+      const auto f = floors_of(r);
+      c.floor_a = f[0];
+      c.floor_b = f[1];
+      c.gap = r.number("gap");
+      if (!(c.gap >= 0.0)) r.fail("gap", "expected a clear distance at rest >= 0 (m)");
+      s.contacts.push_back(c);
+    }
+  } else if (root.contains("contact")) {
+    top.fail("contact", "expected [[contact]] tables");
+  }
+  std::string error;
+  if (!s.IsValid(&error)) throw InputError(file + ": " + error);
+  return s;
+}
+
+structure::Structure structure_of(const Scene& scene) {
+  const Model& m = scene.model;
+  const Scales& k = scene.scales;
+  const double m1 = k.force / k.acceleration, k1 = k.force / k.length;  // 1 and 1 when dimensionless
+  auto storey = [&](const Rod& rod, double mass, double stiffness, const char* name) {
+    Building b;
+    b.name = name;
+    b.masses = Eigen::VectorXd::Constant(1, mass);
+    if (rod.elastic) {
+      b.springs = Eigen::VectorXd::Constant(1, stiffness);
+    } else {
+      b.springs = Eigen::VectorXd::Zero(1);
+      structure::StoreyDevice d;
+      d.type = DeviceType::zener;
+      d.storeys = {1};
+      const double time_power = std::pow(k.time, rod.order);  // tau in s^order
+      d.zener = {stiffness, rod.order, rod.tau_x * time_power, rod.tau_f * time_power};
+      b.devices.push_back(d);
+    }
+    return b;
+  };
+  structure::Structure s;
+  s.a = storey(m.rod1, m1, k1, "A");
+  s.b = storey(m.rod2, m1 / m.rho, m.eps * k1, "B");
+  if (m.mu > 0.0) {
+    structure::Link l;
+    l.type = LinkType::friction;
+    l.slip_force = m.mu * k.force;
+    s.links.push_back(l);
+  }
+  s.contacts.push_back({1, 1, m.gap0 * k.length});
+  return s;
+}
+
+}  // namespace adjoin

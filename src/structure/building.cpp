@@ -1,0 +1,118 @@
+#include "adjoin/structure/building.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/structure/modal.hpp"
+
+namespace adjoin::structure {
+namespace {
+
+bool positive(double v) { return std::isfinite(v) && v > 0.0; }
+
+std::string zener_problem(const Zener& z) {
+  if (!positive(z.k)) return "stiffness must be a positive number";
+  if (!(z.order > 0.0 && z.order < 1.0)) return "order must lie in (0, 1)";
+  if (!positive(z.tau_f)) return "tau_f must be positive";
+  if (!(std::isfinite(z.tau_x) && z.tau_x > z.tau_f)) return "tau_x must exceed tau_f (the second law)";
+  return "";
+}
+
+bool building_valid(const Building& b, const std::string& path, std::string* error) {
+  auto fail = [&](const std::string& m) {
+    if (error) *error = m;
+    return false;
+  };
+  const int n = b.floors();
+  if (n < 1) return fail(path + ": a building needs at least one storey");
+  for (int i = 0; i < n; ++i)
+    if (!positive(b.masses[i])) return fail(path + ".masses[" + std::to_string(i + 1) + "] must be a positive mass (kg)");
+  if (b.springs.size() != n) return fail(path + ".stiffnesses: expected " + std::to_string(n) + " values, one per storey");
+  for (int i = 0; i < n; ++i)
+    if (!(std::isfinite(b.springs[i]) && b.springs[i] >= 0.0))
+      return fail(path + ".stiffnesses[" + std::to_string(i + 1) + "] must be a non-negative stiffness (N/m)");
+  for (std::size_t d = 0; d < b.devices.size(); ++d) {
+    const StoreyDevice& dev = b.devices[d];
+    const std::string where = path + ".device[" + std::to_string(d + 1) + "]";
+    if (dev.storeys.empty()) return fail(where + ".storeys: list at least one storey");
+    for (int s : dev.storeys)
+      if (s < 1 || s > n) return fail(where + ".storeys: storey " + std::to_string(s) + " is not in 1.." + std::to_string(n));
+    if (dev.type == DeviceType::spring && !positive(dev.k)) return fail(where + ".stiffness must be positive (N/m)");
+    if (dev.type == DeviceType::dashpot && !positive(dev.c)) return fail(where + ".c must be positive (N s/m)");
+    if (dev.type == DeviceType::zener) {
+      const std::string p = zener_problem(dev.zener);
+      if (!p.empty()) return fail(where + ": " + p);
+    }
+  }
+  const Eigen::VectorXd k = b.static_stiffness();
+  for (int i = 0; i < n; ++i)
+    if (!(k[i] > 0.0))
+      return fail(path + ": storey " + std::to_string(i + 1) + " has no stiffness (give a spring or a Zener device)");
+  const InherentDamping& c = b.damping;
+  if (c.model != DampingModel::none && !(c.ratio >= 0.0 && c.ratio < 1.0))
+    return fail(path + ".damping.ratio must lie in [0, 1)");
+  if (c.model == DampingModel::rayleigh) {
+    if (n < 2) return fail(path + ".damping: Rayleigh damping needs two modes; a one-storey building has one (use \"modal\")");
+    if (c.mode_i < 1 || c.mode_j < 1 || c.mode_i > n || c.mode_j > n || c.mode_i == c.mode_j)
+      return fail(path + ".damping.modes: two different modes in 1.." + std::to_string(n));
+  }
+  return true;
+}
+
+}  // namespace
+
+Eigen::VectorXd Building::static_stiffness() const {
+  Eigen::VectorXd k = springs;
+  for (const StoreyDevice& d : devices) {
+    const double add = d.type == DeviceType::spring ? d.k : (d.type == DeviceType::zener ? d.zener.k : 0.0);
+    for (int s : d.storeys)
+      if (s >= 1 && s <= k.size()) k[s - 1] += add;
+  }
+  return k;
+}
+
+bool Structure::IsValid(std::string* error) const {
+  auto fail = [&](const std::string& m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (!building_valid(a, "building.A", error)) return false;
+  if (b && !building_valid(*b, "building.B", error)) return false;
+  if ((!links.empty() || !contacts.empty()) && !b) return fail("links and contacts join building A to building B: add [building.B]");
+  for (std::size_t i = 0; i < links.size(); ++i) {
+    const Link& l = links[i];
+    const std::string where = "link[" + std::to_string(i + 1) + "]";
+    if (l.floor_a < 1 || l.floor_a > a.floors() || l.floor_b < 1 || l.floor_b > b->floors())
+      return fail(where + ".floors: [" + std::to_string(l.floor_a) + ", " + std::to_string(l.floor_b) + "] is not a floor of A (1.." +
+                  std::to_string(a.floors()) + ") and of B (1.." + std::to_string(b->floors()) + ")");
+    if (l.type == LinkType::friction && !positive(l.slip_force)) return fail(where + ".slip_force must be positive (N)");
+    if (l.type == LinkType::dashpot && !positive(l.c)) return fail(where + ".c must be positive (N s/m)");
+    if (l.type == LinkType::spring && !positive(l.k)) return fail(where + ".stiffness must be positive (N/m)");
+    if (l.type == LinkType::zener) {
+      const std::string p = zener_problem(l.zener);
+      if (!p.empty()) return fail(where + ": " + p);
+    }
+  }
+  for (std::size_t i = 0; i < contacts.size(); ++i) {
+    const Contact& c = contacts[i];
+    const std::string where = "contact[" + std::to_string(i + 1) + "]";
+    if (c.floor_a < 1 || c.floor_a > a.floors() || c.floor_b < 1 || c.floor_b > b->floors())
+      return fail(where + ".floors: not a floor of A and of B");
+    if (!(std::isfinite(c.gap) && c.gap >= 0.0)) return fail(where + ".gap must be a non-negative distance (m)");
+  }
+  return true;
+}
+
+double stiffness_for_period(const Eigen::VectorXd& masses, double period) {
+  if (!(positive(period))) throw InputError("period must be a positive number of seconds");
+  const Eigen::MatrixXd k1 = stiffness_matrix(Eigen::VectorXd::Ones(masses.size()));
+  Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> solver(k1, Eigen::MatrixXd(masses.asDiagonal()));
+  const double lambda1 = solver.eigenvalues()[0];  // omega_1^2 at unit storey stiffness
+  const double omega = 2.0 * M_PI / period;
+  return omega * omega / lambda1;
+}
+
+}  // namespace adjoin::structure

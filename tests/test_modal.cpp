@@ -1,0 +1,178 @@
+// structure/ and the modal analysis: closed-form frequencies of a uniform shear building, the
+// stiffness found for a period, damping ratios against the complex eigenvalues of the damped
+// system (an independent computation), the Zener storeys' equivalent ratio, the coupled
+// system's periods with links free and locked, and building scenes read with their errors.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <complex>
+#include <filesystem>
+#include <fstream>
+
+#include <Eigen/Eigenvalues>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/io/structure_file.hpp"
+#include "adjoin/structure/modal.hpp"
+#include "scene_helpers.hpp"
+
+using namespace adjoin;
+using namespace adjoin::structure;
+
+namespace {
+
+Building uniform(int n, double m, double k) {
+  Building b;
+  b.name = "A";
+  b.masses = Eigen::VectorXd::Constant(n, m);
+  b.springs = Eigen::VectorXd::Constant(n, k);
+  return b;
+}
+
+// Damping ratios from the eigenvalues s of M s^2 + C s + K = 0 (state-space form), sorted by
+// |s|: zeta = -Re(s) / |s|. Independent of the modal formulas in the library.
+std::vector<double> ratios_from_complex_eigenvalues(const Eigen::MatrixXd& m, const Eigen::MatrixXd& c, const Eigen::MatrixXd& k) {
+  const int n = static_cast<int>(m.rows());
+  Eigen::MatrixXd a = Eigen::MatrixXd::Zero(2 * n, 2 * n);
+  const Eigen::MatrixXd m_inv = m.inverse();
+  a.topRightCorner(n, n) = Eigen::MatrixXd::Identity(n, n);
+  a.bottomLeftCorner(n, n) = -m_inv * k;
+  a.bottomRightCorner(n, n) = -m_inv * c;
+  Eigen::EigenSolver<Eigen::MatrixXd> solver(a);
+  std::vector<std::complex<double>> s;
+  for (int i = 0; i < 2 * n; ++i)
+    if (solver.eigenvalues()[i].imag() > 0.0) s.push_back(solver.eigenvalues()[i]);
+  std::sort(s.begin(), s.end(), [](auto x, auto y) { return std::abs(x) < std::abs(y); });
+  std::vector<double> zeta;
+  for (auto v : s) zeta.push_back(-v.real() / std::abs(v));
+  return zeta;
+}
+
+}  // namespace
+
+TEST_CASE("a uniform shear building has the closed-form frequencies", "[modal]") {
+  const int n = 5;
+  const double m = 45e3, k = 5.482e6;
+  const Modes modes = building_modes(uniform(n, m, k));
+  for (int j = 1; j <= n; ++j) {
+    const double exact = 2.0 * std::sqrt(k / m) * std::sin((2 * j - 1) * M_PI / (2.0 * (2 * n + 1)));
+    CHECK(modes.omega[j - 1] == Approx(exact).epsilon(1e-12));
+    CHECK(modes.periods[j - 1] == Approx(2 * M_PI / exact).epsilon(1e-12));
+  }
+  // Mass-normalised, positive at the roof.
+  const Eigen::MatrixXd phi = modes.shapes;
+  CHECK((phi.transpose() * Eigen::MatrixXd(Eigen::VectorXd::Constant(n, m).asDiagonal()) * phi - Eigen::MatrixXd::Identity(n, n)).norm() < 1e-10);
+  for (int j = 0; j < n; ++j) CHECK(phi(n - 1, j) > 0.0);
+}
+
+TEST_CASE("the storey stiffness found for a period gives that period", "[modal]") {
+  Eigen::VectorXd masses(3);
+  masses << 60e3, 60e3, 50e3;
+  const double k = stiffness_for_period(masses, 0.5);
+  Building b;
+  b.masses = masses;
+  b.springs = Eigen::VectorXd::Constant(3, k);
+  CHECK(building_modes(b).periods[0] == Approx(0.5).epsilon(1e-12));
+  // One storey: k = m (2 pi / T)^2 exactly.
+  CHECK(stiffness_for_period(Eigen::VectorXd::Constant(1, 2.0), 1.0) == Approx(2.0 * 4 * M_PI * M_PI).epsilon(1e-14));
+}
+
+TEST_CASE("inherent damping ratios agree with the damped system's complex eigenvalues", "[modal]") {
+  Building b = uniform(4, 1e5, 8e7);
+  b.springs[3] = 5e7;  // not uniform
+  SECTION("modal: every mode at the ratio") {
+    b.damping = {DampingModel::modal, 0.05, 1, 2};
+    const Modes modes = building_modes(b);
+    const auto exact = ratios_from_complex_eigenvalues(mass_matrix(b), inherent_damping_matrix(b), stiffness_matrix(b.static_stiffness()));
+    for (int j = 0; j < 4; ++j) {
+      CHECK(modes.inherent_ratio[j] == Approx(0.05).epsilon(1e-10));
+      CHECK(exact[j] == Approx(0.05).epsilon(1e-8));
+    }
+  }
+  SECTION("rayleigh: the ratio at the two chosen modes, a0/(2w) + a1 w/2 at the others") {
+    b.damping = {DampingModel::rayleigh, 0.05, 1, 3};
+    const Modes modes = building_modes(b);
+    const auto exact = ratios_from_complex_eigenvalues(mass_matrix(b), inherent_damping_matrix(b), stiffness_matrix(b.static_stiffness()));
+    CHECK(modes.inherent_ratio[0] == Approx(0.05).epsilon(1e-10));
+    CHECK(modes.inherent_ratio[2] == Approx(0.05).epsilon(1e-10));
+    CHECK(modes.inherent_ratio[1] < 0.05);  // between the fitted modes Rayleigh damps less
+    CHECK(modes.inherent_ratio[3] > 0.05);  // above them more
+    for (int j = 0; j < 4; ++j) CHECK(exact[j] == Approx(modes.inherent_ratio[j]).epsilon(1e-8));
+  }
+}
+
+TEST_CASE("a Zener storey's equivalent damping ratio is its loss at the mode's frequency", "[modal]") {
+  Building b = uniform(1, 2e5, 0.0);
+  StoreyDevice d;
+  d.type = DeviceType::zener;
+  d.storeys = {1};
+  d.zener = {8e6, 0.4, 0.5, 0.02};
+  b.devices.push_back(d);
+  const Modes modes = building_modes(b);
+  const double w = std::sqrt(8e6 / 2e5);
+  CHECK(modes.omega[0] == Approx(w).epsilon(1e-12));
+  // K*(w) = k (1 + tau_x (i w)^a) / (1 + tau_f (i w)^a), from exp(a log(i w)).
+  const std::complex<double> iwa = std::exp(0.4 * std::log(std::complex<double>(0.0, w)));
+  const std::complex<double> kstar = 8e6 * (1.0 + 0.5 * iwa) / (1.0 + 0.02 * iwa);
+  CHECK(modes.device_ratio[0] == Approx(kstar.imag() / (2.0 * 8e6)).epsilon(1e-12));
+  CHECK(modes.zener_stiffening[0] == Approx(kstar.real() / 8e6).epsilon(1e-12));
+  // A dashpot storey: c / (2 m w) for one storey.
+  StoreyDevice dash;
+  dash.type = DeviceType::dashpot;
+  dash.storeys = {1};
+  dash.c = 1e5;
+  b.devices = {dash};
+  b.springs[0] = 8e6;
+  CHECK(building_modes(b).device_ratio[0] == Approx(1e5 / (2.0 * 2e5 * w)).epsilon(1e-12));
+}
+
+TEST_CASE("coupled periods: links free are the buildings' own, locked friction links join the floors", "[modal]") {
+  Structure s;
+  s.a = uniform(1, 1e5, 4e6);
+  s.b = uniform(1, 3e5, 2e6);
+  s.b->name = "B";
+  Link l;
+  l.type = LinkType::friction;
+  l.slip_force = 1e4;
+  s.links.push_back(l);
+  std::string error;
+  REQUIRE(s.IsValid(&error));
+  const CoupledModes c = coupled_modes(s);
+  REQUIRE(c.periods_free.size() == 2);
+  CHECK(c.periods_free[0] == Approx(2 * M_PI * std::sqrt(3e5 / 2e6)).epsilon(1e-12));
+  CHECK(c.periods_free[1] == Approx(2 * M_PI * std::sqrt(1e5 / 4e6)).epsilon(1e-12));
+  REQUIRE(c.periods_locked.size() == 1);
+  CHECK(c.periods_locked[0] == Approx(2 * M_PI * std::sqrt(4e5 / 6e6)).epsilon(1e-12));
+  // A spring link stiffens the free system: the 2x2 problem by hand.
+  s.links[0].type = LinkType::spring;
+  s.links[0].k = 1e6;
+  const CoupledModes sp = coupled_modes(s);
+  const double a = 5e6 / 1e5, d = 3e6 / 3e5, bc = (1e6 / 1e5) * (1e6 / 3e5);
+  const double lmax = 0.5 * (a + d + std::sqrt((a - d) * (a - d) + 4 * bc)), lmin = 0.5 * (a + d - std::sqrt((a - d) * (a - d) + 4 * bc));
+  CHECK(sp.periods_free[0] == Approx(2 * M_PI / std::sqrt(lmin)).epsilon(1e-12));
+  CHECK(sp.periods_free[1] == Approx(2 * M_PI / std::sqrt(lmax)).epsilon(1e-12));
+}
+
+TEST_CASE("the paper's two blocks are the smallest structure", "[modal][scene]") {
+  const Scene scene = test::paper_scene("strong");
+  const Structure s = structure_of(scene);
+  REQUIRE(s.b);
+  CHECK(s.a.floors() == 1);
+  CHECK(s.links.size() == 1);
+  CHECK(s.links[0].slip_force == Approx(scene.model.mu));
+  CHECK(s.contacts[0].gap == Approx(scene.model.gap0));
+  // Relaxed periods: 2 pi sqrt(m1/k1) = 2 pi in T0, and block 2 sqrt((1/rho)/eps).
+  CHECK(building_modes(s.a).periods[0] == Approx(2 * M_PI).epsilon(1e-12));
+  CHECK(building_modes(*s.b).periods[0] == Approx(2 * M_PI * std::sqrt(1.0 / (scene.model.rho * scene.model.eps))).epsilon(1e-12));
+}
+
+TEST_CASE("the example building scene reads, with the period and the slip ratio resolved", "[modal][scene]") {
+  const Structure s = read_structure(std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/buildings/two-frames.toml");
+  CHECK(s.a.floors() == 5);
+  REQUIRE(s.b);
+  CHECK(building_modes(*s.b).periods[0] == Approx(0.5).epsilon(1e-12));
+  REQUIRE(s.links.size() == 1);
+  CHECK(s.links[0].slip_force == Approx(0.05 * 170e3 * 9.80665).epsilon(1e-12));
+  CHECK(s.a.devices.size() == 1);
+  CHECK(s.a.static_stiffness()[0] == Approx(5.482e6 + 1e6));
+  CHECK(s.a.static_stiffness()[2] == Approx(5.482e6));
+}
