@@ -1,0 +1,73 @@
+#pragma once
+// Time integration of a structure (structure/building.hpp): buildings of any number of
+// storeys with springs, dashpots, fractional Zener devices and inherent damping, joined by
+// links (friction, dashpot, spring, Zener), on a moving ground. SPEC §5:
+//
+//     M x'' + C x' + (storey forces) + (link forces) = M 1 a_g,   x relative to the ground.
+//
+// The step is the `implicit` scheme's, for vectors: trapezoidal mechanics at velocity level;
+// each Zener element implicit through its BDF2 convolution-quadrature weight (an effective
+// stiffness, so the step matrix A = M + h/2 C + h^2/4 K_eff is constant and factorised once);
+// the friction dampers' step forces Q from the box-constrained QP of their Delassus matrix
+// S = h B A^-1 B' (solver/box_qp: exact stick, no regularisation). Second order where the
+// dampers do not switch.
+//
+// Reported at each grid point: displacements, velocities, absolute accelerations, and per
+// link its force, stroke (s = x_A,i - x_B,j) and velocity; a friction link's force is its
+// value at the grid point (the force that keeps a stuck damper stuck, +-F when slipping), and
+// a switch is located inside the step (linear interpolation of the link velocity, or of the
+// stuck force against its limit).
+//
+// This first step does not yet carry the two-block scheme's refinements (onsets decided at
+// the step's end on a parabola, backward-Euler restarts for unresolved modes after a switch);
+// the two-block scenes run on solver/simulate.hpp.
+#include <Eigen/Dense>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+#include "adjoin/fractional/history.hpp"
+#include "adjoin/ground/ground_motion.hpp"
+#include "adjoin/observe/state.hpp"
+#include "adjoin/structure/building.hpp"
+
+namespace adjoin {
+
+struct StructureSolverOptions {
+  double h = 0.001;     // s
+  double t_end = 10.0;  // s
+  HistoryEngine history = HistoryEngine::fft;
+  std::size_t steps() const;
+  bool IsValid(std::string* error) const;
+};
+
+struct StructureState {
+  double t = 0.0;
+  double ag = 0.0;                 // a_g = -(ground acceleration) [m/s^2]
+  Eigen::VectorXd x, v, a_abs;     // per floor, A's floors first then B's [m, m/s, m/s^2]
+  Eigen::VectorXd link_force;      // per link [N], acting -q on A's floor, +q on B's
+  Eigen::VectorXd link_stroke;     // x_A,i - x_B,j [m]
+  Eigen::VectorXd link_velocity;   // [m/s]
+  std::vector<Phase> link_phase;   // friction links: stick or slip direction (others: slip_*)
+  std::vector<double> link_switch; // the located switch inside the step ending here, or NaN
+};
+
+class StructureObserver {
+ public:
+  virtual ~StructureObserver() = default;
+  virtual void begin(const structure::Structure&, const StructureSolverOptions&) {}
+  virtual void observe(const StructureState& state) = 0;
+  virtual void end() {}
+};
+
+struct StructureRunSummary {
+  std::size_t steps = 0;
+  double wall_seconds = 0.0;
+  std::size_t history_bytes = 0;
+};
+
+// `ground` gives a_g in g against time in seconds (a scene's ground with unit scales).
+StructureRunSummary simulate_structure(const StructureSolverOptions& options, const structure::Structure& s,
+                                       const GroundMotion& ground, StructureObserver& observer);
+
+}  // namespace adjoin

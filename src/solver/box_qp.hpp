@@ -1,0 +1,35 @@
+#pragma once
+// The friction dampers' step (SPEC §5, "the non-smooth step"), internal to the solver.
+//
+// With the link velocities at the end of a step affine in the dampers' step forces Q,
+// w = w0 - S Q (S symmetric positive definite: the dampers' Delassus matrix), the set-valued
+// law Q_k in F_k Sign(w_k) for every damper k is exactly the optimality condition of
+//
+//     minimise 1/2 Q'SQ - Q'w0   subject to  |Q_k| <= F_k,
+//
+// a strictly convex box-constrained quadratic problem with a unique solution. It is found by an
+// active-set method: each damper is stuck (w_k = 0, Q_k free) or slipping (Q_k = +-F_k); the
+// stuck forces solve the linear system of the stuck dampers; a stuck force beyond its limit
+// starts to slip, a slip whose velocity opposes its force sticks; repeat. With one damper it
+// is the closed form (stick if |w0| <= F S, else slip). Finite in practice; a projected
+// Gauss-Seidel sweep finishes any case the active set cycles on (never seen in tests).
+#include <Eigen/Dense>
+#include <vector>
+
+namespace adjoin::detail {
+
+enum class DamperState { stick, slip_positive, slip_negative };
+
+struct BoxQpResult {
+  Eigen::VectorXd q;                 // the step forces
+  Eigen::VectorXd w;                 // w0 - S q
+  std::vector<DamperState> state;    // stuck (w = 0) or slipping in the direction of q
+  int iterations = 0;
+};
+
+// `hint`: the states to start from (the last step's), or empty. A limit may be infinite (a
+// damper held stuck).
+BoxQpResult solve_box_qp(const Eigen::MatrixXd& s, const Eigen::VectorXd& w0, const Eigen::VectorXd& limit,
+                         const std::vector<DamperState>& hint = {});
+
+}  // namespace adjoin::detail

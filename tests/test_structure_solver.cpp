@@ -1,0 +1,222 @@
+// solver/structure_solver: the step for structures of any size, checked against the two-block
+// implicit scheme (the paper's system as the smallest structure), a linear building's steady
+// state against its frequency response (a complex linear solve), its order 2, and the friction
+// dampers' box QP against its optimality conditions.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <complex>
+#include <random>
+
+#include "../src/solver/box_qp.hpp"
+#include "adjoin/ground/decaying_sine.hpp"
+#include "adjoin/io/structure_file.hpp"
+#include "adjoin/model/units.hpp"
+#include "adjoin/solver/structure_solver.hpp"
+#include "adjoin/structure/modal.hpp"
+#include "adjoin/study/run.hpp"
+#include "scene_helpers.hpp"
+
+using namespace adjoin;
+using namespace adjoin::structure;
+
+namespace {
+
+// A dimensionless scene's ground (a_g in the scene's unit) seen as g by the structure solver.
+class InUnitsOfG final : public GroundMotion {
+ public:
+  explicit InUnitsOfG(const GroundMotion& inner) : inner_(inner) {}
+  double ag(double t) const override { return inner_.ag(t) / kStandardGravity; }
+  std::string describe() const override { return inner_.describe(); }
+
+ private:
+  const GroundMotion& inner_;
+};
+
+class Recorder final : public StructureObserver {
+ public:
+  void observe(const StructureState& s) override { states.push_back(s); }
+  std::vector<StructureState> states;
+};
+
+class GridRecorder final : public Observer {
+ public:
+  void observe(const State& s) override { states.push_back(s); }
+  std::vector<State> states;
+};
+
+}  // namespace
+
+TEST_CASE("the paper's system as a structure follows the two-block implicit scheme", "[structure_solver]") {
+  for (const char* which : {"strong", "weak"}) {
+    INFO(which);
+    const double h = 0.001;
+    const Scene scene = test::paper_scene(which, {"solver.scheme=implicit", "solver.history=fft", "solver.h=0.001"});
+    GridRecorder two_block;
+    run_scene(scene, &two_block);
+    const Structure s = structure_of(scene);
+    Recorder general;
+    StructureSolverOptions o;
+    o.h = h;
+    o.t_end = scene.solver.t_end;
+    simulate_structure(o, s, InUnitsOfG(*scene.ground), general);
+    REQUIRE(general.states.size() == two_block.states.size());
+    double dx = 0.0, dq = 0.0, scale_x = 0.0;
+    for (std::size_t i = 0; i < general.states.size(); ++i) {
+      const auto& a = general.states[i];
+      const auto& b = two_block.states[i];
+      scale_x = std::max({scale_x, std::abs(b.x1), std::abs(b.x2)});
+      dx = std::max({dx, std::abs(a.x[0] - b.x1), std::abs(a.x[1] - b.x2)});
+      dq = std::max(dq, std::abs(a.link_force[0] - b.q));
+    }
+    // The same step: they differ only in how a stick -> slip onset is interpolated (a line
+    // here, a parabola there), which moves the located instant by O(h^3).
+    INFO("dx " << dx << " dq " << dq);
+    CHECK(dx < 1e-9 * scale_x);
+    CHECK(dq < 1e-9 * scene.model.mu);
+  }
+}
+
+namespace {
+
+// A 3-storey frame with 5 % Rayleigh damping, a Zener device in its first storey and a
+// dashpot in its second.
+Structure frame() {
+  Structure s;
+  s.a.name = "A";
+  s.a.masses = Eigen::Vector3d(60e3, 60e3, 50e3);
+  s.a.springs = Eigen::Vector3d(3e7, 2.5e7, 2e7);
+  s.a.damping = {DampingModel::rayleigh, 0.05, 1, 2};
+  StoreyDevice z;
+  z.type = DeviceType::zener;
+  z.storeys = {1};
+  z.zener = {5e6, 0.5, 0.3, 0.01};
+  StoreyDevice d;
+  d.type = DeviceType::dashpot;
+  d.storeys = {2};
+  d.c = 2e5;
+  s.a.devices = {z, d};
+  return s;
+}
+
+class RoofPeak final : public StructureObserver {
+ public:
+  explicit RoofPeak(double from) : from_(from) {}
+  void observe(const StructureState& s) override {
+    if (s.t >= from_) peak = std::max(peak, std::abs(s.x[s.x.size() - 1]));
+    roof.push_back(s.x[s.x.size() - 1]);
+  }
+  double peak = 0.0;
+  std::vector<double> roof;
+
+ private:
+  double from_;
+};
+
+}  // namespace
+
+TEST_CASE("a damped frame with a Zener storey reaches the steady state of its frequency response", "[structure_solver]") {
+  const Structure s = frame();
+  const double omega = 2 * M_PI / 0.7, u0 = 0.002;  // a_g = u0 omega^2 sin(omega t) [g]
+  const DecayingSine ground(u0, omega, 0.0);
+  StructureSolverOptions o;
+  o.h = 0.0005;
+  o.t_end = 60.0;
+  RoofPeak peak(60.0 - 2 * 0.7);
+  simulate_structure(o, s, ground, peak);
+  // Steady state: X = (-w^2 M + i w C + K*(w))^-1 M 1 A, the Zener storey at its complex stiffness.
+  const Eigen::MatrixXd m = mass_matrix(s.a);
+  const Eigen::MatrixXd c = inherent_damping_matrix(s.a) + dashpot_matrix(s.a);
+  const Eigen::MatrixXcd dyn = -omega * omega * m.cast<std::complex<double>>() +
+                               std::complex<double>(0.0, omega) * c.cast<std::complex<double>>() + complex_stiffness_matrix(s.a, omega);
+  const Eigen::VectorXcd force = (m * Eigen::Vector3d::Ones() * u0 * omega * omega * kStandardGravity).cast<std::complex<double>>();
+  const Eigen::VectorXcd x = dyn.partialPivLu().solve(force);
+  INFO("steady-state roof amplitude " << std::abs(x[2]) << ", simulated " << peak.peak);
+  // The fractional device's transient decays as a power of t, not exponentially: 1e-3 after 60 s.
+  CHECK(peak.peak == Approx(std::abs(x[2])).epsilon(2e-3));
+}
+
+TEST_CASE("two buildings joined by two friction links: second order, both dampers switching", "[structure_solver]") {
+  Structure s = frame();
+  s.b = s.a;
+  s.b->name = "B";
+  s.b->masses *= 1.5;
+  s.b->devices.clear();
+  for (int floor : {2, 3}) {
+    Link l;
+    l.type = LinkType::friction;
+    l.floor_a = l.floor_b = floor;
+    l.slip_force = floor == 2 ? 8e3 : 5e3;
+    s.links.push_back(l);
+  }
+  const DecayingSine ground(0.05, 2 * M_PI / 0.8, 0.3);
+  auto roof = [&](double h, std::vector<int>* switches) {
+    StructureSolverOptions o;
+    o.h = h;
+    o.t_end = 8.0;
+    class Obs final : public StructureObserver {
+     public:
+      void observe(const StructureState& st) override {
+        x.push_back(st.x[2]);
+        for (std::size_t l = 0; l < st.link_phase.size(); ++l) {
+          if (count.size() < st.link_phase.size()) { count.assign(st.link_phase.size(), 0); last = st.link_phase; }
+          if (st.link_phase[l] != last[l]) ++count[l];
+        }
+        last = st.link_phase;
+      }
+      std::vector<double> x;
+      std::vector<int> count;
+      std::vector<Phase> last;
+    } obs;
+    simulate_structure(o, s, ground, obs);
+    if (switches) *switches = obs.count;
+    return obs.x;
+  };
+  std::vector<int> fine_switches;
+  const auto ref = roof(0.002 / 32, &fine_switches);
+  REQUIRE(fine_switches.size() == 2);
+  CHECK(fine_switches[0] >= 4);  // both dampers stick and slip repeatedly
+  CHECK(fine_switches[1] >= 4);
+  std::vector<double> errors;
+  for (double h : {0.002, 0.001, 0.0005}) {
+    std::vector<int> sw;
+    const auto x = roof(h, &sw);
+    CHECK(sw == fine_switches);
+    const std::size_t stride = static_cast<std::size_t>(std::lround(h / (0.002 / 32)));
+    double e = 0.0;
+    for (std::size_t i = 0; i < x.size() && i * stride < ref.size(); ++i) e = std::max(e, std::abs(x[i] - ref[i * stride]));
+    errors.push_back(e);
+  }
+  INFO("errors " << errors[0] << " " << errors[1] << " " << errors[2]);
+  CHECK(std::log2(errors[0] / errors[1]) > 1.8);
+  CHECK(std::log2(errors[1] / errors[2]) > 1.8);
+}
+
+TEST_CASE("the dampers' box QP meets its optimality conditions", "[structure_solver][box_qp]") {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int n = 1 + trial % 6;
+    Eigen::MatrixXd g(n, n);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) g(i, j) = u(random);
+    const Eigen::MatrixXd s = g * g.transpose() + 0.1 * Eigen::MatrixXd::Identity(n, n);
+    Eigen::VectorXd w0(n), limit(n);
+    for (int i = 0; i < n; ++i) {
+      w0[i] = 3.0 * u(random);
+      limit[i] = 0.05 + std::abs(u(random));
+    }
+    const auto r = detail::solve_box_qp(s, w0, limit);
+    const Eigen::VectorXd w = w0 - s * r.q;
+    for (int k = 0; k < n; ++k) {
+      INFO("trial " << trial << ", damper " << k);
+      CHECK(std::abs(r.q[k]) <= limit[k] * (1 + 1e-12));
+      if (r.state[k] == detail::DamperState::stick) CHECK(std::abs(w[k]) <= 1e-10);
+      if (r.state[k] == detail::DamperState::slip_positive) { CHECK(r.q[k] == limit[k]); CHECK(w[k] >= -1e-10); }
+      if (r.state[k] == detail::DamperState::slip_negative) { CHECK(r.q[k] == -limit[k]); CHECK(w[k] <= 1e-10); }
+    }
+    if (n == 1) {  // the closed form
+      const double stuck = w0[0] / s(0, 0);
+      CHECK(r.q[0] == Approx(std::clamp(stuck, -limit[0], limit[0])).epsilon(1e-14));
+    }
+  }
+}
