@@ -743,9 +743,11 @@ TEST_CASE("one sweep at a time per output folder: a second one is refused, namin
                           Catch::Contains("other.toml"));
     CHECK_FALSE(std::filesystem::exists(dir / "sweep.csv"));
     CHECK_FALSE(std::filesystem::exists(dir / "sweep.partial.csv"));
-    // A shard writes other files: it has its own lock and may run beside the whole sweep.
-    const auto shard = run_cli("sweep " + qpath(file) + " --out " + qpath(dir) + " -q --shard 0/1");
-    CHECK(shard.status == 2);  // 0/1 is the whole sweep: the same files, the same lock
+    // --shard 0/1 is the whole sweep: the same files, so the same lock.
+    CHECK(run_cli("sweep " + qpath(file) + " --out " + qpath(dir) + " -q --shard 0/1").status == 2);
+    // A real shard writes other files (sweep.shard-0-of-2.*) under its own lock: it may run.
+    CHECK(run_cli("sweep " + qpath(file) + " --out " + qpath(dir) + " -q --shard 0/2").status == 0);
+    CHECK(std::filesystem::exists(dir / "sweep.shard-0-of-2.csv"));
   }
   // Released (the holder ended): the sweep runs, and its own lock names it while it runs.
   const auto r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir) + " -q");

@@ -587,7 +587,7 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
                          "; expected a plain file name (it names the output folder out/<name>/)");
   if (scene.name.empty()) {
     scene.name = std::filesystem::path(name).stem().string();
-    if (scene.name.empty()) scene.name = "scene";
+    if (!plain_name_problem(scene.name).empty()) scene.name = "scene";  // "", or a file called "..toml"
   }
   for (const auto& table : {"model", "ground"})
     if (!r.has(table)) r.fail(table, std::string("missing section [") + table + "]");

@@ -62,6 +62,13 @@ std::size_t SweepCsvTable::column(const std::string& name) const {
 }
 
 SweepCsvTable read_sweep_csv(const std::filesystem::path& file) {
+  // A folder or a FIFO is not opened (a FIFO would block the program).
+  std::error_code error;
+  const auto status = std::filesystem::status(file, error);
+  if (std::filesystem::is_directory(status))
+    throw InputError(file.string() + ": is a folder; expected a sweep's table (DIR/sweep.csv)");
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw InputError(file.string() + ": is not a regular file (a FIFO, device or socket); expected a sweep's table (sweep.csv)");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string() + ": cannot open the table");
   SweepCsvTable table;

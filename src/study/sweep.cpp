@@ -99,6 +99,12 @@ std::uint64_t fnv1a(std::uint64_t hash, const std::string& text) {
 }
 
 std::string read_text(const std::filesystem::path& file, const std::string& what) {
+  // A folder or a FIFO is not opened (a FIFO would block the program).
+  std::error_code error;
+  const auto status = std::filesystem::status(file, error);
+  if (std::filesystem::is_directory(status)) throw InputError(file.string() + ": is a folder; expected the " + what);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw InputError(file.string() + ": is not a regular file (a FIFO, device or socket); expected the " + what);
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string() + ": cannot open the " + what);
   std::stringstream buffer;
@@ -393,6 +399,7 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   SweepSpec spec;
   spec.file = name;
   spec.name = std::filesystem::path(name).stem().string();
+  if (!plain_name_problem(spec.name).empty()) spec.name = "sweep";  // a file called "..toml"
   if (auto node = root.get("name")) {
     if (!node->is_string()) r.fail(node, "name must be a string (a plain file name: the output folder out/<name>/)");
     spec.name = node->as_string()->get();
