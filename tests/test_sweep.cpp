@@ -268,6 +268,14 @@ TEST_CASE("sweeps: a numerical failure is a row's error, the others go on", "[sw
   CHECK(cells[column_of(spec, "x1")].empty());
   CHECK(cells[column_of(spec, "switches")].empty());
   CHECK(cells[column_of(spec, "error")] == rows[1].error);
+  // Such a row is a valid journal row (its empty cells are what a failed run leaves), and a row
+  // that says it succeeded may not leave them empty.
+  std::size_t index = 0;
+  CHECK(sweep_row_problem(spec, SweepShard{}, cells, &index).empty());
+  CHECK(index == 1);
+  auto claimed = cells;
+  claimed[column_of(spec, "error")] = "";
+  CHECK_THAT(sweep_row_problem(spec, SweepShard{}, claimed, &index), Catch::Contains("contact"));
 }
 
 TEST_CASE("sweeps: intensity measures of a record as the solver saw it", "[sweep][records]") {
