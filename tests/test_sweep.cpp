@@ -10,6 +10,8 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
+#include "adjoin/io/file_name.hpp"
+#include "adjoin/io/folder_lock.hpp"
 #include "adjoin/post/intensity.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "adjoin/study/demand.hpp"
@@ -266,6 +268,14 @@ TEST_CASE("sweeps: a numerical failure is a row's error, the others go on", "[sw
   CHECK(cells[column_of(spec, "x1")].empty());
   CHECK(cells[column_of(spec, "switches")].empty());
   CHECK(cells[column_of(spec, "error")] == rows[1].error);
+  // Such a row is a valid journal row (its empty cells are what a failed run leaves), and a row
+  // that says it succeeded may not leave them empty.
+  std::size_t index = 0;
+  CHECK(sweep_row_problem(spec, SweepShard{}, cells, &index).empty());
+  CHECK(index == 1);
+  auto claimed = cells;
+  claimed[column_of(spec, "error")] = "";
+  CHECK_THAT(sweep_row_problem(spec, SweepShard{}, claimed, &index), Catch::Contains("contact"));
 }
 
 TEST_CASE("sweeps: intensity measures of a record as the solver saw it", "[sweep][records]") {
@@ -504,4 +514,323 @@ im_periods = [1.0]
   CHECK(r.status == 2);
   CHECK_THAT(r.err, Catch::Contains("no column \"stroke\"") && Catch::Contains("drift"));
   std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("scene and sweep names are plain file names (they name the output folder)", "[sweep][names]") {
+  CHECK(plain_name_problem("slip-force_2 v1.5").empty());
+  CHECK(plain_name_problem("élan").empty());  // UTF-8 is a file name like any other
+  CHECK(plain_name_problem(std::string(kMaxPlainNameBytes, 'a')).empty());
+  struct Named {
+    std::string toml, raw;  // as written in the sweep file, and the name it means
+  };
+  const std::string long_name(kMaxPlainNameBytes + 1, 'a');
+  for (const Named& bad : std::vector<Named>{{"../../x", "../../x"}, {"/tmp/x", "/tmp/x"}, {"a/b", "a/b"},
+                                             {"a\\\\b", "a\\b"}, {"", ""}, {".", "."}, {"..", ".."},
+                                             {"a\\u0001b", "a\x01" "b"}, {"a\\u007f", "a\x7f"}, {long_name, long_name}}) {
+    INFO(bad.toml);
+    CHECK(!plain_name_problem(bad.raw).empty());
+    // The sweep file's name, with its file, line and key.
+    CHECK_THROWS_WITH(load_sweep(sweep_file("named.toml", "name = \"" + bad.toml + "\"\n")),
+                      Catch::Contains("named.toml:2: name = ") && Catch::Contains("plain file name"));
+  }
+  // The `\` in a TOML basic string is an escape: written as "a\\b" it is one backslash.
+  CHECK_THROWS_WITH(load_sweep(sweep_file("bs.toml", "name = \"a\\\\b\"\n")), Catch::Contains("path separator"));
+  // A scene's name, in the file and by --set.
+  std::string text = slurp(kStrong);
+  const auto at = text.find("name = \"paper-strong\"");
+  REQUIRE(at != std::string::npos);
+  text.replace(at, std::string("name = \"paper-strong\"").size(), "name = \"../../escaped\"");
+  const auto scene = write_temp("named-scene.toml", text);
+  CHECK_THROWS_WITH(load_scene(scene), Catch::Contains("named-scene.toml:2: name = \"../../escaped\"") &&
+                                           Catch::Contains("path separator"));
+  CHECK_THROWS_WITH(load_scene(kStrong, {"name=\"/tmp/x\""}), Catch::Contains("--set name=\"/tmp/x\"") &&
+                                                                    Catch::Contains("plain file name"));
+  CHECK(load_scene(kStrong, {"name=\"renamed\""}).name == "renamed");
+  // Nothing was written outside: `adjoin run` refuses before it makes a folder.
+  const auto r = run_cli("run " + qpath(scene) + " --quiet");
+  CHECK(r.status == 2);
+  CHECK_FALSE(std::filesystem::exists(std::filesystem::current_path().parent_path() / "escaped"));  // out/../../escaped
+}
+
+TEST_CASE("sweep files: two axes (or an axis and a motion) that set the same key are refused", "[sweep]") {
+  const auto message = [](const std::string& body) {
+    try {
+      load_sweep(sweep_file("same.toml", body));
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  // The README's own example once did this: a range over model.mu and a table axis that sets it.
+  CHECK_THAT(message(R"(
+[[axis]]
+key = "model.mu"
+values = [0.1, 0.2]
+[[axis]]
+key = "model.eps"
+values = [1.0, 2.0]
+[[axis]]
+name = "damper"
+values = [{name = "none"}, {name = "strong", set = {"model.mu" = 0.6}}]
+)"), Catch::Contains("same.toml:9: axis damper sets model.mu, and so does axis model.mu (") &&
+        Catch::Contains("same.toml:3)"));
+  CHECK_THAT(message(R"(
+[[axis]]
+key = "ground.u0"
+values = [0.5, 1.0]
+[[motion]]
+name = "slow"
+set = {"ground.omega" = 1.0}
+[[motion]]
+name = "big"
+set = {"ground.u0" = 2.0}
+)"), Catch::Contains("same.toml:9: motion big sets ground.u0, and so does axis ground.u0 (") &&
+        Catch::Contains("same.toml:3)"));
+  // Different keys, and a key the common `set` gives a default for, are fine.
+  CHECK(message("set = {\"model.mu\" = 0.2}\n[[axis]]\nkey = \"model.mu\"\nvalues = [0.1]\n[[axis]]\nkey = \"model.eps\"\nvalues = [1.0]\n") ==
+        "no error");
+}
+
+TEST_CASE("sweeps follow the --set rule for the structure an edit makes obsolete", "[sweep]") {
+  // Re-stating the base's own ground source keeps its other keys, exactly as
+  // `adjoin run --set ground.source=decaying-sine --set ground.u0=0.5` does (implied_unsets).
+  const SweepSpec spec = load_sweep(sweep_file("restate.toml", R"(
+[[motion]]
+name = "smaller"
+set = {"ground.source" = "decaying-sine", "ground.u0" = 0.5}
+[[motion]]
+name = "elastic"
+set = {"model.rod1.elastic" = true}
+)"));
+  const Scene swept = sweep_scene(spec, 0);
+  const Scene run = load_scene(kStrong, {"ground.source=\"decaying-sine\"", "ground.u0=0.5"});
+  for (double t : {0.3, 1.7, 4.2}) CHECK(swept.ground->ag(t) == run.ground->ag(t));
+  CHECK(swept.ground->describe() == run.ground->describe());
+  // model.rod1.elastic = true drops the rod's order and relaxation times, as --set does.
+  CHECK(sweep_scene(spec, 1).model.rod1.elastic);
+  CHECK(load_scene(kStrong, {"model.rod1.elastic=true"}).model.rod1.elastic);
+}
+
+TEST_CASE("sweep files are read as text files: folders, FIFOs, UTF-16 and binary are refused", "[sweep]") {
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "sweep_text";
+  std::filesystem::create_directories(dir / "folder.toml");
+  CHECK_THROWS_WITH(load_sweep(dir / "folder.toml"), Catch::Contains("is a folder"));
+  const auto utf16 = write_temp("utf16.toml", std::string("\xff\xfe" "b\0a\0", 6));
+  CHECK_THROWS_WITH(load_sweep(utf16), Catch::Contains("UTF-16"));
+  const auto binary = write_temp("binary.toml", std::string("base = 1\n\x89PNG\x01\x02", 14));
+  CHECK_THROWS_WITH(load_sweep(binary), Catch::Contains("binary.toml:2:") && Catch::Contains("\\x89"));
+  // The base scene too, with the sweep's line that names it.
+  const auto base_dir = write_temp("folderbase.toml", "base = " + qpath(dir / "folder.toml") + "\n");
+  CHECK_THROWS_WITH(load_sweep(base_dir), Catch::Contains("folderbase.toml:1: base: ") && Catch::Contains("is a folder"));
+}
+
+TEST_CASE("a sweep too large for memory is refused before it starts", "[sweep]") {
+  // 1e8 points: about 500 GB of table; refused at once (it used to end in bad_alloc).
+  CHECK_THROWS_WITH(load_sweep(sweep_file("huge.toml", "[[axis]]\nkey = \"model.mu\"\nfrom = 0.0\nto = 1.0\nn = 100000000\n")),
+                    Catch::Contains("huge.toml:6:") && Catch::Contains("GB of memory") && Catch::Contains("80 %"));
+  // The product of modest axes: accepted by the reader, refused by the size check with its need.
+  const SweepSpec spec = load_sweep(sweep_file("product.toml", R"(
+[[axis]]
+key = "model.mu"
+from = 0.0
+to = 1.0
+n = 20000
+[[axis]]
+key = "model.eps"
+from = 0.5
+to = 2.0
+n = 20000
+)"));
+  CHECK(spec.runs() == 400000000u);
+  CHECK_THROWS_WITH(check_sweep_memory(spec, spec.runs()), Catch::Contains("product.toml") && Catch::Contains("400000000 runs") &&
+                                                               Catch::Contains("GB"));
+  CHECK_NOTHROW(check_sweep_memory(spec, 1000));  // one small shard of it fits
+}
+
+TEST_CASE("journal rows are checked against the sweep before they are trusted", "[sweep][cli]") {
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / ("sweep_journal_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  const auto file = sweep_file("journal.toml", R"(
+set = {"solver.h" = 0.01, "solver.t_end" = 4.0}
+[[axis]]
+key = "model.mu"
+values = [0.0, 0.3, 0.6, 0.9]
+)");
+  auto r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir / "serial") + " -q");
+  REQUIRE(r.status == 0);
+  const auto serial = csv_rows(slurp(dir / "serial" / "sweep.csv"));
+  REQUIRE(serial.size() == 5);
+  const SweepSpec spec = load_sweep(file);
+  const auto wall = column_of(spec, "wall_seconds"), x1 = column_of(spec, "x1"), switches = column_of(spec, "switches");
+
+  // Row problems, one by one.
+  std::size_t index = 0;
+  auto row = serial[2];
+  CHECK(sweep_row_problem(spec, SweepShard{}, row, &index).empty());
+  CHECK(index == 1);
+  for (const char* bad : {"nan", "-inf", "inf", "1e999", "x"}) {
+    row = serial[2];
+    row[x1] = bad;
+    CHECK_THAT(sweep_row_problem(spec, SweepShard{}, row, &index), Catch::Contains("x1 = \"" + std::string(bad) + "\""));
+  }
+  row = serial[2];
+  row[1] = "0.45";  // run 1 has model.mu = 0.3
+  CHECK_THAT(sweep_row_problem(spec, SweepShard{}, row, &index), Catch::Contains("model.mu = \"0.45\"") && Catch::Contains("\"0.3\""));
+  row = serial[2];
+  row[switches] = "";  // empty counts only for a failed run
+  CHECK(!sweep_row_problem(spec, SweepShard{}, row, &index).empty());
+  row = serial[2];
+  row[0] = "7";
+  CHECK_THAT(sweep_row_problem(spec, SweepShard{}, row, &index), Catch::Contains("does not exist"));
+  CHECK_THAT(sweep_row_problem(spec, SweepShard{1, 2}, serial[1], &index), Catch::Contains("not in shard 1/2"));
+
+  // A journal with one good row (wall 123), a nan, a -inf and a foreign axis value: the bad
+  // rows are dropped with a warning naming the line, run again, and the table is the serial one.
+  std::filesystem::create_directories(dir / "resume");
+  {
+    std::ofstream journal(dir / "resume" / "sweep.partial.csv", std::ios::binary);
+    journal << sweep_journal_preamble(spec, SweepShard{});
+    auto good = serial[3];
+    good[wall] = "123";
+    journal << csv_line(good) << "\n";  // line 3
+    auto nan = serial[1];
+    nan[x1] = "nan";
+    journal << csv_line(nan) << "\n";  // line 4
+    auto inf = serial[2];
+    inf[column_of(spec, "energy_input")] = "-inf";
+    journal << csv_line(inf) << "\n";  // line 5
+    auto foreign = serial[4];
+    foreign[1] = "0.95";
+    journal << csv_line(foreign) << "\n";  // line 6
+  }
+  r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir / "resume"));
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.err, Catch::Contains("warning: ") && Catch::Contains("sweep.partial.csv:4: x1 = \"nan\"") &&
+                        Catch::Contains("sweep.partial.csv:5: energy_input = \"-inf\"") &&
+                        Catch::Contains("sweep.partial.csv:6: model.mu = \"0.95\"") && Catch::Contains("done again"));
+  CHECK_THAT(r.err, !Catch::Contains(":3:"));
+  CHECK_THAT(r.out, Catch::Contains("4 runs (1 from the journal"));
+  CHECK_THAT(r.err, Catch::Contains("resuming: 1 runs from the journal"));
+  const auto resumed = csv_rows(slurp(dir / "resume" / "sweep.csv"));
+  REQUIRE(resumed.size() == 5);
+  for (std::size_t i = 0; i < 4; ++i) CHECK((resumed[i + 1][wall] == "123") == (i == 2));
+  CHECK(without_wall_time(resumed) == without_wall_time(serial));
+  const std::string text = slurp(dir / "resume" / "sweep.csv");
+  CHECK(text.find("nan") == std::string::npos);
+  CHECK(text.find("inf") == std::string::npos);
+
+  // A journal of another sweep is not used, and says so.
+  {
+    std::ofstream journal(dir / "resume" / "sweep.partial.csv", std::ios::binary);
+    journal << "# adjoin sweep journal fingerprint=0000000000000000 runs=4 shard=0/1\n";
+  }
+  r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir / "resume") + " -q");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.err, Catch::Contains("a journal of another sweep"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("one sweep at a time per output folder: a second one is refused, naming the first", "[sweep][cli]") {
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / ("sweep_lock_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto file = sweep_file("lock.toml", "set = {\"solver.h\" = 0.01, \"solver.t_end\" = 2.0}\n");
+  const std::string pid = std::to_string(::getpid());
+  {
+    // This process holds the folder's lock, as a running sweep would.
+    const FolderLock held(dir, "sweep.lock", "adjoin sweep other.toml --out x");
+    CHECK_THAT(slurp(dir / "sweep.lock"), Catch::Contains("pid=" + pid));
+    // Another lock on the same file (another open file, as another process has) is refused.
+    CHECK_THROWS_WITH(FolderLock(dir, "sweep.lock", "second"),
+                      Catch::Contains("sweep.lock: the output folder is in use by pid " + pid) &&
+                          Catch::Contains("adjoin sweep other.toml --out x"));
+    // Another process: `adjoin sweep` into the same folder stops with exit 2 before writing.
+    const auto r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir) + " -q");
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::StartsWith("error: ") && Catch::Contains("in use by pid " + pid) &&
+                          Catch::Contains("other.toml"));
+    CHECK_FALSE(std::filesystem::exists(dir / "sweep.csv"));
+    CHECK_FALSE(std::filesystem::exists(dir / "sweep.partial.csv"));
+    // --shard 0/1 is the whole sweep: the same files, so the same lock.
+    CHECK(run_cli("sweep " + qpath(file) + " --out " + qpath(dir) + " -q --shard 0/1").status == 2);
+    // A real shard writes other files (sweep.shard-0-of-2.*) under its own lock: it may run.
+    CHECK(run_cli("sweep " + qpath(file) + " --out " + qpath(dir) + " -q --shard 0/2").status == 0);
+    CHECK(std::filesystem::exists(dir / "sweep.shard-0-of-2.csv"));
+  }
+  // Released (the holder ended): the sweep runs, and its own lock names it while it runs.
+  const auto r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir) + " -q");
+  CHECK(r.status == 0);
+  CHECK(std::filesystem::exists(dir / "sweep.csv"));
+  CHECK_THAT(slurp(dir / "sweep.lock"), Catch::Contains("command=adjoin sweep ") && Catch::Contains("lock.toml"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("adjoin demand: a design point with too few motions is marked, the others are fitted", "[demand][cli]") {
+  // Design point mu = 0.1: four motions on ln d = -1 + 1.5 ln im exactly. Design point mu = 0.3:
+  // three motions, one of them failed, so two usable: not fitted.
+  std::string csv = "index,model.mu,motion,units,drift,pga_g,error\n";
+  std::size_t i = 0;
+  for (double im : {0.1, 0.2, 0.4, 0.8}) {
+    csv += std::to_string(i) + ",0.1,m" + std::to_string(i + 1) + ",dimensionless," +
+           std::to_string(std::exp(-1.0 + 1.5 * std::log(im))) + "," + std::to_string(im) + ",\n";
+    ++i;
+  }
+  csv += std::to_string(i++) + ",0.3,m1,dimensionless,0.5,0.1,\n";
+  csv += std::to_string(i++) + ",0.3,m2,dimensionless,0.7,0.2,\n";
+  csv += std::to_string(i++) + ",0.3,m3,dimensionless,,,numerical failure\n";
+  const auto table = write_temp("demand-few.csv", csv);
+  const auto out = std::filesystem::path(ADJOIN_TEST_TMP) / "demand-few-fit.csv";
+  auto r = run_cli("demand " + qpath(table) + " --out " + qpath(out));
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.err, Catch::StartsWith("warning: ") && Catch::Contains("model.mu=0.3") && Catch::Contains("at least 3") &&
+                        Catch::Contains("not fitted"));
+  CHECK_THAT(r.out, Catch::Contains("1 of 2 design points not fitted"));
+  const auto rows = csv_rows(slurp(out));
+  REQUIRE(rows.size() == 3);
+  const auto& header = rows[0];
+  const auto col = [&](const std::string& name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    REQUIRE(it != header.end());
+    return static_cast<std::size_t>(it - header.begin());
+  };
+  CHECK(rows[1][col("model.mu")] == "0.1");
+  CHECK(rows[1][col("fitted")] == "true");
+  CHECK(std::stod(rows[1][col("a")]) == Approx(-1.0).epsilon(1e-5));
+  CHECK(std::stod(rows[1][col("b")]) == Approx(1.5).epsilon(1e-5));
+  CHECK(rows[2][col("model.mu")] == "0.3");
+  CHECK(rows[2][col("fitted")] == "false");
+  CHECK(rows[2][col("n")] == "2");
+  CHECK(rows[2][col("skipped")] == "1");
+  CHECK(rows[2][col("a")].empty());  // no nan: an empty cell
+  CHECK(rows[2][col("beta")].empty());
+  CHECK_THAT(rows[2][col("problem")], Catch::Contains("at least 3"));
+  const std::string text = slurp(out);
+  CHECK(text.find("nan") == std::string::npos);
+
+  // When no design point can be fitted there is nothing to report: exit 2, naming it.
+  r = run_cli("demand " + qpath(table) + " --pooled --response f2");
+  CHECK(r.status == 2);
+  const auto only_few = write_temp("demand-none.csv", "index,model.mu,motion,units,drift,pga_g,error\n0,0.3,m1,SI,0.5,0.1,\n1,0.3,m2,SI,0.7,0.2,\n");
+  r = run_cli("demand " + qpath(only_few));
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::StartsWith("error: ") && Catch::Contains("demand-none.csv: model.mu=0.3") && Catch::Contains("at least 3"));
+}
+
+TEST_CASE("the README's sweep file example is a valid sweep", "[sweep][docs]") {
+  // It once varied model.mu on one axis and set it again in another (now an error).
+  const std::string readme = slurp(std::string(ADJOIN_SOURCE_DIR) + "/README.md");
+  const auto section = readme.find("### The sweep file");
+  REQUIRE(section != std::string::npos);
+  const auto begin = readme.find("```toml\n", section);
+  REQUIRE(begin != std::string::npos);
+  const auto end = readme.find("```", begin + 8);
+  std::string text = readme.substr(begin + 8, end - begin - 8);
+  const std::string base = "\"../../records/scenes/paper-strong.toml\"";
+  const auto at = text.find(base);
+  REQUIRE(at != std::string::npos);
+  text.replace(at, base.size(), qpath(kStrong));
+  const SweepSpec spec = parse_sweep(text, (std::filesystem::path(ADJOIN_TEST_TMP) / "readme.toml").string());
+  CHECK(spec.axes.size() == 3);
+  CHECK(spec.runs() == 21u * 2u * 2u * 1u);
+  CHECK(spec.im_periods == std::vector<double>{0.5, 1.0});
 }

@@ -6,10 +6,12 @@
 // (study/demand.hpp). Prints a table; --out writes it as CSV (temporary file + rename).
 #include <cmath>
 #include <cstdio>
+#include <iostream>
 #include <memory>
 
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
+#include "adjoin/io/text_file.hpp"
 #include "adjoin/study/demand.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "command.hpp"
@@ -37,21 +39,37 @@ int demand_command(const DemandArgs& args) {
   std::printf("demand model ln(%s) = a + b ln(%s), %s\n", args.response.c_str(), im_column.c_str(), args.table.c_str());
   for (const auto& a : axes) std::printf("%-14s ", a.c_str());
   std::printf("%5s %12s %10s %10s %8s %12s\n", "n", "a", "b", "beta", "R^2", "median@IM=1");
+  std::size_t unfitted = 0;
   for (const auto& g : fits) {
     for (const auto& v : g.group) std::printf("%-14s ", v.c_str());
-    std::printf("%5zu %12.5g %10.5g %10.5g %8.4f %12.5g", g.fit.n, g.fit.a, g.fit.b, g.fit.beta, g.fit.r2, std::exp(g.fit.a));
+    if (g.problem.empty())
+      std::printf("%5zu %12.5g %10.5g %10.5g %8.4f %12.5g", g.fit.n, g.fit.a, g.fit.b, g.fit.beta, g.fit.r2, std::exp(g.fit.a));
+    else
+      std::printf("%5zu %12s %10s %10s %8s %12s  not fitted", g.usable, "-", "-", "-", "-", "-");
     if (g.skipped) std::printf("  (%zu rows skipped: failed runs or zero values)", g.skipped);
     std::printf("\n");
+    if (!g.problem.empty()) {
+      ++unfitted;
+      std::string label;
+      for (std::size_t k = 0; k < g.group.size(); ++k) label += (k ? ", " : "") + axes[k] + "=" + g.group[k];
+      std::cerr << "warning: " << printable_message(args.table + ": " + label + ": " + g.problem)
+                << "; this design point is not fitted (fitted = false in --out), the others are\n";
+    }
   }
+  if (unfitted) std::printf("%zu of %zu design points not fitted (see the warnings)\n", unfitted, fits.size());
   if (!args.out.empty()) {
     AtomicFile file(args.out);
     std::vector<std::string> header = axes;
-    for (const char* c : {"response", "im", "n", "skipped", "a", "b", "beta", "r2"}) header.emplace_back(c);
+    for (const char* c : {"response", "im", "n", "skipped", "a", "b", "beta", "r2", "fitted", "problem"}) header.emplace_back(c);
     file.stream() << csv_line(header) << "\n";
     for (const auto& g : fits) {
       std::vector<std::string> cells = g.group;
-      for (const std::string& c : {args.response, im_column, std::to_string(g.fit.n), std::to_string(g.skipped), number(g.fit.a),
-                                   number(g.fit.b), number(g.fit.beta), number(g.fit.r2)})
+      // A design point without a fit: its numbers are empty (never nan), and it says why.
+      const bool fitted = g.problem.empty();
+      const auto value = [&](double v) { return fitted ? number(v) : std::string(); };
+      for (const std::string& c : {args.response, im_column, std::to_string(fitted ? g.fit.n : g.usable), std::to_string(g.skipped),
+                                   value(g.fit.a), value(g.fit.b), value(g.fit.beta), value(g.fit.r2),
+                                   std::string(fitted ? "true" : "false"), g.problem})
         cells.push_back(c);
       file.stream() << csv_line(cells) << "\n";
     }

@@ -29,6 +29,8 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
+#include "adjoin/io/folder_lock.hpp"
+#include "adjoin/io/text_file.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "command.hpp"
 
@@ -125,12 +127,38 @@ void write_table(const SweepTableFile& table, const std::filesystem::path& csv, 
 
 std::size_t cell_index(const std::vector<std::string>& cells) { return std::stoull(cells.at(0)); }
 
+// The command as the lock file records it, for the message of a second sweep that finds it.
+std::string command_text(const SweepArgs& args, const SweepShard& shard) {
+  std::string text = "adjoin sweep " + args.sweep;
+  if (!args.out.empty()) text += " --out " + args.out;
+  if (!shard.whole()) text += " --shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count);
+  return text;
+}
+
+// The rows of a shard: those taken from the journal and those run now.
+struct ShardRows {
+  std::vector<std::vector<std::string>> rows;  // ordered by index
+  std::size_t from_journal = 0;
+};
+
 // Runs the shard's runs that its journal does not hold yet; returns every row of the shard
-// (journal + new), ordered by index. The journal stays until the caller removes it.
-std::vector<std::vector<std::string>> run_shard(const SweepSpec& spec, const SweepShard& shard, const std::filesystem::path& dir,
-                                                unsigned jobs, bool progress_bar) {
+// (journal + new), ordered by index. The journal stays until the caller removes it. Journal
+// rows that are not this sweep's (a value that is not finite, an axis value the sweep does not
+// have, ...) are dropped with a warning and run again.
+ShardRows run_shard(const SweepSpec& spec, const SweepShard& shard, const std::filesystem::path& dir, unsigned jobs,
+                    bool progress_bar, bool verbose) {
   const std::filesystem::path journal_path = dir / (sweep_file_stem(shard) + ".partial.csv");
-  std::vector<std::vector<std::string>> rows = read_sweep_journal(journal_path, spec, shard);
+  std::vector<std::string> dropped;
+  std::vector<std::vector<std::string>> rows = read_sweep_journal(journal_path, spec, shard, &dropped);
+  constexpr std::size_t kShown = 10;
+  for (std::size_t i = 0; i < dropped.size() && i < kShown; ++i)
+    std::cerr << "warning: " << printable_message(dropped[i]) << "; that row is dropped and its run done again\n";
+  if (dropped.size() > kShown)
+    std::cerr << "warning: " << dropped.size() - kShown << " more rows of " << journal_path.string()
+              << " dropped the same way (" << dropped.size() << " in all)\n";
+  const std::size_t from_journal = rows.size();
+  if (from_journal > 0 && verbose)
+    std::cerr << "resuming: " << from_journal << " runs from the journal " << journal_path.string() << "\n";
   std::set<std::size_t> done;
   for (const auto& r : rows) done.insert(cell_index(r));
 
@@ -171,7 +199,12 @@ std::vector<std::vector<std::string>> run_shard(const SweepSpec& spec, const Swe
     progress.finish();
   }
   std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return cell_index(a) < cell_index(b); });
-  return rows;
+  return ShardRows{std::move(rows), from_journal};
+}
+
+// The runs of one shard (all runs for a whole sweep).
+std::size_t shard_runs(const SweepSpec& spec, const SweepShard& shard) {
+  return spec.runs() / shard.count + (shard.index < spec.runs() % shard.count ? 1 : 0);
 }
 
 std::size_t count_failed(const SweepTable& table) {
@@ -187,11 +220,12 @@ std::filesystem::path output_dir(const SweepArgs& args, const SweepSpec& spec) {
 }
 
 void report(const SweepArgs& args, const SweepSpec& spec, const SweepTableFile& table, const std::filesystem::path& dir,
-            const std::string& stem, double seconds) {
+            const std::string& stem, double seconds, std::size_t from_journal) {
   if (args.quiet) return;
   const std::size_t failed = count_failed(table.table);
   std::printf("sweep %s: %zu runs", spec.name.c_str(), table.table.rows.size());
   if (!table.shard.whole()) std::printf(" (shard %zu/%zu of %zu)", table.shard.index, table.shard.count, spec.runs());
+  if (from_journal) std::printf(" (%zu from the journal of an earlier, interrupted sweep)", from_journal);
   std::printf(" in %.3g s", seconds);
   if (failed) std::printf(", %zu stopped on a numerical failure (see the error column)", failed);
   std::printf("\nwrote %s, %s\n", (dir / (stem + ".csv")).string().c_str(), (dir / (stem + ".json")).string().c_str());
@@ -201,15 +235,18 @@ int sweep_local(const SweepArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   const SweepSpec spec = load_sweep(args.sweep);
   const SweepShard shard = args.shard.empty() ? SweepShard{} : parse_shard(args.shard);
+  check_sweep_memory(spec, shard_runs(spec, shard));
   const std::filesystem::path dir = output_dir(args, spec);
-  auto rows = run_shard(spec, shard, dir, args.jobs, !args.quiet);
+  const std::string stem = sweep_file_stem(shard);
+  // Held until the files are written and the journal removed: one sweep at a time per output.
+  const FolderLock lock(dir, stem + ".lock", command_text(args, shard));
+  auto [rows, from_journal] = run_shard(spec, shard, dir, args.jobs, !args.quiet, !args.quiet);
   SweepTable table{sweep_columns(spec), std::move(rows)};
   const SweepTableFile file = sweep_table_file(spec, std::move(table), shard);
-  const std::string stem = sweep_file_stem(shard);
   write_table(file, dir / (stem + ".csv"), dir / (stem + ".json"));
   std::filesystem::remove(dir / (stem + ".partial.csv"));
   report(args, spec, file, dir, stem,
-         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), from_journal);
   return 0;
 }
 
@@ -272,18 +309,25 @@ int sweep_mpi(const SweepArgs& args, const MpiSession& mpi) {
   SweepSpec spec;
   std::filesystem::path dir;
   const SweepShard shard{static_cast<std::size_t>(mpi.rank), static_cast<std::size_t>(mpi.size)};
+  std::size_t from_journal = 0;
+  std::unique_ptr<FolderLock> shard_lock, table_lock;  // held to the end, as in sweep_local
   try {
     if (!args.shard.empty()) throw InputError("--shard " + args.shard + ": not with mpirun (each rank runs shard RANK/SIZE)");
     spec = load_sweep(args.sweep);
+    check_sweep_memory(spec, mpi.rank == 0 ? spec.runs() : shard_runs(spec, shard));  // rank 0 gathers every row
     dir = output_dir(args, spec);
+    shard_lock = std::make_unique<FolderLock>(dir, sweep_file_stem(shard) + ".lock", command_text(args, shard));
+    if (mpi.rank == 0) table_lock = std::make_unique<FolderLock>(dir, "sweep.lock", command_text(args, SweepShard{}));
     const unsigned jobs = args.jobs ? args.jobs
                                     : std::max(1u, std::thread::hardware_concurrency() / static_cast<unsigned>(std::max(1, mpi.local_size)));
-    for (const auto& r : run_shard(spec, shard, dir, jobs, !args.quiet && mpi.rank == 0)) rows_text += csv_line(r) + "\n";
+    auto result = run_shard(spec, shard, dir, jobs, !args.quiet && mpi.rank == 0, !args.quiet);
+    from_journal = result.from_journal;
+    for (const auto& r : result.rows) rows_text += csv_line(r) + "\n";
   } catch (const InputError& e) {
     status = kExitInputError;
     message = e.what();
   } catch (const std::exception& e) {
-    status = 1;
+    status = kExitNumericalError;  // the contract's status for the unforeseen (main.cpp)
     message = std::string("internal: ") + e.what();
   }
   int worst = 0;
@@ -300,6 +344,9 @@ int sweep_mpi(const SweepArgs& args, const MpiSession& mpi) {
     return worst;
   }
   const auto parts = gather_text(rows_text, mpi);
+  // Every rank's journal rows, for rank 0's summary line.
+  unsigned long long mine = from_journal, journal_rows = 0;
+  MPI_Reduce(&mine, &journal_rows, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
   int written = 0;
   if (mpi.rank == 0) {
     try {
@@ -318,7 +365,8 @@ int sweep_mpi(const SweepArgs& args, const MpiSession& mpi) {
       const SweepTableFile file = sweep_table_file(spec, SweepTable{sweep_columns(spec), std::move(rows)}, SweepShard{});
       write_table(file, dir / "sweep.csv", dir / "sweep.json");
       written = 1;
-      report(args, spec, file, dir, "sweep", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+      report(args, spec, file, dir, "sweep", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+             static_cast<std::size_t>(journal_rows));
       if (!args.quiet) std::printf("(%d MPI ranks)\n", mpi.size);
     } catch (const std::exception& e) {
       message = e.what();
@@ -334,11 +382,37 @@ int sweep_mpi(const SweepArgs& args, const MpiSession& mpi) {
 }
 #endif
 
+#ifndef ADJOIN_WITH_MPI
+// A build without MPI under mpirun/srun with several ranks: each rank would run the whole
+// sweep and write the same files. The launchers' variables that say so: a size above 1, or a
+// rank above 0. Returns "NAME=VALUE" of the first one found, or "".
+std::string mpi_launcher_evidence() {
+  const auto above = [](const char* name, long limit) -> std::string {
+    const char* value = std::getenv(name);
+    if (!value) return "";
+    char* end = nullptr;
+    const long n = std::strtol(value, &end, 10);
+    return end != value && n > limit ? std::string(name) + "=" + value : std::string();
+  };
+  for (const char* size : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "MPI_LOCALNRANKS", "MV2_COMM_WORLD_SIZE"})
+    if (auto found = above(size, 1); !found.empty()) return found;
+  for (const char* rank : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK", "MV2_COMM_WORLD_RANK"})
+    if (auto found = above(rank, 0); !found.empty()) return found;
+  return "";
+}
+#endif
+
 int sweep_command(const SweepArgs& args) {
   if (args.sweep.empty()) throw InputError("adjoin sweep: expected a sweep file (adjoin sweep SWEEP.toml) or `adjoin sweep merge`");
 #ifdef ADJOIN_WITH_MPI
   MpiSession mpi;
   if (mpi.size > 1) return sweep_mpi(args, mpi);
+#else
+  if (const std::string evidence = mpi_launcher_evidence(); !evidence.empty())
+    throw InputError("adjoin sweep: started by an MPI launcher with several ranks (" + evidence +
+                     "), but this adjoin was built without MPI: every rank would run the whole sweep and write the "
+                     "same files. Build it with MPI (scripts/setup.sh --with-mpi, then cmake -DADJOIN_WITH_MPI=ON), or "
+                     "run it without mpirun (it uses every local core; --shard I/N splits a sweep over machines)");
 #endif
   return sweep_local(args);
 }

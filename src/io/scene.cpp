@@ -19,6 +19,7 @@
 #include "adjoin/ground/record_motion.hpp"
 #include "adjoin/ground/spectrum_matching.hpp"
 #include "adjoin/ground/synthesis.hpp"
+#include "adjoin/io/file_name.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/solver/simulate.hpp"
 
@@ -579,9 +580,14 @@ void add_warnings(const SceneReader& r, Scene& scene) {
 Scene build_scene(const SceneReader& r, const std::string& name) {
   Scene scene;
   scene.name = r.string("name", "");
+  // The name picks the output folder (out/<name>/): a path there would write outside out/.
+  if (r.has("name"))
+    if (const std::string problem = plain_name_problem(scene.name); !problem.empty())
+      r.fail("name", "name = " + escaped_excerpt(scene.name) + " " + problem +
+                         "; expected a plain file name (it names the output folder out/<name>/)");
   if (scene.name.empty()) {
     scene.name = std::filesystem::path(name).stem().string();
-    if (scene.name.empty()) scene.name = "scene";
+    if (!plain_name_problem(scene.name).empty()) scene.name = "scene";  // "", or a file called "..toml"
   }
   for (const auto& table : {"model", "ground"})
     if (!r.has(table)) r.fail(table, std::string("missing section [") + table + "]");

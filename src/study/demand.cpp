@@ -62,6 +62,13 @@ std::size_t SweepCsvTable::column(const std::string& name) const {
 }
 
 SweepCsvTable read_sweep_csv(const std::filesystem::path& file) {
+  // A folder or a FIFO is not opened (a FIFO would block the program).
+  std::error_code error;
+  const auto status = std::filesystem::status(file, error);
+  if (std::filesystem::is_directory(status))
+    throw InputError(file.string() + ": is a folder; expected a sweep's table (DIR/sweep.csv)");
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw InputError(file.string() + ": is not a regular file (a FIFO, device or socket); expected a sweep's table (sweep.csv)");
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string() + ": cannot open the table");
   SweepCsvTable table;
@@ -160,14 +167,24 @@ std::vector<DemandGroupFit> fit_sweep_demand(const SweepCsvTable& table, const s
     g.group = key;
     g.skipped = skipped[key];
     const auto& [x, y] = data[key];
+    g.usable = x.size();
     try {
       g.fit = fit_demand_model(x, y);
     } catch (const InputError& e) {
-      std::string label;
-      for (std::size_t k = 0; k < key.size(); ++k) label += (k ? ", " : "") + axes[k] + "=" + key[k];
-      throw InputError(table.file.string() + ": " + (label.empty() ? std::string("all rows") : label) + ": " + e.what());
+      // One design point that cannot be fitted does not stop the others.
+      g.problem = e.what();
+      g.fit = DemandFit{};
+      g.fit.n = x.size();
     }
     fits.push_back(std::move(g));
+  }
+  if (fits.empty()) throw InputError(table.file.string() + ": no rows (expected a sweep's table with one row per run)");
+  if (std::none_of(fits.begin(), fits.end(), [](const DemandGroupFit& g) { return g.problem.empty(); })) {
+    const auto& g = fits.front();
+    std::string label;
+    for (std::size_t k = 0; k < g.group.size(); ++k) label += (k ? ", " : "") + axes[k] + "=" + g.group[k];
+    throw InputError(table.file.string() + ": " + (label.empty() ? std::string("all rows") : label) + ": " + g.problem +
+                     (fits.size() > 1 ? " (and no other design point can be fitted either)" : ""));
   }
   return fits;
 }

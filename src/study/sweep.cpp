@@ -22,6 +22,8 @@
 #include "../detail/nearest.hpp"
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/record_motion.hpp"
+#include "adjoin/io/file_name.hpp"
+#include "adjoin/io/text_file.hpp"
 #include "adjoin/observe/energy.hpp"
 #include "adjoin/observe/peaks.hpp"
 #include "adjoin/observe/phases.hpp"
@@ -97,6 +99,12 @@ std::uint64_t fnv1a(std::uint64_t hash, const std::string& text) {
 }
 
 std::string read_text(const std::filesystem::path& file, const std::string& what) {
+  // A folder or a FIFO is not opened (a FIFO would block the program).
+  std::error_code error;
+  const auto status = std::filesystem::status(file, error);
+  if (std::filesystem::is_directory(status)) throw InputError(file.string() + ": is a folder; expected the " + what);
+  if (std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw InputError(file.string() + ": is not a regular file (a FIFO, device or socket); expected the " + what);
   std::ifstream in(file, std::ios::binary);
   if (!in) throw InputError(file.string() + ": cannot open the " + what);
   std::stringstream buffer;
@@ -164,17 +172,6 @@ std::string resolve_path_value(const std::string& key, const std::string& value,
   return value;
 }
 
-// Dotted keys set to `true` on an elastic flag drop the rod's fractional keys from the base.
-void add_implied_unsets(SweepSetting& s) {
-  for (const auto& [key, text] : s.set) {
-    for (const char* rod : {"model.rod1", "model.rod2"}) {
-      if (key == std::string(rod) + ".elastic" && text == "true")
-        for (const char* k : {".order", ".tau_x", ".tau_f"}) s.unset.push_back(std::string(rod) + k);
-    }
-    if (key == "ground.source") s.unset.push_back("ground");
-  }
-}
-
 // Flattens `set = {...}` (quoted dotted keys or nested tables) into (dotted key, node).
 void flatten(const toml::table& table, const std::string& prefix, std::vector<std::pair<std::string, const toml::node*>>& out) {
   for (const auto& [key, node] : table) {
@@ -207,7 +204,29 @@ void read_edits(const SweepReader& r, const toml::table& table, const std::files
       s.unset.push_back(k.as_string()->get());
     }
   }
-  add_implied_unsets(s);
+}
+
+const std::vector<std::string>& fixed_column_names();
+
+// What a sweep holds in memory, per axis value (its edits) and per run (its row: the cells, then
+// the CSV and JSON texts built from them): measured 6.0 kB a run at 26 columns (40,000 runs,
+// peak RSS), rounded up to 256 bytes a column (README "Sweeps").
+constexpr double kBytesPerValue = 256.0;
+double bytes_per_run(std::size_t columns) { return 256.0 * static_cast<double>(columns); }
+
+// "478 GB": sizes in messages.
+std::string gigabytes(double bytes) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g GB", bytes / 1e9);
+  return text;
+}
+
+// What a sweep may use: 80 % of the machine's memory (0: unknown, no limit), as `adjoin run`.
+double memory_budget() { return 0.8 * physical_memory_bytes(); }
+
+std::string budget_text() {
+  return "more than the " + gigabytes(memory_budget()) + " this machine can give (80 % of " +
+         gigabytes(physical_memory_bytes()) + ")";
 }
 
 std::vector<double> range_values(const SweepReader& r, const toml::table& axis, const std::string& name) {
@@ -224,6 +243,11 @@ std::vector<double> range_values(const SweepReader& r, const toml::table& axis, 
   if (!n_value || n_value->get() < 1 || n_value->get() > 100000000)
     r.fail(n_node, "axis " + name + ": n must be an integer from 1 to 1e8");
   const auto n = static_cast<std::size_t>(n_value->get());
+  // Sized before the points are made: a huge axis is refused now, not by bad_alloc later.
+  const double need = static_cast<double>(n) * (kBytesPerValue + bytes_per_run(fixed_column_names().size() + 1));
+  if (memory_budget() > 0.0 && need > memory_budget())
+    r.fail(n_node, "axis " + name + ": n = " + std::to_string(n) + " points would need about " + gigabytes(need) +
+                       " of memory for the sweep's table alone, " + budget_text() + "; use fewer points");
   std::string spacing = "lin";
   if (auto node = axis.get("spacing")) {
     if (!node->is_string() || (node->as_string()->get() != "lin" && node->as_string()->get() != "log"))
@@ -326,6 +350,41 @@ std::string SweepSpec::describe(std::size_t index) const {
   return text + "motion=" + motions[c.back()].label;
 }
 
+namespace {
+
+// The scene keys the values of one axis (or motion) set.
+std::set<std::string> keys_set(const std::vector<SweepSetting>& values) {
+  std::set<std::string> keys;
+  for (const auto& v : values)
+    for (const auto& [key, text] : v.set) keys.insert(key);
+  return keys;
+}
+
+// Two axes that set the same key: every run has both, and the later one silently overwrites the
+// earlier (so one axis is not what its column says). The same for an axis and a motion.
+void check_axis_keys(const SweepReader& r, const SweepSpec& spec) {
+  const auto at = [&](std::size_t line) { return r.name() + (line ? ":" + std::to_string(line) : std::string()); };
+  for (std::size_t b = 0; b < spec.axes.size(); ++b) {
+    const auto later = keys_set(spec.axes[b].values);
+    for (std::size_t a = 0; a < b; ++a)
+      for (const auto& key : keys_set(spec.axes[a].values))
+        if (later.count(key))
+          throw InputError(at(spec.axes[b].line) + ": axis " + spec.axes[b].name + " sets " + key + ", and so does axis " +
+                           spec.axes[a].name + " (" + at(spec.axes[a].line) +
+                           "); every run would take one axis' value and drop the other's: set " + key +
+                           " on one axis only (or combine the two into one axis of tables)");
+    for (const auto& motion : spec.motions)
+      for (const auto& [key, text] : motion.set)
+        if (later.count(key))
+          throw InputError(at(motion.line) + ": motion " + motion.label + " sets " + key + ", and so does axis " +
+                           spec.axes[b].name + " (" + at(spec.axes[b].line) +
+                           "); the motion's value would replace the axis' in every run: set " + key +
+                           " on the axis or in the motions, not both");
+  }
+}
+
+}  // namespace
+
 SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   SweepReader r(name);
   toml::table root;
@@ -340,9 +399,14 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   SweepSpec spec;
   spec.file = name;
   spec.name = std::filesystem::path(name).stem().string();
+  if (!plain_name_problem(spec.name).empty()) spec.name = "sweep";  // a file called "..toml"
   if (auto node = root.get("name")) {
-    if (!node->is_string() || node->as_string()->get().empty()) r.fail(node, "name must be a non-empty string");
+    if (!node->is_string()) r.fail(node, "name must be a string (a plain file name: the output folder out/<name>/)");
     spec.name = node->as_string()->get();
+    // The name picks the output folder (out/<name>/): a path there would write outside out/.
+    if (const std::string problem = plain_name_problem(spec.name); !problem.empty())
+      r.fail(node, "name = " + escaped_excerpt(spec.name) + " " + problem +
+                       "; expected a plain file name (it names the output folder out/<name>/)");
   }
   auto base = root.get("base");
   if (!base) r.fail(nullptr, "missing key base (the base scene file, relative to the sweep file)");
@@ -385,7 +449,6 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
           s.number = v;
           s.line = axis.line;
           s.set.emplace_back(axis.key, toml_float(v));
-          add_implied_unsets(s);
           axis.values.push_back(std::move(s));
         }
       } else {
@@ -409,7 +472,6 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
               value_toml = toml_string(resolve_path_value(axis.key, v.as_string()->get(), folder));
             s.label = label;
             s.set.emplace_back(axis.key, value_toml);
-            add_implied_unsets(s);
           }
           if (!labels.insert(s.label).second) r.fail(&v, "axis " + axis.name + ": the value " + s.label + " appears twice");
           axis.values.push_back(std::move(s));
@@ -468,10 +530,19 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
     return n;
   }();
   if (total > 1e9) r.fail(nullptr, "the sweep has " + shortest(total) + " runs; at most 1e9");
+  check_axis_keys(r, spec);
 
   // The base scene: read once, and checked on its own (its errors name its file and line).
-  spec.base_text = read_text(spec.base, "base scene (" + r.where(base) + "base)");
+  try {
+    spec.base_text = read_text_file(spec.base, "scene");
+  } catch (const InputError& e) {
+    throw InputError(r.where(base) + "base: " + e.what());
+  }
   (void)parse_scene(spec.base_text, spec.base.string());
+  {
+    const toml::table base_table = toml::parse(spec.base_text, spec.base.string());
+    spec.base_source = base_table.at_path("ground.source").value_or(std::string());
+  }
   std::uint64_t hash = 14695981039346656037ull;
   hash = fnv1a(hash, text);
   hash = fnv1a(hash, std::string(1, '\0') + spec.base_text);
@@ -483,17 +554,37 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
 }
 
 SweepSpec load_sweep(const std::filesystem::path& file) {
-  SweepSpec spec = parse_sweep(read_text(file, "sweep file"), file.string());
+  SweepSpec spec = parse_sweep(read_text_file(file, "sweep"), file.string());
   spec.file = file;
   return spec;
+}
+
+void check_sweep_memory(const SweepSpec& spec, std::size_t runs) {
+  double values = 0.0;
+  for (const auto& a : spec.axes) values += static_cast<double>(a.values.size());
+  const double per_run = bytes_per_run(sweep_columns(spec).size());
+  const double need = values * kBytesPerValue + static_cast<double>(runs) * per_run;
+  if (memory_budget() <= 0.0 || need <= memory_budget()) return;
+  char per[32];
+  std::snprintf(per, sizeof per, "%.2g", per_run / 1e3);
+  throw InputError(spec.file.string() + ": the sweep's table of " + std::to_string(runs) + " runs would need about " +
+                   gigabytes(need) + " of memory (about " + per + " kB a run), " + budget_text() +
+                   "; use fewer points on the axes, or split it with --shard I/N over several machines");
 }
 
 Scene sweep_scene(const SweepSpec& spec, std::size_t index) {
   const auto settings = spec.settings(index);
   std::vector<std::string> overrides, unset;
+  // The structure an edit makes obsolete is dropped by the rule `adjoin run --set` follows
+  // (implied_unsets), with the ground source as the edits so far leave it.
+  std::string source = spec.base_source;
   for (const auto& s : settings) {
     for (auto& o : s.overrides()) overrides.push_back(std::move(o));
     unset.insert(unset.end(), s.unset.begin(), s.unset.end());
+    for (const auto& [key, text] : s.set) {
+      for (auto& k : implied_unsets(key, text, source)) unset.push_back(std::move(k));
+      if (key == "ground.source") source = toml::parse("v = " + text)["v"].value_or(std::string());
+    }
   }
   try {
     Scene scene = parse_scene(spec.base_text, spec.base.string(), overrides, unset);
@@ -945,28 +1036,88 @@ std::string sweep_journal_preamble(const SweepSpec& spec, const SweepShard& shar
          " shard=" + std::to_string(shard.index) + "/" + std::to_string(shard.count) + "\n" + csv_line(header) + "\n";
 }
 
+std::string sweep_row_problem(const SweepSpec& spec, const SweepShard& shard, const std::vector<std::string>& cells,
+                              std::size_t* index) {
+  const auto columns = sweep_columns(spec);
+  if (cells.size() != columns.size())
+    return std::to_string(cells.size()) + " cells; the sweep's table has " + std::to_string(columns.size());
+  if (!parse_size(cells[0], index) || cells[0] != std::to_string(*index))
+    return "index " + escaped_excerpt(cells[0]) + " is not a run number";
+  if (*index >= spec.runs())
+    return "run " + cells[0] + " does not exist (the sweep has " + std::to_string(spec.runs()) + " runs)";
+  if (!shard.contains(*index))
+    return "run " + cells[0] + " is not in shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count);
+  // The run's coordinates: its axis values and motion as this sweep spells them.
+  const auto c = spec.coordinates(*index);
+  for (std::size_t k = 0; k <= spec.axes.size(); ++k) {
+    const std::string& expected = k < spec.axes.size() ? spec.axes[k].values[c[k]].label : spec.motions[c.back()].label;
+    if (cells[k + 1] != expected)
+      return columns[k + 1].name + " = " + escaped_excerpt(cells[k + 1]) + ", but run " + cells[0] + " of this sweep has " +
+             escaped_excerpt(expected);
+  }
+  const std::size_t units = spec.axes.size() + 2;
+  if (cells[units] != "dimensionless" && cells[units] != "SI")
+    return "units = " + escaped_excerpt(cells[units]) + "; expected dimensionless or SI";
+  const bool failed = !cells.back().empty();
+  for (std::size_t i = units + 1; i + 1 < cells.size(); ++i) {
+    const std::string& cell = cells[i];
+    const auto bad = [&](const char* expected) {
+      return columns[i].name + " = " + escaped_excerpt(cell) + "; expected " + expected;
+    };
+    double number = 0.0;
+    std::size_t count = 0;
+    switch (columns[i].type) {
+      case ColumnType::number:
+        // An empty cell is a value the run did not have (a failed run, or no input energy).
+        if (!cell.empty() && !(parse_double(cell, &number) && std::isfinite(number))) return bad("a finite number or nothing");
+        break;
+      case ColumnType::integer:
+        if (cell.empty() ? !failed : !parse_size(cell, &count)) return bad("a count (nothing only for a failed run)");
+        break;
+      case ColumnType::boolean:
+        if (cell.empty() ? !failed : cell != "true" && cell != "false") return bad("true or false (nothing only for a failed run)");
+        break;
+      case ColumnType::string: break;
+    }
+  }
+  return "";
+}
+
 std::vector<std::vector<std::string>> read_sweep_journal(const std::filesystem::path& file, const SweepSpec& spec,
-                                                         const SweepShard& shard) {
+                                                         const SweepShard& shard, std::vector<std::string>* dropped) {
   std::ifstream in(file, std::ios::binary);
   if (!in) return {};
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();
   const std::string preamble = sweep_journal_preamble(spec, shard);
-  if (text.compare(0, preamble.size(), preamble) != 0) return {};
-  const std::size_t columns = sweep_columns(spec).size();
+  const auto drop = [&](const std::string& message) {
+    if (dropped) dropped->push_back(file.string() + message);
+  };
+  if (text.compare(0, preamble.size(), preamble) != 0) {
+    if (!text.empty())
+      drop(": a journal of another sweep (or of this one before its sweep file, base scene or adjoin changed); "
+           "none of its rows is used");
+    return {};
+  }
   std::vector<std::vector<std::string>> rows;
   std::set<std::size_t> seen;
-  std::size_t pos = preamble.size();
+  std::size_t pos = preamble.size(), line_number = 2;
   while (pos < text.size()) {
+    ++line_number;
     const std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) break;  // a torn last line
+    if (end == std::string::npos) break;  // a torn last line: the run was interrupted while writing it
     const std::string line = text.substr(pos, end - pos);
     pos = end + 1;
     std::vector<std::string> cells;
     std::size_t index = 0;
-    if (!split_csv_line(line, &cells) || cells.size() != columns || !parse_size(cells[0], &index)) continue;
-    if (index >= spec.runs() || !shard.contains(index) || !seen.insert(index).second) continue;
+    std::string problem = split_csv_line(line, &cells) ? sweep_row_problem(spec, shard, cells, &index)
+                                                        : "broken CSV quoting in " + escaped_excerpt(line);
+    if (problem.empty() && !seen.insert(index).second) problem = "run " + cells[0] + " appears twice";
+    if (!problem.empty()) {
+      drop(":" + std::to_string(line_number) + ": " + problem);
+      continue;
+    }
     rows.push_back(std::move(cells));
   }
   return rows;

@@ -44,6 +44,10 @@ SweepCsvTable read_sweep_csv(const std::filesystem::path& file);
 struct DemandGroupFit {
   std::vector<std::string> group;  // the axis values of the group (the axes' columns)
   std::size_t skipped = 0;         // rows of the group left out: failed runs, zero demand or IM
+  std::size_t usable = 0;          // rows of the group that enter the fit
+  // Why the group has no fit ("" if it has one: fit is then valid), e.g. fewer than 3 usable
+  // motions; the other groups are still fitted.
+  std::string problem;
   DemandFit fit;
 };
 
@@ -56,6 +60,8 @@ std::string demand_im_column(const SweepCsvTable& table, const std::string& im);
 // One fit per combination of the axis values (every motion of that design point), or one fit
 // over all rows when the sweep has no axes or `pooled` is true. Rows with an error, or a
 // non-positive demand or IM, are skipped and counted. `response` is a column name (e.g. drift).
+// A group that cannot be fitted (fewer than 3 usable motions, one IM value) keeps its place with
+// `problem` set; only when no group can be fitted is it an InputError (naming the table and group).
 std::vector<DemandGroupFit> fit_sweep_demand(const SweepCsvTable& table, const std::string& response,
                                              const std::string& im, bool pooled = false);
 

@@ -61,6 +61,7 @@ struct SweepSpec {
   double im_damping = 0.05;           // [output] im_damping
   std::string fingerprint;            // hash of the sweep text, the base scene text and the version
   std::string base_text;              // the base scene file's text, read once
+  std::string base_source;            // its ground.source ("" if it has none)
 
   std::size_t runs() const;
   // Index of the value on each axis, then the motion's index (size axes + 1).
@@ -175,10 +176,22 @@ SweepTableFile merge_sweep_tables(const std::vector<SweepTableFile>& parts);
 // then one row per finished run, appended and flushed as each run ends (any order).
 
 std::string sweep_journal_preamble(const SweepSpec& spec, const SweepShard& shard);
-// Rows of a journal that match the spec and shard (a journal of another sweep, or a torn last
-// line, is ignored: returns what can be trusted). Returns {} if the file does not exist.
+// Rows of a journal that match the spec and shard: returns what can be trusted ({} if the file
+// does not exist). A torn last line is dropped quietly (an interrupted run); every other row
+// that is not one of this sweep's (sweep_row_problem), and a journal of another sweep, is
+// dropped with a "FILE:LINE: why" in `dropped`, so the caller can warn and run it again.
 std::vector<std::vector<std::string>> read_sweep_journal(const std::filesystem::path& file,
-                                                         const SweepSpec& spec, const SweepShard& shard);
+                                                         const SweepSpec& spec, const SweepShard& shard,
+                                                         std::vector<std::string>* dropped = nullptr);
+// Why `cells` cannot be a row of this sweep and shard ("" if it can; *index is then its run):
+// the cell count, the index, the axis values and motion of that run, the units, and every
+// number finite (empty only where a run leaves it empty), counts and booleans well formed.
+std::string sweep_row_problem(const SweepSpec& spec, const SweepShard& shard, const std::vector<std::string>& cells,
+                              std::size_t* index);
+
+// Refuses (InputError naming the sweep file) a sweep whose table for `runs` runs (those of one
+// process: a shard's) would not fit in 80 % of the machine's memory, saying how much it needs.
+void check_sweep_memory(const SweepSpec& spec, std::size_t runs);
 
 // File names inside the output folder: "sweep" or "sweep.shard-I-of-N".
 std::string sweep_file_stem(const SweepShard& shard);
