@@ -6,7 +6,9 @@
 #include <iostream>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/building_files.hpp"
 #include "adjoin/io/run_files.hpp"
+#include "adjoin/io/structure_file.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/summary.hpp"
 #include "command.hpp"
@@ -22,7 +24,22 @@ struct RunArgs {
   bool quiet = false;
 };
 
+int run_building_command(const RunArgs& args) {
+  if (!args.unsets.empty()) throw InputError("--unset: not supported for building scenes yet (edit the scene file)");
+  const BuildingScene scene = load_building_scene(args.scene, args.overrides);
+  for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
+  const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args.out);
+  const BuildingFiles files = run_building_to_folder(scene, dir);
+  if (!args.quiet) {
+    std::cout << building_brief_report(scene, files.report) << "wrote ";
+    for (std::size_t i = 0; i < files.written.size(); ++i) std::cout << (i ? ", " : "") << files.written[i].string();
+    std::cout << "\n";
+  }
+  return 0;
+}
+
 int run_command(const RunArgs& args) {
+  if (is_building_scene(args.scene)) return run_building_command(args);
   const Scene scene = load_scene(args.scene, args.overrides, args.unsets);
   for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
   const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args.out);

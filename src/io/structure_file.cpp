@@ -211,8 +211,10 @@ bool is_building_scene(const std::filesystem::path& file) {
 }
 
 structure::Structure read_structure(const std::filesystem::path& path) {
-  const std::string file = path.string();
-  const std::string text = read_text_file(path, "scene");
+  return parse_structure(read_text_file(path, "scene"), path.string());
+}
+
+structure::Structure parse_structure(const std::string& text, const std::string& file) {
   toml::table root;
   try {
     root = toml::parse(text, file);
@@ -225,6 +227,7 @@ structure::Structure read_structure(const std::filesystem::path& path) {
   const toml::table* model = root["model"].as_table();
   if (!model || root["model"]["units"].value<std::string>() != "SI")
     top.fail("", "a building scene is in SI units: add [model] with units = \"SI\"");
+  TableReader(*model, "model", file).only({"units"});  // the buildings carry the rest
   const toml::table* buildings = root["building"].as_table();
   if (!buildings) top.fail("", "missing section [building.A]");
   TableReader br(*buildings, "building", file);

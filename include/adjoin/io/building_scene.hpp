@@ -1,0 +1,29 @@
+#pragma once
+// A building scene (SPEC §5) read whole: its structure (io/structure_file.hpp) and its ground,
+// solver and output sections (the two-block scene's keys, read by the same code), with the
+// step and horizon chosen when not given (the rules are said in `h_rule`, `t_end_rule`).
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "adjoin/io/scene.hpp"
+#include "adjoin/solver/structure_solver.hpp"
+#include "adjoin/structure/building.hpp"
+
+namespace adjoin {
+
+struct BuildingScene {
+  std::string name;
+  std::filesystem::path file;
+  structure::Structure structure;
+  Scene base;  // ground (a_g in g, time in s), output; its model is a unit placeholder
+  StructureSolverOptions solver;
+  std::string h_rule, t_end_rule;
+  std::vector<std::string> warnings;
+};
+
+// `overrides`: --set edits of [ground], [solver], [output] and name (edits of the structure
+// are refused for now, with the reason).
+BuildingScene load_building_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+
+}  // namespace adjoin

@@ -1,0 +1,105 @@
+#include "adjoin/io/building_scene.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include <toml++/toml.h>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/io/structure_file.hpp"
+#include "adjoin/io/text_file.hpp"
+#include "adjoin/structure/modal.hpp"
+
+namespace adjoin {
+namespace {
+
+bool has_key(const std::string& text, const std::string& section, const std::string& key) {
+  try {
+    const toml::table root = toml::parse(text);
+    return root[section][key].node() != nullptr;
+  } catch (const toml::parse_error&) {
+    return false;
+  }
+}
+
+bool overridden(const std::vector<std::string>& overrides, const std::string& key) {
+  return std::any_of(overrides.begin(), overrides.end(), [&](const std::string& o) {
+    const auto eq = o.find('=');
+    std::string k = o.substr(0, eq);
+    k.erase(0, k.find_first_not_of(' '));
+    k.erase(k.find_last_not_of(' ') + 1);
+    return k == key;
+  });
+}
+
+std::string number(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+BuildingScene load_building_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
+  for (const auto& o : overrides)
+    for (const char* section : {"building", "link", "contact", "model"})
+      if (o.rfind(std::string(section) + ".", 0) == 0 || o.rfind(std::string(section) + "[", 0) == 0)
+        throw InputError("--set " + o + ": edits of a building scene's structure are not supported yet; edit the scene file "
+                         "(ground.*, solver.*, output.* and name can be set)");
+  const std::string text = read_text_file(file, "scene");
+  BuildingScene b;
+  b.file = file;
+  b.structure = parse_structure(text, file.string());
+  b.base = parse_building_base(text, file.string(), overrides);
+  b.base.file = file;
+  b.name = b.base.name;
+  for (const auto& w : b.base.warnings)
+    if (w.find("period") == std::string::npos) b.warnings.push_back(w);  // (its periods are the placeholder's)
+
+  // The structure's periods decide the defaults.
+  double t_longest = 0.0, t_shortest_fundamental = INFINITY;
+  for (const structure::Building* bd : {&b.structure.a, b.structure.b ? &*b.structure.b : nullptr}) {
+    if (!bd) continue;
+    const structure::Modes m = structure::building_modes(*bd);
+    t_longest = std::max(t_longest, m.periods[0]);
+    t_shortest_fundamental = std::min(t_shortest_fundamental, m.periods[0]);
+  }
+  if (b.structure.b) t_longest = std::max(t_longest, structure::coupled_modes(b.structure).periods_free[0]);
+
+  const bool h_given = has_key(text, "solver", "h") || overridden(overrides, "solver.h");
+  const bool t_end_given = has_key(text, "solver", "t_end") || overridden(overrides, "solver.t_end");
+  if (has_key(text, "solver", "tolerance") || overridden(overrides, "solver.tolerance"))
+    throw InputError(file.string() + ": solver.tolerance is not supported for building scenes yet; give solver.h [s]");
+  const double dt = b.base.ground->sample_interval();  // s (unit time scale)
+  if (h_given) {
+    b.solver.h = b.base.solver.h;
+    b.h_rule = "given";
+  } else {
+    b.solver.h = t_shortest_fundamental / 200.0;
+    if (dt > 0.0) b.solver.h = std::min(b.solver.h, dt);
+    b.h_rule = "the shortest fundamental period / 200" + std::string(dt > 0.0 ? ", no coarser than the record's dt" : "") + " = " +
+               number(b.solver.h) + " s";
+  }
+  const double duration = b.base.ground->duration();
+  if (t_end_given) {
+    b.solver.t_end = b.base.solver.t_end;
+    b.t_end_rule = "given";
+  } else if (std::isfinite(duration)) {
+    b.solver.t_end = duration + 5.0 * t_longest;
+    b.t_end_rule = "the motion's duration + 5 x the longest period (" + number(t_longest) + " s) = " + number(b.solver.t_end) + " s";
+  } else {
+    b.solver.t_end = 20.0 * t_longest;
+    b.t_end_rule = "20 x the longest period (" + number(t_longest) + " s) = " + number(b.solver.t_end) + " s";
+  }
+  b.solver.history = b.base.solver.history;
+  std::string error;
+  if (!b.solver.IsValid(&error)) throw InputError(file.string() + ": " + error);
+  if (dt > 0.0 && b.solver.h > dt * (1 + 1e-9))
+    b.warnings.push_back("solver.h = " + number(b.solver.h) + " s is coarser than the record's sampling interval " + number(dt) +
+                         " s: the record's peaks between steps are not seen");
+  return b;
+}
+
+}  // namespace adjoin

@@ -1,0 +1,136 @@
+#include "adjoin/study/building_run.hpp"
+
+#include <cmath>
+
+namespace adjoin {
+namespace {
+
+using structure::LinkType;
+
+// Peaks of every channel, the links' extremes and switches, the contact pairs' gaps.
+class BuildingObserver final : public StructureObserver {
+ public:
+  explicit BuildingObserver(const structure::Structure& s) : s_(s) {}
+
+  void begin(const structure::Structure& s, const StructureSolverOptions&) override {
+    names_.clear();
+    auto building = [&](const structure::Building& b) {
+      for (int i = 1; i <= b.floors(); ++i) names_.push_back(b.name + ".x" + std::to_string(i));
+      for (int i = 1; i <= b.floors(); ++i) names_.push_back(b.name + ".drift" + std::to_string(i));
+      for (int i = 1; i <= b.floors(); ++i) names_.push_back(b.name + ".a" + std::to_string(i) + "_abs");
+      names_.push_back(b.name + ".base_shear");
+    };
+    building(s.a);
+    if (s.b) building(*s.b);
+    for (std::size_t l = 0; l < s.links.size(); ++l) {
+      names_.push_back("link" + std::to_string(l + 1) + ".force");
+      names_.push_back("link" + std::to_string(l + 1) + ".stroke");
+    }
+    smooth_.assign(names_.size(), SmoothPeak{});
+    sampled_.assign(names_.size(), Peak{});
+    is_smooth_.assign(names_.size(), true);
+    for (std::size_t i = 0; i < names_.size(); ++i)
+      is_smooth_[i] = names_[i].find("_abs") == std::string::npos && names_[i].find("shear") == std::string::npos &&
+                      names_[i].find(".force") == std::string::npos;
+    links_.assign(s.links.size(), LinkReport{});
+    contacts_.assign(s.contacts.size(), ContactReport{});
+    first_ = true;
+  }
+
+  void observe(const StructureState& st) override {
+    std::size_t c = 0;
+    auto building = [&](const structure::Building& b, int offset) {
+      const int n = b.floors();
+      for (int i = 0; i < n; ++i) smooth_[c++].update(st.x[offset + i], st.t);
+      for (int i = 0; i < n; ++i) smooth_[c++].update(st.x[offset + i] - (i > 0 ? st.x[offset + i - 1] : 0.0), st.t);
+      for (int i = 0; i < n; ++i) sampled_[c++].update(st.a_abs[offset + i], st.t);
+      // Base shear: the sum of the floors' inertia forces, -sum m_i a_i,abs.
+      double shear = 0.0;
+      for (int i = 0; i < n; ++i) shear -= b.masses[i] * st.a_abs[offset + i];
+      sampled_[c++].update(shear, st.t);
+    };
+    building(s_.a, 0);
+    if (s_.b) building(*s_.b, s_.a.floors());
+    for (std::size_t l = 0; l < s_.links.size(); ++l) {
+      sampled_[c++].update(st.link_force[l], st.t);  // kinks where a damper saturates
+      smooth_[c++].update(st.link_stroke[l], st.t);
+      LinkReport& r = links_[l];
+      r.force_max = std::max(r.force_max, std::abs(st.link_force[l]));
+      r.stroke_max = std::max(r.stroke_max, std::abs(st.link_stroke[l]));
+      if (s_.links[l].type == LinkType::friction && !first_) {
+        if (st.link_phase[l] != last_phase_[l]) {
+          ++r.switches;
+          r.switch_times.push_back(std::isnan(st.link_switch[l]) ? st.t : st.link_switch[l]);
+        }
+        // Work of the friction force on the link's relative motion (trapezoidal in time).
+        r.friction_energy += 0.5 * (st.t - last_t_) * (st.link_force[l] * st.link_velocity[l] + last_power_[l]);
+      }
+    }
+    for (std::size_t k = 0; k < s_.contacts.size(); ++k) {
+      const auto& pair = s_.contacts[k];
+      const double gap = pair.gap - (st.x[s_.dof('A', pair.floor_a)] - st.x[s_.dof('B', pair.floor_b)]);
+      ContactReport& r = contacts_[k];
+      if (first_ || gap < r.min_gap) { r.min_gap = gap; r.t_min_gap = st.t; }
+      if (!r.contact && gap <= 0.0) { r.contact = true; r.t_first_contact = st.t; }
+    }
+    last_phase_ = st.link_phase;
+    last_power_.resize(s_.links.size());
+    for (std::size_t l = 0; l < s_.links.size(); ++l) last_power_[l] = st.link_force[l] * st.link_velocity[l];
+    last_t_ = st.t;
+    first_ = false;
+  }
+
+  std::vector<ChannelPeak> peaks() const {
+    std::vector<ChannelPeak> out;
+    for (std::size_t i = 0; i < names_.size(); ++i) out.push_back({names_[i], is_smooth_[i] ? smooth_[i].peak() : sampled_[i]});
+    return out;
+  }
+  const std::vector<LinkReport>& links() const { return links_; }
+  const std::vector<ContactReport>& contacts() const { return contacts_; }
+
+ private:
+  const structure::Structure& s_;
+  std::vector<std::string> names_;
+  std::vector<SmoothPeak> smooth_;   // displacements, drifts, strokes: refined between samples
+  std::vector<Peak> sampled_;        // accelerations, shears, link forces: kinks at switches
+  std::vector<bool> is_smooth_;
+  std::vector<LinkReport> links_;
+  std::vector<ContactReport> contacts_;
+  std::vector<Phase> last_phase_;
+  std::vector<double> last_power_;
+  double last_t_ = 0.0;
+  bool first_ = true;
+};
+
+class Both final : public StructureObserver {
+ public:
+  Both(StructureObserver& a, StructureObserver* b) : a_(a), b_(b) {}
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override { a_.begin(s, o); if (b_) b_->begin(s, o); }
+  void observe(const StructureState& st) override { a_.observe(st); if (b_) b_->observe(st); }
+  void end() override { a_.end(); if (b_) b_->end(); }
+
+ private:
+  StructureObserver& a_;
+  StructureObserver* b_;
+};
+
+}  // namespace
+
+BuildingReport run_building(const BuildingScene& scene, StructureObserver* extra) {
+  BuildingReport r;
+  const structure::Structure& s = scene.structure;
+  r.modes.push_back(structure::building_modes(s.a));
+  if (s.b) {
+    r.modes.push_back(structure::building_modes(*s.b));
+    r.coupled = structure::coupled_modes(s);
+  }
+  BuildingObserver observer(s);
+  Both both(observer, extra);
+  r.solver = simulate_structure(scene.solver, s, *scene.base.ground, both);
+  r.peaks = observer.peaks();
+  r.links = observer.links();
+  r.contacts = observer.contacts();
+  return r;
+}
+
+}  // namespace adjoin

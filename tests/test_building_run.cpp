@@ -1,0 +1,111 @@
+// A building scene's run: the scene read whole (structure, ground, solver, defaults), the
+// run's files, and what they report checked against independent computations: the modes
+// against the modal analysis, each peak against the largest sample of the time series, the
+// base shear against the floors' inertia forces, the friction link within its slip force.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "adjoin/io/building_files.hpp"
+#include "adjoin/io/building_scene.hpp"
+#include "adjoin/structure/modal.hpp"
+
+using namespace adjoin;
+
+namespace {
+
+const std::string kScene = std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/buildings/two-frames.toml";
+
+std::map<std::string, std::vector<double>> read_columns(const std::filesystem::path& csv) {
+  std::ifstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> names;
+  std::stringstream header(line);
+  for (std::string name; std::getline(header, name, ',');) names.push_back(name);
+  std::map<std::string, std::vector<double>> columns;
+  while (std::getline(in, line)) {
+    std::stringstream row(line);
+    std::string cell;
+    for (std::size_t i = 0; std::getline(row, cell, ','); ++i) columns[names.at(i)].push_back(std::stod(cell));
+  }
+  return columns;
+}
+
+}  // namespace
+
+TEST_CASE("a building scene reads whole, and chooses h and t_end when not given", "[building_run]") {
+  const BuildingScene given = load_building_scene(kScene);
+  CHECK(given.solver.h == 0.002);
+  CHECK(given.h_rule == "given");
+  CHECK(given.structure.a.floors() == 5);
+  const BuildingScene chosen = load_building_scene(kScene, {"solver.h=0.001", "solver.t_end=2"});
+  CHECK(chosen.solver.h == 0.001);
+  CHECK(chosen.solver.t_end == 2.0);
+  // Without [solver]: h from the shortest fundamental period (B: 0.5 s) / 200, no coarser than
+  // the record's dt (0.02 s); t_end = the record's duration + 5 x the longest period.
+  const std::filesystem::path dir = std::filesystem::path(ADJOIN_TEST_TMP) / "building-defaults";
+  std::filesystem::create_directories(dir);
+  std::ifstream in(kScene);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string scene = text.str();
+  scene = scene.substr(0, scene.find("[solver]"));
+  const auto copy = std::filesystem::path(ADJOIN_SOURCE_DIR) / "records/scenes/buildings";  // the record path is relative
+  const auto file = copy / ".defaults-test.toml";
+  std::ofstream(file) << scene;
+  const BuildingScene d = load_building_scene(file);
+  std::filesystem::remove(file);
+  CHECK(d.solver.h == Approx(0.5 / 200).epsilon(1e-9));
+  const double longest = structure::coupled_modes(d.structure).periods_free[0];
+  CHECK(d.solver.t_end == Approx(d.base.ground->duration() + 5 * longest).epsilon(1e-9));
+  CHECK(d.t_end_rule.find("duration") != std::string::npos);
+}
+
+TEST_CASE("a building run's files agree with the modal analysis and the time series", "[building_run]") {
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "building-run";
+  std::filesystem::remove_all(dir);
+  const BuildingScene scene = load_building_scene(kScene, {"output.every=1", "solver.t_end=12"});
+  const BuildingFiles files = run_building_to_folder(scene, dir);
+  REQUIRE(files.written.size() == 2);
+  std::ifstream in(dir / "summary.json");
+  const auto j = nlohmann::json::parse(in);
+  // Modes.
+  const structure::Modes a = structure::building_modes(scene.structure.a);
+  for (int i = 0; i < 5; ++i) CHECK(j["structure"]["A"]["periods"][i].get<double>() == Approx(a.periods[i]).epsilon(1e-12));
+  CHECK(j["structure"]["periods_locked"].size() == 7);  // 8 floors, one pair locked together
+  // Peaks against the largest sample (the refinement adds at most O(h^2)).
+  const auto columns = read_columns(dir / "timeseries.csv");
+  REQUIRE(columns.at("t").size() == scene.solver.steps() + 1);
+  for (const char* channel : {"A.x5", "B.x3", "A.a1_abs", "link1.force", "link1.stroke"}) {
+    INFO(channel);
+    double largest = 0.0;
+    for (double v : columns.at(channel)) largest = std::max(largest, std::abs(v));
+    const double peak = j["peaks"][channel]["max_abs"].get<double>();
+    CHECK(peak >= largest * (1 - 1e-12));
+    CHECK(peak <= largest * (1 + 1e-3));
+  }
+  // Base shear of A: the floors' inertia forces, sum of m_i |a_i,abs| at each sample.
+  double shear = 0.0;
+  for (std::size_t k = 0; k < columns.at("t").size(); ++k) {
+    double s = 0.0;
+    for (int i = 1; i <= 5; ++i) s += 45e3 * columns.at("A.a" + std::to_string(i) + "_abs")[k];
+    shear = std::max(shear, std::abs(s));
+  }
+  CHECK(j["peaks"]["A.base_shear"]["max_abs"].get<double>() == Approx(shear).epsilon(1e-3));
+  // The friction link: never beyond its slip force (5 % of B's weight), and it slips.
+  const double slip = 0.05 * 170e3 * 9.80665;
+  CHECK(j["links"][0]["slip_force"].get<double>() == Approx(slip));
+  CHECK(j["links"][0]["force_max"].get<double>() <= slip * (1 + 1e-12));
+  CHECK(j["links"][0]["switches"].get<int>() > 2);
+  CHECK(j["links"][0]["energy"].get<double>() > 0.0);  // friction only dissipates
+  // The contact pair's gap column is the gap at rest less the link stroke.
+  const auto& gap = columns.at("contact1.gap");
+  const auto& stroke = columns.at("link1.stroke");
+  for (std::size_t k = 0; k < gap.size(); k += 97) CHECK(gap[k] == Approx(0.05 - stroke[k]).margin(1e-15));
+}
