@@ -11,6 +11,7 @@
 #include "adjoin/model/units.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "box_qp.hpp"
+#include "onset.hpp"
 #include "rod_law.hpp"
 
 namespace adjoin {
@@ -151,6 +152,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   Eigen::VectorXd friction_now = Eigen::VectorXd::Zero(nf);
   Eigen::VectorXd stick_force_now = Eigen::VectorXd::Zero(nf);  // the force that keeps each damper stuck
   Eigen::VectorXd stick_force_prev = Eigen::VectorXd::Zero(nf);
+  std::vector<bool> prev_stuck(nf, false);            // the grid point before `now` was stuck
+  std::vector<double> stick_start_t(nf, -INFINITY), stick_start_q(nf, 0.0);  // the last stick's start
 
   // Grid-point forces: slipping dampers at +-F; the stuck ones carry what keeps their relative
   // acceleration zero, (B_s M^-1 B_s') q_s = B_s M^-1 (M 1 a_g - C v - P - B_l' q_l) (the ground
@@ -274,13 +277,19 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
           const double q_now = stick_force_now[f];
           if (std::abs(q_now) > lim) {  // beyond the cone at t_n already: slipping since before t_n
             const double d = q_now > 0.0 ? 1.0 : -1.0;
-            const double q_prev = stick_force_prev[f];
-            onset[f] = (q_now != q_prev ? std::clamp((d * lim - q_prev) / (q_now - q_prev), 0.0, 1.0) : 1.0) - 1.0;
+            if (stick_start_t[f] > now.t - h) {
+              // A stick that began inside the last step (at a reversal): the onset lies on the
+              // line between the stuck forces at its start and at t_n.
+              const double r = (d * lim - stick_start_q[f]) / (q_now - stick_start_q[f]);
+              onset[f] = (stick_start_t[f] + std::clamp(r, 0.0, 1.0) * (now.t - stick_start_t[f]) - now.t) / h;
+            } else {
+              onset[f] = std::min(detail::locate_onset(d * lim, prev_stuck[f], stick_force_prev[f], q_now, stick1[f], -1.0), 0.0);
+            }
             fixed2[f] = d * lim;
             decided[f] = d > 0.0 ? detail::DamperState::slip_positive : detail::DamperState::slip_negative;
           } else if (std::abs(stick1[f]) > lim) {
             const double d = stick1[f] > 0.0 ? 1.0 : -1.0;
-            const double theta = std::clamp((d * lim - q_now) / (stick1[f] - q_now), 0.0, 1.0);
+            const double theta = detail::locate_onset(d * lim, prev_stuck[f], stick_force_prev[f], q_now, stick1[f], 0.0);
             onset[f] = theta;
             fixed2[f] = theta * 0.5 * (q_now + d * lim) + (1.0 - theta) * d * lim;
             decided[f] = d > 0.0 ? detail::DamperState::slip_positive : detail::DamperState::slip_negative;
@@ -305,6 +314,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
           if (std::abs(at) <= lim) {
             hold2[f] = true;
             decided[f] = detail::DamperState::stick;
+            stick_start_t[f] = now.t + theta * h;
+            stick_start_q[f] = at;
           } else {
             fixed2[f] = lim * d * (2.0 * theta - 1.0);
             decided[f] = d > 0.0 ? detail::DamperState::slip_negative : detail::DamperState::slip_positive;
@@ -363,6 +374,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     friction_now = q_grid;
     stick_force_prev = stick_force_now;
     stick_force_now = stick_grid;
+    for (int f = 0; f < nf; ++f) prev_stuck[f] = now.link_phase[friction[f]] == Phase::stick && step > 0;
     now = std::move(next);
   }
   observer.end();
