@@ -15,6 +15,8 @@ BoxQpResult solve_box_qp(const Eigen::MatrixXd& s, const Eigen::VectorXd& w0, co
   const int n = static_cast<int>(w0.size());
   BoxQpResult r;
   r.state = hint.size() == static_cast<std::size_t>(n) ? hint : std::vector<DamperState>(n, DamperState::stick);
+  for (int k = 0; k < n; ++k)
+    if (!std::isfinite(limit[k])) r.state[k] = DamperState::stick;  // held stuck: never at a bound
   r.q = Eigen::VectorXd::Zero(n);
   // (A limit may be infinite: a damper held stuck.)
   double scale = w0.cwiseAbs().maxCoeff() + 1e-300;

@@ -1,0 +1,85 @@
+// The structure step on buildings (solver/structure_solver.hpp):
+//
+//     build/bench/bench_buildings
+//
+// targets/: two 20-storey buildings, modal 5 % damping, a fractional Zener device in every
+// storey, three friction dampers, the 40 s Newhall record at h = 0.005 s (8,000 steps), with the
+// fft and the direct history, and with springs only (no history). storeys/N: the same with N
+// storeys each and the fft history, for the cost per step against the storey count.
+#include <benchmark/benchmark.h>
+
+#include <string>
+
+#include "adjoin/ground/record_file.hpp"
+#include "adjoin/ground/record_motion.hpp"
+#include "adjoin/model/units.hpp"
+#include "adjoin/solver/structure_solver.hpp"
+
+namespace {
+
+using namespace adjoin;
+using namespace adjoin::structure;
+
+Structure pair_of(int storeys, bool zener) {
+  Structure s;
+  auto building = [&](const char* name, double mass, double k) {
+    Building b;
+    b.name = name;
+    b.masses = Eigen::VectorXd::Constant(storeys, mass);
+    b.springs = Eigen::VectorXd::Constant(storeys, k);
+    b.damping = {DampingModel::modal, 0.05, 1, 2};
+    if (zener) {
+      StoreyDevice d;
+      d.type = DeviceType::zener;
+      for (int i = 1; i <= storeys; ++i) d.storeys.push_back(i);
+      d.zener = {0.2 * k, 0.5, 0.2, 0.01};
+      b.devices.push_back(d);
+    }
+    return b;
+  };
+  s.a = building("A", 5e5, 8e8);
+  s.b = building("B", 4e5, 6e8);
+  for (int floor : {storeys / 3, 2 * storeys / 3, storeys}) {
+    Link l;
+    l.type = LinkType::friction;
+    l.floor_a = l.floor_b = std::max(floor, 1);
+    l.slip_force = 2e5;
+    s.links.push_back(l);
+  }
+  return s;
+}
+
+const RecordMotion& newhall() {
+  static const RecordMotion motion(read_record(std::string(ADJOIN_SOURCE_DIR) + "/records/real/peer/RSN1044_DirRot2.AT2"), 1.0,
+                                   kStandardGravity);
+  return motion;
+}
+
+class Nothing final : public StructureObserver {
+ public:
+  void observe(const StructureState& s) override { benchmark::DoNotOptimize(s.x[0]); }
+};
+
+void run(benchmark::State& state, const Structure& s, HistoryEngine history) {
+  StructureSolverOptions o;
+  o.h = 0.005;
+  o.t_end = 40.0;
+  o.history = history;
+  Nothing sink;
+  for (auto _ : state) simulate_structure(o, s, newhall(), sink);
+  state.counters["steps/s"] = benchmark::Counter(static_cast<double>(o.steps()), benchmark::Counter::kIsIterationInvariantRate);
+}
+
+void BM_zener_fft(benchmark::State& st) { run(st, pair_of(20, true), HistoryEngine::fft); }
+void BM_zener_direct(benchmark::State& st) { run(st, pair_of(20, true), HistoryEngine::direct); }
+void BM_springs(benchmark::State& st) { run(st, pair_of(20, false), HistoryEngine::fft); }
+void BM_storeys(benchmark::State& st) { run(st, pair_of(static_cast<int>(st.range(0)), true), HistoryEngine::fft); }
+
+}  // namespace
+
+BENCHMARK(BM_zener_fft)->Name("targets/2x20/zener/fft")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_zener_direct)->Name("targets/2x20/zener/direct")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_springs)->Name("targets/2x20/springs")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_storeys)->Name("storeys")->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();
