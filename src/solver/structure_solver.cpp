@@ -337,6 +337,15 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     }
     states = decided;
     next.v = v_free - h * a_inv_bt * q_step;
+    // Stick exact: a stuck damper's two floors get one velocity, bit for bit (their
+    // mass-weighted mean, which moves them by rounding only).
+    for (int pass = 0; pass < 2; ++pass)
+      for (int f = 0; f < nf; ++f)
+        if (states[f] == detail::DamperState::stick) {
+          const Pair& p = link_pair[friction[f]];
+          const double v = (mass[p.i] * next.v[p.i] + mass[p.j] * next.v[p.j]) / (mass[p.i] + mass[p.j]);
+          next.v[p.i] = next.v[p.j] = v;
+        }
     next.x = now.x + 0.5 * h * (now.v + next.v);
     Eigen::VectorXd p_next = k0 * next.x;
     for (auto& e : zener) {
