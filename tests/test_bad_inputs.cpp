@@ -254,5 +254,5 @@ TEST_CASE("the catalogue of bad and extreme inputs keeps the contract", "[bad_in
     }
   }
   INFO("cases in the catalogue: " << names.size());
-  CHECK(names.size() >= 5);  // the catalogue only grows
+  CHECK(names.size() >= 100);  // the catalogue only grows (the trust issue asked for at least 80)
 }
