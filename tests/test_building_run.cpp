@@ -14,6 +14,7 @@
 #include "adjoin/io/building_files.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/structure/modal.hpp"
+#include "adjoin/study/building_run.hpp"
 #include "adjoin/study/run.hpp"
 
 using namespace adjoin;
@@ -146,4 +147,30 @@ TEST_CASE("the SI record scene written in building keys gives the two-block resu
   CHECK(switches >= 8);
   CHECK(dx <= 1e-12 * x_max);
   CHECK(dq <= 1e-9 * 2.0e5);
+}
+
+TEST_CASE("the energy balance of a building run closes at order 2 with several dampers", "[building_run][energy]") {
+  BuildingScene scene = load_building_scene(kScene, {"solver.t_end=15", "output.timeseries=false"});
+  structure::Link second = scene.structure.links[0];
+  second.floor_a = 2;
+  second.floor_b = 2;
+  second.slip_force = 4e4;
+  scene.structure.links.push_back(second);
+  std::vector<double> residuals;
+  for (double h : {0.004, 0.002, 0.001}) {
+    scene.solver.h = h;
+    const BuildingReport r = run_building(scene);
+    INFO("h = " << h << ": input " << r.energy.input << " J, residual " << r.energy.residual << " J");
+    for (std::size_t l = 0; l < 2; ++l) {
+      CHECK(r.links[l].switches > 2);
+      CHECK(r.energy.links[l] > 0.0);                                              // friction dissipates
+      CHECK(r.energy.links[l] == Approx(r.links[l].friction_energy).epsilon(1e-12));  // two bookkeepings agree
+    }
+    CHECK(r.energy.buildings[0].inherent > 0.0);
+    residuals.push_back(std::abs(r.energy.residual) / r.energy.input);
+  }
+  INFO("relative residuals " << residuals[0] << " " << residuals[1] << " " << residuals[2]);
+  CHECK(residuals[2] < 1e-5);
+  CHECK(std::log2(residuals[0] / residuals[1]) > 1.7);
+  CHECK(std::log2(residuals[1] / residuals[2]) > 1.7);
 }

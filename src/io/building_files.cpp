@@ -158,6 +158,16 @@ std::string building_summary_json(const BuildingScene& scene, const BuildingRepo
                         {"t_first_contact", cr.contact ? ordered_json(cr.t_first_contact) : ordered_json(nullptr)}});
   }
   j["contacts"] = contacts;
+  ordered_json energy;
+  for (std::size_t b = 0; b < r.energy.buildings.size(); ++b) {
+    const auto& part = r.energy.buildings[b];
+    energy[b == 0 ? "A" : "B"] = {{"input", part.input}, {"kinetic", part.kinetic}, {"inherent_damping", part.inherent},
+                                  {"storeys", part.storeys}};
+  }
+  energy["links"] = r.energy.links;
+  energy["input"] = r.energy.input;
+  energy["residual"] = r.energy.residual;
+  j["energy"] = energy;
   require_finite(j, "", scene.solver.t_end);
   return j.dump(2) + "\n";
 }

@@ -42,6 +42,7 @@ struct Pair {
 
 struct ZenerElement {
   Pair pair;
+  int storey = -1;  // the storey it stands in (A's first), or -1 for a link
   std::unique_ptr<detail::RodLaw> law;
   double force = 0.0;
 };
@@ -94,7 +95,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       for (int st : d.storeys) {
         const Pair p{offset + st - 1, st > 1 ? offset + st - 2 : -1};
         if (d.type == DeviceType::spring) p.add(k0, d.k);
-        if (d.type == DeviceType::zener) zener.push_back({p, zener_law(d.zener), 0.0});
+        if (d.type == DeviceType::zener) zener.push_back({p, offset + st - 1, zener_law(d.zener), 0.0});
       }
   };
   add_building(s.a, 0);
@@ -107,7 +108,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     link_pair.push_back(p);
     if (link.type == LinkType::spring) p.add(k0, link.k);
     if (link.type == LinkType::dashpot) p.add(c, link.c);
-    if (link.type == LinkType::zener) zener.push_back({p, zener_law(link.zener), 0.0});
+    if (link.type == LinkType::zener) zener.push_back({p, -1, zener_law(link.zener), 0.0});
     if (link.type == LinkType::friction) friction.push_back(static_cast<int>(l));
   }
   // Zener links come after the storey devices in `zener`; remember where each link's is.
@@ -192,7 +193,33 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     return bf.row(f).dot(rhs) / bf.row(f).cwiseProduct(inv_mass.transpose()).dot(bf.row(f));
   };
 
+  // Storey forces: the storey springs, spring and dashpot devices, Zener devices.
+  std::vector<double> storey_spring(n, 0.0), storey_dashpot(n, 0.0);
+  auto storeys_of = [&](const structure::Building& b, int offset) {
+    for (int st = 0; st < b.floors(); ++st) storey_spring[offset + st] += b.springs[st];
+    for (const auto& d : b.devices)
+      for (int st : d.storeys) {
+        if (d.type == DeviceType::spring) storey_spring[offset + st - 1] += d.k;
+        if (d.type == DeviceType::dashpot) storey_dashpot[offset + st - 1] += d.c;
+      }
+  };
+  storeys_of(s.a, 0);
+  if (s.b) storeys_of(*s.b, s.a.floors());
+  auto fill_storeys = [&](StructureState& st) {
+    st.storey_force.resize(n);
+    auto building = [&](const structure::Building& b, int offset) {
+      for (int i = 0; i < b.floors(); ++i) {
+        const Pair p{offset + i, i > 0 ? offset + i - 1 : -1};
+        st.storey_force[offset + i] = storey_spring[offset + i] * p.of(st.x) + storey_dashpot[offset + i] * p.of(st.v);
+      }
+    };
+    building(s.a, 0);
+    if (s.b) building(*s.b, s.a.floors());
+    for (const auto& e : zener)
+      if (e.storey >= 0) st.storey_force[e.storey] += e.force;
+  };
   auto fill_links = [&](StructureState& st, const Eigen::VectorXd& q_friction) {
+    fill_storeys(st);
     for (std::size_t l = 0; l < s.links.size(); ++l) {
       const Pair& p = link_pair[l];
       st.link_stroke[l] = p.of(st.x);

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "adjoin/structure/modal.hpp"
+
 namespace adjoin {
 namespace {
 
@@ -18,6 +20,7 @@ class BuildingObserver final : public StructureObserver {
       for (int i = 1; i <= b.floors(); ++i) names_.push_back(b.name + ".x" + std::to_string(i));
       for (int i = 1; i <= b.floors(); ++i) names_.push_back(b.name + ".drift" + std::to_string(i));
       for (int i = 1; i <= b.floors(); ++i) names_.push_back(b.name + ".a" + std::to_string(i) + "_abs");
+      for (int i = 1; i <= b.floors(); ++i) names_.push_back(b.name + ".shear" + std::to_string(i));
       names_.push_back(b.name + ".base_shear");
     };
     building(s.a);
@@ -34,6 +37,9 @@ class BuildingObserver final : public StructureObserver {
                       names_[i].find(".force") == std::string::npos;
     links_.assign(s.links.size(), LinkReport{});
     contacts_.assign(s.contacts.size(), ContactReport{});
+    c_.clear();
+    c_.push_back(structure::inherent_damping_matrix(s.a));
+    if (s.b) c_.push_back(structure::inherent_damping_matrix(*s.b));
     first_ = true;
   }
 
@@ -44,6 +50,7 @@ class BuildingObserver final : public StructureObserver {
       for (int i = 0; i < n; ++i) smooth_[c++].update(st.x[offset + i], st.t);
       for (int i = 0; i < n; ++i) smooth_[c++].update(st.x[offset + i] - (i > 0 ? st.x[offset + i - 1] : 0.0), st.t);
       for (int i = 0; i < n; ++i) sampled_[c++].update(st.a_abs[offset + i], st.t);
+      for (int i = 0; i < n; ++i) sampled_[c++].update(st.storey_force[offset + i], st.t);
       // Base shear: the sum of the floors' inertia forces, -sum m_i a_i,abs.
       double shear = 0.0;
       for (int i = 0; i < n; ++i) shear -= b.masses[i] * st.a_abs[offset + i];
@@ -73,12 +80,59 @@ class BuildingObserver final : public StructureObserver {
       if (first_ || gap < r.min_gap) { r.min_gap = gap; r.t_min_gap = st.t; }
       if (!r.contact && gap <= 0.0) { r.contact = true; r.t_first_contact = st.t; }
     }
+    energy_step(st);
     last_phase_ = st.link_phase;
     last_power_.resize(s_.links.size());
     for (std::size_t l = 0; l < s_.links.size(); ++l) last_power_[l] = st.link_force[l] * st.link_velocity[l];
     last_t_ = st.t;
     first_ = false;
   }
+
+  // Powers at a grid point, integrated by the trapezoidal rule between grid points.
+  void energy_step(const StructureState& st) {
+    std::vector<double> power;
+    auto building = [&](const structure::Building& b, int offset, const Eigen::MatrixXd& c) {
+      const int n = b.floors();
+      const Eigen::VectorXd v = st.v.segment(offset, n);
+      power.push_back(st.ag * b.masses.dot(v));        // input
+      power.push_back(v.dot(c * v));                   // inherent damping
+      for (int i = 0; i < n; ++i) power.push_back(st.storey_force[offset + i] * (v[i] - (i > 0 ? v[i - 1] : 0.0)));
+    };
+    building(s_.a, 0, c_[0]);
+    if (s_.b) building(*s_.b, s_.a.floors(), c_[1]);
+    for (std::size_t l = 0; l < s_.links.size(); ++l) power.push_back(st.link_force[l] * st.link_velocity[l]);
+    if (!first_) {
+      const double dt = st.t - last_t_;
+      for (std::size_t k = 0; k < power.size(); ++k) work_[k] += 0.5 * dt * (power[k] + last_powers_[k]);
+    } else {
+      work_.assign(power.size(), 0.0);
+    }
+    last_powers_ = power;
+    // Unpack into the report.
+    energy_ = BuildingEnergy{};
+    std::size_t k = 0;
+    auto unpack = [&](const structure::Building& b, int offset) {
+      BuildingEnergy::Part part;
+      part.input = work_[k++];
+      part.inherent = work_[k++];
+      for (int i = 0; i < b.floors(); ++i) part.storeys.push_back(work_[k++]);
+      const Eigen::VectorXd v = st.v.segment(offset, b.floors());
+      part.kinetic = 0.5 * v.dot(b.masses.cwiseProduct(v));
+      energy_.input += part.input;
+      energy_.buildings.push_back(part);
+    };
+    unpack(s_.a, 0);
+    if (s_.b) unpack(*s_.b, s_.a.floors());
+    for (std::size_t l = 0; l < s_.links.size(); ++l) energy_.links.push_back(work_[k++]);
+    double out = 0.0;
+    for (const auto& part : energy_.buildings) {
+      out += part.kinetic + part.inherent;
+      for (double w : part.storeys) out += w;
+    }
+    for (double w : energy_.links) out += w;
+    energy_.residual = energy_.input - out;
+  }
+  const BuildingEnergy& energy() const { return energy_; }
 
   std::vector<ChannelPeak> peaks() const {
     std::vector<ChannelPeak> out;
@@ -97,6 +151,9 @@ class BuildingObserver final : public StructureObserver {
   std::vector<LinkReport> links_;
   std::vector<ContactReport> contacts_;
   std::vector<Phase> last_phase_;
+  std::vector<Eigen::MatrixXd> c_;  // inherent damping matrices
+  std::vector<double> work_, last_powers_;
+  BuildingEnergy energy_;
   std::vector<double> last_power_;
   double last_t_ = 0.0;
   bool first_ = true;
@@ -130,6 +187,7 @@ BuildingReport run_building(const BuildingScene& scene, StructureObserver* extra
   r.peaks = observer.peaks();
   r.links = observer.links();
   r.contacts = observer.contacts();
+  r.energy = observer.energy();
   return r;
 }
 

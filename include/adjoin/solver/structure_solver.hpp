@@ -50,6 +50,7 @@ struct StructureState {
   Eigen::VectorXd link_velocity;   // [m/s]
   std::vector<Phase> link_phase;   // friction links: stick or slip direction (others: slip_*)
   std::vector<double> link_switch; // the located switch inside the step ending here, or NaN
+  Eigen::VectorXd storey_force;    // per storey, A's then B's: spring + devices (its shear) [N]
 };
 
 class StructureObserver {
