@@ -28,14 +28,16 @@ struct RegisteredCommand {
 };
 std::vector<RegisteredCommand>& registry();
 
-// Draws a --plot figure after the command's own output is safely written. gnuplot missing or
-// failing is reported ("error: --plot ...; <written>") with exit status 1: the output is fine.
+// Draws a --plot figure after the command's own output is safely written. The plot's target
+// was checked up front (plot_target); gnuplot missing or failing now is still the user's
+// setup to fix, so exit status 2, and the message says the data output is kept
+// ("error: --plot ...; <written>").
 inline int draw_figure(const std::function<void()>& draw, const std::string& written) {
   try {
     draw();
   } catch (const InputError& e) {
-    std::cerr << "error: --plot " << e.what() << "; " << written << "\n";
-    return 1;
+    std::cerr << "error: --plot " << e.what() << "; " << written << " (kept)\n";
+    return kExitInputError;
   }
   return 0;
 }

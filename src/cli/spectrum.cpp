@@ -7,7 +7,7 @@
 // `period,damping,sd,sv,sa,psv,psa` (s, ratio, m, m/s, g, m/s, g), one row per damping and
 // period, to FILE (temporary file and rename) or stdout. --plot draws PSA and SD against
 // period with gnuplot. Without gnuplot on PATH the CSV is still written and the command
-// fails (exit 1) with a message saying so. --target compares PSA with a target spectrum
+// fails (exit 2) with a message saying so. --target compares PSA with a target spectrum
 // (ratios on stderr, the target dashed on the plot).
 #include <charconv>
 #include <cstdio>

@@ -222,6 +222,16 @@ fs::path plot_target(const std::string& out, const fs::path& fallback, const std
   if (!explicit_format.empty() && explicit_format != format)
     throw InputError(option + " " + out + " and --format " + explicit_format + " disagree (expected the same image format)");
   style->format = format;
+  // The image's folder is checked now, before the command does its work: a plot that cannot
+  // be written is bad input (exit 2), found up front rather than after a long computation.
+  fs::path folder = fs::path(out).parent_path();
+  if (folder.empty()) folder = ".";
+  std::error_code ec;
+  if (!fs::is_directory(folder, ec))
+    throw InputError(option + " " + out + ": the folder " + folder.string() + " does not exist (create it first)");
+  if (::access(folder.c_str(), W_OK) != 0)
+    throw InputError(option + " " + out + ": the folder " + folder.string() + " is not writable");
+  if (fs::is_directory(out, ec)) throw InputError(option + " " + out + ": is a folder; expected an image file name");
   return out;
 }
 
