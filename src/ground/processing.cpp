@@ -9,7 +9,11 @@
 #include <sstream>
 #include <string>
 
+#include "../detail/fftw_planner.hpp"
 #include "adjoin/errors.hpp"
+
+#include <fftw3.h>
+#include <mutex>
 
 namespace adjoin {
 namespace {
@@ -257,6 +261,70 @@ std::vector<double> sosfiltfilt(const std::vector<Biquad>& sections, const std::
   return std::vector<double>(ext.begin() + static_cast<std::ptrdiff_t>(pad), ext.begin() + static_cast<std::ptrdiff_t>(pad + n));
 }
 
+double butterworth_gain_squared(const ButterworthFilter& filter, double f, double dt) {
+  // The bilinear transform maps the analog response at w = tan(pi f dt) (prewarped) exactly.
+  const double w = std::tan(pi * std::min(f * dt, 0.5 - 1e-15));
+  const double n2 = 2.0 * filter.order;
+  auto ratio_power = [&](double x) { return x > 0.0 ? std::exp(n2 * std::log(x)) : 0.0; };
+  switch (filter.type) {
+    case ButterworthFilter::Type::lowpass: return 1.0 / (1.0 + ratio_power(w / std::tan(pi * filter.f_high * dt)));
+    case ButterworthFilter::Type::highpass: {
+      if (w == 0.0) return 0.0;
+      return 1.0 / (1.0 + ratio_power(std::tan(pi * filter.f_low * dt) / w));
+    }
+    case ButterworthFilter::Type::bandpass: {
+      if (w == 0.0) return 0.0;
+      const double wl = std::tan(pi * filter.f_low * dt), wh = std::tan(pi * filter.f_high * dt);
+      const double x = std::abs(w * w - wl * wh) / (w * (wh - wl));
+      return 1.0 / (1.0 + ratio_power(x));
+    }
+  }
+  return 1.0;
+}
+
+std::vector<double> zero_phase_fft(const ButterworthFilter& filter, const std::vector<double>& x, double dt) {
+  const std::size_t n = x.size();
+  if (n == 0) return {};
+  // Odd reflection at both ends (as filtfilt does, over the whole record), so constants and
+  // trends pass the ends, then zeros up to a fast FFT size: no wrap-around.
+  const std::size_t pad = n - 1;
+  std::vector<double> ext;
+  ext.reserve(n + 2 * pad);
+  for (std::size_t i = pad; i >= 1; --i) ext.push_back(2.0 * x.front() - x[i]);
+  ext.insert(ext.end(), x.begin(), x.end());
+  for (std::size_t i = 1; i <= pad; ++i) ext.push_back(2.0 * x.back() - x[n - 1 - i]);
+  std::size_t size = 1;
+  while (size < ext.size() + ext.size() / 4) size *= 2;
+  // The mean goes around the transform (through at the filter's DC gain), so that the zero
+  // padding beyond the reflections is no step for it.
+  double mean = 0.0;
+  for (double v : ext) mean += v;
+  mean /= static_cast<double>(ext.size());
+  std::vector<double> data(size, 0.0);
+  for (std::size_t i = 0; i < ext.size(); ++i) data[i] = ext[i] - mean;
+  std::vector<std::complex<double>> spectrum(size / 2 + 1);
+  fftw_plan forward, backward;
+  {
+    std::lock_guard<std::mutex> lock(detail::fftw_planner_mutex());
+    forward = fftw_plan_dft_r2c_1d(static_cast<int>(size), data.data(), reinterpret_cast<fftw_complex*>(spectrum.data()), FFTW_ESTIMATE);
+    backward = fftw_plan_dft_c2r_1d(static_cast<int>(size), reinterpret_cast<fftw_complex*>(spectrum.data()), data.data(), FFTW_ESTIMATE);
+  }
+  fftw_execute(forward);
+  const double df = 1.0 / (static_cast<double>(size) * dt);
+  for (std::size_t k = 0; k < spectrum.size(); ++k)
+    spectrum[k] *= butterworth_gain_squared(filter, static_cast<double>(k) * df, dt) / static_cast<double>(size);
+  fftw_execute(backward);
+  {
+    std::lock_guard<std::mutex> lock(detail::fftw_planner_mutex());
+    fftw_destroy_plan(forward);
+    fftw_destroy_plan(backward);
+  }
+  const double dc = mean * butterworth_gain_squared(filter, 0.0, dt);
+  std::vector<double> y(data.begin() + static_cast<std::ptrdiff_t>(pad), data.begin() + static_cast<std::ptrdiff_t>(pad + n));
+  for (double& v : y) v += dc;
+  return y;
+}
+
 Record butterworth(const Record& record, const ButterworthFilter& filter) {
   check_record(record, "filter");
   const auto sections = butterworth_sections(filter, record.dt);
@@ -267,7 +335,14 @@ Record butterworth(const Record& record, const ButterworthFilter& filter) {
     case ButterworthFilter::Type::bandpass: note = "band-pass " + fmt(filter.f_low) + "-" + fmt(filter.f_high) + " Hz"; break;
   }
   note += " Butterworth order " + std::to_string(filter.order) + " zero-phase";
-  return derived(record, sosfiltfilt(sections, record.accel), record.dt, note);
+  // Applied in the frequency domain with the cascade's |H|^2 (the forward-backward pass's
+  // magnitude, zero phase): exact at every order. The recursive cascade (sosfiltfilt) loses
+  // its precision when poles crowd z = 1 (an order-16 band-pass at 0.1 Hz with dt = 0.005 s
+  // gave 7 g from 0.145 g).
+  std::vector<double> y = zero_phase_fft(filter, record.accel, record.dt);
+  for (double v : y)
+    if (!std::isfinite(v)) throw NumericalError("filter: the filtered record is not finite; lower the filter order", 0.0);
+  return derived(record, std::move(y), record.dt, note);
 }
 
 // ---- resampling, scaling, windows, padding ------------------------------------------------

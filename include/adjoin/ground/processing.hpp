@@ -9,10 +9,13 @@
 //    of the given order, frequency transformation at corners prewarped by the bilinear
 //    transform (2/dt) tan(pi f dt), bilinear transform, second-order sections normalised to
 //    unit gain in the passband (DC for low-pass, Nyquist for high-pass, the geometric centre
-//    for band-pass; a band-pass of order n has 2n poles). Applied forward then backward
-//    (filtfilt): zero phase, magnitude |H|^2, so the gain at each corner is exactly 1/2. The
-//    ends are extended by odd reflection over 3 (2 sections + 1) samples and the sections
-//    start from their steady state for the first value (as scipy.signal.sosfiltfilt).
+//    for band-pass; a band-pass of order n has 2n poles). Applied with zero phase and magnitude
+//    |H|^2 (what a forward-backward pass gives), so the gain at each corner is exactly 1/2: in
+//    the frequency domain (FFTW), which is exact at every order, where the recursive cascade
+//    loses its precision once poles crowd z = 1 (high orders, corners far below the sampling
+//    rate). The record is extended at both ends by odd reflection over its whole length and
+//    its mean passed at the DC gain, then zero-padded: no wrap-around. sosfiltfilt (the
+//    recursive pass, as scipy.signal.sosfiltfilt) stays for comparison.
 //  - resample: band-limited interpolation with a Kaiser-windowed sinc (beta 8.6, 32 zero
 //    crossings each side) whose cut-off is 0.9 of the lower of the old and new Nyquist
 //    frequencies, so downsampling is anti-aliased in the same step. Samples outside the
