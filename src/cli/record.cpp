@@ -34,6 +34,7 @@
 #include <vector>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/solver/simulate.hpp"
 #include "adjoin/ground/processing.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/ground/synthesis.hpp"
@@ -163,9 +164,10 @@ std::pair<double, double> pair_of(const std::string& option, const std::string& 
   }
 }
 
-int process_command(const RecordArgs& args) {
+int process_command(const RecordArgs& args, const CLI::App& sub) {
   const RecordFormat format = format_from(args);
   const Record input = read_record(args.files.at(0), format);
+  auto given = [&](const char* option) { return sub.count(option) > 0; };
   Processing p;
   std::vector<std::string> header = {"processed by adjoin record process from " + input.source};
   if (!args.window.empty()) {
@@ -174,7 +176,7 @@ int process_command(const RecordArgs& args) {
     p.window_t1 = t1;
     header.push_back("window " + number(t0) + " to " + number(t1) + " s");
   }
-  if (args.baseline >= 0) {
+  if (given("--baseline")) {
     p.baseline_order = args.baseline;
     header.push_back("baseline removed: polynomial of order " + std::to_string(args.baseline));
   }
@@ -184,28 +186,46 @@ int process_command(const RecordArgs& args) {
     p.pad_after = after;
     header.push_back("zero padding " + number(before) + " s before, " + number(after) + " s after");
   }
-  const int filters = (args.highpass > 0.0) + (args.lowpass > 0.0) + !args.bandpass.empty();
+  const int filters = given("--highpass") + given("--lowpass") + !args.bandpass.empty();
   if (filters > 1) throw InputError("--highpass, --lowpass, --bandpass: give one filter");
+  std::string filter_option;
   if (filters == 1) {
     ButterworthFilter f;
     f.order = args.filter_order;
-    if (args.highpass > 0.0) { f.type = ButterworthFilter::Type::highpass; f.f_low = args.highpass; }
-    if (args.lowpass > 0.0) { f.type = ButterworthFilter::Type::lowpass; f.f_high = args.lowpass; }
+    if (given("--highpass")) { f.type = ButterworthFilter::Type::highpass; f.f_low = args.highpass; filter_option = "--highpass"; }
+    if (given("--lowpass")) { f.type = ButterworthFilter::Type::lowpass; f.f_high = args.lowpass; filter_option = "--lowpass"; }
     if (!args.bandpass.empty()) {
       f.type = ButterworthFilter::Type::bandpass;
       std::tie(f.f_low, f.f_high) = pair_of("--bandpass", args.bandpass);
+      filter_option = "--bandpass";
     }
     p.filter = f;
     header.push_back("zero-phase Butterworth of order " + std::to_string(f.order) + ", corners " + number(f.f_low) +
                      " / " + number(f.f_high) + " Hz");
+  } else if (given("--filter-order")) {
+    throw InputError("--filter-order: give a filter too (--highpass, --lowpass or --bandpass)");
   }
-  if (args.resample > 0.0) {
+  if (given("--resample")) {
     p.dt = args.resample;
     header.push_back("resampled to dt = " + number(args.resample) + " s (windowed sinc)");
   }
-  if (args.scale_pga > 0.0) {
+  if (given("--scale-pga")) {
     p.target_pga = args.scale_pga * 9.80665;
     header.push_back("scaled to PGA = " + number(args.scale_pga) + " g");
+  }
+  // One validation with the scenes' (ground/processing.hpp), each problem named by its option.
+  if (const auto problem = check_processing(p, input, 0.8 * physical_memory_bytes())) {
+    const char* option = "";
+    switch (problem->field) {
+      case ProcessingField::window_start: case ProcessingField::window_end: option = "--window"; break;
+      case ProcessingField::baseline: option = "--baseline"; break;
+      case ProcessingField::pad_before: case ProcessingField::pad_after: option = "--pad"; break;
+      case ProcessingField::filter_order: option = "--filter-order"; break;
+      case ProcessingField::f_low: case ProcessingField::f_high: option = filter_option.c_str(); break;
+      case ProcessingField::resample_dt: option = "--resample"; break;
+      case ProcessingField::scale_pga: option = "--scale-pga"; break;
+    }
+    throw InputError(args.files.at(0) + ": " + option + " " + problem->message);
   }
   const Record output = process(input, p);
   write_record_g(output, args.out, header);
@@ -227,8 +247,8 @@ std::vector<double> frequency_points(const std::string& text) {
 }
 
 int fourier_command(const RecordArgs& args) {
-  if (args.smooth < 0.0 || !std::isfinite(args.smooth))
-    throw InputError("--smooth " + number(args.smooth) + ": expected the Konno-Ohmachi bandwidth b > 0 (40 is usual)");
+  if (args.smooth < 0.0 || !(args.smooth <= 1000.0))
+    throw InputError("--smooth " + number(args.smooth) + ": expected the Konno-Ohmachi bandwidth b > 0, at most 1000 (40 is usual)");
   PlotStyle style;
   if (!args.plot.empty()) plot_target(args.plot, {}, "", &style, "--plot");
   const bool smoothing = args.smooth > 0.0 || !args.frequencies.empty();
@@ -354,7 +374,7 @@ const Registration registration(30, [](CLI::App& app) -> Runner {
   fourier->add_option("--plot", args->plot, "Also draw the spectrum with gnuplot (.png or .svg)");
   return [args, info, process, fourier]() -> int {
     if (info->parsed()) return info_command(*args);
-    if (process->parsed()) return process_command(*args);
+    if (process->parsed()) return process_command(*args, *process);
     if (fourier->parsed()) return fourier_command(*args);
     return 0;
   };

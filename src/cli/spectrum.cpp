@@ -192,7 +192,7 @@ int spectrum_command(const SpectrumArgs& args) {
   style.height = 900;
   if (!args.plot.empty()) plot_target(args.plot, {}, "", &style, "--plot");
   std::string error;
-  if (!options.IsValid(&error)) throw InputError(error);
+  if (!options.IsValid(&error)) throw InputError("--periods/--range/--damping: " + error);
   std::optional<TargetSpectrum> target;
   if (!args.target.empty()) {
     try {

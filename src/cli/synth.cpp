@@ -39,6 +39,7 @@ struct SynthArgs {
   std::optional<double> s0, pga, t1, t2, decay, eps, eta, tn;
   double duration = 20.0, dt = 0.005;
   std::uint64_t seed = 1;
+  std::string seed_text;  // as given: parsed strictly (CLI11 would wrap -1 and saturate 2^64)
   std::string match, band = "0.1:3";
   std::size_t band_points = 100;
   double tolerance = 0.10;
@@ -75,7 +76,7 @@ void parse_band(const std::string& text, MatchOptions* m) {
     throw InputError("--band " + text + ": expected T0:T1, two periods in s (e.g. 0.1:3)");
 }
 
-int synth_command(const SynthArgs& a) {
+int synth_command(SynthArgs& a) {
   SynthesisOptions o;
   if (!parse_spectrum_model(a.spectrum, &o.spectrum))
     throw InputError("--spectrum " + a.spectrum + ": expected kt (Kanai-Tajimi) or cp (Clough-Penzien)");
@@ -99,6 +100,14 @@ int synth_command(const SynthArgs& a) {
   o.envelope.t_n = a.tn;
   o.duration = a.duration;
   o.dt = a.dt;
+  if (!a.seed_text.empty()) {
+    const std::string& t = a.seed_text;
+    std::uint64_t v = 0;
+    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
+    if (t.front() == '-' || t.front() == '+' || ec != std::errc() || end != t.data() + t.size())
+      throw InputError("--seed " + t + ": expected a whole number from 0 to 18446744073709551615");
+    a.seed = v;
+  }
   o.seed = a.seed;
 
   const bool matching = !a.match.empty();
@@ -228,7 +237,7 @@ const Registration registration(45, [](CLI::App& app) -> Runner {
   synth->add_option("--tn", a->tn, "SH: time tn [s] (default the duration)");
   synth->add_option("--duration", a->duration, "Duration [s] (default 20)");
   synth->add_option("--dt", a->dt, "Time step [s] (default 0.005)");
-  synth->add_option("--seed", a->seed, "Random seed, an unsigned 64-bit integer (default 1)");
+  synth->add_option("--seed", a->seed_text, "Random seed, an unsigned 64-bit integer (default 1)");
   synth->add_option("--match", a->match, "Match a target spectrum: ec8:T[:AG[:TYPE]] (EC8, ground T = A..E, ag in g "
                                           "(default 0.25), spectrum type 1 (default) or 2) or a two-column file of "
                                           "period [s], PSA [g]");

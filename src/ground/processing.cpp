@@ -421,6 +421,56 @@ Record pad_zeros(const Record& record, double before_s, double after_s) {
                  "padded " + fmt(static_cast<double>(nb) * record.dt) + " s before, " + fmt(static_cast<double>(na) * record.dt) + " s after");
 }
 
+std::optional<ProcessingProblem> check_processing(const Processing& p, const Record& record, double memory_bytes) {
+  using F = ProcessingField;
+  auto problem = [](F field, std::string m) { return std::optional<ProcessingProblem>(ProcessingProblem{field, std::move(m)}); };
+  const double duration = record.duration();
+  const double dt = record.dt;
+  if (p.window_t0 && !(std::isfinite(*p.window_t0) && *p.window_t0 >= 0.0))
+    return problem(F::window_start, fmt(*p.window_t0) + " s: expected a time >= 0 s");
+  if (p.window_t1 && !(std::isfinite(*p.window_t1) && *p.window_t1 > p.window_t0.value_or(0.0)))
+    return problem(F::window_end, fmt(*p.window_t1) + " s: expected a time after the window's start");
+  if (p.baseline_order && (*p.baseline_order < 0 || *p.baseline_order > 10))
+    return problem(F::baseline, std::to_string(*p.baseline_order) + ": expected a polynomial order from 0 (the mean) to 10");
+  for (auto [field, value] : {std::pair{F::pad_before, p.pad_before}, std::pair{F::pad_after, p.pad_after}})
+    if (!(std::isfinite(value) && value >= 0.0)) return problem(field, fmt(value) + " s: expected a duration >= 0 s");
+  double length = duration + p.pad_before + p.pad_after;  // s, what the steps after padding see
+  double step = dt;
+  if (p.filter) {
+    const ButterworthFilter& f = *p.filter;
+    if (f.order < 1 || f.order > 20) return problem(F::filter_order, std::to_string(f.order) + ": expected an order from 1 to 20");
+    const double nyquist = 0.5 / dt, lowest = 1.0 / (10.0 * std::max(length, dt));
+    auto corner = [&](F field, double v) -> std::optional<ProcessingProblem> {
+      if (!(std::isfinite(v) && v >= lowest && v < nyquist))
+        return problem(field, fmt(v) + " Hz: expected a corner from " + fmt(lowest) + " Hz (a tenth of 1 / the record's " +
+                                  fmt(length) + " s) to below the Nyquist frequency " + fmt(nyquist) + " Hz");
+      return std::nullopt;
+    };
+    if (f.type != ButterworthFilter::Type::lowpass)
+      if (auto q = corner(F::f_low, f.f_low)) return q;
+    if (f.type != ButterworthFilter::Type::highpass)
+      if (auto q = corner(F::f_high, f.f_high)) return q;
+    if (f.type == ButterworthFilter::Type::bandpass && !(f.f_low < f.f_high))
+      return problem(F::f_high, fmt(f.f_high) + " Hz: expected the upper corner above the lower one (" + fmt(f.f_low) + " Hz)");
+  }
+  if (p.dt) {
+    if (!(std::isfinite(*p.dt) && *p.dt > 0.0)) return problem(F::resample_dt, fmt(*p.dt) + " s: expected a positive time step");
+    step = *p.dt;
+  }
+  if (p.target_pga && !(std::isfinite(*p.target_pga) && *p.target_pga > 0.0 && *p.target_pga <= 1e6 * 9.80665))
+    return problem(F::scale_pga, fmt(*p.target_pga / 9.80665) + " g: expected a PGA above 0 and at most 1e6 g");
+  // Memory: the padded record, its filtering (an FFT of about 3x its length, complex) and the
+  // resampled one, 8 bytes a value.
+  const double samples = std::max(length / dt, length / step) + 1.0;
+  const double bytes = 8.0 * (length / dt + 1.0) * (p.filter ? 10.0 : 2.0) + 8.0 * 2.0 * (length / step + 1.0);
+  if (samples > 2e9 || (memory_bytes > 0.0 && bytes > memory_bytes)) {
+    const F field = p.dt && length / step > length / dt ? F::resample_dt : (p.pad_before >= p.pad_after ? F::pad_before : F::pad_after);
+    return problem(field, "would make " + fmt(samples) + " samples, about " + fmt(bytes / 1e9) + " GB, more than the " +
+                              fmt(memory_bytes / 1e9) + " GB this machine can give");
+  }
+  return std::nullopt;
+}
+
 Record process(const Record& record, const Processing& p) {
   Record r = record;
   if (p.window_t0 || p.window_t1)

@@ -687,6 +687,19 @@ std::string to_string(RecordFormat::Kind kind) {
   return "?";
 }
 
+// The ranges every computation on a record stays finite in (intensity measures square and
+// integrate the accelerations, spectra divide by the step): a sampling interval from 1e-6 s
+// to 10 s, accelerations within 1e6 g.
+void check_ranges(const Record& record, const std::string& name) {
+  if (!(record.dt >= 1e-6 && record.dt <= 10.0))
+    fail(name, "a sampling interval of " + fmt(record.dt) + " s is outside what accelerograms have (1e-6 s to 10 s)");
+  constexpr double kLimit = 1e6 * 9.80665;
+  for (std::size_t i = 0; i < record.accel.size(); ++i)
+    if (!(std::abs(record.accel[i]) <= kLimit))
+      fail(name, "sample " + std::to_string(i + 1) + " (t = " + fmt(static_cast<double>(i) * record.dt) + " s) is " +
+                     fmt(record.accel[i] / 9.80665) + " g, beyond the 1e6 g an accelerogram can have (check the units)");
+}
+
 Record parse_record(std::string_view text, const std::string& name, const RecordFormat& format) {
   using Kind = RecordFormat::Kind;
   Kind kind = format.kind;
@@ -747,14 +760,16 @@ Record parse_record(std::string_view text, const std::string& name, const Record
   }
 
   LineReader reader(text);
+  Record record;
   switch (kind) {
-    case Kind::at2: return read_at2(reader, name, format);
-    case Kind::one_column: return read_one_column(reader, name, format);
-    case Kind::two_column: return read_two_column(reader, name, format, row_delimiter);
-    case Kind::delimited: return read_delimited(reader, name, format);
-    case Kind::automatic: break;
+    case Kind::at2: record = read_at2(reader, name, format); break;
+    case Kind::one_column: record = read_one_column(reader, name, format); break;
+    case Kind::two_column: record = read_two_column(reader, name, format, row_delimiter); break;
+    case Kind::delimited: record = read_delimited(reader, name, format); break;
+    case Kind::automatic: fail(name, "unknown record format");
   }
-  fail(name, "unknown record format");
+  check_ranges(record, name);
+  return record;
 }
 
 Record read_record(const std::filesystem::path& path, const RecordFormat& format) {

@@ -169,9 +169,10 @@ bool SynthesisOptions::IsValid(std::string* error) const {
     return fail(error, "ground.s0 and ground.target_pga: give one intensity, not both");
   if (!s0 && !target_pga)
     return fail(error, "ground.s0 / ground.target_pga: missing intensity (expected S0 [m^2/s^3] or a target PGA [g])");
-  if (s0 && !positive(*s0)) return fail(error, "ground.s0 = " + num(*s0) + ": expected a spectral density > 0 m^2/s^3");
-  if (target_pga && !positive(*target_pga))
-    return fail(error, "ground.target_pga = " + num(*target_pga) + ": expected a PGA > 0 g");
+  // Upper bounds that keep every output finite (the accelerations within 1e6 g, as records).
+  if (s0 && !(positive(*s0) && *s0 <= 1e12)) return fail(error, "ground.s0 = " + num(*s0) + ": expected a spectral density > 0 and at most 1e12 m^2/s^3");
+  if (target_pga && !(positive(*target_pga) && *target_pga <= 1e6))
+    return fail(error, "ground.target_pga = " + num(*target_pga) + ": expected a PGA > 0 and at most 1e6 g");
   return envelope_valid(envelope, "ground.", error);
 }
 

@@ -384,7 +384,9 @@ std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, con
     else r.fail("ground.filter", "ground.filter = \"" + type + "\" must be \"bandpass\", \"highpass\" or \"lowpass\"");
     filter.f_low = r.number("ground.f_low", 0.0);
     filter.f_high = r.number("ground.f_high", 0.0);
-    filter.order = static_cast<int>(r.integer("ground.filter_order", 4));
+    const auto order = r.integer("ground.filter_order", 4);
+    if (order < 1 || order > 20) r.fail("ground.filter_order", "ground.filter_order = " + std::to_string(order) + ": expected an order from 1 to 20");
+    filter.order = static_cast<int>(order);
     processing.filter = filter;
   }
   if (r.has("ground.resample_dt")) processing.dt = r.number("ground.resample_dt");
@@ -393,6 +395,17 @@ std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, con
   const double time_scale = record_time_scale(r, scales);
   return detail::cached_ground(ground_key(r, time_scale, detail::file_stamp(file)), [&]() -> std::shared_ptr<const GroundMotion> {
     Record record = read_record(file, format);  // InputError names the file and line
+    // One validation with `record process` (ground/processing.hpp), named by the scene's keys.
+    if (const auto problem = check_processing(processing, record, 0.8 * physical_memory_bytes())) {
+      static const std::map<ProcessingField, const char*> keys = {
+          {ProcessingField::window_start, "ground.window_start"}, {ProcessingField::window_end, "ground.window_end"},
+          {ProcessingField::baseline, "ground.baseline"},         {ProcessingField::pad_before, "ground.pad_before"},
+          {ProcessingField::pad_after, "ground.pad_after"},       {ProcessingField::filter_order, "ground.filter_order"},
+          {ProcessingField::f_low, "ground.f_low"},               {ProcessingField::f_high, "ground.f_high"},
+          {ProcessingField::resample_dt, "ground.resample_dt"},   {ProcessingField::scale_pga, "ground.scale_pga"}};
+      const std::string key = keys.at(problem->field);
+      r.fail(r.has(key) ? key : "ground", key + ": " + problem->message + " (record " + file.string() + ")");
+    }
     try {
       record = process(record, processing);
     } catch (const InputError& e) {

@@ -174,9 +174,9 @@ bool SpectrumOptions::IsValid(std::string* error) const {
     return false;
   };
   for (double t : periods)
-    if (!(t >= 0.0) || !std::isfinite(t)) {
+    if (!(t == 0.0 || (t >= 1e-4 && t <= 1e4))) {
       std::ostringstream out;
-      out << "spectrum periods must be finite numbers >= 0 s, got " << t;
+      out << "spectrum periods must be 0 (the PGA) or from 1e-4 s to 1e4 s, got " << t;
       return fail(out.str());
     }
   if (dampings.empty()) return fail("spectrum dampings: at least one damping ratio is needed");

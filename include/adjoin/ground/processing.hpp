@@ -27,6 +27,7 @@
 //  - pad_zeros: round(before/dt) zeros in front, round(after/dt) at the end.
 #include <complex>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "adjoin/ground/record.hpp"
@@ -73,5 +74,17 @@ struct Processing {
   std::optional<double> target_pga;      // m/s^2
 };
 Record process(const Record& record, const Processing& processing);
+
+// The values of a Processing a caller may name its own way (a command-line option, a scene key).
+enum class ProcessingField { window_start, window_end, baseline, pad_before, pad_after, filter_order, f_low, f_high, resample_dt, scale_pga };
+struct ProcessingProblem {
+  ProcessingField field;
+  std::string message;  // what is wrong and the range that works, without the field's name
+};
+// One validation for every caller (record process, scenes): each value finite and in its
+// range for this record (corners between 1 / (10 x duration) and the Nyquist frequency, orders
+// 1..20, steps and PGA positive), and the samples it would make within `memory_bytes` (0: not
+// checked). The first problem found, or none.
+std::optional<ProcessingProblem> check_processing(const Processing& processing, const Record& record, double memory_bytes = 0.0);
 
 }  // namespace adjoin
