@@ -21,6 +21,10 @@ TEST_CASE("record process: baseline, band-pass, resampling and PGA scaling, read
   RecordFormat g;
   g.units = AccelUnit::g;
   const Record back = read_record(out, g);
+  // The file says its units ("# units: g"): it reads back without them, the same record.
+  const Record unaided = read_record(out);
+  REQUIRE(unaided.accel.size() == back.accel.size());
+  for (std::size_t i = 0; i < back.accel.size(); i += 101) CHECK(unaided.accel[i] == back.accel[i]);
   CHECK(back.dt == 0.01);
   CHECK(back.accel.size() == 5375);  // 53.74 s at 0.01 s
   double pga = 0.0;

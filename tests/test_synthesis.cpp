@@ -305,7 +305,9 @@ TEST_CASE("A written record reads back through the readers", "[synth]") {
   for (std::size_t i = 0; i < r.accel.size(); ++i)
     worst = std::max(worst, std::abs(back.accel[i] - r.accel[i]) / (0.25 * g));
   CHECK(worst <= 2e-16);
-  CHECK(adjoin::test::slurp(path).rfind("# made by test_synthesis\n# columns: t [s], a [g]\n0 ", 0) == 0);
+  CHECK(adjoin::test::slurp(path).rfind("# made by test_synthesis\n# columns: t [s], a [g]\n# units: g\n0 ", 0) == 0);
+  // The units line makes it read back without being told them.
+  CHECK(read_record(path).accel.size() == r.accel.size());
 }
 
 TEST_CASE("EC8 elastic spectra, types 1 and 2, and the damping correction", "[synth]") {

@@ -43,14 +43,13 @@
 #include "adjoin/post/intensity.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "command.hpp"
+#include "reading_options.hpp"
 
 namespace adjoin::cli {
 namespace {
 
-struct RecordArgs {
+struct RecordArgs : ReadingArgs {
   std::vector<std::string> files;
-  std::string units, format, time_column, accel_column, delimiter;
-  double dt = 0.0;
   bool json = false;
   std::string out;
   // process
@@ -62,40 +61,6 @@ struct RecordArgs {
   std::string frequencies, plot;
 };
 
-
-RecordFormat format_from(const RecordArgs& args) {
-  RecordFormat f;
-  if (!args.format.empty() && !parse_record_kind(args.format, &f.kind))
-    throw InputError("--format " + args.format + ": unknown format (expected auto, at2, one-column, two-column or delimited)");
-  if (!args.units.empty()) {
-    AccelUnit unit;
-    if (!parse_accel_unit(args.units, &unit))
-      throw InputError("--units " + args.units + ": unknown unit (expected g, m/s2, cm/s2 (gal) or mm/s2)");
-    f.units = unit;
-  }
-  if (args.dt != 0.0) {
-    if (!(args.dt > 0.0) || !std::isfinite(args.dt)) throw InputError("--dt: expected a positive step in s");
-    f.dt = args.dt;
-  }
-  f.time_column = args.time_column;
-  f.accel_column = args.accel_column;
-  const std::string& d = args.delimiter;
-  if (d.empty())
-    f.delimiter = 0;
-  else if (d == "tab" || d == "\\t")
-    f.delimiter = '\t';
-  else if (d == "comma")
-    f.delimiter = ',';
-  else if (d == "semicolon")
-    f.delimiter = ';';
-  else if (d == "space" || d == "blank")
-    f.delimiter = ' ';
-  else if (d.size() == 1)
-    f.delimiter = d[0];
-  else
-    throw InputError("--delimiter " + d + ": expected one character, or tab, comma, semicolon, space");
-  return f;
-}
 
 std::string number(double x, int precision = 6) {
   std::ostringstream s;
@@ -325,17 +290,6 @@ int info_command(const RecordArgs& args) {
 }
 
 // The options that say how to read a record, shared by the subcommands.
-void add_reading_options(CLI::App* sub, RecordArgs* args) {
-  sub->add_option("--units", args->units,
-                  "Acceleration units of the file: g, m/s2, cm/s2 (gal), mm/s2 (required unless the file says them)");
-  sub->add_option("--format", args->format, "auto (default), at2, one-column, two-column, delimited");
-  sub->add_option("--dt", args->dt, "Time step [s] of a one-column file (or a delimited file without a time column)");
-  sub->add_option("--time-column", args->time_column, "Delimited files: time column, by header name or 1-based index");
-  sub->add_option("--accel-column", args->accel_column,
-                  "Delimited files: acceleration column, by header name or 1-based index");
-  sub->add_option("--delimiter", args->delimiter, "Delimited files: one character, or tab, comma, semicolon, space");
-}
-
 const Registration registration(30, [](CLI::App& app) -> Runner {
   auto args = std::make_shared<RecordArgs>();
   auto* record = app.add_subcommand("record", "Recorded accelerograms: information, processing, Fourier spectra");

@@ -26,17 +26,15 @@
 #include "adjoin/io/plots.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "command.hpp"
+#include "reading_options.hpp"
 
 namespace adjoin::cli {
 namespace {
 
 namespace fs = std::filesystem;
 
-struct SpectrumArgs {
+struct SpectrumArgs : ReadingArgs {
   std::string record;
-  std::string units;
-  std::string format;
-  double dt = 0.0;
   std::string damping = "0.05";
   std::string periods;
   std::string range;
@@ -152,19 +150,7 @@ std::vector<ReferenceCurve> compare_with_target(const ResponseSpectrum& spectrum
 }
 
 int spectrum_command(const SpectrumArgs& args) {
-  RecordFormat format;
-  if (!args.units.empty()) {
-    AccelUnit unit;
-    if (!parse_accel_unit(args.units, &unit))
-      throw InputError("--units " + args.units + ": unknown unit (expected g, m/s2, cm/s2 (or gal) or mm/s2)");
-    format.units = unit;
-  }
-  if (!args.format.empty() && !parse_record_kind(args.format, &format.kind))
-    throw InputError("--format " + args.format + ": unknown format (expected auto, at2, one-column, two-column or delimited)");
-  if (args.dt != 0.0) {
-    if (!(args.dt > 0.0)) throw InputError("--dt " + std::to_string(args.dt) + ": expected a time step > 0 s");
-    format.dt = args.dt;
-  }
+  const RecordFormat format = format_from(args);
 
   SpectrumOptions options;
   options.dampings = parse_list("--damping", args.damping, "damping ratios in [0, 1) separated by commas, e.g. 0.05,0.02");
@@ -234,10 +220,7 @@ const Registration registration(20, [](CLI::App& app) -> Runner {
       "spectrum",
       "Elastic response spectra of a record: CSV period,damping,sd,sv,sa,psv,psa (s, -, m, m/s, g, m/s, g)");
   sub->add_option("record", args->record, "Accelerogram (PEER AT2, one/two-column text, CSV)")->required();
-  sub->add_option("--units", args->units, "Acceleration units of the file: g, m/s2, cm/s2 (gal), mm/s2 "
-                                          "(required unless the file says them)");
-  sub->add_option("--format", args->format, "auto (default), at2, one-column, two-column, delimited");
-  sub->add_option("--dt", args->dt, "Time step [s] of a one-column file");
+  add_reading_options(sub, args.get());
   sub->add_option("--damping", args->damping, "Damping ratios, comma separated (default 0.05)");
   auto* periods = sub->add_option("--periods", args->periods, "Periods [s], comma separated (0: rigid, SA = PGA)");
   auto* range = sub->add_option("--range", args->range,

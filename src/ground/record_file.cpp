@@ -759,12 +759,33 @@ Record parse_record(std::string_view text, const std::string& name, const Record
       }
   }
 
+  // Column files may state their units in a leading comment, "# units: g" (what adjoin
+  // writes: record process, synth), so they read back without --units.
+  RecordFormat given = format;
+  if (kind == Kind::one_column || kind == Kind::two_column) {
+    LineReader scan(text);
+    Line line;
+    while (scan.next(line)) {
+      const std::string_view t = trim(line.text);
+      if (t.empty()) continue;
+      if (t.front() != '#') break;
+      std::string_view body = trim(t.substr(1));
+      if (body.size() < 6 || find_ci(body.substr(0, 6), "units:") != 0) continue;
+      const std::string word(trim(body.substr(6)));
+      AccelUnit unit;
+      if (!parse_accel_unit(word, &unit)) fail(name, line.number, "unknown units " + quote_token(word) + " (expected g, m/s2, cm/s2 or mm/s2)");
+      if (format.units && *format.units != unit)
+        fail(name, line.number, "the file says units of " + to_string(unit) + " but " + to_string(*format.units) + " was given");
+      given.units = unit;
+      break;
+    }
+  }
   LineReader reader(text);
   Record record;
   switch (kind) {
     case Kind::at2: record = read_at2(reader, name, format); break;
-    case Kind::one_column: record = read_one_column(reader, name, format); break;
-    case Kind::two_column: record = read_two_column(reader, name, format, row_delimiter); break;
+    case Kind::one_column: record = read_one_column(reader, name, given); break;
+    case Kind::two_column: record = read_two_column(reader, name, given, row_delimiter); break;
     case Kind::delimited: record = read_delimited(reader, name, format); break;
     case Kind::automatic: fail(name, "unknown record format");
   }

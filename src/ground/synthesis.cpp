@@ -290,6 +290,8 @@ void write_record_g(const Record& record, const std::filesystem::path& path, con
   AtomicFile file(path);
   std::ostream& out = file.stream();
   for (const std::string& line : header) out << "# " << line << "\n";
+  // What the readers take back without options (record_file.cpp: "# units:").
+  out << "# units: g\n";
   std::string text;
   text.reserve(record.accel.size() * 36);
   char buffer[80];
