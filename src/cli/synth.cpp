@@ -44,7 +44,7 @@ struct SynthArgs {
   std::size_t band_points = 100;
   double tolerance = 0.10;
   std::optional<double> damping;
-  int max_iterations = 40;
+  int max_iterations = 100;
   int attempts = 5;
   std::string out;
 };
@@ -246,7 +246,7 @@ const Registration registration(45, [](CLI::App& app) -> Runner {
   synth->add_option("--band", a->band, "Matching period band T0:T1 [s] (default 0.1:3)");
   synth->add_option("--band-points", a->band_points, "Log-spaced periods checked in the band (default 100)");
   synth->add_option("--tolerance", a->tolerance, "Matching tolerance on PSA/target - 1 (default 0.1)");
-  synth->add_option("--max-iterations", a->max_iterations, "Matching iterations at most (default 40)");
+  synth->add_option("--max-iterations", a->max_iterations, "Matching iterations at most (default 100)");
   synth->add_option("--attempts", a->attempts, "Phase draws tried if a match falls short (default 5)");
   synth->add_option("--out", a->out, "Output file: two columns t [s], a [g] after a '#' header")->required();
   return [a, synth]() -> int {

@@ -107,7 +107,7 @@ struct MatchOptions {
   std::size_t band_points = 100; // log-spaced check periods in the band (>= 2)
   double damping = 0.05;
   double tolerance = 0.10;       // max |PSA / target - 1| over the band
-  int max_iterations = 40;       // frequency-domain corrections (>= 0)
+  int max_iterations = 100;      // frequency-domain corrections (>= 0)
   int attempts = 5;              // synthesize_matched: phase draws tried (>= 1)
 
   // Checks values; the message names the field (match.period_min, ...) and what is expected.
