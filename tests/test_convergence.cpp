@@ -112,3 +112,13 @@ TEST_CASE("strong scene: the order of every reported quantity, switching instant
   CHECK(switches == 7);
   CHECK(checked >= 21);
 }
+
+TEST_CASE("an SI scene's reference step is stated in seconds", "[convergence]") {
+  const Scene scene = load_scene(std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/si-record.toml", {"solver.t_end=2"});
+  ConvergenceOptions o;
+  o.schemes = {Scheme::implicit};
+  o.steps = {0.004 / scene.scales.time, 0.002 / scene.scales.time};  // 4 and 2 ms
+  const auto r = run_convergence(scene, o);
+  INFO(r.reference);
+  CHECK(r.reference.find("at h = 0.00025 s") != std::string::npos);  // 2 ms / 8, not 0.00158 (T0 units)
+}

@@ -159,6 +159,22 @@ TEST_CASE("plot spectrum, converge and sweep draw from their CSV tables", "[plot
   CHECK(svg.find("period T [s]") != std::string::npos);
   CHECK(svg.find("damping 2 %") != std::string::npos);
 
+  // A run's spectra.csv has a signal column: one curve per signal and damping (it was drawn as
+  // one saw-tooth through all three), named in the legend.
+  const fs::path run_spectra = write_temp("spectra.csv",
+                                          "signal,period,damping,sd,sv,sa,psv,psa\n"
+                                          "ground,0.1,0.05,0.001,0.05,0.5,0.06,0.5\nground,1,0.05,0.02,0.2,0.6,0.25,0.6\n"
+                                          "block1,0.1,0.05,0.002,0.06,0.7,0.07,0.7\nblock1,1,0.05,0.03,0.3,0.9,0.3,0.9\n"
+                                          "block2,0.1,0.05,0.003,0.07,0.8,0.08,0.8\nblock2,1,0.05,0.04,0.4,1.0,0.4,1.0\n");
+  r = run_cli("plot spectrum '" + run_spectra.string() + "' --out '" + (dir / "run-spectra.svg").string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string three = slurp(dir / "run-spectra.svg");
+  for (const char* label : {"ground, damping 5 %", "block1, damping 5 %", "block2, damping 5 %"}) {
+    INFO(label);
+    CHECK(three.find(label) != std::string::npos);
+  }
+
   const fs::path converge = write_temp("convergence.csv",
                                        "scheme,history,h,steps,wall_seconds,error,order\n"
                                        "paper,direct,0.004,4000,0.01,1e-2,\n"

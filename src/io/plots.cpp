@@ -113,6 +113,11 @@ const char* kPreamble =
     "set linetype 6 lc rgb '#0f9b9b' lw 2\n"
     "set linetype 7 lc rgb '#555555' lw 2\n"
     "set linetype 8 lc rgb '#e377c2' lw 2\n"
+    "set linetype 9 lc rgb '#8c564b' lw 2\n"
+    "set linetype 10 lc rgb '#17becf' lw 2\n"
+    "set linetype 11 lc rgb '#bcbd22' lw 2\n"
+    "set linetype 12 lc rgb '#000000' lw 2\n"
+    "set linetype cycle 12\n"
     "set linetype cycle 8\n";
 
 // Every CSV read for a figure goes through here so missing files name themselves.
@@ -612,11 +617,32 @@ struct SpectrumCurve {
   std::vector<double> period, psa, sd;  // periods > 0, increasing
 };
 
-std::string damping_label(double zeta) {
-  char label[64];
-  std::snprintf(label, sizeof label, "damping %g %%", zeta * 100.0);
-  return label;
+// Labelled ticks on a log axis that spans less than two decades, where gnuplot labels only
+// the powers of ten (none, or one): 1, 2, 5 times powers of ten inside [lo, hi]. Empty
+// otherwise (gnuplot's own ticks serve).
+std::string log_tics(const char* axis, double lo, double hi) {
+  if (!(lo > 0.0 && hi > lo) || hi / lo >= 100.0) return "";
+  std::string list;
+  for (int e = static_cast<int>(std::floor(std::log10(lo))) - 1; e <= static_cast<int>(std::ceil(std::log10(hi))); ++e)
+    for (double m : hi / lo < 10.0 ? std::vector<double>{1, 1.5, 2, 3, 4, 5, 6, 8} : std::vector<double>{1, 2, 5}) {
+      const double v = m * std::pow(10.0, e);
+      if (v < lo * (1 - 1e-9) || v > hi * (1 + 1e-9)) continue;
+      char text[64];
+      std::snprintf(text, sizeof text, "%s\"%g\" %.12g", list.empty() ? "" : ", ", v, v);
+      list += text;
+    }
+  return list.empty() ? "" : "set " + std::string(axis) + "tics (" + list + ")\n";
 }
+
+// Numbers in legends rounded for reading: 4 significant digits, no binary noise (0.05, not
+// 0.05000000000000000277).
+std::string legend_number(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
+
+std::string damping_label(double zeta) { return "damping " + legend_number(zeta * 100.0) + " %"; }
 
 void draw_spectra(const std::vector<SpectrumCurve>& curves, const std::string& title, const fs::path& image,
                   const PlotStyle& style, const std::vector<ReferenceCurve>& references = {}) {
@@ -626,9 +652,16 @@ void draw_spectra(const std::vector<SpectrumCurve>& curves, const std::string& t
     datablock(s, "s" + std::to_string(d), {curves[d].period, curves[d].psa, curves[d].sd});
   for (std::size_t r = 0; r < references.size(); ++r)
     datablock(s, "r" + std::to_string(r), {references[r].period, references[r].psa});
+  double t_lo = INFINITY, t_hi = 0.0;
+  for (const auto& c : curves)
+    for (double t : c.period) {
+      t_lo = std::min(t_lo, t);
+      t_hi = std::max(t_hi, t);
+    }
+  s << log_tics("x", t_lo, t_hi);
   s << "set multiplot layout 2,1 title " << gnuplot_quote("Elastic response spectra: " + title)
-    << " noenhanced font ',12' margins 0.1,0.97,0.09,0.92 spacing 0,0.03\n"
-    << "set logscale x\nset format x ''\nset key top right\nset mxtics 10\n"
+    << " noenhanced font ',12' margins 0.1,0.72,0.09,0.92 spacing 0,0.03\n"
+    << "set logscale x\nset format x ''\nset key outside right top vertical\nset mxtics 10\n"
     << "set grid xtics mxtics ytics lc rgb '#d0d0d0', lc rgb '#ececec'\n";
   auto panel = [&](int column) {
     s << "plot ";
@@ -643,26 +676,30 @@ void draw_spectra(const std::vector<SpectrumCurve>& curves, const std::string& t
   };
   s << "set ylabel 'PSA [g]'\n";
   panel(2);
-  s << "set format x '%g'\nset xlabel 'period T [s]'\nset ylabel 'SD [m]'\nset key top left\n";
+  s << "set format x '%g'\nset xlabel 'period T [s]'\nset ylabel 'SD [m]'\n";
   panel(3);
   s << "unset multiplot\n";
   render_gnuplot(s.str(), image, style);
 }
 
-// One curve per damping from rows (period, damping, psa, sd) in any order; periods > 0 only.
+// One curve per signal and damping from rows (signal, period, damping, psa, sd) in any order
+// (a run's spectra.csv has a signal column: ground, block1, block2); periods > 0 only.
 std::vector<SpectrumCurve> spectrum_curves(const std::vector<double>& period, const std::vector<double>& damping,
-                                           const std::vector<double>& psa, const std::vector<double>& sd) {
-  std::vector<double> dampings;
-  for (double z : damping)
-    if (std::isfinite(z) && std::find(dampings.begin(), dampings.end(), z) == dampings.end()) dampings.push_back(z);
+                                           const std::vector<double>& psa, const std::vector<double>& sd,
+                                           const std::vector<std::string>& signal = {}) {
+  std::vector<std::pair<std::string, double>> groups;
+  for (std::size_t i = 0; i < damping.size(); ++i) {
+    const std::pair<std::string, double> g{signal.empty() ? std::string() : signal[i], damping[i]};
+    if (std::isfinite(g.second) && std::find(groups.begin(), groups.end(), g) == groups.end()) groups.push_back(g);
+  }
   std::vector<SpectrumCurve> curves;
-  for (double z : dampings) {
+  for (const auto& [sig, z] : groups) {
     std::vector<std::pair<double, std::size_t>> order;
     for (std::size_t i = 0; i < period.size(); ++i)
-      if (damping[i] == z && period[i] > 0.0) order.push_back({period[i], i});
+      if (damping[i] == z && period[i] > 0.0 && (signal.empty() || signal[i] == sig)) order.push_back({period[i], i});
     if (order.empty()) continue;
     std::sort(order.begin(), order.end());
-    SpectrumCurve curve{damping_label(z), {}, {}, {}};
+    SpectrumCurve curve{(sig.empty() ? "" : sig + ", ") + damping_label(z), {}, {}, {}};
     for (const auto& [p, i] : order) {
       curve.period.push_back(p);
       curve.psa.push_back(psa[i]);
@@ -692,9 +729,14 @@ void plot_spectrum(const ResponseSpectrum& spectrum, const fs::path& image, cons
 void plot_spectrum_csv(const fs::path& csv, const fs::path& image, const PlotStyle& style) {
   const CsvTable table = must_read(csv, "the CSV of `adjoin spectrum`: period,damping,sd,sv,sa,psv,psa");
   const std::string context = "spectrum CSV";
+  std::vector<std::string> signal;
+  if (table.has("signal")) {
+    const std::size_t c = table.column("signal", context);
+    for (const auto& row : table.rows) signal.push_back(row[c]);
+  }
   const std::vector<SpectrumCurve> curves =
       spectrum_curves(table.numbers("period", context), table.numbers("damping", context),
-                      table.numbers("psa", context), table.numbers("sd", context));
+                      table.numbers("psa", context), table.numbers("sd", context), signal);
   if (curves.empty()) throw InputError(csv.string() + ": no rows with period > 0 s to plot");
   draw_spectra(curves, csv.filename().string(), image, style);
 }
@@ -763,14 +805,36 @@ void plot_convergence_csv(const fs::path& csv, const fs::path& image, const Plot
   }
   if (plots.empty())
     throw InputError(csv.string() + ": no rows with wall_seconds > 0 and error > 0 to plot on log axes");
+  {
+    double w_lo = INFINITY, w_hi = 0.0;
+    for (double w : wall)
+      if (w > 0.0) { w_lo = std::min(w_lo, w); w_hi = std::max(w_hi, w); }
+    s << log_tics("x", w_lo, w_hi);
+  }
   const std::string where = !title.empty() ? title
                             : csv.has_parent_path() && !csv.parent_path().filename().empty()
                                 ? csv.parent_path().filename().string()
                                 : csv.filename().string();
-  s << "set title " << gnuplot_quote("Work-precision: " + where) << " noenhanced font ',12'\n"
-    << "set logscale xy\nset format y '10^{%L}'\nset format x '10^{%L}'\n"
+  // The title wraps rather than runs off the figure (long reference descriptions).
+  // A double-quoted gnuplot string, lines broken at spaces every ~70 characters by "\n".
+  const std::string title_text = "Work-precision: " + where;
+  std::string wrapped = "\"";
+  std::size_t line = 0;
+  for (char c : title_text) {
+    if (c == ' ' && line >= 70) {
+      wrapped += "\\n";
+      line = 0;
+      continue;
+    }
+    if (c == '"' || c == '\\') wrapped += '\\';
+    wrapped += c;
+    ++line;
+  }
+  wrapped += "\"";
+  s << "set title " << wrapped << " noenhanced font ',11'\n"
+    << "set logscale xy\nset format y '10^{%L}'\nset format x '%g'\nset mxtics 10\n"
     << "set xlabel 'wall time of the run [s]'\nset ylabel 'error (relative max norm)'\n"
-    << "set key top right\nplot " << join(plots, ", ") << "\n";
+    << "set key outside right top vertical\nplot " << join(plots, ", ") << "\n";
   render_gnuplot(s.str(), image, style);
 }
 

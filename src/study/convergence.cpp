@@ -168,7 +168,9 @@ ConvergenceResult run_convergence(const Scene& scene, const ConvergenceOptions& 
     ref.min_gap = r.pounding->min_gap;
     ref.friction = r.energy->friction;
     ref.report = r;
-    ref.description = "a finer run: implicit/" + to_string(s.solver.history) + " at h = " + number(h_ref);
+    // In the scene's time unit (seconds for an SI scene), as the ladder's steps are printed.
+    ref.description = "a finer run: implicit/" + to_string(s.solver.history) + " at h = " + number(h_ref * scene.scales.time) +
+                      (scene.scales.si ? " s" : "");
   }
   ref.scale = 0.0;
   for (std::size_t j = 0; j < ref.x1.size(); ++j) ref.scale = std::max({ref.scale, std::abs(ref.x1[j]), std::abs(ref.x2[j])});
