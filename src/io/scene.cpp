@@ -10,6 +10,8 @@
 #include <sstream>
 #include <toml++/toml.h>
 
+#include "toml_text.hpp"
+
 #include "../detail/nearest.hpp"
 #include "ground_cache.hpp"
 #include "adjoin/errors.hpp"
@@ -764,14 +766,7 @@ const std::vector<std::string>& known_scene_keys() {
 
 Scene parse_scene(const std::string& text, const std::string& name, const std::vector<std::string>& overrides,
                   const std::vector<std::string>& removed) {
-  toml::table table;
-  try {
-    table = toml::parse(text, name);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream s;
-    s << name << ":" << e.source().begin.line << ": not valid TOML: " << e.description();
-    throw InputError(s.str());
-  }
+  toml::table table = detail::parse_toml_text(text, name);
   if (const toml::node* building = table.get("building")) {
     // A building scene (SPEC §5): io/building_scene.hpp reads it (its structure, and its
     // ground, solver and output sections through parse_building_base below).
@@ -798,14 +793,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
 }
 
 Scene parse_building_base(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
-  toml::table table;
-  try {
-    table = toml::parse(text, name);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream s;
-    s << name << ":" << e.source().begin.line << ": not valid TOML: " << e.description();
-    throw InputError(s.str());
-  }
+  toml::table table = detail::parse_toml_text(text, name);
   // The structure is read elsewhere; what stays is [ground], [solver], [output] and the name,
   // read as a scene with a unit two-block model (m = 1 kg, k = 1 N/m: T0 = 1 s, forces of
   // 1 kg g), so that times are in seconds and the ground's a_g is in g.

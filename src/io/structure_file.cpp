@@ -6,6 +6,8 @@
 
 #include <toml++/toml.h>
 
+#include "toml_text.hpp"
+
 #include "adjoin/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/model/units.hpp"
@@ -215,14 +217,7 @@ structure::Structure read_structure(const std::filesystem::path& path) {
 }
 
 structure::Structure parse_structure(const std::string& text, const std::string& file) {
-  toml::table root;
-  try {
-    root = toml::parse(text, file);
-  } catch (const toml::parse_error& e) {
-    std::ostringstream m;
-    m << file << ":" << e.source().begin.line << ": not valid TOML: " << e.description();
-    throw InputError(m.str());
-  }
+  toml::table root = detail::parse_toml_text(text, file);
   TableReader top(root, "scene", file);
   const toml::table* model = root["model"].as_table();
   if (!model || root["model"]["units"].value<std::string>() != "SI")
