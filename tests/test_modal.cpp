@@ -176,3 +176,11 @@ TEST_CASE("the example building scene reads, with the period and the slip ratio 
   CHECK(s.a.static_stiffness()[0] == Approx(5.482e6 + 1e6));
   CHECK(s.a.static_stiffness()[2] == Approx(5.482e6));
 }
+
+TEST_CASE("a period given with storey devices is the building's period with them", "[modal][scene]") {
+  const Structure s = read_structure(std::string(ADJOIN_SOURCE_DIR) + "/examples/buildings/zener-building.toml");
+  // The uniform spring is found so that springs plus the devices' relaxed stiffness give 0.8 s.
+  CHECK(building_modes(s.a).periods[0] == Approx(0.8).epsilon(1e-10));
+  CHECK(s.a.static_stiffness()[0] == Approx(s.a.springs[0] + 2.0e7));
+  CHECK(s.a.static_stiffness()[5] == Approx(s.a.springs[5]));
+}

@@ -1,6 +1,7 @@
 #include "adjoin/io/structure_file.hpp"
 
 #include <cmath>
+#include <limits>
 #include <set>
 #include <sstream>
 
@@ -10,6 +11,7 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/io/text_file.hpp"
+#include "adjoin/structure/modal.hpp"
 #include "adjoin/model/units.hpp"
 
 namespace adjoin {
@@ -190,6 +192,28 @@ Building read_building(const toml::table& root, const std::string& name, const s
       }
       b.devices.push_back(dev);
     }
+  }
+  if (r.has("period") && !b.devices.empty()) {
+    // The period is the building's with its devices (their relaxed stiffness): the uniform
+    // spring that gives it, by bisection (the period falls as the spring grows).
+    const double target = r.positive("period");
+    auto period_with = [&](double k) {
+      structure::Building trial = b;
+      trial.springs = Eigen::VectorXd::Constant(n, k);
+      const Eigen::VectorXd storey = trial.static_stiffness();
+      if (storey.minCoeff() <= 0.0) return std::numeric_limits<double>::infinity();
+      return structure::building_modes(trial).periods[0];
+    };
+    double hi = b.springs[0];  // enough on its own
+    if (period_with(0.0) <= target)
+      r.fail("period", "the storey devices alone already give a period of " + std::to_string(period_with(0.0)) +
+                           " s, below " + std::to_string(target) + " s: remove period, or soften the devices");
+    double lo = 0.0;
+    for (int i = 0; i < 200 && hi - lo > 1e-14 * hi; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (period_with(mid) > target ? lo : hi) = mid;
+    }
+    b.springs = Eigen::VectorXd::Constant(n, 0.5 * (lo + hi));
   }
   const Eigen::VectorXd k = b.static_stiffness();
   for (int i = 0; i < n; ++i)
