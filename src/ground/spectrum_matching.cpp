@@ -66,7 +66,9 @@ double ec8_psa(double period, char ground_type, double ag, int spectrum_type, do
 
 TargetSpectrum TargetSpectrum::ec8(char ground_type, double ag, int spectrum_type) {
   ec8_parameters(ground_type, spectrum_type);  // checks both
-  if (!(ag > 0.0) || !std::isfinite(ag)) throw InputError("EC8 ag = " + num(ag) + ": expected a design ground acceleration > 0 g");
+  // (At most 10 g: beyond any code's design acceleration, and what keeps the matching's
+  // corrections, 10x at most each, within its iterations.)
+  if (!(ag > 0.0 && ag <= 10.0)) throw InputError("EC8 ag = " + num(ag) + ": expected a design ground acceleration > 0 and at most 10 g");
   TargetSpectrum t;
   t.kind = Kind::ec8;
   t.ground_type = upper(ground_type);
@@ -82,8 +84,8 @@ TargetSpectrum TargetSpectrum::table(std::vector<double> periods, std::vector<do
   for (std::size_t i = 0; i < periods.size(); ++i) {
     if (!std::isfinite(periods[i]) || periods[i] < 0.0)
       throw InputError(name + ": row " + std::to_string(i + 1) + ": period " + num(periods[i]) + " (expected >= 0 s)");
-    if (!std::isfinite(psa[i]) || !(psa[i] > 0.0))
-      throw InputError(name + ": row " + std::to_string(i + 1) + ": PSA " + num(psa[i]) + " (expected > 0 g)");
+    if (!(psa[i] > 0.0 && psa[i] <= 100.0))
+      throw InputError(name + ": row " + std::to_string(i + 1) + ": PSA " + num(psa[i]) + " (expected > 0 and at most 100 g)");
     if (i > 0 && !(periods[i] > periods[i - 1]))
       throw InputError(name + ": row " + std::to_string(i + 1) + ": period " + num(periods[i]) +
                        " (expected periods to increase strictly)");

@@ -469,8 +469,8 @@ std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, cons
     if (type.size() != 1 || std::string("ABCDE").find(type[0]) == std::string::npos)
       r.fail("ground.match_ec8", "ground.match_ec8 = \"" + type + "\" must be an EC8 ground type, \"A\" to \"E\"");
     const double ag = r.number("ground.match_ag", 0.25);
-    if (!(ag > 0.0) || !std::isfinite(ag))
-      r.fail("ground.match_ag", "ground.match_ag must be the design ground acceleration in g, > 0");
+    if (!(ag > 0.0 && ag <= 10.0))
+      r.fail("ground.match_ag", "ground.match_ag must be the design ground acceleration in g, > 0 and at most 10");
     const double spectrum_type = r.number("ground.match_ec8_type", 1.0);
     if (spectrum_type != 1.0 && spectrum_type != 2.0)
       r.fail("ground.match_ec8_type", "ground.match_ec8_type must be 1 (EN 1998-1 Table 3.2) or 2 (Table 3.3)");
