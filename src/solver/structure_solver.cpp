@@ -132,8 +132,10 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     bf(f, p.j) = -1.0;
     limit[f] = s.links[friction[f]].slip_force;
   }
-  const Eigen::MatrixXd a_inv_bt = a_solver.solve(bf.transpose());
-  const Eigen::MatrixXd delassus = h * bf * a_inv_bt;
+  // No friction link (a building alone): nothing to solve, and Eigen's triangular solve must
+  // not see a matrix with no columns (it binds a reference to its null data).
+  const Eigen::MatrixXd a_inv_bt = nf > 0 ? Eigen::MatrixXd(a_solver.solve(bf.transpose())) : Eigen::MatrixXd(n, 0);
+  const Eigen::MatrixXd delassus = nf > 0 ? Eigen::MatrixXd(h * bf * a_inv_bt) : Eigen::MatrixXd(0, 0);
   // For the grid-point forces of stuck dampers: B M^-1 B' restricted to the stuck ones.
   const Eigen::VectorXd inv_mass = mass.cwiseInverse();
 
