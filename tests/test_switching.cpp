@@ -89,7 +89,11 @@ TEST_CASE("strong scene: every switching instant and t_min_gap at order 2", "[sw
     INFO("switch " << i << " (" << to_string(reference.phases[i].state) << " at " << reference.phases[i].t_start
                    << "): errors " << switch_errors[i].front() << " ... " << switch_errors[i].back());
     CHECK(fitted_order(switch_errors[i]) > 1.8);
-    CHECK(switch_errors[i][2] < 4e-6);  // h = 1e-3: the first stick -> slip was 1.6e-4 off on the grid
+    // h = 1e-3: the first stick -> slip was 1.6e-4 off on the grid. The largest error now is
+    // the onset after the short stick at 8.20 (4.8e-6, regular at order 2): the stick force
+    // barely reaches mu there (it grazes the cone with slope 0.09), so its O(h^2) error is
+    // divided by a small slope.
+    CHECK(switch_errors[i][2] < 1e-5);
   }
   INFO("t_min_gap errors " << gap_time_errors.front() << " ... " << gap_time_errors.back());
   CHECK(fitted_order(gap_time_errors) > 1.8);  // was first order (0.18 h): the minimum sits on a reversal
