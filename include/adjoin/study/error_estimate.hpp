@@ -15,11 +15,14 @@
 // estimate is asymptotic: it is trustworthy when both runs resolve the motion (tests check it
 // within a factor 3 of the true error on ladders of the paper's and of a record scene).
 //
-// run_to_tolerance: a short ladder. From a first step h0 (t_end / 4000, and no coarser than a
+// run_to_tolerance: a short ladder. From a first step h0 (t_end / 2000, and no coarser than a
 // record's sampling interval) it runs, estimates, and predicts the step that meets the
 // tolerance from the observed error and the order, h <- h (0.7 tol / E)^(1/p), until the
 // largest relative error of the peaks, E = max |error| / |peak|, is at most the tolerance
-// (at most six rungs). It reports the chosen h, the rungs and the estimate reached.
+// (at most six rungs). After the first rung the previous rung is the companion of the
+// estimate that steers the ladder (free); only a rung it finds within twice the tolerance
+// pays for the run at 2h, whose estimate decides and is reported. It reports the chosen h,
+// the rungs and the estimate reached.
 //
 // All values are dimensionless (io/summary.hpp converts them).
 #include <string>
