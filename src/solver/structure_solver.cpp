@@ -262,7 +262,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     Eigen::MatrixXd g_held(m, m);
     for (int a = 0; a < m; ++a)
       for (int b = 0; b < m; ++b) g_held(a, b) = g_all(held[a], held[b]);
-    const Eigen::LDLT<Eigen::MatrixXd> held_solver(g_held);
+    Eigen::LDLT<Eigen::MatrixXd> held_solver;
+    if (m > 0) held_solver.compute(g_held);  // (never on an empty matrix: see a_inv_bt above)
     for (int f = 0; f < nf; ++f) {
       if (std::isnan(kink_theta[f])) continue;
       Eigen::VectorXd dq = Eigen::VectorXd::Zero(nf);
