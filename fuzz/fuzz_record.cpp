@@ -11,8 +11,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using Kind = adjoin::RecordFormat::Kind;
   adjoin::RecordFormat format;
   const std::uint8_t pick = data[0];
-  const Kind kinds[] = {Kind::automatic, Kind::at2, Kind::one_column, Kind::two_column, Kind::delimited};
-  format.kind = kinds[pick % 5];
+  const Kind kinds[] = {Kind::automatic, Kind::at2, Kind::one_column, Kind::two_column, Kind::delimited,
+                        Kind::smc, Kind::cosmos, Kind::knet, Kind::esm, Kind::dmg, Kind::automatic};
+  format.kind = kinds[pick % 11];
+  if (pick & 0x80) format.channel = 1 + (pick >> 5) % 3;  // multi-channel files
   if (pick & 0x08) format.units = adjoin::AccelUnit::g;
   if (pick & 0x10) format.dt = 0.01;
   if (pick & 0x20) { format.time_column = "t"; format.accel_column = "2"; }

@@ -350,8 +350,9 @@ void read_block(const std::vector<Line>& lines, std::size_t* next, std::size_t c
                                   " announces (found " + quote_token(trim(word)) + ")");
     }
     if (format && taken != wanted && got + taken < count)
-      fail(name, line.number, "found " + std::to_string(taken) + " values on the line (expected " + std::to_string(wanted) +
-                                  " " + what + " in the layout of line " + std::to_string(header_line) + ")");
+      fail(name, line.number, "found " + std::to_string(taken) + " values on the line, " + std::to_string(got + taken) +
+                                  " of the " + counted + " " + what + " line " + std::to_string(header_line) +
+                                  " announces (expected " + std::to_string(wanted) + " on this line in its layout)");
     got += taken;
   }
 }
