@@ -3,6 +3,8 @@
 // adjoin plot converge CSV [--out FILE] [--format png|svg] [--size WxH]
 // adjoin plot sweep CSV --x COLUMN --y COLUMN[,COLUMN...] [--group COLUMN] [--logx] [--logy]
 //                       [--title TEXT] [--out FILE] [--format png|svg] [--size WxH]
+// adjoin plot record FILE [reading options: --units, --format (of the record), --dt, --channel ...]
+//                    [--out FILE.png|.svg] [--size WxH]
 //
 // Figures with gnuplot from adjoin's own outputs (see adjoin/io/plots.hpp): the seed paper's
 // figures for a run folder, response spectra, work-precision and sweep curves. Prints the
@@ -12,8 +14,11 @@
 #include <memory>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/ground/record_file.hpp"
 #include "adjoin/io/plots.hpp"
+#include "adjoin/io/record_plot.hpp"
 #include "command.hpp"
+#include "reading_options.hpp"
 
 namespace adjoin::cli {
 namespace {
@@ -86,6 +91,18 @@ int plot_sweep_command(const PlotArgs& a) {
   return 0;
 }
 
+// The record's figure: acceleration, velocity, displacement, Husid plot with D5-95. The image
+// format follows --out's extension (--format here is the record's, as in `record info`).
+int plot_record_command(const PlotArgs& a, const ReadingArgs& reading) {
+  PlotStyle style;
+  parse_plot_size(a.size, &style);
+  const fs::path image = plot_target(a.out, beside(a.input, "-record.png"), "", &style);
+  const Record record = read_record(a.input, format_from(reading));
+  plot_record(record, image, style, fs::path(a.input).filename().string());
+  std::cout << "wrote " << image.string() << "\n";
+  return 0;
+}
+
 void common_options(CLI::App* sub, PlotArgs* a, const std::string& out_help) {
   sub->add_option("--out", a->out, out_help);
   sub->add_option("--format", a->format, "Image format: png or svg (default png, or the --out extension)");
@@ -94,6 +111,7 @@ void common_options(CLI::App* sub, PlotArgs* a, const std::string& out_help) {
 
 const Registration registration(60, [](CLI::App& app) -> Runner {
   auto args = std::make_shared<PlotArgs>();
+  auto reading = std::make_shared<ReadingArgs>();
   auto* plot = app.add_subcommand("plot", "Figures (PNG or SVG, with gnuplot) of runs, spectra, convergence studies and sweeps");
   plot->require_subcommand(1);
 
@@ -123,12 +141,20 @@ const Registration registration(60, [](CLI::App& app) -> Runner {
   sweep->add_option("--title", args->title, "Title (default: Sweep: <file name>)");
   common_options(sweep, args.get(), "Image file, .png or .svg (default: the CSV's name with .png)");
 
-  return [args, run, spectrum, converge, sweep]() {
+  auto* record = plot->add_subcommand(
+      "record", "An accelerogram: acceleration, velocity, displacement and the Husid plot with D5-95 marked");
+  record->add_option("file", args->input, "Accelerogram (any format `record info` reads)")->required();
+  add_reading_options(record, reading.get());
+  record->add_option("--out", args->out, "Image file, .png or .svg (default <file name>-record.png beside it)");
+  record->add_option("--size", args->size, "Image size WIDTHxHEIGHT in pixels (default 900x600)");
+
+  return [args, reading, run, spectrum, converge, sweep, record]() {
     if (run->parsed()) return plot_run_command(*args);
     if (spectrum->parsed()) return plot_spectrum_command(*args);
     if (converge->parsed()) return plot_converge_command(*args);
     if (sweep->parsed()) return plot_sweep_command(*args);
-    throw InputError("plot: expected one of run, spectrum, converge, sweep");
+    if (record->parsed()) return plot_record_command(*args, *reading);
+    throw InputError("plot: expected one of run, spectrum, converge, sweep, record");
   };
 });
 

@@ -14,6 +14,10 @@
 // `process` applies what scenes can ask for (ground/processing.hpp, in that order: window,
 // baseline, padding, zero-phase Butterworth, resampling, scaling) and writes two columns,
 // t [s] and a [g], that the readers take back; then prints the result's intensity measures.
+// With --integrate it writes CSV with a header line instead, "t [s],a [g],v [m/s],d [m]":
+// velocity and displacement by the trapezoid rule from rest (ground/integration.hpp), after
+// the processing asked for (so --baseline N corrects the drift of an offset); the readers take
+// the acceleration back from it (the "a [g]" column, found by name).
 //
 // Reads accelerograms and prints their intensity measures: npts, dt, duration, PGA [g],
 // PGV [m/s], PGD [m] (trapezoid integrals, no baseline correction), Arias intensity [m/s],
@@ -22,6 +26,7 @@
 // (one block per file) or JSON (an object, or an array for several files), to stdout or to
 // FILE (temporary file and rename).
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -35,6 +40,7 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/solver/simulate.hpp"
+#include "adjoin/ground/integration.hpp"
 #include "adjoin/ground/processing.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/ground/synthesis.hpp"
@@ -56,6 +62,7 @@ struct RecordArgs : ReadingArgs {
   std::string window, pad, bandpass;
   double highpass = 0.0, lowpass = 0.0, resample = 0.0, scale_pga = 0.0;
   int baseline = -1, filter_order = 4;
+  bool integrate = false;
   // fourier
   double smooth = 0.0;  // 0: not asked
   std::string frequencies, plot;
@@ -129,6 +136,32 @@ std::pair<double, double> pair_of(const std::string& option, const std::string& 
   }
 }
 
+// t, a [g], v [m/s], d [m] as CSV with '#' comment lines and a header the delimited reader
+// understands (time column "t", acceleration "a" in g).
+void write_histories(const Record& record, const std::string& path, const std::vector<std::string>& header) {
+  const MotionHistories h = integrate_record(record);
+  AtomicFile file(path);
+  std::ostream& out = file.stream();
+  for (const std::string& line : header) out << "# " << line << "\n";
+  out << "# velocity and displacement: trapezoid rule from rest\n";
+  out << "t [s],a [g],v [m/s],d [m]\n";
+  std::string text;
+  text.reserve(h.accel.size() * 80);
+  char line[160];
+  for (std::size_t i = 0; i < h.accel.size(); ++i) {
+    char* p = line;
+    char* const end = line + sizeof line;
+    for (const double value : {static_cast<double>(i) * h.dt, h.accel[i] / 9.80665, h.velocity[i], h.displacement[i]}) {
+      if (p != line) *p++ = ',';
+      p = std::to_chars(p, end - 2, value).ptr;
+    }
+    *p++ = '\n';
+    text.append(line, p);
+  }
+  out << text;
+  file.commit();
+}
+
 int process_command(const RecordArgs& args, const CLI::App& sub) {
   const RecordFormat format = format_from(args);
   const Record input = read_record(args.files.at(0), format);
@@ -193,6 +226,11 @@ int process_command(const RecordArgs& args, const CLI::App& sub) {
     throw InputError(args.files.at(0) + ": " + option + " " + problem->message);
   }
   const Record output = process(input, p);
+  if (args.integrate) {
+    write_histories(output, args.out, header);
+    std::cout << "wrote " << args.out << " (CSV: t [s], a [g], v [m/s], d [m])\n" << table(output, intensity_measures(output));
+    return 0;
+  }
   write_record_g(output, args.out, header);
   std::cout << "wrote " << args.out << " (two columns: t [s], a [g])\n" << table(output, intensity_measures(output));
   return 0;
@@ -316,6 +354,8 @@ const Registration registration(30, [](CLI::App& app) -> Runner {
   process->add_option("--resample", args->resample, "New time step [s] (band-limited windowed-sinc interpolation)");
   process->add_option("--scale-pga", args->scale_pga, "Scale to this PGA [g] (last)");
   process->add_option("--out", args->out, "Output file (two columns t [s], a [g])")->required();
+  process->add_flag("--integrate", args->integrate,
+                    "Also integrate (trapezoid, from rest, after the processing): write CSV t [s],a [g],v [m/s],d [m]");
   auto* fourier = record->add_subcommand(
       "fourier", "Fourier amplitude spectrum: CSV frequency,amplitude (Hz, m/s), raw or Konno-Ohmachi smoothed");
   fourier->add_option("file", args->files, "Accelerogram")->required()->expected(1);
