@@ -55,6 +55,7 @@ const std::vector<KeySpec>& schema() {
       {"ground.file", Kind::string},        {"ground.format", Kind::string},
       {"ground.units", Kind::string},       {"ground.dt", Kind::number},
       {"ground.time_column", Kind::string}, {"ground.accel_column", Kind::string},
+      {"ground.channel", Kind::integer},
       {"ground.time_scale", Kind::number},
       {"ground.window_start", Kind::number}, {"ground.window_end", Kind::number},
       {"ground.baseline", Kind::integer},
@@ -95,7 +96,7 @@ const std::vector<std::string> kTables = {"model", "model.rod1", "model.rod2", "
 const std::map<std::string, std::vector<std::string>>& ground_keys() {
   static const std::map<std::string, std::vector<std::string>> keys = {
       {"decaying-sine", {"u0", "omega", "k"}},
-      {"record", {"file", "format", "units", "dt", "time_column", "accel_column", "time_scale",
+      {"record", {"file", "format", "units", "dt", "time_column", "accel_column", "channel", "time_scale",
                   "window_start", "window_end", "baseline", "pad_before", "pad_after", "filter",
                   "f_low", "f_high", "filter_order", "resample_dt", "scale_pga"}},
       {"filtered-noise", {"spectrum", "omega_g", "zeta_g", "omega_f", "zeta_f", "s0", "target_pga", "envelope", "t1",
@@ -355,7 +356,7 @@ std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, con
   RecordFormat format;
   const std::string kind = r.string("ground.format", "auto");
   if (!parse_record_kind(kind, &format.kind))
-    r.fail("ground.format", "ground.format = \"" + kind + "\" must be one of \"auto\", \"at2\", \"one-column\", \"two-column\", \"delimited\"");
+    r.fail("ground.format", "ground.format = \"" + kind + "\" must be one of " + record_kind_names());
   if (r.has("ground.units")) {
     AccelUnit unit;
     const std::string units = r.string("ground.units", "");
@@ -366,6 +367,11 @@ std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, con
   if (r.has("ground.dt")) format.dt = r.number("ground.dt");
   format.time_column = r.string("ground.time_column", "");
   format.accel_column = r.string("ground.accel_column", "");
+  if (r.has("ground.channel")) {
+    const auto channel = r.integer("ground.channel", 0);
+    if (channel < 1 || channel > 100000) r.fail("ground.channel", "ground.channel = " + std::to_string(channel) + " must be a channel number 1, 2, ... (multi-channel COSMOS or DMG files)");
+    format.channel = static_cast<int>(channel);
+  }
 
   Processing processing;
   if (r.has("ground.window_start")) processing.window_t0 = r.number("ground.window_start");
