@@ -6,6 +6,7 @@
 // through the two-column writer.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -323,4 +324,46 @@ TEST_CASE("round trip: every reader's record through the two-column writer reads
     CHECK(back.dt == Approx(r.dt).epsilon(1e-12));
     for (std::size_t i = 0; i < r.accel.size(); ++i) REQUIRE(back.accel[i] == Approx(r.accel[i]).epsilon(1e-14).margin(1e-300));
   }
+}
+
+TEST_CASE("random corruptions of every written file parse or throw InputError, nothing else", "[record_readers]") {
+  const char* files[] = {"smc-corrected.smc", "cosmos-v2-two-channels.v2", "cosmos-v1-one-channel.v1", "knet-tiny.EW",
+                         "esm-tiny.HNE.ACC.ASC", "dmg-v2-two-channels.V2", "dmg-v2-upper-case.V2"};
+  std::uint64_t state = 2024;
+  auto next = [&]() {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<std::size_t>(state >> 33);
+  };
+  const std::string alphabet = "0123456789.-+eE ,:()/|&\n\r#abcdfgnptsxHzNPTS";
+  const Kind kinds[] = {Kind::automatic, Kind::smc, Kind::cosmos, Kind::knet, Kind::esm, Kind::dmg};
+  std::size_t parsed = 0, rejected = 0;
+  for (const char* file : files) {
+    const std::string seed = slurp(data + file);
+    for (int trial = 0; trial < 400; ++trial) {
+      std::string text = seed;
+      const std::size_t edits = 1 + next() % 4;
+      for (std::size_t e = 0; e < edits && !text.empty(); ++e) {
+        const std::size_t where = next() % text.size();
+        switch (next() % 4) {
+          case 0: text[where] = alphabet[next() % alphabet.size()]; break;
+          case 1: text.erase(where, 1 + next() % 40); break;
+          case 2: text.insert(where, 1, alphabet[next() % alphabet.size()]); break;
+          default: text.resize(where); break;
+        }
+      }
+      RecordFormat f = kind(kinds[next() % 6], static_cast<int>(next() % 3));
+      try {
+        const Record r = parse_record(text, "fuzz", f);
+        CHECK(r.dt > 0.0);
+        CHECK(!r.accel.empty());
+        for (double a : r.accel) REQUIRE(std::isfinite(a));
+        ++parsed;
+      } catch (const InputError& e) {
+        REQUIRE(std::string(e.what()).rfind("fuzz", 0) == 0);
+        ++rejected;
+      }
+    }
+  }
+  CHECK(parsed > 0);
+  CHECK(rejected > 0);
 }
