@@ -4,8 +4,8 @@
 // Displacements and the damper stroke are refined between samples from their derivatives (the
 // velocities), with the damper's located switching instants as kinks (step_extremum in
 // observe/extremum.hpp), so their peaks and times are second order even where a peak sits on a
-// switch. Rod forces are refined by a parabola through the three samples around a local
-// maximum of |y|. Velocities and accelerations have kinks or jumps at phase changes; their
+// switch. Rod forces are refined by the cubic through the four samples around a local
+// maximum of |y| (observe/extremum.hpp cubic_extremum). Velocities and accelerations have kinks or jumps at phase changes; their
 // peaks are the largest samples. q is refined by a parabola while stuck (the stick force is
 // smooth), and its time is the located switch where it reaches its limit.
 #include <cmath>
@@ -33,12 +33,17 @@ class SmoothPeak {
   void update(double value, double time) {
     const double a = value < 0.0 ? -value : value;
     if (count_ >= 2 && a1_ >= a0_ && a1_ > a && a1_ >= peak_.max_abs) {
-      // |y| has a local maximum at the middle sample; refine on the signed samples.
-      const Vertex v = parabola_vertex(t1_, time - t1_, y0_, y1_, value);
+      // |y| has a local maximum at the middle sample; refine on the signed samples: the cubic
+      // through it, the two before and the new one (time O(h^3)), or with only three samples
+      // the parabola.
+      const double h = time - t1_;
+      const Vertex v = count_ >= 3 ? cubic_extremum(t1_ - 2.0 * h, h, ym_, y0_, y1_, value)
+                                   : parabola_vertex(t1_, h, y0_, y1_, value);
       const double refined = v.y < 0.0 ? -v.y : v.y;
       if (refined >= a1_) { peak_.max_abs = refined; peak_.t = v.t; }
     }
     peak_.update(value, time);
+    ym_ = y0_;
     y0_ = y1_; a0_ = a1_;
     y1_ = value; a1_ = a; t1_ = time;
     ++count_;
@@ -47,7 +52,7 @@ class SmoothPeak {
 
  private:
   Peak peak_;
-  double y0_ = 0.0, y1_ = 0.0, a0_ = 0.0, a1_ = 0.0, t1_ = 0.0;
+  double ym_ = 0.0, y0_ = 0.0, y1_ = 0.0, a0_ = 0.0, a1_ = 0.0, t1_ = 0.0;
   int count_ = 0;
 };
 
