@@ -268,3 +268,62 @@ TEST_CASE("inelastic: options are checked", "[inelastic]") {
     CHECK(std::isfinite(v.ductility_reached));
   }
 }
+
+TEST_CASE("adjoin spectrum --ductility / --strength-reduction: the CSV of SPEC 3, bad options exit 2", "[inelastic][cli]") {
+  const std::string record = std::string(ADJOIN_REAL_RECORDS) + "/peer/RSN1044_DirRot2.AT2";
+  const test::CliResult r = test::run_cli("spectrum '" + record + "' --ductility 1,2,4 --hysteresis bilinear --hardening 0.05 --periods 0.3,1");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  std::istringstream in(r.out);
+  std::string line;
+  std::getline(in, line);
+  CHECK(line == "period,damping,ductility,cy,uy,R,ductility_reached");
+  const Record rec = read_record(record);
+  InelasticOptions options;
+  options.periods = {0.3, 1.0};
+  options.ductilities = {1.0, 2.0, 4.0};
+  options.hysteresis = Hysteresis::bilinear;
+  options.hardening = 0.05;
+  const InelasticSpectrum s = constant_ductility_spectrum(rec.dt, rec.accel, options);
+  for (const InelasticValues& v : s.values) {
+    REQUIRE(std::getline(in, line));
+    std::vector<double> row;
+    std::istringstream cells(line);
+    std::string cell;
+    while (std::getline(cells, cell, ',')) row.push_back(std::stod(cell));
+    REQUIRE(row.size() == 7);
+    CHECK(row[0] == Approx(v.period));
+    CHECK(row[2] == Approx(v.ductility));
+    CHECK(row[3] == Approx(v.cy).epsilon(1e-9));
+    CHECK(row[4] == Approx(v.uy).epsilon(1e-9));
+    CHECK(row[5] == Approx(v.R).epsilon(1e-9));
+    CHECK(row[6] == Approx(v.ductility).epsilon(1e-4));
+  }
+  const test::CliResult inverse = test::run_cli("spectrum '" + record + "' --strength-reduction 2,4 --periods 0.5");
+  REQUIRE(inverse.status == 0);
+  CHECK(inverse.out.rfind("period,damping,R,cy,uy,ductility\n", 0) == 0);
+  CHECK(std::count(inverse.out.begin(), inverse.out.end(), '\n') == 3);
+
+  struct Case {
+    std::string args, mention;
+  };
+  const std::vector<Case> cases{
+      {"--ductility 0.5", "--ductility"},
+      {"--ductility 2,x", "--ductility"},
+      {"--ductility 2 --hardening 0.1", "--hardening"},
+      {"--ductility 2 --hysteresis bilinear --hardening 1.5", "--hardening"},
+      {"--ductility 2 --hysteresis trilinear", "--hysteresis"},
+      {"--ductility 2 --periods 0,1", "--periods"},
+      {"--ductility 2 --strength-reduction 2", "--strength-reduction"},
+      {"--strength-reduction -2", "--strength-reduction"},
+      {"--yield-coefficient 0", "--yield-coefficient"},
+      {"--hysteresis bilinear", "--hysteresis"},
+  };
+  for (const Case& c : cases) {
+    const test::CliResult bad = test::run_cli("spectrum '" + record + "' " + c.args);
+    INFO(c.args << "\n" << bad.err);
+    CHECK(bad.status == 2);
+    CHECK(bad.err.rfind("error:", 0) == 0);
+    CHECK(bad.err.find(c.mention) != std::string::npos);
+  }
+}

@@ -47,6 +47,7 @@
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/plots.hpp"
 #include "adjoin/post/intensity.hpp"
+#include "adjoin/post/rotd.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "command.hpp"
 #include "reading_options.hpp"
@@ -301,12 +302,58 @@ int fourier_command(const RecordArgs& args) {
   return 0;
 }
 
+// Two files with the same dt: the horizontal components of one station. PGA [g], PGV [m/s] and
+// PGD [m] rotated (post/rotd.hpp: RotD00/50/100 over 0-179 degrees from the first towards the
+// second, at the samples; v, d the trapezoid integrals as above); the shorter padded with zeros.
+void add_pair(Record a, Record b, std::string* text, nlohmann::json* first) {
+  if (!(std::abs(a.dt - b.dt) <= 1e-9 * std::max(a.dt, b.dt))) {
+    std::cerr << "note: " << a.source << " and " << b.source << " have different dt: no rotated measures\n";
+    return;
+  }
+  if (a.accel.size() != b.accel.size()) {
+    std::cerr << "warning: " << a.source << " and " << b.source << " have " << a.accel.size() << " and "
+              << b.accel.size() << " samples: the shorter is padded with zeros for the rotated measures\n";
+    const std::size_t n = std::max(a.accel.size(), b.accel.size());
+    a.accel.resize(n, 0.0);
+    b.accel.resize(n, 0.0);
+  }
+  const std::vector<double> va = cumulative_trapezoid(a.accel, a.dt), vb = cumulative_trapezoid(b.accel, b.dt);
+  const RotatedPeaks pga = rotated_peaks(a.accel, b.accel), pgv = rotated_peaks(va, vb),
+                     pgd = rotated_peaks(cumulative_trapezoid(va, a.dt), cumulative_trapezoid(vb, b.dt));
+  const double g = 9.80665;
+  auto json = [](const RotatedPeaks& p, double scale) {
+    return nlohmann::json{{"rotd00", p.rotd00 / scale}, {"rotd50", p.rotd50 / scale}, {"rotd100", p.rotd100 / scale},
+                          {"angle00_deg", p.angle00}, {"angle100_deg", p.angle100}};
+  };
+  if (first) {
+    (*first)["pair"] = nlohmann::json{{"with", b.source}, {"pga_g", json(pga, g)}, {"pgv_m_s", json(pgv, 1.0)},
+                                      {"pgd_m", json(pgd, 1.0)}};
+    return;
+  }
+  std::ostringstream s;
+  s << "\npair " << a.source << " + " << b.source << " (rotated 0-179 deg from the first towards the second)\n";
+  auto line = [&](const char* name, const RotatedPeaks& p, double scale, const char* unit) {
+    s << "  " << std::left << std::setw(20) << name << std::right << std::setw(10) << number(p.rotd00 / scale, 4)
+      << std::setw(10) << number(p.rotd50 / scale, 4) << std::setw(10) << number(p.rotd100 / scale, 4) << "  "
+      << std::left << std::setw(4) << unit << "  angles " << number(p.angle00) << " / " << number(p.angle100)
+      << " deg\n";
+  };
+  s << "  " << std::left << std::setw(20) << "RotD" << std::right << std::setw(10) << "00" << std::setw(10) << "50"
+    << std::setw(10) << "100" << "\n";
+  line("PGA", pga, g, "g");
+  line("PGV", pgv, 1.0, "m/s");
+  line("PGD", pgd, 1.0, "m");
+  *text += s.str();
+}
+
 int info_command(const RecordArgs& args) {
   const RecordFormat format = format_from(args);
   std::string text;
   nlohmann::json all = nlohmann::json::array();
+  std::vector<Record> pair;
   for (std::size_t i = 0; i < args.files.size(); ++i) {
     const Record record = read_record(args.files[i], format);
+    if (args.files.size() == 2) pair.push_back(record);
     const IntensityMeasures m = intensity_measures(record);
     const SpectrumIntensity si = spectrum_intensity(record);
     if (args.json)
@@ -314,6 +361,7 @@ int info_command(const RecordArgs& args) {
     else
       text += (i ? "\n" : "") + table(record, m, &si);
   }
+  if (pair.size() == 2) add_pair(pair[0], pair[1], &text, args.json ? &all[0] : nullptr);
   if (args.json) text = (all.size() == 1 ? all[0] : all).dump(2) + "\n";
   if (args.out.empty()) {
     std::cout << text;
@@ -334,7 +382,8 @@ const Registration registration(30, [](CLI::App& app) -> Runner {
   record->require_subcommand(1);
   auto* info = record->add_subcommand(
       "info", "npts, dt, duration, PGA [g], PGV [m/s], PGD [m], Arias [m/s], CAV [m/s], D5-95 [s], predominant "
-              "period [s], Housner SI [m], ASI [g s]");
+              "period [s], Housner SI [m], ASI [g s]; for two files with the same dt (a pair of horizontal components) also "
+              "PGA, PGV, PGD rotated (RotD00/50/100 and angles)");
   info->add_option("files", args->files, "Accelerogram(s): PEER AT2, one/two-column text, delimited text with a header")
       ->required();
   add_reading_options(info, args.get());

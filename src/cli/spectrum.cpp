@@ -2,6 +2,9 @@
 //                        [--damping 0.05[,0.02...]] [--periods LIST | --range T0:T1:N[:log|lin]]
 //                        [--peaks exact|samples] [--target ec8:T[:AG[:TYPE]]|FILE]
 //                        [--free-vibration] [--threads N] [--out FILE] [--plot FILE.png|.svg]
+// adjoin spectrum H1 H2 --rotd 50,100 [--components] [reading, period, damping options]
+// adjoin spectrum RECORD --ductility 1,2,4,6 [--hysteresis epp|bilinear] [--hardening 0.05]
+// adjoin spectrum RECORD --strength-reduction 2,4 | --yield-coefficient 0.1,0.2 [--hysteresis ...]
 //
 // Elastic response spectra of a recorded accelerogram (SPEC §3): CSV with header
 // `period,damping,sd,sv,sa,psv,psa` (s, ratio, m, m/s, g, m/s, g), one row per damping and
@@ -9,7 +12,18 @@
 // period with gnuplot. Without gnuplot on PATH the CSV is still written and the command
 // fails (exit 2) with a message saying so. --target compares PSA with a target spectrum
 // (ratios on stderr, the target dashed on the plot).
+//
+// Two records (the horizontal components of one station, same dt; the shorter is padded with
+// zeros, with a warning): orientation-independent spectra (post/rotd.hpp), CSV
+// `period,damping,rotd00,rotd50,rotd100,angle00,angle100,gmroti50` (PSA in g, angles in
+// degrees from the first component towards the second), then `rotdNN` for any other
+// percentile of --rotd, then `psa_h1,psa_h2` with --components; the GMRotI50 angle on stderr.
+// --ductility: constant-ductility spectra (post/inelastic.hpp), CSV
+// `period,damping,ductility,cy,uy,R,ductility_reached`. --strength-reduction R or
+// --yield-coefficient cy: the constant-strength inverse, CSV `period,damping,R,cy,uy,ductility`.
+#include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
@@ -23,7 +37,10 @@
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/ground/spectrum_matching.hpp"
 #include "adjoin/io/atomic_file.hpp"
+#include "adjoin/io/gnuplot.hpp"
 #include "adjoin/io/plots.hpp"
+#include "adjoin/post/inelastic.hpp"
+#include "adjoin/post/rotd.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "command.hpp"
 #include "reading_options.hpp"
@@ -34,7 +51,12 @@ namespace {
 namespace fs = std::filesystem;
 
 struct SpectrumArgs : ReadingArgs {
-  std::string record;
+  std::vector<std::string> records;
+  std::string rotd;  // percentiles; empty: not asked
+  bool components = false;
+  std::string ductility, strength_reduction, yield_coefficient;
+  std::string hysteresis;
+  std::string hardening;  // empty: not given
   std::string damping = "0.05";
   std::string periods;
   std::string range;
@@ -149,6 +171,9 @@ std::vector<ReferenceCurve> compare_with_target(const ResponseSpectrum& spectrum
   return curves;
 }
 
+int rotd_command(const SpectrumArgs& args, const SpectrumOptions& elastic, const PlotStyle& style);
+int inelastic_command(const SpectrumArgs& args, const SpectrumOptions& elastic, const PlotStyle& style);
+
 int spectrum_command(const SpectrumArgs& args) {
   const RecordFormat format = format_from(args);
 
@@ -188,7 +213,26 @@ int spectrum_command(const SpectrumArgs& args) {
     }
   }
 
-  const Record record = read_record(args.record, format);
+  const bool inelastic = !args.ductility.empty() || !args.strength_reduction.empty() || !args.yield_coefficient.empty();
+  if (args.records.size() == 2 || !args.rotd.empty()) {
+    if (inelastic) throw InputError("--ductility/--strength-reduction/--yield-coefficient: give one record (two are for --rotd)");
+    if (target) throw InputError("--target " + args.target + ": compares one record's elastic spectrum (not --rotd)");
+    if (options.free_vibration) throw InputError("--free-vibration: not available with --rotd");
+    return rotd_command(args, options, style);
+  }
+  if (inelastic) {
+    if (target) throw InputError("--target " + args.target + ": compares the elastic spectrum (not inelastic spectra)");
+    if (options.free_vibration) throw InputError("--free-vibration: not available for inelastic spectra");
+    if (args.peaks != "exact") throw InputError("--peaks " + args.peaks + ": inelastic spectra always locate peaks exactly");
+    return inelastic_command(args, options, style);
+  }
+  if (!args.hysteresis.empty() || !args.hardening.empty())
+    throw InputError(std::string(args.hysteresis.empty() ? "--hardening" : "--hysteresis") +
+                     ": for inelastic spectra (give --ductility, --strength-reduction or --yield-coefficient)");
+  if (args.components) throw InputError("--components: for --rotd (two records)");
+
+  const std::string& record_file = args.records.at(0);
+  const Record record = read_record(record_file, format);
   const ResponseSpectrum spectrum = response_spectrum(record, options);
 
   if (!args.out.empty()) {
@@ -208,10 +252,236 @@ int spectrum_command(const SpectrumArgs& args) {
     for (double t : spectrum.periods) any_positive = any_positive || t > 0.0;
     if (!any_positive) throw InputError("--plot " + args.plot + ": needs at least one period > 0 s");
     return draw_figure(
-        [&] { plot_spectrum(spectrum, args.plot, style, fs::path(args.record).filename().string(), references); },
+        [&] { plot_spectrum(spectrum, args.plot, style, fs::path(record_file).filename().string(), references); },
         args.out.empty() ? "the spectrum was printed" : "the spectrum was written to " + args.out);
   }
   return 0;
+}
+
+
+// --out FILE (temporary file and rename) or stdout.
+void emit(const std::string& out, const std::string& text) {
+  if (!out.empty()) {
+    AtomicFile file(out);
+    file.stream() << text;
+    file.commit();
+  } else {
+    std::cout << text;
+    std::cout.flush();
+    if (!std::cout) throw InputError("cannot write to standard output");
+  }
+}
+
+std::string row(const std::vector<double>& values) {
+  std::string line;
+  char cell[32];
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    std::snprintf(cell, sizeof cell, "%s%.10g", i ? "," : "", values[i]);
+    line += cell;
+  }
+  return line + "\n";
+}
+
+// Curves y(period) on a log period axis, one per label.
+struct Curve {
+  std::string label;
+  std::vector<double> period, value;
+};
+void plot_curves(const std::string& image, const PlotStyle& style, const std::string& title, const std::string& ylabel,
+                 const std::vector<Curve>& curves) {
+  std::ostringstream s;
+  std::string plots;
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    s << "$c" << c << " << EOD\n";
+    for (std::size_t i = 0; i < curves[c].period.size(); ++i)
+      if (curves[c].period[i] > 0.0) s << curves[c].period[i] << " " << curves[c].value[i] << "\n";
+    s << "EOD\n";
+    plots += (c ? ", " : "") + std::string("$c") + std::to_string(c) + " using 1:2 with lines linewidth 2 title " +
+             gnuplot_quote(curves[c].label);
+  }
+  s << "set title " << gnuplot_quote(title) << " noenhanced\nset logscale x\nset format x '%g'\n"
+    << "set grid xtics mxtics ytics lc rgb '#d0d0d0'\nset xlabel 'period T [s]'\nset ylabel "
+    << gnuplot_quote(ylabel) << "\nset key top right noenhanced\nplot " << plots << "\n";
+  render_gnuplot(s.str(), image, style);
+}
+
+// The two components: the same dt (relative 1e-9), the shorter padded with zeros (warning).
+std::pair<Record, Record> read_pair(const SpectrumArgs& args) {
+  const RecordFormat format = format_from(args);
+  Record a = read_record(args.records.at(0), format), b = read_record(args.records.at(1), format);
+  if (!(std::abs(a.dt - b.dt) <= 1e-9 * std::max(a.dt, b.dt))) {
+    std::ostringstream out;
+    out << args.records[0] << " (dt = " << a.dt << " s) and " << args.records[1] << " (dt = " << b.dt
+        << " s): the two components must have the same time step (resample one with `adjoin record process "
+           "--resample`)";
+    throw InputError(out.str());
+  }
+  if (a.accel.size() != b.accel.size()) {
+    const bool first_shorter = a.accel.size() < b.accel.size();
+    std::cerr << "warning: " << args.records[first_shorter ? 0 : 1] << " has "
+              << (first_shorter ? a : b).accel.size() << " samples, " << args.records[first_shorter ? 1 : 0]
+              << " has " << (first_shorter ? b : a).accel.size() << ": the shorter is padded with zeros at its end\n";
+    const std::size_t n = std::max(a.accel.size(), b.accel.size());
+    a.accel.resize(n, 0.0);
+    b.accel.resize(n, 0.0);
+  }
+  return {std::move(a), std::move(b)};
+}
+
+int rotd_command(const SpectrumArgs& args, const SpectrumOptions& elastic, const PlotStyle& style) {
+  if (args.records.size() != 2)
+    throw InputError("--rotd: needs two records (the two horizontal components of one station), got one");
+  RotDOptions options;
+  options.periods = elastic.periods;
+  options.dampings = elastic.dampings;
+  options.points_per_period = elastic.points_per_period;
+  options.max_substeps = elastic.max_substeps;
+  options.refine_peaks = elastic.refine_peaks;
+  options.threads = elastic.threads;
+  const std::string expected = "percentiles from 0 to 100 separated by commas, e.g. 50,100";
+  if (!args.rotd.empty())
+    for (double p : parse_list("--rotd", args.rotd, expected)) {
+      if (!(p >= 0.0 && p <= 100.0)) throw InputError("--rotd " + args.rotd + ": expected " + expected);
+      if (p != 0.0 && p != 50.0 && p != 100.0 &&
+          std::find(options.percentiles.begin(), options.percentiles.end(), p) == options.percentiles.end())
+        options.percentiles.push_back(p);
+    }
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError("--rotd: " + error);
+  const auto [h1, h2] = read_pair(args);
+  const RotDSpectrum s = rotd_spectrum(h1, h2, options);
+
+  std::string text = "period,damping,rotd00,rotd50,rotd100,angle00,angle100,gmroti50";
+  char name[48];
+  for (double p : options.percentiles) {
+    std::snprintf(name, sizeof name, ",rotd%02g", p);
+    text += name;
+  }
+  if (args.components) text += ",psa_h1,psa_h2";
+  text += "\n";
+  for (const RotDValues& v : s.values) {
+    std::vector<double> cells{v.period, v.damping, v.rotd00, v.rotd50, v.rotd100, v.angle00, v.angle100, v.gmroti50};
+    cells.insert(cells.end(), v.extra.begin(), v.extra.end());
+    if (args.components) cells.insert(cells.end(), {v.psa1, v.psa2});
+    text += row(cells);
+  }
+  emit(args.out, text);
+  for (std::size_t d = 0; d < s.dampings.size(); ++d)
+    std::fprintf(stderr, "GMRotI50, damping %g %%: angle %g degrees from %s\n", 100.0 * s.dampings[d],
+                 s.gmroti50_angle[d], args.records[0].c_str());
+
+  if (args.plot.empty()) return 0;
+  std::vector<Curve> curves;
+  for (std::size_t d = 0; d < s.dampings.size(); ++d) {
+    char suffix[32];
+    std::snprintf(suffix, sizeof suffix, s.dampings.size() > 1 ? " (%g %%)" : "", 100.0 * s.dampings[d]);
+    Curve c00{std::string("RotD00") + suffix, {}, {}}, c50{std::string("RotD50") + suffix, {}, {}},
+        c100{std::string("RotD100") + suffix, {}, {}}, gm{std::string("GMRotI50") + suffix, {}, {}};
+    for (std::size_t i = 0; i < s.periods.size(); ++i) {
+      const RotDValues& v = s.at(d, i);
+      for (Curve* c : {&c00, &c50, &c100, &gm}) c->period.push_back(v.period);
+      c00.value.push_back(v.rotd00);
+      c50.value.push_back(v.rotd50);
+      c100.value.push_back(v.rotd100);
+      gm.value.push_back(v.gmroti50);
+    }
+    curves.insert(curves.end(), {c00, c50, c100, gm});
+  }
+  return draw_figure(
+      [&] {
+        plot_curves(args.plot, style,
+                    "RotD spectra: " + fs::path(args.records[0]).filename().string() + " + " +
+                        fs::path(args.records[1]).filename().string(),
+                    "PSA [g]", curves);
+      },
+      args.out.empty() ? "the spectrum was printed" : "the spectrum was written to " + args.out);
+}
+
+int inelastic_command(const SpectrumArgs& args, const SpectrumOptions& elastic, const PlotStyle& style) {
+  const int given = !args.ductility.empty() + !args.strength_reduction.empty() + !args.yield_coefficient.empty();
+  if (given > 1) throw InputError("--ductility, --strength-reduction, --yield-coefficient: give one of them");
+  InelasticOptions options;
+  for (double t : elastic.periods)
+    if (t == 0.0) throw InputError("--periods: inelastic spectra need periods > 0 s (0 is the rigid oscillator)");
+  options.periods = elastic.periods;
+  options.dampings = elastic.dampings;
+  options.threads = elastic.threads;
+  if (args.hysteresis.empty() || args.hysteresis == "epp") {
+    options.hysteresis = Hysteresis::elastic_perfectly_plastic;
+    if (!args.hardening.empty())
+      throw InputError("--hardening " + args.hardening + ": for --hysteresis bilinear (epp has no hardening)");
+  } else if (args.hysteresis == "bilinear") {
+    options.hysteresis = Hysteresis::bilinear;
+    options.hardening = 0.05;
+    if (!args.hardening.empty()) {
+      double alpha = 0.0;
+      if (!parse_number(args.hardening, &alpha) || !(alpha >= 0.0 && alpha < 1.0))
+        throw InputError("--hardening " + args.hardening + ": expected the post-yield stiffness ratio in [0, 1), e.g. 0.05");
+      options.hardening = alpha;
+    }
+  } else {
+    throw InputError("--hysteresis " + args.hysteresis + ": expected epp or bilinear");
+  }
+  std::vector<double> strengths;
+  StrengthMeasure measure = StrengthMeasure::reduction_factor;
+  if (!args.ductility.empty()) {
+    const std::string expected = "target ductilities from 1 to 100 separated by commas, e.g. 1,2,4,6";
+    options.ductilities = parse_list("--ductility", args.ductility, expected);
+    for (double mu : options.ductilities)
+      if (!(mu >= 1.0 && mu <= 100.0)) throw InputError("--ductility " + args.ductility + ": expected " + expected);
+  } else {
+    const bool r = !args.strength_reduction.empty();
+    const std::string option = r ? "--strength-reduction" : "--yield-coefficient";
+    const std::string& text = r ? args.strength_reduction : args.yield_coefficient;
+    const std::string expected = r ? "strength reduction factors R = fe/fy > 0, e.g. 2,4"
+                                   : "yield strength coefficients cy = fy/(m g) > 0, e.g. 0.1,0.2";
+    strengths = parse_list(option, text, expected);
+    for (double x : strengths)
+      if (!(x > 0.0 && x <= 1e6)) throw InputError(option + " " + text + ": expected " + expected + " (at most 1e6)");
+    measure = r ? StrengthMeasure::reduction_factor : StrengthMeasure::yield_coefficient;
+  }
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError("--periods/--range/--damping/--hardening: " + error);
+
+  const std::string& file = args.records.at(0);
+  const Record record = read_record(file, format_from(args));
+  const bool ductility = !args.ductility.empty();
+  const InelasticSpectrum s = ductility ? constant_ductility_spectrum(record.dt, record.accel, options)
+                                        : constant_strength_spectrum(record.dt, record.accel, strengths, measure, options);
+  std::string text = ductility ? "period,damping,ductility,cy,uy,R,ductility_reached\n" : "period,damping,R,cy,uy,ductility\n";
+  for (const InelasticValues& v : s.values)
+    text += ductility ? row({v.period, v.damping, v.ductility, v.cy, v.uy, v.R, v.ductility_reached})
+                      : row({v.period, v.damping, v.R, v.cy, v.uy, v.ductility});
+  emit(args.out, text);
+
+  if (args.plot.empty()) return 0;
+  std::vector<Curve> curves;
+  const std::size_t per = ductility ? s.ductilities.size() : strengths.size();
+  for (std::size_t d = 0; d < s.dampings.size(); ++d)
+    for (std::size_t k = 0; k < per; ++k) {
+      char label[96];
+      const double key = ductility ? s.ductilities[k] : strengths[k];
+      const char* name = ductility ? "mu" : (measure == StrengthMeasure::reduction_factor ? "R" : "cy");
+      if (s.dampings.size() > 1)
+        std::snprintf(label, sizeof label, "%s = %g (%g %%)", name, key, 100.0 * s.dampings[d]);
+      else
+        std::snprintf(label, sizeof label, "%s = %g", name, key);
+      Curve c{label, {}, {}};
+      for (std::size_t i = 0; i < s.periods.size(); ++i) {
+        const InelasticValues& v = s.values[(d * s.periods.size() + i) * per + k];
+        c.period.push_back(v.period);
+        c.value.push_back(ductility ? v.cy : v.ductility);
+      }
+      curves.push_back(std::move(c));
+    }
+  return draw_figure(
+      [&] {
+        plot_curves(args.plot, style,
+                    std::string(ductility ? "Constant-ductility spectra: " : "Constant-strength spectra: ") +
+                        fs::path(file).filename().string(),
+                    ductility ? "yield strength coefficient cy = fy/(m g)" : "ductility demand", curves);
+      },
+      args.out.empty() ? "the spectrum was printed" : "the spectrum was written to " + args.out);
 }
 
 const Registration registration(20, [](CLI::App& app) -> Runner {
@@ -219,7 +489,10 @@ const Registration registration(20, [](CLI::App& app) -> Runner {
   auto* sub = app.add_subcommand(
       "spectrum",
       "Elastic response spectra of a record: CSV period,damping,sd,sv,sa,psv,psa (s, -, m, m/s, g, m/s, g)");
-  sub->add_option("record", args->record, "Accelerogram (PEER AT2, one/two-column text, CSV)")->required();
+  sub->add_option("records", args->records,
+                  "Accelerogram (PEER AT2, one/two-column text, CSV); two for --rotd (the horizontal components)")
+      ->required()
+      ->expected(1, 2);
   add_reading_options(sub, args.get());
   sub->add_option("--damping", args->damping, "Damping ratios, comma separated (default 0.05)");
   auto* periods = sub->add_option("--periods", args->periods, "Periods [s], comma separated (0: rigid, SA = PGA)");
@@ -237,6 +510,21 @@ const Registration registration(20, [](CLI::App& app) -> Runner {
   sub->add_option("--target", args->target,
                   "Compare PSA with a target spectrum: ec8:T[:AG[:TYPE]] or a two-column file period [s], PSA [g] "
                   "(ratios on stderr; dashed on the plot)");
+  sub->add_option("--rotd", args->rotd,
+                  "Two records: orientation-independent spectra RotD00/50/100 with their angles and GMRotI50, and "
+                  "these percentiles too (e.g. 50,100 or 84)");
+  sub->add_flag("--components", args->components, "With --rotd: also the two components' own PSA (psa_h1,psa_h2)");
+  sub->add_option("--ductility", args->ductility,
+                  "Constant-ductility spectra for these target ductilities (e.g. 1,1.5,2,3,4,6): "
+                  "period,damping,ductility,cy,uy,R,ductility_reached");
+  sub->add_option("--strength-reduction", args->strength_reduction,
+                  "Constant-strength spectra: the ductility demand at these R = fe/fy (e.g. 2,4)");
+  sub->add_option("--yield-coefficient", args->yield_coefficient,
+                  "Constant-strength spectra: the ductility demand at these cy = fy/(m g) (e.g. 0.1,0.2)");
+  sub->add_option("--hysteresis", args->hysteresis,
+                  "Inelastic spectra: epp (elastic-perfectly-plastic, default) or bilinear");
+  sub->add_option("--hardening", args->hardening,
+                  "Bilinear: post-yield stiffness ratio in [0, 1) (default 0.05)");
   return [args]() { return spectrum_command(*args); };
 });
 
