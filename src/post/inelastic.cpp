@@ -29,71 +29,6 @@ constexpr double kTwoPi = 2.0 * std::numbers::pi;
 constexpr double kGridRatio = 0.9;      // strength scan: eta_{j+1} = 0.9 eta_j
 constexpr double kSmallestEta = 1e-4;   // f_y / f_e
 
-using Mat4 = std::array<double, 16>;  // row-major
-
-Mat4 multiply(const Mat4& a, const Mat4& b) {
-  Mat4 c{};
-  for (int i = 0; i < 4; ++i)
-    for (int k = 0; k < 4; ++k) {
-      const double aik = a[static_cast<std::size_t>(4 * i + k)];
-      for (int j = 0; j < 4; ++j) c[static_cast<std::size_t>(4 * i + j)] += aik * b[static_cast<std::size_t>(4 * k + j)];
-    }
-  return c;
-}
-
-// exp(A) by scaling and squaring with a Taylor series summed to rounding.
-Mat4 expm(Mat4 a) {
-  double norm = 0.0;
-  for (int i = 0; i < 4; ++i) {
-    double row = 0.0;
-    for (int j = 0; j < 4; ++j) row += std::abs(a[static_cast<std::size_t>(4 * i + j)]);
-    norm = std::max(norm, row);
-  }
-  int squarings = 0;
-  if (norm > 0.5) squarings = static_cast<int>(std::ceil(std::log2(norm / 0.5)));
-  const double scale = std::ldexp(1.0, -squarings);
-  for (double& x : a) x *= scale;
-  Mat4 result{};
-  for (int i = 0; i < 4; ++i) result[static_cast<std::size_t>(5 * i)] = 1.0;
-  Mat4 term = result;
-  for (int k = 1; k <= 30; ++k) {
-    term = multiply(term, a);
-    double term_norm = 0.0;
-    for (double& x : term) {
-      x /= static_cast<double>(k);
-      term_norm = std::max(term_norm, std::abs(x));
-    }
-    for (std::size_t i = 0; i < 16; ++i) result[i] += term[i];
-    if (term_norm < 1e-18) break;
-  }
-  for (int s = 0; s < squarings; ++s) result = multiply(result, result);
-  return result;
-}
-
-// The exact step over h of u'' + 2 zeta omega u' + kappa omega^2 u = q(t), q linear from q0 to
-// q1 (kappa = 1 elastic, alpha yielding; kappa = 0 is allowed): as step_coefficients, in the
-// time scale of the elastic frequency.
-StepCoefficients branch_coefficients(double omega, double zeta, double kappa, double h) {
-  const double theta = omega * h;
-  Mat4 a{0.0, 1.0, 0.0, 0.0,            //
-         -kappa, -2.0 * zeta, 1.0, 0.0,  //
-         0.0, 0.0, 0.0, 1.0,            //
-         0.0, 0.0, 0.0, 0.0};
-  for (double& x : a) x *= theta;
-  const Mat4 e = expm(a);
-  const double w2 = omega * omega;
-  StepCoefficients k{};
-  k.a_uu = e[0];
-  k.a_uv = e[1] / omega;
-  k.b_u0 = (e[2] - e[3] / theta) / w2;
-  k.b_u1 = e[3] / theta / w2;
-  k.a_vu = omega * e[4];
-  k.a_vv = e[5];
-  k.b_v0 = (e[6] - e[7] / theta) / omega;
-  k.b_v1 = e[7] / theta / omega;
-  return k;
-}
-
 // The root of sum c[m] s^m / m! = target on (lo, hi); the series is above target at lo if
 // lo_above, below at hi then (and the other way round). Newton kept inside the bracket.
 double series_root(const double* c, int terms, double target, double lo, double hi, bool lo_above) {
@@ -117,8 +52,8 @@ double series_root(const double* c, int terms, double target, double lo, double 
 class Sdof {
  public:
   Sdof(double omega, double zeta, double alpha, double h)
-      : el_(branch_coefficients(omega, zeta, 1.0, h)),
-        pl_(branch_coefficients(omega, zeta, alpha, h)),
+      : el_(spectrum_detail::branch_step_coefficients(omega, zeta, 1.0, h)),
+        pl_(spectrum_detail::branch_step_coefficients(omega, zeta, alpha, h)),
         h_(h),
         c_(2.0 * zeta * omega),
         w2_(omega * omega),
@@ -407,17 +342,7 @@ void for_each_task(std::size_t total, unsigned wanted, const Compute& compute) {
       if (!failed.exchange(true)) failure = std::current_exception();
     }
   };
-  unsigned threads = wanted != 0 ? wanted : std::thread::hardware_concurrency();
-  threads = static_cast<unsigned>(std::min<std::size_t>(std::max(threads, 1u), std::max<std::size_t>(total, 1)));
-  if (threads <= 1) {
-    work();
-  } else {
-    std::vector<std::thread> pool;
-    pool.reserve(threads - 1);
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (auto& thread : pool) thread.join();
-  }
+  spectrum_detail::run_workers(wanted, total, work);
   if (failure) std::rethrow_exception(failure);
 }
 

@@ -396,17 +396,7 @@ RotDSpectrum rotd_spectrum(double dt, std::span<const double> a1, std::span<cons
       }
     }
   };
-  unsigned threads = options.threads != 0 ? options.threads : std::thread::hardware_concurrency();
-  threads = static_cast<unsigned>(std::min<std::size_t>(std::max(threads, 1u), std::max<std::size_t>(total, 1)));
-  if (threads <= 1) {
-    work();
-  } else {
-    std::vector<std::thread> pool;
-    pool.reserve(threads - 1);
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (auto& thread : pool) thread.join();
-  }
+  spectrum_detail::run_workers(options.threads, total, work);
 
   // Percentiles and angles.
   const std::size_t quarter = angles.count / 2;  // the angle index of 90 degrees

@@ -236,12 +236,16 @@ std::size_t spectrum_substeps(double dt, double period, const SpectrumOptions& o
 }
 
 StepCoefficients step_coefficients(double omega, double damping, double h) {
+  return spectrum_detail::branch_step_coefficients(omega, damping, 1.0, h);
+}
+
+StepCoefficients spectrum_detail::branch_step_coefficients(double omega, double damping, double kappa, double h) {
   // Dimensionless time tau = omega t, state [u, du/dtau, P, dP/dtau] with P = p / omega^2
-  // linear in tau: u_tautau + 2 zeta u_tau + u = P. Its exponential over theta = omega h gives
-  // the exact step; nothing cancels for small theta.
+  // linear in tau: u_tautau + 2 zeta u_tau + kappa u = P. Its exponential over theta = omega h
+  // gives the exact step; nothing cancels for small theta.
   const double theta = omega * h;
   Mat4 a{0.0, 1.0, 0.0, 0.0,                  //
-         -1.0, -2.0 * damping, 1.0, 0.0,      //
+         -kappa, -2.0 * damping, 1.0, 0.0,    //
          0.0, 0.0, 0.0, 1.0,                  //
          0.0, 0.0, 0.0, 0.0};
   for (double& x : a) x *= theta;
@@ -323,17 +327,7 @@ ResponseSpectrum response_spectrum(double dt, std::span<const double> accel,
       compute_group(dt, accel, sorted.data() + groups[g].first, groups[g].count, groups[g].n, options,
                     spectrum.values.data());
   };
-  unsigned threads = options.threads != 0 ? options.threads : std::thread::hardware_concurrency();
-  threads = static_cast<unsigned>(std::min<std::size_t>(std::max(threads, 1u), std::max<std::size_t>(groups.size(), 1)));
-  if (threads <= 1) {
-    work();
-  } else {
-    std::vector<std::thread> pool;
-    pool.reserve(threads - 1);
-    for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
-    work();
-    for (auto& thread : pool) thread.join();
-  }
+  spectrum_detail::run_workers(options.threads, groups.size(), work);
   return spectrum;
 }
 

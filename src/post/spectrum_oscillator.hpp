@@ -7,6 +7,8 @@
 #include <cmath>
 #include <cstddef>
 #include <span>
+#include <thread>
+#include <vector>
 
 #include "adjoin/post/spectrum.hpp"
 
@@ -257,5 +259,27 @@ class Oscillator {
   double u_ = 0.0, v_ = 0.0, a_ = 0.0;
   Peaks peaks_;
 };
+
+// The exact step over h of u'' + 2 zeta omega u' + kappa omega^2 u = p(t), p linear (kappa = 1
+// the elastic oscillator, step_coefficients; kappa = alpha < 1 a yielded bilinear branch, 0 a
+// perfectly plastic one), in the time scale of omega. In spectrum.cpp.
+StepCoefficients branch_step_coefficients(double omega, double damping, double kappa, double h);
+
+// Runs `work` (which takes tasks until none are left) on min(wanted, tasks) threads, the
+// calling thread included; wanted 0 means std::thread::hardware_concurrency().
+template <typename Work>
+void run_workers(unsigned wanted, std::size_t tasks, const Work& work) {
+  unsigned threads = wanted != 0 ? wanted : std::thread::hardware_concurrency();
+  threads = static_cast<unsigned>(std::min<std::size_t>(std::max(threads, 1u), std::max<std::size_t>(tasks, 1)));
+  if (threads <= 1) {
+    work();
+    return;
+  }
+  std::vector<std::thread> pool;
+  pool.reserve(threads - 1);
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (auto& thread : pool) thread.join();
+}
 
 }  // namespace adjoin::spectrum_detail
