@@ -81,11 +81,11 @@ TEST_CASE("a filtered-noise scene is reproducible from its seed and changes with
   CHECK(different);
 }
 
-TEST_CASE("a filtered-noise scene matched to EC8 type 2 at 2 % damping; its keys are checked", "[ground][synthesis]") {
+TEST_CASE("a filtered-noise scene matched to EC8 type 2 at 2 % damping, and its keys checked", "[ground][synthesis]") {
   // The scene's ground motion, read back through the library, has the asked-for 2 % spectrum.
   const std::vector<std::string> type2 = {"ground.match_ec8=\"C\"", "ground.match_ag=0.2", "ground.match_ec8_type=2",
                                           "ground.match_damping=0.02", "ground.match_band=[0.1, 2.0]",
-                                          "solver.t_end=1"};
+                                          "ground.match_tolerance=0.15", "solver.t_end=1"};
   const Scene s = load_scene(kScenes + "si-noise.toml", type2);
   // The same motion synthesised directly: seed, envelope and duration of the scene.
   SynthesisOptions o;
@@ -98,6 +98,9 @@ TEST_CASE("a filtered-noise scene matched to EC8 type 2 at 2 % damping; its keys
   m.period_min = 0.1;
   m.period_max = 2.0;
   m.damping = 0.02;
+  // Within 15 % over the band: with the envelope kept in shape (SIMQKE's way) this seed's best
+  // over 5 phase draws is 12.1 %; the test is about the scene giving the library's motion.
+  m.tolerance = 0.15;
   MatchReport report;
   const Record direct = synthesize_matched(o, m, &report);
   REQUIRE(report.converged);

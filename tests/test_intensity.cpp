@@ -72,7 +72,7 @@ TEST_CASE("PGV and PGD of a cosine: A/(2 pi f) and 2 A/(2 pi f)^2", "[intensity]
   for (std::size_t i = 0; i < v.size(); i += 613) CHECK(v[i] == Approx(A * std::sin(w * i * 0.001) / w).margin(1e-6));
 }
 
-TEST_CASE("constant amplitude: D5-95 = 0.9 duration exactly; triangle wave CAV exactly", "[intensity]") {
+TEST_CASE("constant amplitude: D5-95 = 0.9 duration exactly, triangle wave CAV exactly", "[intensity]") {
   const Record c = test::sampled_record(0.02, 501, [](double) { return -1.5; });  // 10 s
   const SignificantDuration d = significant_duration(c);
   CHECK(d.t_start == Approx(0.5).epsilon(1e-12));

@@ -113,7 +113,7 @@ TEST_CASE("energy.csv: the streamed balance closes row by row and ends at the su
   CHECK(std::abs(last[6]) < 1e-5 * last[1]);
 }
 
-TEST_CASE("spectra.csv is written when [output.spectra] is present; bad spectra keys exit 2", "[outputs][spectra][cli]") {
+TEST_CASE("spectra.csv is written when [output.spectra] is present, bad spectra keys exit 2", "[outputs][spectra][cli]") {
   const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "run-spectra";
   std::filesystem::remove_all(dir);
   const auto r = test::run_cli("run '" + kStrong + "' --set output.spectra.damping=[0.02,0.05] -q --out '" + dir.string() + "'");

@@ -326,7 +326,7 @@ TEST_CASE("RotD: bounds by the single components, swap and rotation invariance",
   }
 }
 
-TEST_CASE("RotD: rotated PGA of A-CAT as smc2psa; invalid input", "[rotd]") {
+TEST_CASE("RotD: rotated PGA of A-CAT as smc2psa, and invalid input", "[rotd]") {
   const Smc2psa ref = read_smc2psa();
   const RotatedPeaks pga = rotated_peaks(acat(1).accel, acat(2).accel);
   CHECK(pga.rotd00 * 100.0 == Approx(ref.scalars.at("pga_rot00")).epsilon(2e-4));

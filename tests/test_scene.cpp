@@ -159,7 +159,7 @@ TEST_CASE("thermodynamic and physical restrictions are enforced with the key, va
   CHECK(error_of(kStrong, {"output.every=0"}).find("output.every = 0 must be 1 or more") != std::string::npos);
 }
 
-TEST_CASE("unknown keys name the nearest known one; types and sections are checked", "[scene][errors]") {
+TEST_CASE("unknown keys name the nearest known one, types and sections are checked", "[scene][errors]") {
   std::string e = error_of(replace(kStrong, "tau_x = 4.0", "taux = 4.0"));
   CHECK(e.find("unknown key model.rod2.taux; did you mean model.rod2.tau_x?") != std::string::npos);
   CHECK(e.rfind("bad.toml:" + std::to_string(line_of(kStrong, "tau_x = 4.0")) + ":", 0) == 0);

@@ -229,7 +229,7 @@ set = {"ground.u0" = 0.05, "ground.omega" = 3.5, "ground.k" = 0.3}
   CHECK(rows[1].index == 7);
 }
 
-TEST_CASE("sweeps: axis values with their own edits; elastic rods drop their fractional keys", "[sweep]") {
+TEST_CASE("sweeps: axis values with their own edits, elastic rods drop their fractional keys", "[sweep]") {
   const SweepSpec spec = load_sweep(sweep_file("rods.toml", R"(
 set = {"solver.h" = 0.01, "solver.t_end" = 10.0, "model.mu" = 0.0}
 [[axis]]

@@ -23,7 +23,10 @@ std::string nearest(const std::string& word, const std::vector<std::string>& can
   std::string best;
   std::size_t best_distance = std::string::npos;
   for (const auto& c : candidates)
-    if (const std::size_t d = edit_distance(word, c); d < best_distance) {
+    // A candidate that contains the word (three letters or more) is what was meant more often
+    // than one a few edits away: "sine" is "decaying-sine", not "record".
+    if (const std::size_t d = word.size() >= 3 && c.find(word) != std::string::npos ? 1 : edit_distance(word, c);
+        d < best_distance) {
       best_distance = d;
       best = c;
     }
