@@ -204,7 +204,8 @@ void pair_peaks(double dt, std::span<const double> a1, std::span<const double> a
   // A turning point of the rotated response inside sub-step s at angle index j (lane of the
   // peaks' vector): exact value where it can beat the angle's peak.
   auto consider = [&](std::size_t s, std::size_t j, double r0, double r1, double w0, double w1) {
-    double& peak = w.peaks[j / kLanes][j % kLanes];
+    // (A copy, written back below: clang binds no reference to a vector-extension element.)
+    const double peak = w.peaks[j / kLanes][j % kLanes];
     if (!(w0 * w1 < 0.0) || std::max(std::abs(r0), std::abs(r1)) + margin2 < peak) return false;
     if (hermite_max(r0, w0, r1, w1, h) + margin4 < peak) return false;
     // The exact turning point of the rotated response (as Oscillator::refine).
@@ -219,7 +220,7 @@ void pair_peaks(double dt, std::span<const double> a1, std::span<const double> a
       d[static_cast<std::size_t>(q)] = -c * d[static_cast<std::size_t>(q - 1)] - w2 * d[static_cast<std::size_t>(q - 2)];
     const double value = turning_value(d.data(), terms, h, w0, w1);
     if (!(value > peak)) return false;
-    peak = value;
+    w.peaks[j / kLanes][j % kLanes] = value;
     return true;
   };
   constexpr double kDegree = std::numbers::pi / 180.0;
