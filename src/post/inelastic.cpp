@@ -66,21 +66,7 @@ class Sdof {
     branch_ = 0;
     uy_ = uy;
     f_pl_ = std::isfinite(uy) ? w2_ * (1.0 - alpha_) * uy : 0.0;
-    const double inv_n = 1.0 / static_cast<double>(n);
-    for (std::size_t i = 0; i + 1 < samples; ++i) {
-      const double p0 = -accel[i], p1 = -accel[i + 1];
-      if (n == 1) {
-        step(p0, p1);
-        continue;
-      }
-      const double dp = (p1 - p0) * inv_n;
-      double p = p0;
-      for (std::size_t j = 1; j <= n; ++j) {
-        const double next = j == n ? p1 : p0 + dp * static_cast<double>(j);
-        step(p, next);
-        p = next;
-      }
-    }
+    spectrum_detail::for_each_substep(accel, samples, n, [this](double p0, double p1) { step(p0, p1); });
     return umax_;
   }
 

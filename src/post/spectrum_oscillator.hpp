@@ -265,6 +265,30 @@ class Oscillator {
 // perfectly plastic one), in the time scale of omega. In spectrum.cpp.
 StepCoefficients branch_step_coefficients(double omega, double damping, double kappa, double h);
 
+// Feeds `step(p_start, p_end)` the excitation p = -accel over every sub-step: each record
+// interval cut into n equal sub-steps, p linear inside it (the sub-step ends computed the same
+// way everywhere, so every oscillator sees the same numbers). The vector-lane kernels
+// (spectrum_lanes.hpp) keep their own copy of this loop: they are compiled as AVX2 clones,
+// into which a call to this template is not inlined (the spectrum ran 6x slower).
+template <typename Step>
+void for_each_substep(const double* accel, std::size_t samples, std::size_t n, Step&& step) {
+  const double inv_n = 1.0 / static_cast<double>(n);
+  for (std::size_t i = 0; i + 1 < samples; ++i) {
+    const double p0 = -accel[i], p1 = -accel[i + 1];
+    if (n == 1) {
+      step(p0, p1);
+      continue;
+    }
+    const double dp = (p1 - p0) * inv_n;
+    double p = p0;
+    for (std::size_t j = 1; j <= n; ++j) {
+      const double next = j == n ? p1 : p0 + dp * static_cast<double>(j);
+      step(p, next);
+      p = next;
+    }
+  }
+}
+
 // Runs `work` (which takes tasks until none are left) on min(wanted, tasks) threads, the
 // calling thread included; wanted 0 means std::thread::hardware_concurrency().
 template <typename Work>
