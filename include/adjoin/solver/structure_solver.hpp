@@ -15,12 +15,13 @@
 // Reported at each grid point: displacements, velocities, absolute accelerations, and per
 // link its force, stroke (s = x_A,i - x_B,j) and velocity; a friction link's force is its
 // value at the grid point (the force that keeps a stuck damper stuck, +-F when slipping), and
-// a switch is located inside the step (linear interpolation of the link velocity, or of the
-// stuck force against its limit).
+// a switch is located inside the step as the two-block scheme locates it (a slip's end on
+// the parabola of the link's grid velocities, an onset on the parabola of its grid stuck
+// forces), with the velocity kink at a slip's end integrated exactly.
 //
-// This first step does not yet carry the two-block scheme's refinements (onsets decided at
-// the step's end on a parabola, backward-Euler restarts for unresolved modes after a switch);
-// the two-block scenes run on solver/simulate.hpp.
+// Not yet carried over from the two-block scheme: the backward-Euler restart after a switch
+// when the stiffest mode is unresolved (implicit-damped); the two-block scenes run on
+// solver/simulate.hpp.
 #include <Eigen/Dense>
 #include <cstddef>
 #include <limits>
