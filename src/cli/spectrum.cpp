@@ -21,6 +21,7 @@
 // --ductility: constant-ductility spectra (post/inelastic.hpp), CSV
 // `period,damping,ductility,cy,uy,R,ductility_reached`. --strength-reduction R or
 // --yield-coefficient cy: the constant-strength inverse, CSV `period,damping,R,cy,uy,ductility`.
+// --suite (or a folder among the records): a suite of records, spectrum_suite.cpp.
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -44,8 +45,20 @@
 #include "adjoin/post/spectrum.hpp"
 #include "command.hpp"
 #include "reading_options.hpp"
+#include "spectrum_suite.hpp"
 
 namespace adjoin::cli {
+
+void write_spectrum_csv(std::ostream& out, const ResponseSpectrum& spectrum) {
+  out << "period,damping,sd,sv,sa,psv,psa\n";
+  char line[256];
+  for (const SpectralValues& v : spectrum.values) {
+    std::snprintf(line, sizeof line, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", v.period, v.damping, v.sd,
+                  v.sv, v.sa, v.psv, v.psa);
+    out << line;
+  }
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -66,6 +79,8 @@ struct SpectrumArgs : ReadingArgs {
   std::string out;
   std::string plot;
   std::string target;
+  bool suite = false;
+  std::string t1, scaling;  // empty: not given
 };
 
 std::vector<std::string> split(const std::string& text, char separator) {
@@ -125,16 +140,6 @@ std::vector<double> parse_range(const std::string& text) {
   return period_range(first, last, static_cast<std::size_t>(count), spacing);
 }
 
-void write_csv(std::ostream& out, const ResponseSpectrum& spectrum) {
-  out << "period,damping,sd,sv,sa,psv,psa\n";
-  char line[256];
-  for (const SpectralValues& v : spectrum.values) {
-    std::snprintf(line, sizeof line, "%.10g,%.10g,%.10g,%.10g,%.10g,%.10g,%.10g\n", v.period, v.damping, v.sd,
-                  v.sv, v.sa, v.psv, v.psa);
-    out << line;
-  }
-}
-
 // Prints, for each damping, how the record's PSA compares with the target over the periods
 // the target covers (on stderr: stdout may hold the CSV), and returns the target's curves for
 // the plot. An EC8 target is the code's spectrum at each damping (eta); a table is the same
@@ -173,6 +178,8 @@ std::vector<ReferenceCurve> compare_with_target(const ResponseSpectrum& spectrum
 
 int rotd_command(const SpectrumArgs& args, const SpectrumOptions& elastic, const PlotStyle& style);
 int inelastic_command(const SpectrumArgs& args, const SpectrumOptions& elastic, const PlotStyle& style);
+int suite_spectra(const SpectrumArgs& args, const SpectrumOptions& elastic, PlotStyle style,
+                  std::optional<TargetSpectrum> target);
 
 int spectrum_command(const SpectrumArgs& args) {
   const RecordFormat format = format_from(args);
@@ -214,6 +221,21 @@ int spectrum_command(const SpectrumArgs& args) {
   }
 
   const bool inelastic = !args.ductility.empty() || !args.strength_reduction.empty() || !args.yield_coefficient.empty();
+  bool folder = false;
+  for (const std::string& r : args.records) {
+    std::error_code ec;
+    folder = folder || fs::is_directory(r, ec);
+  }
+  if (args.suite || folder) {
+    if (!args.rotd.empty() || args.components) throw InputError("--rotd/--components: for a pair of components, not a --suite");
+    if (inelastic) throw InputError("--ductility/--strength-reduction/--yield-coefficient: not available for a --suite");
+    return suite_spectra(args, options, style, std::move(target));
+  }
+  if (!args.t1.empty() || !args.scaling.empty())
+    throw InputError(std::string(args.t1.empty() ? "--scaling" : "--t1") + ": scales a suite of records (give --suite)");
+  if (args.records.size() > 2)
+    throw InputError(std::to_string(args.records.size()) +
+                     " records: give --suite for a suite (one record gives its spectrum, two with --rotd a pair)");
   if (args.records.size() == 2 || !args.rotd.empty()) {
     if (inelastic) throw InputError("--ductility/--strength-reduction/--yield-coefficient: give one record (two are for --rotd)");
     if (target) throw InputError("--target " + args.target + ": compares one record's elastic spectrum (not --rotd)");
@@ -237,10 +259,10 @@ int spectrum_command(const SpectrumArgs& args) {
 
   if (!args.out.empty()) {
     AtomicFile file(args.out);
-    write_csv(file.stream(), spectrum);
+    write_spectrum_csv(file.stream(), spectrum);
     file.commit();
   } else {
-    write_csv(std::cout, spectrum);
+    write_spectrum_csv(std::cout, spectrum);
     std::cout.flush();
   }
 
@@ -484,6 +506,33 @@ int inelastic_command(const SpectrumArgs& args, const SpectrumOptions& elastic, 
       args.out.empty() ? "the spectrum was printed" : "the spectrum was written to " + args.out);
 }
 
+// The suite's own options; the rest was checked by spectrum_command.
+int suite_spectra(const SpectrumArgs& args, const SpectrumOptions& elastic, PlotStyle style,
+                  std::optional<TargetSpectrum> target) {
+  SuiteRequest request;
+  request.inputs = args.records;
+  request.format = format_from(args);
+  request.options = elastic;
+  request.out = args.out;
+  request.plot = args.plot;  // checked up front (plot_target)
+  style.height = 600;         // one panel, PSA
+  request.style = style;
+  if (!args.t1.empty()) {
+    SuiteScalingOptions scaling;
+    if (!parse_number(args.t1, &scaling.t1) || !(scaling.t1 > 0.0 && scaling.t1 <= 1e4))
+      throw InputError("--t1 " + args.t1 + ": expected the fundamental period T1 in s, 0 < T1 <= 1e4");
+    if (!target) throw InputError("--t1 " + args.t1 + ": scales the suite to a target: give --target too");
+    if (args.scaling == "uniform") scaling.rule = SuiteScaling::uniform;
+    else if (!args.scaling.empty() && args.scaling != "fit")
+      throw InputError("--scaling " + args.scaling + ": expected fit or uniform");
+    request.scaling = scaling;
+  } else if (!args.scaling.empty()) {
+    throw InputError("--scaling " + args.scaling + ": chooses how --t1 scales the suite (give --t1 and --target)");
+  }
+  request.target = std::move(target);
+  return suite_command(request);
+}
+
 const Registration registration(20, [](CLI::App& app) -> Runner {
   auto args = std::make_shared<SpectrumArgs>();
   auto* sub = app.add_subcommand(
@@ -492,7 +541,7 @@ const Registration registration(20, [](CLI::App& app) -> Runner {
   sub->add_option("records", args->records,
                   "Accelerogram (PEER AT2, one/two-column text, CSV); two for --rotd (the horizontal components)")
       ->required()
-      ->expected(1, 2);
+      ->expected(-1);
   add_reading_options(sub, args.get());
   sub->add_option("--damping", args->damping, "Damping ratios, comma separated (default 0.05)");
   auto* periods = sub->add_option("--periods", args->periods, "Periods [s], comma separated (0: rigid, SA = PGA)");
@@ -525,6 +574,14 @@ const Registration registration(20, [](CLI::App& app) -> Runner {
                   "Inelastic spectra: epp (elastic-perfectly-plastic, default) or bilinear");
   sub->add_option("--hardening", args->hardening,
                   "Bilinear: post-yield stiffness ratio in [0, 1) (default 0.05)");
+  sub->add_flag("--suite", args->suite,
+                "A suite: the records (files, or folders of them) with their mean, median and +-1 sigma in log, "
+                "written to --out DIR (a folder among the records implies it)");
+  sub->add_option("--t1", args->t1,
+                  "Suite: scale it to --target so that its mean is >= 90 % of the target over 0.2 T1 ... 2 T1 [s]");
+  sub->add_option("--scaling", args->scaling,
+                  "Suite with --t1: fit (default: each record fitted to the target, then one common multiplier) "
+                  "or uniform (one factor for all)");
   return [args]() { return spectrum_command(*args); };
 });
 

@@ -30,36 +30,23 @@ void check_ranges(const Record& record, const std::string& name) {
                      fmt(record.accel[i] / 9.80665) + " g, beyond the 1e6 g an accelerogram can have (check the units)");
 }
 
-}  // namespace
-
-Record parse_record(std::string_view text, const std::string& name, const RecordFormat& format) {
-  using Kind = RecordFormat::Kind;
+// The reader whose sniffer is most confident about the text, or nullptr if none claims it.
+const readers::ReaderEntry* sniff(std::string_view text, std::string_view name) {
+  readers::Probe probe{name, readers::first_lines(text, readers::kProbeLines)};
   const readers::ReaderEntry* chosen = nullptr;
-  if (format.kind == Kind::automatic) {
-    readers::Probe probe{name, readers::first_lines(text, readers::kProbeLines)};
-    int best = 0;
-    for (const readers::ReaderEntry& entry : readers::reader_table()) {
-      if (!entry.sniff) continue;
-      const int confidence = entry.sniff(probe);
-      if (confidence > best) {
-        best = confidence;
-        chosen = &entry;
-      }
+  int best = 0;
+  for (const readers::ReaderEntry& entry : readers::reader_table()) {
+    if (!entry.sniff) continue;
+    const int confidence = entry.sniff(probe);
+    if (confidence > best) {
+      best = confidence;
+      chosen = &entry;
     }
-  } else {
-    chosen = &readers::reader_entry(format.kind);
-    if (!chosen->parse) fail(name, "unknown record format");
   }
-  if (format.channel < 0) fail(name, "channel " + std::to_string(format.channel) + " (expected 1, 2, ...)");
-  if (chosen && !chosen->multi_channel && format.channel > 1)
-    fail(name, "channel " + std::to_string(format.channel) + " was asked, but a " + std::string(chosen->title) +
-                   " file holds one channel");
-  Record record = chosen ? chosen->parse(text, name, format) : readers::parse_columns_auto(text, name, format);
-  check_ranges(record, name);
-  return record;
+  return chosen;
 }
 
-Record read_record(const std::filesystem::path& path, const RecordFormat& format) {
+std::string read_text(const std::filesystem::path& path) {
   const std::string name = path.string();
   std::error_code error;
   if (std::filesystem::is_directory(path, error)) fail(name, "is a folder (expected a record file)");
@@ -74,7 +61,40 @@ Record read_record(const std::filesystem::path& path, const RecordFormat& format
     in.read(text.data(), size);
     if (!in) fail(name, "cannot read the record file");
   }
-  return parse_record(text, name, format);
+  return text;
+}
+
+}  // namespace
+
+RecordFormat::Kind detect_record_format(std::string_view text, std::string_view name) {
+  const readers::ReaderEntry* chosen = sniff(text, name);
+  return chosen ? chosen->kind : RecordFormat::Kind::automatic;
+}
+
+RecordFormat::Kind detect_record_format(const std::filesystem::path& path) {
+  return detect_record_format(read_text(path), path.string());
+}
+
+Record parse_record(std::string_view text, const std::string& name, const RecordFormat& format) {
+  using Kind = RecordFormat::Kind;
+  const readers::ReaderEntry* chosen = nullptr;
+  if (format.kind == Kind::automatic) {
+    chosen = sniff(text, name);
+  } else {
+    chosen = &readers::reader_entry(format.kind);
+    if (!chosen->parse) fail(name, "unknown record format");
+  }
+  if (format.channel < 0) fail(name, "channel " + std::to_string(format.channel) + " (expected 1, 2, ...)");
+  if (chosen && !chosen->multi_channel && format.channel > 1)
+    fail(name, "channel " + std::to_string(format.channel) + " was asked, but a " + std::string(chosen->title) +
+                   " file holds one channel");
+  Record record = chosen ? chosen->parse(text, name, format) : readers::parse_columns_auto(text, name, format);
+  check_ranges(record, name);
+  return record;
+}
+
+Record read_record(const std::filesystem::path& path, const RecordFormat& format) {
+  return parse_record(read_text(path), path.string(), format);
 }
 
 }  // namespace adjoin

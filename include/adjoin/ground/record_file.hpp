@@ -94,6 +94,13 @@ std::string to_string(RecordFormat::Kind kind);
 // The accepted format names, "auto, at2, one-column, ..." (for messages and --help).
 std::string record_kind_names();
 
+// The format the automatic choice finds from a file's content (and name): a format whose
+// header the first lines show (at2, smc, cosmos, knet, esm, dmg), or automatic when none does
+// (the column readers then decide from the first data line). InputError if the file cannot be
+// read.
+RecordFormat::Kind detect_record_format(std::string_view text, std::string_view name);
+RecordFormat::Kind detect_record_format(const std::filesystem::path& path);
+
 // Reads a file (InputError if it cannot be read or is malformed). Record::source is the path.
 Record read_record(const std::filesystem::path& path, const RecordFormat& format = {});
 
