@@ -7,7 +7,10 @@
 //                           target with --target (empty where the table does not reach) and
 //                           scaled_mean with --t1
 //   factors.csv             record,factor with --t1 (removed when a run does not scale)
-// A summary goes to stdout. Which inputs are records: every file named; in a folder (not its
+// --t1 scales the suite (rule in post/suite.hpp): --scaling fit (default) first scales each
+// record to its own least-squares fit of the target in ln PSA over 0.2 T1 ... 2 T1, uniform
+// leaves them; then one common multiplier puts the scaled geometric mean's lowest ratio to
+// the target over the band at exactly 0.9. A summary goes to stdout. Which inputs are records: every file named; in a folder (not its
 // subfolders, not hidden files) every file whose header a reader recognises (the automatic
 // format's content sniffers), or every file when --format names one. Folder files nobody
 // recognises (column text, notes) are skipped with a warning that names them. Two records
