@@ -539,7 +539,8 @@ const Registration registration(20, [](CLI::App& app) -> Runner {
       "spectrum",
       "Elastic response spectra of a record: CSV period,damping,sd,sv,sa,psv,psa (s, -, m, m/s, g, m/s, g)");
   sub->add_option("records", args->records,
-                  "Accelerogram (PEER AT2, one/two-column text, CSV); two for --rotd (the horizontal components)")
+                  "Accelerogram (PEER AT2, SMC, ..., column text); two for --rotd (the horizontal components); "
+                  "several, or folders of them, with --suite")
       ->required()
       ->expected(-1);
   add_reading_options(sub, args.get());
@@ -554,7 +555,7 @@ const Registration registration(20, [](CLI::App& app) -> Runner {
   sub->add_flag("--free-vibration", args->free_vibration,
                 "Also look for peaks in one period of free vibration after the record");
   sub->add_option("--threads", args->threads, "Worker threads (default 0: all cores)");
-  sub->add_option("--out", args->out, "CSV file (default: stdout)");
+  sub->add_option("--out", args->out, "CSV file (default: stdout); with --suite the folder for the suite's files");
   sub->add_option("--plot", args->plot, "Also draw PSA and SD against period with gnuplot (.png or .svg)");
   sub->add_option("--target", args->target,
                   "Compare PSA with a target spectrum: ec8:T[:AG[:TYPE]] or a two-column file period [s], PSA [g] "
