@@ -25,8 +25,7 @@ struct RunArgs {
 };
 
 int run_building_command(const RunArgs& args) {
-  if (!args.unsets.empty()) throw InputError("--unset: not supported for building scenes yet (edit the scene file)");
-  const BuildingScene scene = load_building_scene(args.scene, args.overrides);
+  const BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
   for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
   const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args.out);
   const BuildingFiles files = run_building_to_folder(scene, dir);

@@ -9,6 +9,7 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/io/text_file.hpp"
+#include "structure_edits.hpp"
 #include "adjoin/structure/modal.hpp"
 
 namespace adjoin {
@@ -42,17 +43,24 @@ std::string number(double v) {
 
 }  // namespace
 
-BuildingScene load_building_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides) {
-  for (const auto& o : overrides)
-    for (const char* section : {"building", "link", "contact", "model"})
-      if (o.rfind(std::string(section) + ".", 0) == 0 || o.rfind(std::string(section) + "[", 0) == 0)
-        throw InputError("--set " + o + ": edits of a building scene's structure are not supported yet; edit the scene file "
-                         "(ground.*, solver.*, output.* and name can be set)");
+BuildingScene load_building_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                                  const std::vector<std::string>& unsets) {
+  // The structure's edits go to its reader, the others to the ground, solver and output's.
+  std::vector<std::string> base_overrides, base_unsets;
+  for (const auto& o : overrides) {
+    const std::string key = o.substr(0, o.find('='));
+    if (key.rfind("model", 0) == 0 && (key.size() == 5 || key[5] == '.' || key[5] == ' '))
+      throw InputError("--set " + o + ": a building scene's [model] holds only units = \"SI\"; the buildings, links "
+                       "and contacts carry the rest (building.A.period, link.1.slip_ratio, ...)");
+    if (!detail::is_structure_key(key)) base_overrides.push_back(o);
+  }
+  for (const auto& u : unsets)
+    if (!detail::is_structure_key(u)) base_unsets.push_back(u);
   const std::string text = read_text_file(file, "scene");
   BuildingScene b;
   b.file = file;
-  b.structure = parse_structure(text, file.string());
-  b.base = parse_building_base(text, file.string(), overrides);
+  b.structure = parse_structure(text, file.string(), overrides, unsets);
+  b.base = parse_building_base(text, file.string(), base_overrides, base_unsets);
   b.base.file = file;
   b.name = b.base.name;
   for (const auto& w : b.base.warnings)

@@ -798,8 +798,19 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   return build_scene(reader, name);
 }
 
-Scene parse_building_base(const std::string& text, const std::string& name, const std::vector<std::string>& overrides) {
+Scene parse_building_base(const std::string& text, const std::string& name, const std::vector<std::string>& overrides,
+                          const std::vector<std::string>& unsets) {
   toml::table table = detail::parse_toml_text(text, name);
+  for (const auto& key : unsets) {
+    toml::table* parent = &table;
+    std::string leaf = key;
+    if (const auto dot = key.rfind('.'); dot != std::string::npos) {
+      parent = table.at_path(key.substr(0, dot)).as_table();
+      leaf = key.substr(dot + 1);
+    }
+    if (!parent || !parent->contains(leaf)) throw InputError("--unset " + key + ": the scene has no key or section " + key);
+    parent->erase(leaf);
+  }
   // The structure is read elsewhere; what stays is [ground], [solver], [output] and the name,
   // read as a scene with a unit two-block model (m = 1 kg, k = 1 N/m: T0 = 1 s, forces of
   // 1 kg g), so that times are in seconds and the ground's a_g is in g.

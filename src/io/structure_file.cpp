@@ -2,11 +2,13 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 #include <set>
 #include <sstream>
 
 #include <toml++/toml.h>
 
+#include "structure_edits.hpp"
 #include "toml_text.hpp"
 
 #include "adjoin/errors.hpp"
@@ -22,16 +24,26 @@ using structure::DampingModel;
 using structure::DeviceType;
 using structure::LinkType;
 
+using Origins = std::map<std::string, std::string>;
+
 // Reads the keys of one table, each named by its dotted path in messages with the line.
 class TableReader {
  public:
-  TableReader(const toml::table& table, std::string path, std::string file)
-      : table_(table), path_(std::move(path)), file_(std::move(file)) {}
+  TableReader(const toml::table& table, std::string path, std::string file, const Origins* origins = nullptr)
+      : table_(table), path_(std::move(path)), file_(std::move(file)), origins_(origins) {}
+  // A reader of a table inside this one (same file, same edits).
+  TableReader inner(const toml::table& table, const std::string& path) const { return {table, path, file_, origins_}; }
 
   [[noreturn]] void fail(const std::string& key, const std::string& message) const {
     const toml::node* node = key.empty() ? nullptr : table_.get(key);
     const auto& source = node ? node->source() : table_.source();
     std::ostringstream m;
+    // A value a --set put there is blamed on the --set; the others on their file line.
+    const std::string full = key.empty() ? path_ : path_ + "." + key;
+    if (origins_ && source.begin.line == 0 && origins_->count(full)) {
+      m << origins_->at(full) << ": " << full << ": " << message;
+      throw InputError(m.str());
+    }
     m << file_;
     if (source.begin.line > 0) m << ":" << source.begin.line;
     m << ": " << (key.empty() ? path_ : path_ + "." + key) << ": " << message;
@@ -106,6 +118,7 @@ class TableReader {
  private:
   const toml::table& table_;
   std::string path_, file_;
+  const Origins* origins_ = nullptr;
 };
 
 structure::Zener read_zener(const TableReader& r) {
@@ -119,9 +132,9 @@ structure::Zener read_zener(const TableReader& r) {
   return z;
 }
 
-Building read_building(const toml::table& root, const std::string& name, const std::string& file) {
+Building read_building(const toml::table& root, const std::string& name, const TableReader& top) {
   const toml::table* t = root["building"][name].as_table();
-  TableReader r(*t, "building." + name, file);
+  const TableReader r = top.inner(*t, "building." + name);
   r.only({"storeys", "mass", "masses", "stiffness", "stiffnesses", "period", "damping", "device"});
   Building b;
   b.name = name;
@@ -147,7 +160,7 @@ Building read_building(const toml::table& root, const std::string& name, const s
   if (r.has("damping")) {
     const toml::table* d = t->get_as<toml::table>("damping");
     if (!d) r.fail("damping", "expected a table: { model = \"modal\", ratio = 0.05 }");
-    TableReader dr(*d, r.path() + ".damping", file);
+    const TableReader dr = r.inner(*d, r.path() + ".damping");
     dr.only({"model", "ratio", "modes"});
     const std::string model = dr.text("model", {"none", "modal", "rayleigh"});
     b.damping.model = model == "none" ? DampingModel::none : (model == "modal" ? DampingModel::modal : DampingModel::rayleigh);
@@ -171,7 +184,7 @@ Building read_building(const toml::table& root, const std::string& name, const s
       ++index;
       const toml::table* dt = node.as_table();
       if (!dt) r.fail("device", "expected [[building." + name + ".device]] tables");
-      TableReader dr(*dt, r.path() + ".device[" + std::to_string(index) + "]", file);
+      const TableReader dr = r.inner(*dt, r.path() + ".device[" + std::to_string(index) + "]");
       structure::StoreyDevice dev;
       const std::string type = dr.text("type", {"zener", "dashpot", "spring"});
       dev.storeys = dr.integers("storeys", 0);
@@ -241,20 +254,27 @@ structure::Structure read_structure(const std::filesystem::path& path) {
 }
 
 structure::Structure parse_structure(const std::string& text, const std::string& file) {
+  return parse_structure(text, file, {}, {});
+}
+
+structure::Structure parse_structure(const std::string& text, const std::string& file,
+                                     const std::vector<std::string>& overrides, const std::vector<std::string>& unsets) {
   toml::table root = detail::parse_toml_text(text, file);
-  TableReader top(root, "scene", file);
+  Origins origins;
+  detail::edit_structure(root, overrides, unsets, origins);
+  TableReader top(root, "scene", file, &origins);
   const toml::table* model = root["model"].as_table();
   if (!model || root["model"]["units"].value<std::string>() != "SI")
     top.fail("", "a building scene is in SI units: add [model] with units = \"SI\"");
-  TableReader(*model, "model", file).only({"units"});  // the buildings carry the rest
+  top.inner(*model, "model").only({"units"});  // the buildings carry the rest
   const toml::table* buildings = root["building"].as_table();
   if (!buildings) top.fail("", "missing section [building.A]");
-  TableReader br(*buildings, "building", file);
+  const TableReader br = top.inner(*buildings, "building");
   br.only({"A", "B"});
   if (!buildings->get_as<toml::table>("A")) br.fail("", "missing section [building.A] (the left building)");
   structure::Structure s;
-  s.a = read_building(root, "A", file);
-  if (buildings->get_as<toml::table>("B")) s.b = read_building(root, "B", file);
+  s.a = read_building(root, "A", top);
+  if (buildings->get_as<toml::table>("B")) s.b = read_building(root, "B", top);
 
   auto floors_of = [&](const TableReader& r) {
     const auto f = r.integers("floors", 2);
@@ -269,7 +289,7 @@ structure::Structure parse_structure(const std::string& text, const std::string&
       ++index;
       const toml::table* lt = node.as_table();
       if (!lt) top.fail("link", "expected [[link]] tables");
-      TableReader r(*lt, "link[" + std::to_string(index) + "]", file);
+      const TableReader r = top.inner(*lt, "link[" + std::to_string(index) + "]");
       structure::Link l;
       const auto f = floors_of(r);
       l.floor_a = f[0];
@@ -310,7 +330,7 @@ structure::Structure parse_structure(const std::string& text, const std::string&
       ++index;
       const toml::table* ct = node.as_table();
       if (!ct) top.fail("contact", "expected [[contact]] tables");
-      TableReader r(*ct, "contact[" + std::to_string(index) + "]", file);
+      const TableReader r = top.inner(*ct, "contact[" + std::to_string(index) + "]");
       r.only({"floors", "gap", "model", "stiffness", "restitution", "damping"});
       structure::Contact c;
       const auto f = floors_of(r);

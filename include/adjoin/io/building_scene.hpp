@@ -22,8 +22,11 @@ struct BuildingScene {
   std::vector<std::string> warnings;
 };
 
-// `overrides`: --set edits of [ground], [solver], [output] and name (edits of the structure
-// are refused for now, with the reason).
-BuildingScene load_building_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {});
+// `overrides`: --set edits by dotted path of any key: the structure's (building.A.period,
+// building.B.damping.ratio, link.1.slip_ratio, contact.1.gap; io/structure_file.hpp) and
+// [ground], [solver], [output] and name. `unsets`: --unset keys or sections removed first
+// (link.1, link, building.A.device.2, ground.scale_pga).
+BuildingScene load_building_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {},
+                                  const std::vector<std::string>& unsets = {});
 
 }  // namespace adjoin

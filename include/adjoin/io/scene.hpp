@@ -94,8 +94,10 @@ Scene parse_scene(const std::string& text, const std::string& name,
 
 // The [ground], [solver] and [output] of a building scene (SPEC §5) as a Scene whose model is a
 // unit two-block system (1 kg, 1 N/m, elastic, no damper): times in seconds, a_g in g.
-// `overrides` are --set edits of those sections. io/building_scene.hpp uses it.
-Scene parse_building_base(const std::string& text, const std::string& name, const std::vector<std::string>& overrides = {});
+// `overrides` are --set edits of those sections, `unsets` keys of them removed first.
+// io/building_scene.hpp uses it.
+Scene parse_building_base(const std::string& text, const std::string& name, const std::vector<std::string>& overrides = {},
+                          const std::vector<std::string>& unsets = {});
 
 // Every key a scene may hold, as dotted paths (for documentation and error messages).
 const std::vector<std::string>& known_scene_keys();

@@ -1,0 +1,143 @@
+#include "structure_edits.hpp"
+
+#include <cctype>
+#include <sstream>
+
+#include "adjoin/errors.hpp"
+
+namespace adjoin::detail {
+namespace {
+
+std::string trim(const std::string& s) {
+  const auto a = s.find_first_not_of(" \t");
+  if (a == std::string::npos) return "";
+  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
+}
+
+std::vector<std::string> split_path(const std::string& key, const std::string& origin) {
+  std::vector<std::string> parts;
+  std::stringstream stream(key);
+  for (std::string part; std::getline(stream, part, '.');) {
+    if (part.empty()) throw InputError(origin + ": empty component in key '" + key + "'");
+    parts.push_back(part);
+  }
+  if (parts.empty()) throw InputError(origin + ": expected a dotted key, e.g. link.1.slip_ratio");
+  return parts;
+}
+
+bool is_index(const std::string& part) {
+  if (part.empty() || part.size() > 6) return false;
+  for (char c : part)
+    if (!std::isdigit(static_cast<unsigned char>(c))) return false;
+  return true;
+}
+
+// Walks `parts` from `root` to the parent of the last part: a table, and the reader's path of it
+// ("building.A.device[2]"). Arrays of tables are indexed by a number counted from 1.
+struct Parent {
+  toml::node* node = nullptr;  // a table or an array
+  std::string path;
+};
+
+Parent walk(toml::table& root, const std::vector<std::string>& parts, const std::string& origin) {
+  toml::node* current = &root;
+  std::string path;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    const std::string& part = parts[i];
+    toml::node* next = nullptr;
+    if (toml::array* array = current->as_array()) {
+      if (!is_index(part))
+        throw InputError(origin + ": " + path + " is a list of tables: number them from 1, e.g. " + path + ".1");
+      const std::size_t n = std::stoul(part);
+      if (n < 1 || n > array->size())
+        throw InputError(origin + ": the scene has " + std::to_string(array->size()) + " [[" + path + "]] table" +
+                         (array->size() == 1 ? "" : "s") + ", not a number " + part);
+      next = array->get(n - 1);
+      path += "[" + part + "]";
+    } else if (toml::table* table = current->as_table()) {
+      next = table->get(part);
+      if (!next) throw InputError(origin + ": the scene has no " + (path.empty() ? part : path + "." + part));
+      path += (path.empty() ? "" : ".") + part;
+    } else {
+      throw InputError(origin + ": " + path + " is a value, not a table");
+    }
+    current = next;
+  }
+  return {current, path};
+}
+
+// The alternatives a key replaces in its table.
+std::vector<std::string> alternatives(const std::string& key) {
+  if (key == "stiffness") return {"stiffnesses", "period"};
+  if (key == "stiffnesses") return {"stiffness", "period"};
+  if (key == "period") return {"stiffness", "stiffnesses"};
+  if (key == "mass") return {"masses"};
+  if (key == "masses") return {"mass"};
+  if (key == "slip_force") return {"slip_ratio", "of"};
+  if (key == "slip_ratio") return {"slip_force"};
+  return {};
+}
+
+void unset(toml::table& root, const std::string& key) {
+  const std::string origin = "--unset " + key;
+  const auto parts = split_path(key, origin);
+  const Parent parent = walk(root, parts, origin);
+  const std::string& leaf = parts.back();
+  if (toml::array* array = parent.node->as_array()) {
+    if (!is_index(leaf)) throw InputError(origin + ": number the [[" + parent.path + "]] tables from 1");
+    const std::size_t n = std::stoul(leaf);
+    if (n < 1 || n > array->size())
+      throw InputError(origin + ": the scene has " + std::to_string(array->size()) + " [[" + parent.path + "]] tables");
+    array->erase(array->begin() + static_cast<std::ptrdiff_t>(n - 1));
+  } else if (toml::table* table = parent.node->as_table()) {
+    if (!table->contains(leaf))
+      throw InputError(origin + ": the scene has no key or section " + key);
+    table->erase(leaf);
+  } else {
+    throw InputError(origin + ": " + parent.path + " is a value, not a table");
+  }
+}
+
+void set(toml::table& root, const std::string& text, std::map<std::string, std::string>& origins) {
+  const std::string origin = "--set " + text;
+  const auto eq = text.find('=');
+  const std::string key = trim(text.substr(0, eq)), value = trim(text.substr(eq + 1));
+  const auto parts = split_path(key, origin);
+  const Parent parent = walk(root, parts, origin);
+  toml::table* table = parent.node->as_table();
+  if (!table) throw InputError(origin + ": " + parent.path + " is a list: name one of its tables by number");
+  toml::table holder;
+  try {
+    holder = toml::parse("v = " + value);
+  } catch (const toml::parse_error&) {
+    holder = toml::table{};
+    holder.insert("v", value);  // a bare word: a string
+  }
+  for (const auto& other : alternatives(parts.back())) table->erase(other);
+  table->insert_or_assign(parts.back(), *holder.get("v"));
+  origins[parent.path + "." + parts.back()] = origin;
+}
+
+}  // namespace
+
+bool is_structure_key(const std::string& key) {
+  const std::string k = trim(key);
+  for (const char* section : {"building", "link", "contact"}) {
+    const std::string s(section);
+    if (k == s || k.rfind(s + ".", 0) == 0) return true;
+  }
+  return false;
+}
+
+void edit_structure(toml::table& root, const std::vector<std::string>& overrides, const std::vector<std::string>& unsets,
+                    std::map<std::string, std::string>& origins) {
+  for (const auto& key : unsets)
+    if (is_structure_key(key)) unset(root, trim(key));
+  for (const auto& o : overrides) {
+    const auto eq = o.find('=');
+    if (eq == std::string::npos || !is_structure_key(o.substr(0, eq))) continue;
+    set(root, o, origins);
+  }
+}
+
+}  // namespace adjoin::detail
