@@ -13,6 +13,8 @@
 
 #include "adjoin/io/building_files.hpp"
 #include "adjoin/io/building_scene.hpp"
+#include "adjoin/model/units.hpp"
+#include "adjoin/post/spectrum.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/study/building_run.hpp"
 #include "adjoin/study/run.hpp"
@@ -34,7 +36,11 @@ std::map<std::string, std::vector<double>> read_columns(const std::filesystem::p
   while (std::getline(in, line)) {
     std::stringstream row(line);
     std::string cell;
-    for (std::size_t i = 0; std::getline(row, cell, ','); ++i) columns[names.at(i)].push_back(std::stod(cell));
+    for (std::size_t i = 0; std::getline(row, cell, ','); ++i) {
+      char* end = nullptr;
+      const double v = std::strtod(cell.c_str(), &end);
+      columns[names.at(i)].push_back(end != cell.c_str() ? v : std::nan(""));
+    }
   }
   return columns;
 }
@@ -110,6 +116,38 @@ TEST_CASE("a building run's files agree with the modal analysis and the time ser
   const auto& gap = columns.at("contact1.gap");
   const auto& stroke = columns.at("link1.stroke");
   for (std::size_t k = 0; k < gap.size(); k += 97) CHECK(gap[k] == Approx(0.05 - stroke[k]).margin(1e-15));
+}
+
+TEST_CASE("in-structure spectra of floors are the spectra of the floors' acceleration histories", "[building_run]") {
+  // An independent path: the floor's a_abs column of timeseries.csv (every step, 12 digits)
+  // through the single-record spectrum. The roof's spectrum at a short period is its peak
+  // absolute acceleration; a floor filters the ground (the roof's spectrum peaks near T1).
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "building-spectra";
+  std::filesystem::remove_all(dir);
+  const BuildingScene scene = load_building_scene(
+      kScene, {"output.every=1", "solver.t_end=12", "output.spectra.signals=[\"ground\", \"A.a5_abs\", \"B.a2_abs\"]",
+               "output.spectra.periods=[0.02, 0.1, 0.5, 1.0, 2.0]", "output.spectra.damping=[0.02, 0.05]"});
+  const BuildingFiles files = run_building_to_folder(scene, dir);
+  REQUIRE(files.report.spectra.size() == 3);
+  const auto columns = read_columns(dir / "timeseries.csv");
+  const auto spectra = read_columns(dir / "spectra.csv");  // (the signal column reads as NaN)
+  REQUIRE(spectra.at("psa").size() == 3 * 5 * 2);
+  SpectrumOptions options;
+  options.periods = {0.02, 0.1, 0.5, 1.0, 2.0};
+  options.dampings = {0.02, 0.05};
+  const char* signals[] = {"ag", "A.a5_abs", "B.a2_abs"};
+  for (std::size_t k = 0; k < 3; ++k) {
+    const ResponseSpectrum direct = response_spectrum(scene.solver.h, columns.at(signals[k]), options);
+    for (std::size_t i = 0; i < direct.values.size(); ++i) {
+      INFO(signals[k] << " T = " << direct.values[i].period << " damping " << direct.values[i].damping);
+      CHECK(spectra.at("period")[k * 10 + i] == direct.values[i].period);
+      CHECK(spectra.at("psa")[k * 10 + i] == Approx(direct.values[i].psa).epsilon(1e-8));
+      CHECK(spectra.at("sd")[k * 10 + i] == Approx(direct.values[i].sd).epsilon(1e-8));
+    }
+  }
+  double roof = 0.0;
+  for (double a : columns.at("A.a5_abs")) roof = std::max(roof, std::abs(a));
+  CHECK(spectra.at("psa")[10 + 5] == Approx(roof / kStandardGravity).epsilon(0.02));  // T = 0.02 s, 5 %
 }
 
 TEST_CASE("the SI record scene written in building keys gives the two-block results", "[building_run]") {

@@ -1,4 +1,5 @@
 #include "adjoin/io/building_files.hpp"
+#include "adjoin/io/summary.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -219,6 +220,7 @@ BuildingFiles run_building_to_folder(const BuildingScene& scene, const std::file
   if (scene.base.output.timeseries) writer = std::make_unique<BuildingCsvWriter>(set.open("timeseries.csv"), scene.base.output.every);
   BuildingFiles files;
   files.report = run_building(scene, writer.get());
+  if (!files.report.spectra.empty()) set.open("spectra.csv") << spectra_csv(files.report.spectra);
   set.open("summary.json") << building_summary_json(scene, files.report);
   files.written = set.commit();
   return files;

@@ -41,10 +41,46 @@ std::string number(double v) {
   return s.str();
 }
 
+// The in-structure spectra's signals: "ground" or a floor's absolute acceleration X.aN_abs.
+void check_spectra_signals(const std::vector<std::string>& signals, const structure::Structure& s, const std::string& text,
+                           const std::string& file, const std::vector<std::string>& overrides) {
+  for (const auto& signal : signals) {
+    if (signal == "ground") continue;
+    const structure::Building* b = nullptr;
+    if (signal.rfind("A.a", 0) == 0) b = &s.a;
+    if (signal.rfind("B.a", 0) == 0 && s.b) b = &*s.b;
+    bool ok = false;
+    if (b && signal.size() > 7 && signal.compare(signal.size() - 4, 4, "_abs") == 0) {
+      const std::string digits = signal.substr(3, signal.size() - 7);
+      ok = !digits.empty() && digits.size() < 5 && digits.find_first_not_of("0123456789") == std::string::npos &&
+           std::stoi(digits) >= 1 && std::stoi(digits) <= b->floors();
+    }
+    if (ok) continue;
+    std::string where = file;
+    if (overridden(overrides, "output.spectra.signals")) {
+      where = "--set output.spectra.signals";
+    } else {
+      try {
+        const toml::table root = toml::parse(text);
+        if (const toml::node* n = root.at_path("output.spectra.signals").node()) where += ":" + std::to_string(n->source().begin.line);
+      } catch (const toml::parse_error&) {
+      }
+    }
+    std::string expected = "\"ground\" or a floor's absolute acceleration A.aN_abs (N = 1.." + std::to_string(s.a.floors()) + ")";
+    if (s.b) expected += " or B.aN_abs (N = 1.." + std::to_string(s.b->floors()) + ")";
+    throw InputError(where + ": output.spectra.signals: \"" + signal + "\" is not a signal of this structure; expected " + expected);
+  }
+}
+
 }  // namespace
 
 BuildingScene load_building_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides,
                                   const std::vector<std::string>& unsets) {
+  return parse_building_scene(read_text_file(file, "scene"), file, overrides, unsets);
+}
+
+BuildingScene parse_building_scene(const std::string& text, const std::filesystem::path& file,
+                                   const std::vector<std::string>& overrides, const std::vector<std::string>& unsets) {
   // The structure's edits go to its reader, the others to the ground, solver and output's.
   std::vector<std::string> base_overrides, base_unsets;
   for (const auto& o : overrides) {
@@ -56,13 +92,13 @@ BuildingScene load_building_scene(const std::filesystem::path& file, const std::
   }
   for (const auto& u : unsets)
     if (!detail::is_structure_key(u)) base_unsets.push_back(u);
-  const std::string text = read_text_file(file, "scene");
   BuildingScene b;
   b.file = file;
   b.structure = parse_structure(text, file.string(), overrides, unsets);
   b.base = parse_building_base(text, file.string(), base_overrides, base_unsets);
   b.base.file = file;
   b.name = b.base.name;
+  if (b.base.output.spectra) check_spectra_signals(b.base.output.spectra->signals, b.structure, text, file.string(), overrides);
   for (const auto& w : b.base.warnings)
     if (w.find("period") == std::string::npos) b.warnings.push_back(w);  // (its periods are the placeholder's)
 

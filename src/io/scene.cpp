@@ -820,9 +820,23 @@ Scene parse_building_base(const std::string& text, const std::string& name, cons
                                     {"rod1", toml::table{{"elastic", true}}}, {"rod2", toml::table{{"elastic", true}}}});
   std::map<std::string, std::string> origins;
   for (const auto& o : overrides) apply_override(table, o, origins);
+  // In-structure spectra name the floors' channels (A.a3_abs), which only the structure can
+  // check (io/building_scene.cpp does): they are set aside here, "ground" read in their place.
+  std::optional<std::vector<std::string>> signals;
+  if (toml::array* list = table.at_path("output.spectra.signals").as_array()) {
+    signals.emplace();
+    for (const auto& item : *list) {
+      const auto signal = item.value_exact<std::string>();
+      if (!signal) throw InputError(name + ":" + std::to_string(item.source().begin.line) + ": output.spectra.signals: expected a list of names (\"ground\", \"A.a3_abs\")");
+      signals->push_back(*signal);
+    }
+    *list = toml::array{"ground"};
+  }
   SceneReader reader(std::move(table), name, std::move(origins));
   check_keys(reader, reader.table(), "");
-  return build_scene(reader, name);
+  Scene scene = build_scene(reader, name);
+  if (signals && scene.output.spectra) scene.output.spectra->signals = *signals;
+  return scene;
 }
 
 std::vector<std::string> implied_unsets(const std::string& key, const std::string& value,

@@ -237,11 +237,13 @@ std::string brief_report(const Scene& scene, const RunReport& r, const ErrorEsti
   return s.str();
 }
 
-std::string spectra_csv(const RunReport& report) {
+std::string spectra_csv(const RunReport& report) { return spectra_csv(report.spectra); }
+
+std::string spectra_csv(const std::vector<SignalSpectrum>& spectra) {
   std::ostringstream s;
   s.precision(10);
   s << "signal,period,damping,sd,sv,sa,psv,psa\n";
-  for (const auto& sig : report.spectra)
+  for (const auto& sig : spectra)
     for (const auto& v : sig.spectrum.values) {
       for (double x : {v.sd, v.sv, v.sa, v.psv, v.psa})
         if (!std::isfinite(x))

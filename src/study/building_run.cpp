@@ -1,7 +1,9 @@
 #include "adjoin/study/building_run.hpp"
 
 #include <cmath>
+#include <memory>
 
+#include "adjoin/post/spectrum.hpp"
 #include "adjoin/structure/modal.hpp"
 
 namespace adjoin {
@@ -159,6 +161,30 @@ class BuildingObserver final : public StructureObserver {
   bool first_ = true;
 };
 
+// Keeps the histories of the signals whose spectra are asked for: a_g or a floor's a_abs.
+class SignalRecorder final : public StructureObserver {
+ public:
+  SignalRecorder(const structure::Structure& s, const std::vector<std::string>& signals) {
+    for (const auto& signal : signals) {
+      int index = -1;  // a_g
+      if (signal != "ground") {
+        const char building = signal[0];
+        const int floor = std::stoi(signal.substr(3, signal.size() - 7));
+        index = s.dof(building, floor);
+      }
+      index_.push_back(index);
+    }
+    histories.assign(signals.size(), {});
+  }
+  void observe(const StructureState& st) override {
+    for (std::size_t k = 0; k < index_.size(); ++k) histories[k].push_back(index_[k] < 0 ? st.ag : st.a_abs[index_[k]]);
+  }
+  std::vector<std::vector<double>> histories;
+
+ private:
+  std::vector<int> index_;
+};
+
 class Both final : public StructureObserver {
  public:
   Both(StructureObserver& a, StructureObserver* b) : a_(a), b_(b) {}
@@ -182,8 +208,19 @@ BuildingReport run_building(const BuildingScene& scene, StructureObserver* extra
     r.coupled = structure::coupled_modes(s);
   }
   BuildingObserver observer(s);
-  Both both(observer, extra);
+  const auto& asked = scene.base.output.spectra;
+  std::unique_ptr<SignalRecorder> recorder;
+  if (asked) recorder = std::make_unique<SignalRecorder>(s, asked->signals);
+  Both recorded(observer, recorder.get());
+  Both both(recorded, extra);
   r.solver = simulate_structure(scene.solver, s, *scene.base.ground, both);
+  if (recorder) {
+    SpectrumOptions options;
+    options.dampings = asked->damping;
+    options.periods = asked->periods.empty() ? default_spectrum_periods() : asked->periods;
+    for (std::size_t k = 0; k < asked->signals.size(); ++k)
+      r.spectra.push_back({asked->signals[k], response_spectrum(scene.solver.h, recorder->histories[k], options)});
+  }
   r.peaks = observer.peaks();
   r.links = observer.links();
   r.contacts = observer.contacts();

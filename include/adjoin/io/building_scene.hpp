@@ -28,5 +28,10 @@ struct BuildingScene {
 // (link.1, link, building.A.device.2, ground.scale_pga).
 BuildingScene load_building_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {},
                                   const std::vector<std::string>& unsets = {});
+// The same from the scene's text (read once by a sweep); `file` names it in messages and its
+// folder is where the scene's relative paths (ground.file) start.
+BuildingScene parse_building_scene(const std::string& text, const std::filesystem::path& file,
+                                   const std::vector<std::string>& overrides = {},
+                                   const std::vector<std::string>& unsets = {});
 
 }  // namespace adjoin

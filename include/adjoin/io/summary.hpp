@@ -19,5 +19,6 @@ std::string brief_report(const Scene& scene, const RunReport& report, const Erro
                          const TolerantRun* tolerant = nullptr);
 // spectra.csv: signal,period,damping,sd,sv,sa,psv,psa (the scene's units; sa and psa in g).
 std::string spectra_csv(const RunReport& report);
+std::string spectra_csv(const std::vector<SignalSpectrum>& spectra);
 
 }  // namespace adjoin

@@ -16,6 +16,7 @@
 #include "adjoin/observe/peaks.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/modal.hpp"
+#include "adjoin/study/run.hpp"
 
 namespace adjoin {
 
@@ -60,6 +61,9 @@ struct BuildingReport {
   std::vector<LinkReport> links;
   std::vector<ContactReport> contacts;
   BuildingEnergy energy;
+  // In-structure spectra ([output.spectra]): of "ground" and of floors' absolute accelerations
+  // (X.aN_abs), from their histories at the solver's step h; SI units.
+  std::vector<SignalSpectrum> spectra;
 };
 
 BuildingReport run_building(const BuildingScene& scene, StructureObserver* extra = nullptr);
