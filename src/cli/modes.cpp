@@ -10,6 +10,7 @@
 
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/structure_file.hpp"
+#include "adjoin/io/text_file.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "command.hpp"
 
@@ -18,7 +19,7 @@ namespace {
 
 struct ModesArgs {
   std::string scene;
-  std::vector<std::string> overrides;
+  std::vector<std::string> overrides, unsets;
 };
 
 void print_building(const structure::Building& b, const char* time_unit) {
@@ -41,10 +42,12 @@ int modes_command(const ModesArgs& args) {
   structure::Structure s;
   const char* time_unit = "s";
   if (is_building_scene(args.scene)) {
-    if (!args.overrides.empty()) throw InputError("--set: not yet supported for building scenes (edit the scene file)");
-    s = read_structure(args.scene);
+    for (const auto& o : args.overrides)
+      if (!is_structure_key(o.substr(0, o.find('='))))
+        throw InputError("--set " + o + ": adjoin modes reads only the structure (building.*, link.*, contact.*)");
+    s = parse_structure(read_text_file(args.scene, "scene"), args.scene, args.overrides, args.unsets);
   } else {
-    const Scene scene = load_scene(args.scene, args.overrides);
+    const Scene scene = load_scene(args.scene, args.overrides, args.unsets);
     s = structure_of(scene);
     if (!scene.scales.si) time_unit = "T0";
   }
@@ -67,7 +70,9 @@ const Registration registration(15, [](CLI::App& app) -> Runner {
   auto args = std::make_shared<ModesArgs>();
   auto* sub = app.add_subcommand("modes", "Natural periods, modal damping ratios and mode shapes of a scene's structure");
   sub->add_option("scene", args->scene, "Scene file (TOML)")->required();
-  sub->add_option("--set", args->overrides, "Override a scene key by dotted path (two-block scenes)")->allow_extra_args(false);
+  sub->add_option("--set", args->overrides, "Override a scene key by dotted path, e.g. --set building.B.period=0.6")
+      ->allow_extra_args(false);
+  sub->add_option("--unset", args->unsets, "Remove a scene key or section first, e.g. --unset link.1")->allow_extra_args(false);
   return [args]() { return modes_command(*args); };
 });
 

@@ -257,6 +257,8 @@ structure::Structure parse_structure(const std::string& text, const std::string&
   return parse_structure(text, file, {}, {});
 }
 
+bool is_structure_key(const std::string& key) { return detail::is_structure_key(key); }
+
 structure::Structure parse_structure(const std::string& text, const std::string& file,
                                      const std::vector<std::string>& overrides, const std::vector<std::string>& unsets) {
   toml::table root = detail::parse_toml_text(text, file);

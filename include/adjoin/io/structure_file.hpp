@@ -25,6 +25,9 @@ structure::Structure parse_structure(const std::string& text, const std::string&
 // there is blamed on its --set in messages.
 structure::Structure parse_structure(const std::string& text, const std::string& file,
                                      const std::vector<std::string>& overrides, const std::vector<std::string>& unsets);
+// True if the dotted key (of a --set or --unset) is one of the structure's (building, link,
+// contact).
+bool is_structure_key(const std::string& key);
 
 // The two-block system of a (two-block) scene as a structure, in the scene's units: SI for SI
 // scenes; for dimensionless ones m1 = k1 = 1 (periods in the scene's time unit).
