@@ -268,3 +268,27 @@ TEST_CASE("read_csv_table understands quotes and reports ragged rows by line", "
   const fs::path ragged = write_temp("ragged.csv", "a,b\n1,2\n3\n");
   CHECK_THROWS_WITH(adjoin::read_csv_table(ragged), Catch::Contains("ragged.csv:3") && Catch::Contains("expected 2"));
 }
+
+TEST_CASE("plot run on a building run draws floor profiles of both buildings and the roofs' histories", "[plot][cli]") {
+  const fs::path dir = scratch("building");
+  const auto run = run_cli("run '" + kSource + "/records/scenes/buildings/two-frames.toml' --quiet --set solver.t_end=8 --out '" +
+                           dir.string() + "'");
+  INFO(run.err);
+  REQUIRE(run.status == 0);
+  const fs::path prefix = scratch("building-png") / "";
+  const auto png = run_cli("plot run '" + dir.string() + "' --size 800x500 --out '" + prefix.string() + "'");
+  INFO(png.err);
+  REQUIRE(png.status == 0);
+  require_png(prefix / "profiles.png", 800, 500);
+  require_png(prefix / "roofs.png", 800, 500);
+  const fs::path svg = scratch("building-svg") / "";
+  REQUIRE(run_cli("plot run '" + dir.string() + "' --format svg --out '" + svg.string() + "'").status == 0);
+  const std::string profiles = slurp(svg / "profiles.svg");
+  CHECK(profiles.find("peak storey drift [m]") != std::string::npos);
+  CHECK(profiles.find("building A") != std::string::npos);
+  CHECK(profiles.find("building B") != std::string::npos);
+  const std::string roofs = slurp(svg / "roofs.svg");
+  CHECK(roofs.find("A.x5") != std::string::npos);
+  CHECK(roofs.find("B.x3") != std::string::npos);
+  CHECK(roofs.find("link1.force") != std::string::npos);
+}

@@ -79,6 +79,13 @@ struct RunPlots {
 // "out/paper-strong/" gives out/paper-strong/displacements.png). Parent folders are created.
 RunPlots plot_run(const std::filesystem::path& dir, const std::string& prefix, const PlotStyle& style);
 
+// A building run's folder (summary.json with "structure" and floor peaks): `profiles` (peak
+// displacement by floor and peak drift by storey, A and B side by side) and, with a
+// timeseries.csv, `roofs` (the roofs' displacements and the links' forces against time).
+// plot_run hands such folders here.
+bool is_building_run(const std::filesystem::path& dir);
+RunPlots plot_building_run(const std::filesystem::path& dir, const std::string& prefix, const PlotStyle& style);
+
 // PSA and SD against period (log axis), one curve per damping; title after "Elastic response
 // spectra: ". From memory, or from the CSV of `adjoin spectrum` (title: the file's name).
 // `references` (e.g. a code spectrum) are drawn dashed on the PSA panel.

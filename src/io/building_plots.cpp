@@ -1,0 +1,140 @@
+// Figures of a building run's folder (io/plots.hpp: plot_run hands building runs here): the
+// floor profiles of the peaks, both buildings side by side, and the roofs' and links' histories.
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/io/gnuplot.hpp"
+#include "adjoin/io/plots.hpp"
+
+namespace adjoin {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Peaks of channel `prefix` + i for i = 1, 2, ... while the summary has them.
+std::vector<double> profile(const nlohmann::json& peaks, const std::string& prefix) {
+  std::vector<double> out;
+  for (int i = 1;; ++i) {
+    const std::string key = prefix + std::to_string(i);
+    if (!peaks.contains(key) || !peaks[key].is_object() || !peaks[key].contains("max_abs") ||
+        !peaks[key]["max_abs"].is_number())
+      break;
+    out.push_back(peaks[key]["max_abs"].get<double>());
+  }
+  return out;
+}
+
+std::vector<double> counting(std::size_t n) {
+  std::vector<double> v(n);
+  for (std::size_t i = 0; i < n; ++i) v[i] = static_cast<double>(i + 1);
+  return v;
+}
+
+}  // namespace
+
+bool is_building_run(const fs::path& dir) {
+  std::ifstream in(dir / "summary.json");
+  if (!in) return false;
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    return j.is_object() && j.contains("structure") && j.contains("peaks") && j["peaks"].contains("A.x1");
+  } catch (const nlohmann::json::exception&) {
+    return false;
+  }
+}
+
+RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const PlotStyle& style) {
+  const fs::path summary_file = dir / "summary.json";
+  nlohmann::json j;
+  {
+    std::ifstream in(summary_file);
+    try {
+      in >> j;
+    } catch (const nlohmann::json::exception& e) {
+      throw InputError(summary_file.string() + ": not valid JSON (" + e.what() + ")");
+    }
+  }
+  const std::string ext = plot_extension(style.format);
+  const std::string scene = j.value("scene", dir.filename().string());
+  const nlohmann::json& peaks = j["peaks"];
+  RunPlots result;
+  auto target = [&](const std::string& name) { return fs::path(prefix + name + ext); };
+
+  // (1) Floor profiles: peak displacement by floor and peak drift by storey, floors upwards.
+  {
+    std::ostringstream s;
+    s << kGnuplotPreamble;
+    std::vector<std::string> buildings;
+    for (const char* b : {"A", "B"}) {
+      const std::vector<double> x = profile(peaks, std::string(b) + ".x"), d = profile(peaks, std::string(b) + ".drift");
+      if (x.empty()) continue;
+      buildings.push_back(b);
+      // Floor 0 (the ground) at zero displacement, then the floors.
+      std::vector<double> floors = counting(x.size()), xs = x;
+      floors.insert(floors.begin(), 0.0);
+      xs.insert(xs.begin(), 0.0);
+      gnuplot_datablock(s, std::string("x") + b, {xs, floors});
+      gnuplot_datablock(s, std::string("d") + b, {d, counting(d.size())});
+    }
+    if (buildings.empty()) throw InputError(summary_file.string() + ": no floor peaks (A.x1, ...) in \"peaks\"");
+    s << "set multiplot layout 1,2 title " << gnuplot_quote(scene + ": peak floor displacements and storey drifts")
+      << " noenhanced font ',12'\n"
+      << "set ytics 1\nset yrange [0:*]\nset offsets 0, graph 0.08, 0.3, 0\nset key bottom right\n"
+      << "set xlabel 'peak displacement relative to the base [m]'\nset ylabel 'floor'\nplot ";
+    for (std::size_t k = 0; k < buildings.size(); ++k)
+      s << (k ? ", " : "") << "$x" << buildings[k] << " using 1:2 with linespoints lt " << k + 1 << " pt 7 title 'building "
+        << buildings[k] << "'";
+    s << "\nset xlabel 'peak storey drift [m]'\nset ylabel 'storey'\nset yrange [0.5:*]\nplot ";
+    for (std::size_t k = 0; k < buildings.size(); ++k)
+      s << (k ? ", " : "") << "$d" << buildings[k] << " using 1:2 with linespoints lt " << k + 1 << " pt 7 title 'building "
+        << buildings[k] << "'";
+    s << "\nunset multiplot\n";
+    render_gnuplot(s.str(), target("profiles"), style);
+    result.images.push_back(target("profiles"));
+  }
+
+  // (2) Roof displacements and link forces against time, from timeseries.csv.
+  const fs::path csv = dir / "timeseries.csv";
+  if (!fs::exists(csv)) {
+    result.notes.push_back("no " + csv.string() + " (output.timeseries = true writes it): the roof histories are not drawn");
+    return result;
+  }
+  const CsvTable ts = read_csv_table(csv);
+  const std::vector<double> t = ts.numbers("t");
+  std::vector<std::string> roofs, links;
+  for (const char* b : {"A", "B"}) {
+    const std::size_t floors = profile(peaks, std::string(b) + ".x").size();
+    if (floors > 0 && ts.has(std::string(b) + ".x" + std::to_string(floors))) roofs.push_back(std::string(b) + ".x" + std::to_string(floors));
+  }
+  for (int l = 1; ts.has("link" + std::to_string(l) + ".force"); ++l) links.push_back("link" + std::to_string(l) + ".force");
+  std::ostringstream s;
+  s << kGnuplotPreamble;
+  std::vector<std::vector<double>> columns{t};
+  for (const auto& r : roofs) columns.push_back(ts.numbers(r));
+  for (const auto& l : links) columns.push_back(ts.numbers(l));
+  gnuplot_datablock(s, "d", columns);
+  s << "set multiplot layout " << (links.empty() ? 1 : 2) << ",1 title "
+    << gnuplot_quote(scene + ": roof displacements" + (links.empty() ? "" : " and link forces")) << " noenhanced font ',12'\n"
+    << "set xrange [" << gnuplot_number(t.front()) << ":" << gnuplot_number(t.back()) << "]\nset key top right\n"
+    << "set xlabel 'time t [s]'\nset ylabel 'roof displacement [m]'\nplot ";
+  for (std::size_t k = 0; k < roofs.size(); ++k)
+    s << (k ? ", " : "") << "$d using 1:" << k + 2 << " with lines lt " << k + 1 << " noenhanced title '" << roofs[k] << "'";
+  s << "\n";
+  if (!links.empty()) {
+    s << "set ylabel 'link force [N]'\nplot ";
+    for (std::size_t k = 0; k < links.size(); ++k)
+      s << (k ? ", " : "") << "$d using 1:" << roofs.size() + k + 2 << " with lines lt " << k + 3 << " noenhanced title '"
+        << links[k] << "'";
+    s << "\n";
+  }
+  s << "unset multiplot\n";
+  render_gnuplot(s.str(), target("roofs"), style);
+  result.images.push_back(target("roofs"));
+  return result;
+}
+
+}  // namespace adjoin
