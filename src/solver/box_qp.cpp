@@ -12,37 +12,70 @@ double bound_of(DamperState s, double f) { return s == DamperState::slip_positiv
 
 BoxQpResult solve_box_qp(const Eigen::MatrixXd& s, const Eigen::VectorXd& w0, const Eigen::VectorXd& limit,
                          const std::vector<DamperState>& hint) {
+  BoxQp qp(s);
+  return qp.solve(w0, limit, hint);
+}
+
+BoxQp::BoxQp(Eigen::MatrixXd s) : s_(std::move(s)) {}
+
+BoxQp::Stuck& BoxQp::inverted(const std::vector<int>& stuck) {
+  // Consecutive solves mostly meet the same stuck set: check it before the map.
+  if (last_ != nullptr && *last_key_ == stuck) return *last_;
+  auto it = cache_.find(stuck);
+  if (it == cache_.end()) {
+    // A stuck set is met again and again (dampers switch a few times per cycle): keep them
+    // all (at most 2^n, in practice a handful).
+    const int m = static_cast<int>(stuck.size());
+    Eigen::MatrixXd a(m, m);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j) a(i, j) = s_(stuck[i], stuck[j]);
+    Stuck entry;
+    entry.inverse = a.ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+    entry.b.resize(m);
+    entry.x.resize(m);
+    it = cache_.emplace(stuck, std::move(entry)).first;
+  }
+  last_key_ = &it->first;
+  last_ = &it->second;
+  return it->second;
+}
+
+const BoxQpResult& BoxQp::solve(const Eigen::VectorXd& w0, const Eigen::VectorXd& limit,
+                                const std::vector<DamperState>& hint) {
+  const Eigen::MatrixXd& s = s_;
   const int n = static_cast<int>(w0.size());
-  BoxQpResult r;
-  r.state = hint.size() == static_cast<std::size_t>(n) ? hint : std::vector<DamperState>(n, DamperState::stick);
+  BoxQpResult& r = r_;
+  if (hint.size() == static_cast<std::size_t>(n)) r.state = hint;
+  else r.state.assign(n, DamperState::stick);
+  r.iterations = 0;
   for (int k = 0; k < n; ++k)
     if (!std::isfinite(limit[k])) r.state[k] = DamperState::stick;  // held stuck: never at a bound
-  r.q = Eigen::VectorXd::Zero(n);
+  r.q.setZero(n);
+  r.w.resize(n);
   // (A limit may be infinite: a damper held stuck.)
   double scale = w0.cwiseAbs().maxCoeff() + 1e-300;
   for (int k = 0; k < n; ++k)
     if (std::isfinite(limit[k])) scale += s(k, k) * limit[k];
   const double tol = 1e-13 * scale;
+  std::vector<int>& stuck = stuck_;
   for (r.iterations = 1; r.iterations <= 20 + 4 * n; ++r.iterations) {
-    std::vector<int> stuck;
+    stuck.clear();
     for (int k = 0; k < n; ++k) {
       if (r.state[k] == DamperState::stick) stuck.push_back(k);
       else r.q[k] = bound_of(r.state[k], limit[k]);
     }
     if (!stuck.empty()) {
       const int m = static_cast<int>(stuck.size());
-      Eigen::MatrixXd a(m, m);
-      Eigen::VectorXd b(m);
+      Stuck& sys = inverted(stuck);
       for (int i = 0; i < m; ++i) {
-        b[i] = w0[stuck[i]];
+        sys.b[i] = w0[stuck[i]];
         for (int k = 0; k < n; ++k)
-          if (r.state[k] != DamperState::stick) b[i] -= s(stuck[i], k) * r.q[k];
-        for (int j = 0; j < m; ++j) a(i, j) = s(stuck[i], stuck[j]);
+          if (r.state[k] != DamperState::stick) sys.b[i] -= s(stuck[i], k) * r.q[k];
       }
-      const Eigen::VectorXd x = a.ldlt().solve(b);
-      for (int i = 0; i < m; ++i) r.q[stuck[i]] = x[i];
+      sys.x.noalias() = sys.inverse.lazyProduct(sys.b);
+      for (int i = 0; i < m; ++i) r.q[stuck[i]] = sys.x[i];
     }
-    r.w = w0 - s * r.q;
+    r.w.noalias() = w0 - s * r.q;
     // The worst violation: a stuck force beyond its limit, or a slip against its velocity.
     int worst = -1;
     double amount = 0.0;

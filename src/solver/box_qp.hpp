@@ -14,6 +14,7 @@
 // is the closed form (stick if |w0| <= F S, else slip). Finite in practice; a projected
 // Gauss-Seidel sweep finishes any case the active set cycles on (never seen in tests).
 #include <Eigen/Dense>
+#include <map>
 #include <vector>
 
 namespace adjoin::detail {
@@ -31,5 +32,31 @@ struct BoxQpResult {
 // damper held stuck).
 BoxQpResult solve_box_qp(const Eigen::MatrixXd& s, const Eigen::VectorXd& w0, const Eigen::VectorXd& limit,
                          const std::vector<DamperState>& hint = {});
+
+// The same for many problems with one S (a time loop's: the Delassus matrix is constant for a
+// fixed step). Each stuck set's system S_ss is inverted once and kept (the dampers are few and
+// S_ss is well conditioned: a product with its inverse is as accurate as a solve, and much
+// faster than a dynamic-size LDLT solve at these sizes), and the work vectors are reused, so a
+// solve allocates nothing once its stuck sets have been seen.
+class BoxQp {
+ public:
+  explicit BoxQp(Eigen::MatrixXd s);
+  // Valid until the next call.
+  const BoxQpResult& solve(const Eigen::VectorXd& w0, const Eigen::VectorXd& limit,
+                           const std::vector<DamperState>& hint = {});
+
+ private:
+  struct Stuck {
+    Eigen::MatrixXd inverse;  // S_ss^-1
+    Eigen::VectorXd b, x;
+  };
+  Stuck& inverted(const std::vector<int>& stuck);
+  Eigen::MatrixXd s_;
+  std::map<std::vector<int>, Stuck> cache_;
+  const std::vector<int>* last_key_ = nullptr;  // the last stuck set's key in cache_
+  Stuck* last_ = nullptr;
+  std::vector<int> stuck_;
+  BoxQpResult r_;
+};
 
 }  // namespace adjoin::detail

@@ -1,5 +1,6 @@
 #include "adjoin/solver/structure_solver.hpp"
 
+#include <Eigen/SparseCore>
 #include <chrono>
 #include <algorithm>
 #include <cmath>
@@ -79,7 +80,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
 
   // ---- assembly: M, C, elastic K0, Zener elements, friction links ----
   Eigen::VectorXd mass(n);
-  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n), k0 = Eigen::MatrixXd::Zero(n, n);
+  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n), k0_dense = Eigen::MatrixXd::Zero(n, n);
   std::vector<ZenerElement> zener;
   std::map<double, std::vector<double>> weights;  // per order
   auto zener_law = [&](const structure::Zener& z) {
@@ -91,11 +92,11 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     const int nb = b.floors();
     mass.segment(offset, nb) = b.masses;
     c.block(offset, offset, nb, nb) = structure::inherent_damping_matrix(b) + structure::dashpot_matrix(b);
-    for (int st = 0; st < nb; ++st) Pair{offset + st, st > 0 ? offset + st - 1 : -1}.add(k0, b.springs[st]);
+    for (int st = 0; st < nb; ++st) Pair{offset + st, st > 0 ? offset + st - 1 : -1}.add(k0_dense, b.springs[st]);
     for (const auto& d : b.devices)
       for (int st : d.storeys) {
         const Pair p{offset + st - 1, st > 1 ? offset + st - 2 : -1};
-        if (d.type == DeviceType::spring) p.add(k0, d.k);
+        if (d.type == DeviceType::spring) p.add(k0_dense, d.k);
         if (d.type == DeviceType::zener) zener.push_back({p, offset + st - 1, zener_law(d.zener), 0.0});
       }
   };
@@ -103,14 +104,16 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   if (s.b) add_building(*s.b, s.a.floors());
   std::vector<Pair> link_pair;
   std::vector<int> friction;  // link indices
+  bool coupled = false;       // a link other than friction enters A = M + h/2 C + h^2/4 K
   for (std::size_t l = 0; l < s.links.size(); ++l) {
     const auto& link = s.links[l];
     const Pair p{s.dof('A', link.floor_a), s.dof('B', link.floor_b)};
     link_pair.push_back(p);
-    if (link.type == LinkType::spring) p.add(k0, link.k);
+    if (link.type == LinkType::spring) p.add(k0_dense, link.k);
     if (link.type == LinkType::dashpot) p.add(c, link.c);
     if (link.type == LinkType::zener) zener.push_back({p, -1, zener_law(link.zener), 0.0});
     if (link.type == LinkType::friction) friction.push_back(static_cast<int>(l));
+    else coupled = true;
   }
   // Zener links come after the storey devices in `zener`; remember where each link's is.
   std::vector<int> link_zener(s.links.size(), -1);
@@ -119,11 +122,51 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     for (int l = static_cast<int>(s.links.size()) - 1; l >= 0; --l)
       if (s.links[l].type == LinkType::zener) link_zener[l] = --z;
   }
-  Eigen::MatrixXd k_eff = k0;
-  for (const auto& e : zener) e.pair.add(k_eff, e.law->stiffness());
-  const Eigen::MatrixXd a_step = Eigen::MatrixXd(mass.asDiagonal()) + 0.5 * h * c + 0.25 * h * h * k_eff;
-  const Eigen::LDLT<Eigen::MatrixXd> a_solver(a_step);
-  if (a_solver.info() != Eigen::Success) throw NumericalError("the step matrix M + h/2 C + h^2/4 K is not positive definite", 0.0);
+  Eigen::MatrixXd k_eff_dense = k0_dense;
+  for (const auto& e : zener) e.pair.add(k_eff_dense, e.law->stiffness());
+  // A shear building's stiffness is tridiagonal and a link adds four entries: the products
+  // with K0 and K_eff are O(n) as sparse matrices (the same entries as the dense assembly, so
+  // the same sums; only exact zeros are left out). Row-major: each row's sum stays in a
+  // register (column-major scatters into the result, a chain of stores and reloads).
+  using SparseRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
+  const SparseRows k0 = k0_dense.sparseView(), k_eff = k_eff_dense.sparseView();
+  const Eigen::MatrixXd a_step = Eigen::MatrixXd(mass.asDiagonal()) + 0.5 * h * c + 0.25 * h * h * k_eff_dense;
+
+  // The step matrix is factorised once (it is constant for a fixed h). Inherent damping is
+  // per building and a friction link enters the step through the dampers' forces only, so
+  // without spring, dashpot or Zener links A and C are block diagonal, one block per building:
+  // each is handled on its own (half the dense work of the whole for two equal buildings).
+  // Per step a block needs v_free = A^-1 rhs and its damping forces C v_free: both from one
+  // matrix-vector product with [A^-1; C A^-1], formed once. (A triangular solve pair costs as
+  // many multiplications but runs at a fraction of a product's speed at these sizes; A is
+  // M + O(h) and well conditioned, so its explicit inverse is as accurate as the solve.)
+  struct Block {
+    int offset = 0, size = 0;
+    Eigen::LDLT<Eigen::MatrixXd> a;  // A's diagonal block, factorised
+    Eigen::MatrixXd c;               // C's diagonal block
+    Eigen::MatrixXd step;            // [A^-1; C A^-1] of the block (2 size x size)
+    Eigen::VectorXd out;             // [v_free; C v_free] of the block
+  };
+  std::vector<Block> blocks;
+  {
+    std::vector<std::pair<int, int>> ranges;
+    if (s.b && !coupled) ranges = {{0, s.a.floors()}, {s.a.floors(), s.b->floors()}};
+    else ranges = {{0, n}};
+    for (const auto& [offset, size] : ranges) {
+      Block b;
+      b.offset = offset;
+      b.size = size;
+      b.a.compute(a_step.block(offset, offset, size, size));
+      if (b.a.info() != Eigen::Success)
+        throw NumericalError("the step matrix M + h/2 C + h^2/4 K is not positive definite", 0.0);
+      b.c = c.block(offset, offset, size, size);
+      b.step.resize(2 * size, size);
+      b.step.topRows(size) = b.a.solve(Eigen::MatrixXd::Identity(size, size));
+      b.step.bottomRows(size) = b.c * b.step.topRows(size);
+      b.out.resize(2 * size);
+      blocks.push_back(std::move(b));
+    }
+  }
   const int nf = static_cast<int>(friction.size());
   Eigen::MatrixXd bf = Eigen::MatrixXd::Zero(nf, n);
   Eigen::VectorXd limit(nf);
@@ -133,12 +176,36 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     bf(f, p.j) = -1.0;
     limit[f] = s.links[friction[f]].slip_force;
   }
+  // A^-1 B' (the floors' velocity response to the dampers' step forces) and C A^-1 B' (the
+  // damping forces of that response), once: per step the velocities are v = v_free - h A^-1
+  // B' Q and their damping forces C v = C v_free - h C A^-1 B' Q, O(n nf) for any Q tried.
   // No friction link (a building alone): nothing to solve, and Eigen's triangular solve must
   // not see a matrix with no columns (it binds a reference to its null data).
-  const Eigen::MatrixXd a_inv_bt = nf > 0 ? Eigen::MatrixXd(a_solver.solve(bf.transpose())) : Eigen::MatrixXd(n, 0);
+  Eigen::MatrixXd a_inv_bt = Eigen::MatrixXd::Zero(n, nf);
+  if (nf > 0)
+    for (const Block& b : blocks)
+      a_inv_bt.middleRows(b.offset, b.size) = b.a.solve(bf.transpose().middleRows(b.offset, b.size));
+  const Eigen::MatrixXd c_a_inv_bt = nf > 0 ? Eigen::MatrixXd(c * a_inv_bt) : Eigen::MatrixXd(n, 0);
   const Eigen::MatrixXd delassus = nf > 0 ? Eigen::MatrixXd(h * bf * a_inv_bt) : Eigen::MatrixXd(0, 0);
-  // For the grid-point forces of stuck dampers: B M^-1 B' restricted to the stuck ones.
+  detail::BoxQp box_qp(delassus);
   const Eigen::VectorXd inv_mass = mass.cwiseInverse();
+  // B M^-1 B': for the grid-point forces of stuck dampers and the kinks of ended slips.
+  Eigen::MatrixXd g_all(nf, nf);
+  for (int i = 0; i < nf; ++i)
+    for (int j = 0; j < nf; ++j) g_all(i, j) = (bf.row(i).cwiseProduct(inv_mass.transpose())).dot(bf.row(j));
+  std::vector<int> fi(nf), fj(nf);  // each damper's two floors
+  for (int f = 0; f < nf; ++f) {
+    fi[f] = link_pair[friction[f]].i;
+    fj[f] = link_pair[friction[f]].j;
+  }
+  // B' q, where each damper acts -q on A's floor and +q on B's (as bf' q, without the zeros).
+  auto add_bt = [&](const Eigen::VectorXd& q, Eigen::VectorXd* out) {
+    out->setZero();
+    for (int f = 0; f < nf; ++f) {
+      (*out)[fi[f]] += q[f];
+      (*out)[fj[f]] -= q[f];
+    }
+  };
 
   observer.begin(s, options);
   const double g = kStandardGravity;
@@ -153,6 +220,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
 
   std::vector<detail::DamperState> states(nf, detail::DamperState::stick);
   Eigen::VectorXd internal = Eigen::VectorXd::Zero(n);  // storey and link forces (not friction) at t_n
+  Eigen::VectorXd cv_now = Eigen::VectorXd::Zero(n);    // C v at t_n
   Eigen::VectorXd friction_now = Eigen::VectorXd::Zero(nf);
   Eigen::VectorXd stick_force_now = Eigen::VectorXd::Zero(nf);  // the force that keeps each damper stuck
   Eigen::VectorXd stick_force_prev = Eigen::VectorXd::Zero(nf);
@@ -161,41 +229,71 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   std::vector<double> w_prev(nf, 0.0);
   std::vector<double> stick_start_t(nf, -INFINITY), stick_start_q(nf, 0.0);  // the last stick's start
 
+  // The step's work vectors, sized once: a step allocates nothing (but the box QP's small
+  // systems).
+  Eigen::VectorXd offsets(static_cast<Eigen::Index>(zener.size()));  // each Zener element's f - k_eff d
+  Eigen::VectorXd off_dof(n), rhs(n), v_free(n), cv_free(n), v1(n), x1(n), p1(n), cv1(n), p_next(n), cv_next(n), v_pre(n);
+  Eigen::VectorXd bq(n), force(n), w_free(nf), w_end(nf), q_step(nf), q_trial(nf), q1(nf), stick1(nf), w1(nf);
+  Eigen::VectorXd fixed(nf), fixed2(nf), q_grid(nf), stick_grid(nf), others(nf), held_q(nf), held_w0(nf), held_lim(nf);
+  std::vector<double> onset(nf), crossing(nf), kink_theta(nf), kink_jump(nf);
+  std::vector<detail::DamperState> decided(nf);
+  std::vector<bool> hold(nf), hold2(nf);
+  std::vector<Phase> phase1;
+  std::vector<int> touched;
+  touched.reserve(2 * static_cast<std::size_t>(nf));
+
+  // The stuck dampers' system (B_s M^-1 B_s'), inverted for the last stuck set (it changes
+  // only at a switch; a product with the inverse of this small, well conditioned matrix is
+  // as accurate as a solve and much faster than a dynamic-size LDLT solve).
+  std::vector<int> stuck, stuck_factorised;
+  Eigen::MatrixXd stuck_inverse;
+  Eigen::VectorXd stuck_rhs, stuck_q;
+  // A damper's floor's acceleration term without the ground: M^-1 (-C v - P - B' q) at dof k.
+  auto accel = [&](const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const Eigen::VectorXd& btq, int k) {
+    return (-cv[k] - p[k] - btq[k]) * inv_mass[k];
+  };
   // Grid-point forces: slipping dampers at +-F; the stuck ones carry what keeps their relative
   // acceleration zero, (B_s M^-1 B_s') q_s = B_s M^-1 (M 1 a_g - C v - P - B_l' q_l) (the ground
   // term cancels: B 1 = 0). Also returns each damper's stick force (unclamped) for onsets.
-  auto grid_forces = [&](const Eigen::VectorXd& v, const Eigen::VectorXd& p, const std::vector<Phase>& phase,
+  // `cv` is C v. Only the dampers' floors are needed: O(nf) after B' q.
+  auto grid_forces = [&](const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const std::vector<Phase>& phase,
                          Eigen::VectorXd* q, Eigen::VectorXd* stick) {
-    q->setZero(nf);
-    std::vector<int> stuck;
+    q->setZero();
+    stuck.clear();
     for (int f = 0; f < nf; ++f) {
       if (phase[friction[f]] == Phase::stick) stuck.push_back(f);
       else (*q)[f] = phase[friction[f]] == Phase::slip_right ? limit[f] : -limit[f];
     }
-    Eigen::VectorXd rhs = -(c * v) - p - bf.transpose() * (*q);
-    rhs = rhs.cwiseProduct(inv_mass);
-    stick->setZero(nf);
+    stick->setZero();
     if (stuck.empty()) return;
+    add_bt(*q, &bq);
     const int m = static_cast<int>(stuck.size());
-    Eigen::MatrixXd a(m, m);
-    Eigen::VectorXd b(m);
-    for (int i = 0; i < m; ++i) {
-      b[i] = bf.row(stuck[i]).dot(rhs);
-      for (int j = 0; j < m; ++j) a(i, j) = (bf.row(stuck[i]).cwiseProduct(inv_mass.transpose())).dot(bf.row(stuck[j]));
+    if (stuck != stuck_factorised) {
+      Eigen::MatrixXd a(m, m);
+      for (int i = 0; i < m; ++i)
+        for (int j = 0; j < m; ++j) a(i, j) = g_all(stuck[i], stuck[j]);
+      stuck_inverse = a.ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+      stuck_factorised = stuck;
+      stuck_rhs.resize(m);
+      stuck_q.resize(m);
     }
-    const Eigen::VectorXd qs = a.ldlt().solve(b);
     for (int i = 0; i < m; ++i) {
-      (*stick)[stuck[i]] = qs[i];
-      (*q)[stuck[i]] = std::clamp(qs[i], -limit[stuck[i]], limit[stuck[i]]);
+      const int f = stuck[i];
+      stuck_rhs[i] = accel(cv, p, bq, fi[f]) - accel(cv, p, bq, fj[f]);
+    }
+    stuck_q.noalias() = stuck_inverse.lazyProduct(stuck_rhs);
+    for (int i = 0; i < m; ++i) {
+      (*stick)[stuck[i]] = stuck_q[i];
+      (*q)[stuck[i]] = std::clamp(stuck_q[i], -limit[stuck[i]], limit[stuck[i]]);
     }
   };
   // The force that would keep slipping damper f stuck at this instant, the others at their
   // forces q: b_f M^-1 (-C v - P - sum_{g != f} b_g q_g) / (b_f M^-1 b_f').
-  auto would_stick = [&](const Eigen::VectorXd& v, const Eigen::VectorXd& p, const Eigen::VectorXd& q, int f) {
-    Eigen::VectorXd others = q;
+  auto would_stick = [&](const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const Eigen::VectorXd& q, int f) {
+    others = q;
     others[f] = 0.0;
-    const Eigen::VectorXd rhs = (-(c * v) - p - bf.transpose() * others).cwiseProduct(inv_mass);
-    return bf.row(f).dot(rhs) / bf.row(f).cwiseProduct(inv_mass.transpose()).dot(bf.row(f));
+    add_bt(others, &bq);
+    return (accel(cv, p, bq, fi[f]) - accel(cv, p, bq, fj[f])) / g_all(f, f);
   };
 
   // Storey forces: the storey springs, spring and dashpot devices, Zener devices.
@@ -240,6 +338,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   fill_links(now, friction_now);
   now.a_abs.setConstant(-now.ag);  // at rest: the floors move with the ground
   observer.observe(now);
+  StructureState next = now;  // its vectors are reused by every step (swapped with `now`)
 
   // Where a damper's slip ends inside a step (it sticks, or turns), its force jumps by dq at
   // the located fraction theta, so the floors' velocities have a kink there, which the
@@ -251,44 +350,55 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   // integrated exactly: x'' jumps by -M^-1 B' dQ, where dQ holds dq and the jumps of the
   // dampers that stay stuck (which keep their relative accelerations: their stuck forces
   // jump too). One damper: exactly the two-block scheme's correction. Onsets need nothing:
-  // the stuck force reaches the limit continuously, no kink.
-  const auto integrate_kinks = [&](const std::vector<detail::DamperState>& after, const std::vector<double>& kink_theta,
-                                   const std::vector<double>& kink_jump, Eigen::VectorXd* x) {
+  // the stuck force reaches the limit continuously, no kink. (Rare: it may allocate.)
+  const auto integrate_kinks = [&](const std::vector<detail::DamperState>& after, const std::vector<double>& kink_theta_,
+                                   const std::vector<double>& kink_jump_, Eigen::VectorXd* x) {
     std::vector<int> held;
     for (int f = 0; f < nf; ++f)
-      if (after[f] == detail::DamperState::stick && std::isnan(kink_theta[f])) held.push_back(f);
-    const Eigen::MatrixXd g_all = bf * inv_mass.asDiagonal() * bf.transpose();
+      if (after[f] == detail::DamperState::stick && std::isnan(kink_theta_[f])) held.push_back(f);
     const int m = static_cast<int>(held.size());
     Eigen::MatrixXd g_held(m, m);
     for (int a = 0; a < m; ++a)
       for (int b = 0; b < m; ++b) g_held(a, b) = g_all(held[a], held[b]);
     Eigen::LDLT<Eigen::MatrixXd> held_solver;
     if (m > 0) held_solver.compute(g_held);  // (never on an empty matrix: see a_inv_bt above)
+    Eigen::VectorXd dq(nf);
     for (int f = 0; f < nf; ++f) {
-      if (std::isnan(kink_theta[f])) continue;
-      Eigen::VectorXd dq = Eigen::VectorXd::Zero(nf);
-      dq[f] = kink_jump[f];
+      if (std::isnan(kink_theta_[f])) continue;
+      dq.setZero();
+      dq[f] = kink_jump_[f];
       if (m > 0) {
-        Eigen::VectorXd rhs(m);
-        for (int a = 0; a < m; ++a) rhs[a] = -g_all(held[a], f) * kink_jump[f];
-        const Eigen::VectorXd response = held_solver.solve(rhs);
+        Eigen::VectorXd r(m);
+        for (int a = 0; a < m; ++a) r[a] = -g_all(held[a], f) * kink_jump_[f];
+        const Eigen::VectorXd response = held_solver.solve(r);
         for (int a = 0; a < m; ++a) dq[held[a]] = response[a];
       }
-      const double theta = kink_theta[f];
-      *x += (0.5 * h * h * theta * (1.0 - theta)) * inv_mass.cwiseProduct(bf.transpose() * dq);
+      const double theta = kink_theta_[f];
+      add_bt(dq, &bq);
+      *x += (0.5 * h * h * theta * (1.0 - theta)) * inv_mass.cwiseProduct(bq);
     }
   };
 
   for (std::size_t step = 0; step < n_steps; ++step) {
-    StructureState next = now;
+    next.link_phase = now.link_phase;
+    next.link_switch = now.link_switch;
     next.t = static_cast<double>(step + 1) * h;
     next.ag = g * ground.ag(next.t);
-    Eigen::VectorXd offsets = Eigen::VectorXd::Zero(n);
-    for (const auto& e : zener) e.pair.add(offsets, e.law->offset());
-    const Eigen::VectorXd predicted = now.x + 0.5 * h * now.v;
-    const Eigen::VectorXd rhs = mass.cwiseProduct(now.v) +
-                                0.5 * h * (mass * (now.ag + next.ag) - c * now.v - internal - k_eff * predicted - offsets);
-    const Eigen::VectorXd v_free = a_solver.solve(rhs);
+    // The Zener elements' history terms: constant through the step (until commit).
+    for (std::size_t e = 0; e < zener.size(); ++e) offsets[static_cast<Eigen::Index>(e)] = zener[e].law->offset();
+    // rhs = M v + h/2 (M 1 (ag_n + ag_n+1) - C v - P - K_eff (x + h/2 v) - offsets).
+    off_dof.setZero();
+    for (std::size_t e = 0; e < zener.size(); ++e) zener[e].pair.add(off_dof, offsets[static_cast<Eigen::Index>(e)]);
+    x1 = now.x + 0.5 * h * now.v;  // (the predictor, in x1's storage)
+    p1.noalias() = k_eff * x1;
+    rhs = mass.cwiseProduct(now.v) + 0.5 * h * (mass * (now.ag + next.ag) - cv_now - internal - p1 - off_dof);
+    // v_free = A^-1 rhs and its damping forces C v_free: the step's only O(n^2) work (with
+    // dense C).
+    for (Block& b : blocks) {
+      b.out.noalias() = b.step * rhs.segment(b.offset, b.size);
+      v_free.segment(b.offset, b.size) = b.out.head(b.size);
+      cv_free.segment(b.offset, b.size) = b.out.tail(b.size);
+    }
     // The dampers' step, decided per damper as in the two-block scheme, from a trial step in
     // which the dampers stuck at t_n stay stuck and the slipping ones slip on:
     //  - stuck at t_n: it starts to slip if its stuck force at t_{n+1} leaves the cone, at the
@@ -299,49 +409,55 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     //    the cone, and reverses if not (the impulse split at the crossing).
     // The dampers held stuck then take the forces that keep them stuck (a linear solve: the
     // box QP with infinite limits for them and the others' forces fixed).
-    Eigen::VectorXd q_step = Eigen::VectorXd::Zero(nf);
-    std::vector<double> onset(nf, kNaN), crossing(nf, kNaN);
-    std::vector<double> kink_theta(nf, kNaN), kink_jump(nf, 0.0);  // slips ended in the step
-    const Eigen::VectorXd w_free = bf * v_free;
-    auto end_state = [&](const Eigen::VectorXd& q, Eigen::VectorXd* v, Eigen::VectorXd* x, Eigen::VectorXd* p) {
-      *v = v_free - h * a_inv_bt * q;
+    q_step.setZero();
+    std::fill(onset.begin(), onset.end(), kNaN);
+    std::fill(crossing.begin(), crossing.end(), kNaN);
+    std::fill(kink_theta.begin(), kink_theta.end(), kNaN);  // slips ended in the step
+    std::fill(kink_jump.begin(), kink_jump.end(), 0.0);
+    for (int f = 0; f < nf; ++f) w_free[f] = v_free[fi[f]] - v_free[fj[f]];
+    // The end of the step for step forces q: v, C v, x and P (Zener forces at their offsets).
+    auto end_state = [&](const Eigen::VectorXd& q, Eigen::VectorXd* v, Eigen::VectorXd* cv, Eigen::VectorXd* x,
+                         Eigen::VectorXd* p) {
+      v->noalias() = v_free - h * a_inv_bt * q;
+      cv->noalias() = cv_free - h * c_a_inv_bt * q;
       *x = now.x + 0.5 * h * (now.v + *v);
-      *p = k0 * *x;
-      for (const auto& e : zener) e.pair.add(*p, e.law->force(e.pair.of(*x)));
+      p->noalias() = k0 * *x;
+      for (std::size_t e = 0; e < zener.size(); ++e) {
+        const auto& el = zener[e];
+        el.pair.add(*p, el.law->stiffness() * el.pair.of(*x) + offsets[static_cast<Eigen::Index>(e)]);
+      }
     };
     // Solves for the held dampers (limit infinite) with the others' step forces fixed.
-    auto solve_held = [&](const std::vector<bool>& hold, const Eigen::VectorXd& fixed) {
-      Eigen::VectorXd w0 = w_free, lim = Eigen::VectorXd::Zero(nf);
+    auto solve_held = [&](const std::vector<bool>& hold_, const Eigen::VectorXd& fixed_, Eigen::VectorXd* q) {
+      held_w0 = w_free;
+      held_lim.setZero();
       for (int f = 0; f < nf; ++f) {
-        if (hold[f]) lim[f] = std::numeric_limits<double>::infinity();
-        else w0 -= delassus.col(f) * fixed[f];
+        if (hold_[f]) held_lim[f] = std::numeric_limits<double>::infinity();
+        else held_w0 -= delassus.col(f) * fixed_[f];
       }
-      Eigen::VectorXd q = detail::solve_box_qp(delassus, w0, lim, states).q;
+      *q = box_qp.solve(held_w0, held_lim, states).q;
       for (int f = 0; f < nf; ++f)
-        if (!hold[f]) q[f] = fixed[f];
-      return q;
+        if (!hold_[f]) (*q)[f] = fixed_[f];
     };
-    std::vector<detail::DamperState> decided(nf, detail::DamperState::stick);
+    std::fill(decided.begin(), decided.end(), detail::DamperState::stick);
     if (nf > 0 && step == 0) {  // from rest: the closed-form relay of the box QP
-      const detail::BoxQpResult r = detail::solve_box_qp(delassus, w_free, limit, states);
+      const detail::BoxQpResult& r = box_qp.solve(w_free, limit, states);
       q_step = r.q;
       decided = r.state;
     } else if (nf > 0) {
-      std::vector<bool> hold(nf, false);
-      Eigen::VectorXd fixed = Eigen::VectorXd::Zero(nf);
+      fixed.setZero();
       for (int f = 0; f < nf; ++f) {
         const Phase ph = now.link_phase[friction[f]];
         hold[f] = ph == Phase::stick;
         if (!hold[f]) fixed[f] = ph == Phase::slip_right ? limit[f] : -limit[f];
       }
-      const Eigen::VectorXd q_trial = solve_held(hold, fixed);
-      Eigen::VectorXd v1, x1, p1, q1(nf), stick1(nf);
-      end_state(q_trial, &v1, &x1, &p1);
-      std::vector<Phase> phase1 = now.link_phase;
-      grid_forces(v1, p1, phase1, &q1, &stick1);
-      const Eigen::VectorXd w1 = bf * v1;
-      std::vector<bool> hold2(nf, false);
-      Eigen::VectorXd fixed2 = Eigen::VectorXd::Zero(nf);
+      solve_held(hold, fixed, &q_trial);
+      end_state(q_trial, &v1, &cv1, &x1, &p1);
+      phase1 = now.link_phase;
+      grid_forces(cv1, p1, phase1, &q1, &stick1);
+      for (int f = 0; f < nf; ++f) w1[f] = v1[fi[f]] - v1[fj[f]];
+      std::fill(hold2.begin(), hold2.end(), false);
+      fixed2.setZero();
       for (int f = 0; f < nf; ++f) {
         const double lim = limit[f];
         if (hold[f]) {
@@ -383,8 +499,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
                                : (w_now != w1[f] ? std::clamp(w_now / (w_now - w1[f]), 0.0, 1.0) : 1.0);
           crossing[f] = theta;
           // The force that would keep it stuck, at t_n and at the end of slipping on.
-          const double s0 = would_stick(now.v, internal, friction_now, f);
-          const double s1 = would_stick(v1, p1, q1, f);
+          const double s0 = would_stick(cv_now, internal, friction_now, f);
+          const double s1 = would_stick(cv1, p1, q1, f);
           const double at = s0 + theta * (s1 - s0);
           kink_theta[f] = theta;
           if (std::abs(at) <= lim) {
@@ -400,9 +516,9 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
           }
         }
       }
-      q_step = solve_held(hold2, fixed2);
+      solve_held(hold2, fixed2, &q_step);
       // A starting damper that the others leave no room to slip stays stuck this step.
-      const Eigen::VectorXd w_end = w_free - delassus * q_step;
+      w_end.noalias() = w_free - delassus * q_step;
       bool again = false;
       for (int f = 0; f < nf; ++f)
         if (!std::isnan(onset[f]) && w_end[f] * fixed2[f] <= 0.0) {
@@ -411,27 +527,42 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
           decided[f] = detail::DamperState::stick;
           again = true;
         }
-      if (again) q_step = solve_held(hold2, fixed2);
+      if (again) solve_held(hold2, fixed2, &q_step);
     }
     states = decided;
-    next.v = v_free - h * a_inv_bt * q_step;
+    next.v.noalias() = v_free - h * a_inv_bt * q_step;
+    cv_next.noalias() = cv_free - h * c_a_inv_bt * q_step;
     // Stick exact: a stuck damper's two floors get one velocity, bit for bit (their
     // mass-weighted mean, which moves them by rounding only).
+    touched.clear();
+    for (int f = 0; f < nf; ++f)
+      if (states[f] == detail::DamperState::stick) {
+        touched.push_back(fi[f]);
+        touched.push_back(fj[f]);
+      }
+    for (int k : touched) v_pre[k] = next.v[k];
     for (int pass = 0; pass < 2; ++pass)
       for (int f = 0; f < nf; ++f)
         if (states[f] == detail::DamperState::stick) {
-          const Pair& p = link_pair[friction[f]];
-          const double v = (mass[p.i] * next.v[p.i] + mass[p.j] * next.v[p.j]) / (mass[p.i] + mass[p.j]);
-          next.v[p.i] = next.v[p.j] = v;
+          const int i = fi[f], j = fj[f];
+          const double v = (mass[i] * next.v[i] + mass[j] * next.v[j]) / (mass[i] + mass[j]);
+          next.v[i] = next.v[j] = v;
         }
+    // ... and C v follows those moves column by column (O(n) each), not by a product with C.
+    std::sort(touched.begin(), touched.end());
+    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
+    for (int k : touched) {
+      const double dv = next.v[k] - v_pre[k];
+      if (dv != 0.0) cv_next += c.col(k) * dv;
+    }
     next.x = now.x + 0.5 * h * (now.v + next.v);
     if (step > 0 && std::any_of(kink_theta.begin(), kink_theta.end(), [](double t) { return !std::isnan(t); }))
       integrate_kinks(states, kink_theta, kink_jump, &next.x);
-    Eigen::VectorXd p_next = k0 * next.x;
-    for (auto& e : zener) {
-      const double d = e.pair.of(next.x);
-      e.force = e.law->force(d);
-      e.pair.add(p_next, e.force);
+    p_next.noalias() = k0 * next.x;
+    for (std::size_t e = 0; e < zener.size(); ++e) {
+      auto& el = zener[e];
+      el.force = el.law->stiffness() * el.pair.of(next.x) + offsets[static_cast<Eigen::Index>(e)];
+      el.pair.add(p_next, el.force);
     }
     // Phases from the step's dampers, with the switches located above.
     for (int f = 0; f < nf; ++f) {
@@ -445,13 +576,20 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       const double theta = before == Phase::stick ? onset[f] : crossing[f];
       next.link_switch[l] = now.t + (std::isnan(theta) ? 1.0 : theta) * h;
     }
-    Eigen::VectorXd q_grid(nf), stick_grid(nf);
-    grid_forces(next.v, p_next, next.link_phase, &q_grid, &stick_grid);
+    grid_forces(cv_next, p_next, next.link_phase, &q_grid, &stick_grid);
     // Absolute accelerations at the grid point: x'' - a_g.
-    const Eigen::VectorXd force = mass * next.ag - c * next.v - p_next - bf.transpose() * q_grid;
+    add_bt(q_grid, &bq);
+    force = mass * next.ag - cv_next - p_next - bq;
     next.a_abs = force.cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, next.ag);
     fill_links(next, q_grid);
-    if (!(next.x.allFinite() && next.v.allFinite()) || next.x.cwiseAbs().maxCoeff() > 1e6) {
+    // (One pass: Eigen's allFinite is x - x == x - x, two unvectorised reductions.)
+    bool finite = true;
+    double largest = 0.0;
+    for (int k = 0; k < n; ++k) {
+      finite = finite && std::isfinite(next.x[k]) && std::isfinite(next.v[k]);
+      largest = std::max(largest, std::abs(next.x[k]));
+    }
+    if (!finite || largest > 1e6) {
       std::ostringstream m;
       m << "the response became " << (next.x.allFinite() ? "larger than 1e6 m" : "non-finite") << " at t = " << next.t
         << " s at solver.h = " << h << " s; check the ground motion's scale and the structure's units";
@@ -459,7 +597,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     }
     for (auto& e : zener) e.law->commit(e.pair.of(next.x), e.force);
     observer.observe(next);
-    internal = p_next;
+    internal.swap(p_next);
+    cv_now.swap(cv_next);
     friction_now = q_grid;
     stick_force_prev = stick_force_now;
     stick_force_now = stick_grid;
@@ -469,7 +608,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       prev_same_slip[f] = step > 0 && ph != Phase::stick && next.link_phase[friction[f]] == ph;
       w_prev[f] = now.link_velocity[friction[f]];
     }
-    now = std::move(next);
+    std::swap(now, next);
   }
   observer.end();
   StructureRunSummary summary;
