@@ -11,6 +11,11 @@
 #include "adjoin/io/plots.hpp"
 
 namespace adjoin {
+// (plots.cpp) summary.json parsed; InputError naming the file if it is not JSON.
+nlohmann::json read_summary_json(const std::filesystem::path& file);
+}  // namespace adjoin
+
+namespace adjoin {
 namespace {
 
 namespace fs = std::filesystem;
@@ -49,15 +54,7 @@ bool is_building_run(const fs::path& dir) {
 
 RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const PlotStyle& style) {
   const fs::path summary_file = dir / "summary.json";
-  nlohmann::json j;
-  {
-    std::ifstream in(summary_file);
-    try {
-      in >> j;
-    } catch (const nlohmann::json::exception& e) {
-      throw InputError(summary_file.string() + ": not valid JSON (" + e.what() + ")");
-    }
-  }
+  const nlohmann::json j = read_summary_json(summary_file);
   const std::string ext = plot_extension(style.format);
   const std::string scene = j.value("scene", dir.filename().string());
   const nlohmann::json& peaks = j["peaks"];

@@ -284,6 +284,21 @@ std::optional<double> json_number(const nlohmann::json& j, const char* a, const 
   return j[a][b].get<double>();
 }
 
+}  // namespace
+
+nlohmann::json read_summary_json(const fs::path& file) {
+  nlohmann::json j;
+  std::ifstream in(file);
+  try {
+    in >> j;
+  } catch (const nlohmann::json::exception& e) {
+    throw InputError(file.string() + ": not valid JSON (" + e.what() + ")");
+  }
+  return j;
+}
+
+namespace {
+
 RunData load_run(const fs::path& dir) {
   if (!fs::is_directory(dir))
     throw InputError(dir.string() + ": not a folder (expected the output folder of `adjoin run`)");
@@ -291,15 +306,7 @@ RunData load_run(const fs::path& dir) {
   const fs::path summary_file = dir / "summary.json";
   if (!fs::exists(summary_file))
     throw InputError(summary_file.string() + ": not found (expected the summary.json written by `adjoin run`)");
-  nlohmann::json j;
-  {
-    std::ifstream in(summary_file);
-    try {
-      in >> j;
-    } catch (const nlohmann::json::exception& e) {
-      throw InputError(summary_file.string() + ": not valid JSON (" + e.what() + ")");
-    }
-  }
+  const nlohmann::json j = read_summary_json(summary_file);
   if (!j.is_object()) throw InputError(summary_file.string() + ": expected a JSON object");
   run.scene = j.value("scene", dir.filename().string());
   const std::string units = j.value("units", "dimensionless");

@@ -248,6 +248,20 @@ void check_keys(const SceneReader& reader, const toml::table& table, const std::
   }
 }
 
+// Removes the dotted key (a value or a table) from the parsed table; false if it is not there.
+// Removing nodes keeps the others' source lines, as re-parsing edited text would not.
+bool remove_key(toml::table& table, const std::string& key) {
+  toml::table* parent = &table;
+  std::string leaf = key;
+  if (const auto dot = key.rfind('.'); dot != std::string::npos) {
+    parent = table.at_path(key.substr(0, dot)).as_table();
+    leaf = key.substr(dot + 1);
+  }
+  if (!parent || !parent->contains(leaf)) return false;
+  parent->erase(leaf);
+  return true;
+}
+
 // Splits "a.b.c=value" and puts the TOML value (or a bare string) at that path.
 void apply_override(toml::table& table, const std::string& text, std::map<std::string, std::string>& origins) {
   const auto eq = text.find('=');
@@ -258,13 +272,7 @@ void apply_override(toml::table& table, const std::string& text, std::map<std::s
   std::string key = trim(text.substr(0, eq));
   const std::string value = trim(text.substr(eq + 1));
   if (key.empty()) throw InputError(origin + ": expected KEY=VALUE with a dotted key, e.g. solver.h=0.001");
-  toml::table holder;
-  try {
-    holder = toml::parse("v = " + value);
-  } catch (const toml::parse_error&) {
-    holder = toml::table{};
-    holder.insert("v", value);  // a bare word: a string
-  }
+  const toml::table holder = detail::toml_value_of(value);
   std::vector<std::string> parts;
   std::stringstream stream(key);
   for (std::string part; std::getline(stream, part, '.');) {
@@ -780,17 +788,7 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
                      ": a building scene ([building.A] ...): read it with load_building_scene "
                      "(adjoin run, adjoin modes do)");
   }
-  // Removing nodes from the parsed table keeps the others' source lines, as re-parsing edited
-  // text would not.
-  for (const auto& key : removed) {
-    toml::table* parent = &table;
-    std::string leaf = key;
-    if (const auto dot = key.rfind('.'); dot != std::string::npos) {
-      parent = table.at_path(key.substr(0, dot)).as_table();
-      leaf = key.substr(dot + 1);
-    }
-    if (parent) parent->erase(leaf);
-  }
+  for (const auto& key : removed) remove_key(table, key);
   std::map<std::string, std::string> origins;
   for (const auto& o : overrides) apply_override(table, o, origins);
   SceneReader reader(std::move(table), name, std::move(origins));
@@ -801,16 +799,8 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
 Scene parse_building_base(const std::string& text, const std::string& name, const std::vector<std::string>& overrides,
                           const std::vector<std::string>& unsets) {
   toml::table table = detail::parse_toml_text(text, name);
-  for (const auto& key : unsets) {
-    toml::table* parent = &table;
-    std::string leaf = key;
-    if (const auto dot = key.rfind('.'); dot != std::string::npos) {
-      parent = table.at_path(key.substr(0, dot)).as_table();
-      leaf = key.substr(dot + 1);
-    }
-    if (!parent || !parent->contains(leaf)) throw InputError("--unset " + key + ": the scene has no key or section " + key);
-    parent->erase(leaf);
-  }
+  for (const auto& key : unsets)
+    if (!remove_key(table, key)) throw InputError("--unset " + key + ": the scene has no key or section " + key);
   // The structure is read elsewhere; what stays is [ground], [solver], [output] and the name,
   // read as a scene with a unit two-block model (m = 1 kg, k = 1 N/m: T0 = 1 s, forces of
   // 1 kg g), so that times are in seconds and the ground's a_g is in g.

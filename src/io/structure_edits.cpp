@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "adjoin/errors.hpp"
+#include "toml_text.hpp"
 
 namespace adjoin::detail {
 namespace {
@@ -106,13 +107,7 @@ void set(toml::table& root, const std::string& text, std::map<std::string, std::
   const Parent parent = walk(root, parts, origin);
   toml::table* table = parent.node->as_table();
   if (!table) throw InputError(origin + ": " + parent.path + " is a list: name one of its tables by number");
-  toml::table holder;
-  try {
-    holder = toml::parse("v = " + value);
-  } catch (const toml::parse_error&) {
-    holder = toml::table{};
-    holder.insert("v", value);  // a bare word: a string
-  }
+  const toml::table holder = toml_value_of(value);
   for (const auto& other : alternatives(parts.back())) table->erase(other);
   table->insert_or_assign(parts.back(), *holder.get("v"));
   origins[parent.path + "." + parts.back()] = origin;

@@ -20,4 +20,16 @@ inline toml::table parse_toml_text(const std::string& text, const std::string& n
   }
 }
 
+// The value of an edit `key=value` as TOML, in a table under the key "v": a TOML value
+// (0.1, "x", [1, 2], { a = 1 }), or else the text as a bare string (record, SI).
+inline toml::table toml_value_of(const std::string& value) {
+  try {
+    return toml::parse("v = " + value);
+  } catch (const toml::parse_error&) {
+    toml::table holder;
+    holder.insert("v", value);
+    return holder;
+  }
+}
+
 }  // namespace adjoin::detail
