@@ -30,6 +30,7 @@
 #include "adjoin/observe/pounding.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "adjoin/solver/simulate.hpp"
+#include "adjoin/study/building_sweep.hpp"
 
 namespace adjoin {
 namespace {
@@ -464,6 +465,9 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
             if (!label || !label->is_string() || label->as_string()->get().empty())
               r.fail(&v, "axis " + axis.name + ": a value written as a table needs name = \"label\" (and set = {...}, unset = [...])");
             s.label = label->as_string()->get();
+            // A name that is a number ({name = "0", unset = ["link"]}: "no damper" as slip 0) keeps
+            // the axis a number column when its other values are numbers.
+            if (double number = 0.0; parse_double(s.label, &number) && std::isfinite(number)) s.number = number;
             read_edits(r, *vt, folder, s);
           } else {
             if (axis.key.empty()) r.fail(&v, "axis " + axis.name + ": a plain value needs the axis' key = \"dotted.scene.key\"");
@@ -538,10 +542,23 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   } catch (const InputError& e) {
     throw InputError(r.where(base) + "base: " + e.what());
   }
-  (void)parse_scene(spec.base_text, spec.base.string());
-  {
+  bool building = false;
+  try {
     const toml::table base_table = toml::parse(spec.base_text, spec.base.string());
     spec.base_source = base_table.at_path("ground.source").value_or(std::string());
+    building = base_table.contains("building");
+  } catch (const toml::parse_error&) {
+    // parse_scene below words the syntax error with its line
+  }
+  if (building) {
+    prepare_building_sweep(spec);
+    for (const auto& axis : spec.axes)
+      for (const auto& c : spec.channel_columns)
+        if (axis.name == c.name)
+          throw InputError(r.name() + ":" + std::to_string(axis.line) + ": axis name \"" + axis.name +
+                           "\" is already a column of the table; give the axis another name = \"...\"");
+  } else {
+    (void)parse_scene(spec.base_text, spec.base.string());
   }
   std::uint64_t hash = 14695981039346656037ull;
   hash = fnv1a(hash, text);
@@ -606,6 +623,7 @@ Scene sweep_scene(const SweepSpec& spec, std::size_t index) {
 }
 
 SweepRow run_sweep_point(const SweepSpec& spec, std::size_t index) {
+  if (spec.building()) return run_building_sweep_point(spec, index);
   const auto start = std::chrono::steady_clock::now();
   SweepRow row;
   row.index = index;
@@ -737,6 +755,14 @@ std::vector<SweepColumn> sweep_columns(const SweepSpec& spec) {
   }
   c.push_back({"motion", ColumnType::string});
   c.push_back({"units", ColumnType::string});
+  if (spec.building()) {
+    c.insert(c.end(), spec.channel_columns.begin(), spec.channel_columns.end());
+    c.push_back({"pga_g", ColumnType::number});
+    for (double t : spec.im_periods) c.push_back({sa_column(t), ColumnType::number});
+    c.push_back({"wall_seconds", ColumnType::number});
+    c.push_back({"error", ColumnType::string});
+    return c;
+  }
   for (const char* n : {"x1", "x2", "drift", "f1", "f2", "a1_abs", "a2_abs", "min_gap"}) c.push_back({n, ColumnType::number});
   c.push_back({"contact", ColumnType::boolean});
   for (const char* n : {"energy_input", "share_rod1", "share_rod2", "share_friction", "share_residual"})
@@ -749,18 +775,31 @@ std::vector<SweepColumn> sweep_columns(const SweepSpec& spec) {
   return c;
 }
 
-std::vector<std::string> sweep_cells(const SweepSpec& spec, const SweepRow& row) {
-  std::vector<std::string> cells{std::to_string(row.index)};
-  const auto coordinates = spec.coordinates(row.index);
-  for (std::size_t k = 0; k < spec.axes.size(); ++k) cells.push_back(spec.axes[k].values[coordinates[k]].label);
-  cells.push_back(spec.motions[coordinates.back()].label);
-  cells.push_back(row.units);
+namespace {
+
+// x1 ... switches: the two-block columns between units and pga_g.
+void append_two_block_cells(const SweepRow& row, std::vector<std::string>& cells) {
   for (double v : {row.x1, row.x2, row.drift, row.f1, row.f2, row.a1_abs, row.a2_abs, row.min_gap}) cells.push_back(shortest(v));
   const bool failed = !row.error.empty();
   cells.push_back(failed ? "" : (row.contact ? "true" : "false"));
   for (double v : {row.energy_input, row.share_rod1, row.share_rod2, row.share_friction, row.share_residual})
     cells.push_back(shortest(v));
   for (std::size_t v : {row.stick_intervals, row.slip_intervals, row.switches}) cells.push_back(failed ? "" : std::to_string(v));
+}
+
+}  // namespace
+
+std::vector<std::string> sweep_cells(const SweepSpec& spec, const SweepRow& row) {
+  std::vector<std::string> cells{std::to_string(row.index)};
+  const auto coordinates = spec.coordinates(row.index);
+  for (std::size_t k = 0; k < spec.axes.size(); ++k) cells.push_back(spec.axes[k].values[coordinates[k]].label);
+  cells.push_back(spec.motions[coordinates.back()].label);
+  cells.push_back(row.units);
+  if (spec.building()) {
+    for (std::size_t i = 0; i < spec.channel_columns.size(); ++i) cells.push_back(i < row.channels.size() ? row.channels[i] : "");
+  } else {
+    append_two_block_cells(row, cells);
+  }
   cells.push_back(shortest(row.pga_g));
   for (std::size_t i = 0; i < spec.im_periods.size(); ++i) cells.push_back(i < row.sa_g.size() ? shortest(row.sa_g[i]) : "");
   cells.push_back(shortest(row.wall_seconds));
@@ -1056,6 +1095,7 @@ std::string sweep_row_problem(const SweepSpec& spec, const SweepShard& shard, co
              escaped_excerpt(expected);
   }
   const std::size_t units = spec.axes.size() + 2;
+  if (spec.building() && cells[units] != "SI") return "units = " + escaped_excerpt(cells[units]) + "; a building sweep is in SI";
   if (cells[units] != "dimensionless" && cells[units] != "SI")
     return "units = " + escaped_excerpt(cells[units]) + "; expected dimensionless or SI";
   const bool failed = !cells.back().empty();
@@ -1072,10 +1112,12 @@ std::string sweep_row_problem(const SweepSpec& spec, const SweepShard& shard, co
         if (!cell.empty() && !(parse_double(cell, &number) && std::isfinite(number))) return bad("a finite number or nothing");
         break;
       case ColumnType::integer:
-        if (cell.empty() ? !failed : !parse_size(cell, &count)) return bad("a count (nothing only for a failed run)");
+        if (cell.empty() ? !(failed || columns[i].may_be_empty) : !parse_size(cell, &count))
+          return bad("a count (nothing only for a failed run)");
         break;
       case ColumnType::boolean:
-        if (cell.empty() ? !failed : cell != "true" && cell != "false") return bad("true or false (nothing only for a failed run)");
+        if (cell.empty() ? !(failed || columns[i].may_be_empty) : cell != "true" && cell != "false")
+          return bad("true or false (nothing only for a failed run)");
         break;
       case ColumnType::string: break;
     }

@@ -15,7 +15,9 @@
 // observers run_scene() uses (peaks, phases, pounding, energy) plus the ground-motion intensity
 // measures of the forcing the solver actually saw (PGA; Sa(T, damping) at the sweep's
 // im_periods). A NumericalError is recorded in the row's `error`; an InputError stops the sweep
-// with the sweep file, the run and the key.
+// with the sweep file, the run and the key. A building scene as the base (SPEC §5) runs as
+// `adjoin run` runs it (study/building_run.hpp), its columns generated from its structure's
+// channels (study/building_sweep.hpp).
 //
 // Values are in the base scene's units (SI scenes: m, N, m/s^2, J); energy shares are ratios to
 // the input energy; pga_g and sa_T are in g with T in seconds (a dimensionless scene: T in its
@@ -23,6 +25,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <string>
 #include <utility>
@@ -31,6 +34,20 @@
 #include "adjoin/io/scene.hpp"
 
 namespace adjoin {
+
+namespace structure {
+struct Structure;
+}
+
+enum class ColumnType { integer, number, boolean, string };
+
+struct SweepColumn {
+  std::string name;
+  ColumnType type;
+  // A link's or contact's cell that a run without that element leaves empty (building sweeps:
+  // a run that unsets every link); other integer and boolean cells are empty only in failed runs.
+  bool may_be_empty = false;
+};
 
 // One value of an axis, or one ground motion: a label for the table and the scene edits it makes.
 struct SweepSetting {
@@ -62,6 +79,11 @@ struct SweepSpec {
   std::string fingerprint;            // hash of the sweep text, the base scene text and the version
   std::string base_text;              // the base scene file's text, read once
   std::string base_source;            // its ground.source ("" if it has none)
+  // A building scene as the base (SPEC §5; study/building_sweep.hpp): its structure as read
+  // (without edits), which decides the channel columns; null for a two-block base.
+  std::shared_ptr<const structure::Structure> base_structure;
+  std::vector<SweepColumn> channel_columns;  // building sweeps: A.roof_max, link1.stroke_max, ...
+  bool building() const { return base_structure != nullptr; }
 
   std::size_t runs() const;
   // Index of the value on each axis, then the motion's index (size axes + 1).
@@ -96,6 +118,8 @@ struct SweepRow {
   std::vector<double> sa_g;     // Sa(T, im_damping) at spec.im_periods [g]
   double wall_seconds = 0;      // building the scene + integrating + intensity measures
   std::string error;            // a NumericalError's message; the numbers are then NaN
+  // Building sweeps: the cells of spec.channel_columns (the two-block fields above stay unused).
+  std::vector<std::string> channels;
 };
 
 // One run (InputError propagates; NumericalError is caught into row.error).
@@ -116,16 +140,10 @@ std::vector<SweepRow> run_sweep(const SweepSpec& spec, const SweepOptions& optio
 
 // ---- the table: what sweep.csv and sweep.json hold ----
 
-enum class ColumnType { integer, number, boolean, string };
-
-struct SweepColumn {
-  std::string name;
-  ColumnType type;
-};
-
 // index, the axes, motion, units, x1, x2, drift, f1, f2, a1_abs, a2_abs, min_gap, contact,
 // energy_input, share_rod1, share_rod2, share_friction, share_residual, stick_intervals,
-// slip_intervals, switches, pga_g, sa_<T>..., wall_seconds, error.
+// slip_intervals, switches, pga_g, sa_<T>..., wall_seconds, error. A building sweep has its
+// channel columns (spec.channel_columns) in place of x1 ... switches.
 std::vector<SweepColumn> sweep_columns(const SweepSpec& spec);
 
 // Cells as text: numbers in their shortest round-trip form, NaN and absent values as "",
