@@ -275,3 +275,25 @@ set = {"ground.scale_pga" = 0.4}
   const auto cli = run_cli("demand " + (dir / "sweep.csv").string() + " --response link1.stroke_max --im pga");
   CHECK(cli.status == 0);
 }
+
+TEST_CASE("building sweeps: the README documents every column of the registry", "[building_sweep]") {
+  const std::string readme = slurp(std::filesystem::path(ADJOIN_SOURCE_DIR) / "README.md");
+  for (const auto& c : building_sweep_channels()) {
+    INFO(c.name);
+    CHECK(readme.find("| `" + c.name + "` |") != std::string::npos);
+  }
+}
+
+TEST_CASE("building sweeps: the optimum slip-force example parses, one column per channel of its two frames", "[building_sweep]") {
+  const SweepSpec spec = load_sweep(kExamples / "sweeps" / "optimum-slip-force.toml");
+  REQUIRE(spec.building());
+  CHECK(spec.runs() == spec.axes[0].values.size() * 3);
+  CHECK(sweep_columns(spec)[1].type == ColumnType::number);
+  const auto n = names(sweep_columns(spec));
+  CHECK(std::count(n.begin(), n.end(), "link1.stroke_max") == 1);
+  CHECK(std::count(n.begin(), n.end(), "B.drift_max") == 1);
+  CHECK(std::count(n.begin(), n.end(), "sa_1.9") == 1);
+  // Its "0" point has no link.
+  CHECK(building_sweep_scene(spec, 0).structure.links.empty());
+  CHECK(building_sweep_scene(spec, 3).structure.links.size() == 1);
+}
