@@ -1,6 +1,5 @@
 #include "adjoin/solver/structure_solver.hpp"
 
-#include <Eigen/SparseCore>
 #include <chrono>
 #include <algorithm>
 #include <cmath>
@@ -50,6 +49,75 @@ struct ZenerElement {
 };
 
 Rod rod_of(const structure::Zener& z) { return Rod{z.order, z.tau_x, z.tau_f, false}; }
+
+// A stiffness matrix as a shear building's is: tridiagonal (the storeys), plus the few entries
+// of links between the buildings' floors. Its product is three vector passes over the
+// diagonals, O(n), instead of a sparse product's per-row loops of about three entries each
+// (index loads, no vectors) or a dense product's O(n^2). Each row is summed in the order of its
+// columns, as a dense product sums it (the links' entries left of the band first, those right
+// of it last), so the products equal the dense ones bit for bit.
+class Banded {
+ public:
+  explicit Banded(const Eigen::MatrixXd& k) : diag_(k.diagonal()) {
+    const Eigen::Index n = k.rows();
+    if (n > 1) {
+      sub_ = k.diagonal(-1);
+      sup_ = k.diagonal(1);
+    }
+    for (Eigen::Index j = 0; j < n; ++j)
+      for (Eigen::Index i = 0; i < n; ++i)
+        if (k(i, j) != 0.0 && std::abs(i - j) > 1) (j < i ? before_ : after_).push_back({static_cast<int>(i), static_cast<int>(j), k(i, j)});
+  }
+  // p = K x (p not x).
+  void apply(const Eigen::VectorXd& x, Eigen::VectorXd& p) const {
+    const Eigen::Index n = x.size();
+    if (before_.empty() && n > 2) {  // one pass over the band (the usual case)
+      p[0] = diag_[0] * x[0] + sup_[0] * x[1];
+      p.segment(1, n - 2) = sub_.head(n - 2).cwiseProduct(x.head(n - 2)) + diag_.segment(1, n - 2).cwiseProduct(x.segment(1, n - 2)) +
+                            sup_.tail(n - 2).cwiseProduct(x.tail(n - 2));
+      p[n - 1] = sub_[n - 2] * x[n - 2] + diag_[n - 1] * x[n - 1];
+      for (const Entry& e : after_) p[e.i] += e.value * x[e.j];
+      return;
+    }
+    p.setZero();
+    for (const Entry& e : before_) p[e.i] += e.value * x[e.j];
+    if (n > 1) p.tail(n - 1) += sub_.cwiseProduct(x.head(n - 1));
+    p += diag_.cwiseProduct(x);
+    if (n > 1) p.head(n - 1) += sup_.cwiseProduct(x.tail(n - 1));
+    for (const Entry& e : after_) p[e.i] += e.value * x[e.j];
+  }
+  // (K x)_k alone, summed as apply() sums it; it reads x at columns() of k.
+  double row(int k, const Eigen::VectorXd& x) const {
+    const int n = static_cast<int>(diag_.size());
+    double p = 0.0;
+    for (const Entry& e : before_)
+      if (e.i == k) p += e.value * x[e.j];
+    if (k > 0) p += sub_[k - 1] * x[k - 1];
+    p += diag_[k] * x[k];
+    if (k < n - 1) p += sup_[k] * x[k + 1];
+    for (const Entry& e : after_)
+      if (e.i == k) p += e.value * x[e.j];
+    return p;
+  }
+  std::vector<int> columns(int k) const {
+    const int n = static_cast<int>(diag_.size());
+    std::vector<int> out{k};
+    if (k > 0) out.push_back(k - 1);
+    if (k < n - 1) out.push_back(k + 1);
+    for (const auto* list : {&before_, &after_})
+      for (const Entry& e : *list)
+        if (e.i == k) out.push_back(e.j);
+    return out;
+  }
+
+ private:
+  struct Entry {
+    int i, j;
+    double value;
+  };
+  Eigen::VectorXd diag_, sub_, sup_;  // K(i, i), K(i + 1, i), K(i, i + 1)
+  std::vector<Entry> before_, after_;  // off the band, left and right of it, in column order
+};
 
 }  // namespace
 
@@ -124,12 +192,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   }
   Eigen::MatrixXd k_eff_dense = k0_dense;
   for (const auto& e : zener) e.pair.add(k_eff_dense, e.law->stiffness());
-  // A shear building's stiffness is tridiagonal and a link adds four entries: the products
-  // with K0 and K_eff are O(n) as sparse matrices (the same entries as the dense assembly, so
-  // the same sums; only exact zeros are left out). Row-major: each row's sum stays in a
-  // register (column-major scatters into the result, a chain of stores and reloads).
-  using SparseRows = Eigen::SparseMatrix<double, Eigen::RowMajor>;
-  const SparseRows k0 = k0_dense.sparseView(), k_eff = k_eff_dense.sparseView();
+  // A shear building's stiffness is tridiagonal and a link adds four entries: O(n) products.
+  const Banded k0(k0_dense), k_eff(k_eff_dense);
   const Eigen::MatrixXd a_step = Eigen::MatrixXd(mass.asDiagonal()) + 0.5 * h * c + 0.25 * h * h * k_eff_dense;
 
   // The step matrix is factorised once (it is constant for a fixed h). Inherent damping is
@@ -186,6 +250,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     for (const Block& b : blocks)
       a_inv_bt.middleRows(b.offset, b.size) = b.a.solve(bf.transpose().middleRows(b.offset, b.size));
   const Eigen::MatrixXd c_a_inv_bt = nf > 0 ? Eigen::MatrixXd(c * a_inv_bt) : Eigen::MatrixXd(n, 0);
+  Eigen::MatrixXd damper_response(2 * n, nf);  // [A^-1 B'; C A^-1 B']: one product per step
+  damper_response << a_inv_bt, c_a_inv_bt;
   const Eigen::MatrixXd delassus = nf > 0 ? Eigen::MatrixXd(h * bf * a_inv_bt) : Eigen::MatrixXd(0, 0);
   detail::BoxQp box_qp(delassus);
   const Eigen::VectorXd inv_mass = mass.cwiseInverse();
@@ -198,6 +264,29 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     fi[f] = link_pair[friction[f]].i;
     fj[f] = link_pair[friction[f]].j;
   }
+  // The trial step (the dampers' decisions) is read at the dampers' floors only: there its
+  // velocities, damping forces and P, for which x at those floors' stiffness columns and at
+  // the other ends of their Zener elements.
+  std::vector<int> damper_dofs, trial_dofs;
+  std::vector<std::vector<std::pair<int, double>>> damper_zener;  // per damper dof: (element, sign), in order
+  for (int f = 0; f < nf; ++f) damper_dofs.insert(damper_dofs.end(), {fi[f], fj[f]});
+  std::sort(damper_dofs.begin(), damper_dofs.end());
+  damper_dofs.erase(std::unique(damper_dofs.begin(), damper_dofs.end()), damper_dofs.end());
+  for (int k : damper_dofs) {
+    const std::vector<int> cols = k0.columns(k);
+    trial_dofs.insert(trial_dofs.end(), cols.begin(), cols.end());
+    std::vector<std::pair<int, double>> touching;
+    for (std::size_t e = 0; e < zener.size(); ++e) {
+      const Pair& pr = zener[e].pair;
+      if (pr.i != k && pr.j != k) continue;
+      touching.emplace_back(static_cast<int>(e), pr.i == k ? 1.0 : -1.0);
+      for (int d : {pr.i, pr.j})
+        if (d >= 0) trial_dofs.push_back(d);
+    }
+    damper_zener.push_back(std::move(touching));
+  }
+  std::sort(trial_dofs.begin(), trial_dofs.end());
+  trial_dofs.erase(std::unique(trial_dofs.begin(), trial_dofs.end()), trial_dofs.end());
   // B' q, where each damper acts -q on A's floor and +q on B's (as bf' q, without the zeros).
   auto add_bt = [&](const Eigen::VectorXd& q, Eigen::VectorXd* out) {
     out->setZero();
@@ -232,7 +321,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   // The step's work vectors, sized once: a step allocates nothing (but the box QP's small
   // systems).
   Eigen::VectorXd offsets(static_cast<Eigen::Index>(zener.size()));  // each Zener element's f - k_eff d
-  Eigen::VectorXd off_dof(n), rhs(n), v_free(n), cv_free(n), v1(n), x1(n), p1(n), cv1(n), p_next(n), cv_next(n), v_pre(n);
+  Eigen::VectorXd response_q(2 * n), off_dof(n), rhs(n), v_free(n), cv_free(n), v1(n), x1(n), p1(n), cv1(n), p_next(n), cv_next(n), v_pre(n);
   Eigen::VectorXd bq(n), force(n), w_free(nf), w_end(nf), q_step(nf), q_trial(nf), q1(nf), stick1(nf), w1(nf);
   Eigen::VectorXd fixed(nf), fixed2(nf), q_grid(nf), stick_grid(nf), others(nf), held_q(nf), held_w0(nf), held_lim(nf);
   std::vector<double> onset(nf), crossing(nf), kink_theta(nf), kink_jump(nf);
@@ -390,7 +479,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     off_dof.setZero();
     for (std::size_t e = 0; e < zener.size(); ++e) zener[e].pair.add(off_dof, offsets[static_cast<Eigen::Index>(e)]);
     x1 = now.x + 0.5 * h * now.v;  // (the predictor, in x1's storage)
-    p1.noalias() = k_eff * x1;
+    k_eff.apply(x1, p1);
     rhs = mass.cwiseProduct(now.v) + 0.5 * h * (mass * (now.ag + next.ag) - cv_now - internal - p1 - off_dof);
     // v_free = A^-1 rhs and its damping forces C v_free: the step's only O(n^2) work (with
     // dense C).
@@ -415,16 +504,22 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     std::fill(kink_theta.begin(), kink_theta.end(), kNaN);  // slips ended in the step
     std::fill(kink_jump.begin(), kink_jump.end(), 0.0);
     for (int f = 0; f < nf; ++f) w_free[f] = v_free[fi[f]] - v_free[fj[f]];
-    // The end of the step for step forces q: v, C v, x and P (Zener forces at their offsets).
-    auto end_state = [&](const Eigen::VectorXd& q, Eigen::VectorXd* v, Eigen::VectorXd* cv, Eigen::VectorXd* x,
-                         Eigen::VectorXd* p) {
-      v->noalias() = v_free - h * a_inv_bt * q;
-      cv->noalias() = cv_free - h * c_a_inv_bt * q;
-      *x = now.x + 0.5 * h * (now.v + *v);
-      p->noalias() = k0 * *x;
-      for (std::size_t e = 0; e < zener.size(); ++e) {
-        const auto& el = zener[e];
-        el.pair.add(*p, el.law->stiffness() * el.pair.of(*x) + offsets[static_cast<Eigen::Index>(e)]);
+    // The end of the trial step for step forces q, at the dampers' floors: v and x (there and
+    // where P there needs them), C v and P (Zener forces at their offsets), as the step's end
+    // below computes them everywhere.
+    auto trial_state = [&](const Eigen::VectorXd& q) {
+      for (int k : trial_dofs) {
+        v1[k] = v_free[k] - h * a_inv_bt.row(k).dot(q);
+        x1[k] = now.x[k] + 0.5 * h * (now.v[k] + v1[k]);
+      }
+      for (std::size_t d = 0; d < damper_dofs.size(); ++d) {
+        const int k = damper_dofs[d];
+        cv1[k] = cv_free[k] - h * c_a_inv_bt.row(k).dot(q);
+        p1[k] = k0.row(k, x1);
+        for (const auto& [e, sign] : damper_zener[d]) {
+          const auto& el = zener[static_cast<std::size_t>(e)];
+          p1[k] += sign * (el.law->stiffness() * el.pair.of(x1) + offsets[e]);
+        }
       }
     };
     // Solves for the held dampers (limit infinite) with the others' step forces fixed.
@@ -452,7 +547,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
         if (!hold[f]) fixed[f] = ph == Phase::slip_right ? limit[f] : -limit[f];
       }
       solve_held(hold, fixed, &q_trial);
-      end_state(q_trial, &v1, &cv1, &x1, &p1);
+      trial_state(q_trial);
       phase1 = now.link_phase;
       grid_forces(cv1, p1, phase1, &q1, &stick1);
       for (int f = 0; f < nf; ++f) w1[f] = v1[fi[f]] - v1[fj[f]];
@@ -530,8 +625,14 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       if (again) solve_held(hold2, fixed2, &q_step);
     }
     states = decided;
-    next.v.noalias() = v_free - h * a_inv_bt * q_step;
-    cv_next.noalias() = cv_free - h * c_a_inv_bt * q_step;
+    if (nf > 0) {
+      response_q.noalias() = damper_response * q_step;
+      next.v = v_free - h * response_q.head(n);
+      cv_next = cv_free - h * response_q.tail(n);
+    } else {
+      next.v = v_free;
+      cv_next = cv_free;
+    }
     // Stick exact: a stuck damper's two floors get one velocity, bit for bit (their
     // mass-weighted mean, which moves them by rounding only).
     touched.clear();
@@ -558,7 +659,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     next.x = now.x + 0.5 * h * (now.v + next.v);
     if (step > 0 && std::any_of(kink_theta.begin(), kink_theta.end(), [](double t) { return !std::isnan(t); }))
       integrate_kinks(states, kink_theta, kink_jump, &next.x);
-    p_next.noalias() = k0 * next.x;
+    k0.apply(next.x, p_next);
     for (std::size_t e = 0; e < zener.size(); ++e) {
       auto& el = zener[e];
       el.force = el.law->stiffness() * el.pair.of(next.x) + offsets[static_cast<Eigen::Index>(e)];
