@@ -5,7 +5,8 @@
 // targets/: two 20-storey buildings, modal 5 % damping, a fractional Zener device in every
 // storey, three friction dampers, the 40 s Newhall record at h = 0.005 s (8,000 steps), with the
 // fft and the direct history, and with springs only (no history). storeys/N: the same with N
-// storeys each and the fft history, for the cost per step against the storey count.
+// storeys each and the fft history, for the cost per step against the storey count;
+// storeys_springs/N: the same without the Zener devices (the mechanics alone).
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -74,6 +75,9 @@ void BM_zener_fft(benchmark::State& st) { run(st, pair_of(20, true), HistoryEngi
 void BM_zener_direct(benchmark::State& st) { run(st, pair_of(20, true), HistoryEngine::direct); }
 void BM_springs(benchmark::State& st) { run(st, pair_of(20, false), HistoryEngine::fft); }
 void BM_storeys(benchmark::State& st) { run(st, pair_of(static_cast<int>(st.range(0)), true), HistoryEngine::fft); }
+// The mechanics alone (no Zener devices, no history): with modal damping C is dense, so its
+// per-step cost grows as n^2 (one product with [A^-1; C A^-1] per building), the rest as n.
+void BM_storeys_springs(benchmark::State& st) { run(st, pair_of(static_cast<int>(st.range(0)), false), HistoryEngine::fft); }
 
 }  // namespace
 
@@ -81,5 +85,6 @@ BENCHMARK(BM_zener_fft)->Name("targets/2x20/zener/fft")->Unit(benchmark::kMillis
 BENCHMARK(BM_zener_direct)->Name("targets/2x20/zener/direct")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_springs)->Name("targets/2x20/springs")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_storeys)->Name("storeys")->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_storeys_springs)->Name("storeys_springs")->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
