@@ -19,6 +19,12 @@
 // the parabola of the link's grid velocities, an onset on the parabola of its grid stuck
 // forces), with the velocity kink at a slip's end integrated exactly.
 //
+// Cost per step: one product with [A^-1; C A^-1] per building (A and C are block diagonal when
+// only friction links join the buildings), O(n_b^2) since modal damping makes C dense (O(n_b^2)
+// also for Rayleigh or none: A^-1 is dense); everything else is O(n) (the stiffness is a band
+// plus the links' entries) or O(dampers^2); a step allocates nothing. Plus each Zener
+// element's history push.
+//
 // Not yet carried over from the two-block scheme: the backward-Euler restart after a switch
 // when the stiffest mode is unresolved (implicit-damped); the two-block scenes run on
 // solver/simulate.hpp.
