@@ -18,12 +18,6 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string shortest(double v) {
-  if (std::isnan(v)) return "";
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
 
 const structure::Building& building(const BuildingScene& scene, std::size_t k) {
   return k == 0 ? scene.structure.a : *scene.structure.b;
@@ -225,7 +219,7 @@ std::vector<std::string> building_channel_cells(const structure::Structure& base
     switch (c.type) {
       case ColumnType::integer: cells.push_back(std::to_string(static_cast<std::size_t>(v))); break;
       case ColumnType::boolean: cells.push_back(v != 0.0 ? "true" : "false"); break;
-      default: cells.push_back(shortest(v)); break;
+      default: cells.push_back(sweep_number_cell(v)); break;
     }
   });
   return cells;

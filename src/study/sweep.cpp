@@ -33,18 +33,21 @@
 #include "adjoin/study/building_sweep.hpp"
 
 namespace adjoin {
+
+std::string sweep_number_cell(double v) {
+  if (std::isnan(v)) return "";
+  char buffer[64];
+  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
+  return std::string(buffer, result.ptr);
+}
+
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // ---- numbers as text: shortest round-trip form, so text -> double -> text is the identity ----
 
-std::string shortest(double v) {
-  if (std::isnan(v)) return "";
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
+std::string shortest(double v) { return sweep_number_cell(v); }
 
 bool parse_double(const std::string& text, double* value) {
   if (text.empty()) return false;

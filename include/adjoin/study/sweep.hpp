@@ -155,6 +155,8 @@ struct SweepTable {
 };
 
 std::vector<std::string> sweep_cells(const SweepSpec& spec, const SweepRow& row);
+// One number as a cell: its shortest round-trip form, NaN as "" (every table column uses it).
+std::string sweep_number_cell(double v);
 SweepTable sweep_table(const SweepSpec& spec, const std::vector<SweepRow>& rows);
 
 // CSV: a header line, then one line per row; cells with ',', '"' or a line break are quoted.
