@@ -380,7 +380,12 @@ structure::Structure structure_of(const Scene& scene) {
     l.slip_force = m.mu * k.force;
     s.links.push_back(l);
   }
-  s.contacts.push_back({1, 1, m.gap0 * k.length});
+  structure::Contact contact;
+  contact.gap = m.gap0 * k.length;
+  contact.law = m.contact;
+  // Dimensionless stiffness in units of k1 (linear) or k1 / L^(1/2) (Hertz-type laws).
+  contact.law.stiffness *= m.contact.model == structure::ContactModel::linear ? k1 : k.force / std::pow(k.length, 1.5);
+  s.contacts.push_back(contact);
   return s;
 }
 

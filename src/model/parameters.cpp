@@ -68,7 +68,8 @@ bool Model::IsValid(std::string* error) const {
   if (std::abs(gap0) > kMaxRatio)
     return fail(error, "model.gap0 = " + format(gap0) + " must lie in [-" + format(kMaxRatio) + ", " +
                            format(kMaxRatio) + "] (in units of X0 = m1 g / k1)");
-  return rod1.IsValid("model.rod1", error) && rod2.IsValid("model.rod2", error);
+  return rod1.IsValid("model.rod1", error) && rod2.IsValid("model.rod2", error) &&
+         contact.IsValid("model.contact", error);
 }
 
 }  // namespace adjoin

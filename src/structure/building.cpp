@@ -102,6 +102,7 @@ bool Structure::IsValid(std::string* error) const {
     if (c.floor_a < 1 || c.floor_a > a.floors() || c.floor_b < 1 || c.floor_b > b->floors())
       return fail(where + ".floors: not a floor of A and of B");
     if (!(std::isfinite(c.gap) && c.gap >= 0.0)) return fail(where + ".gap must be a non-negative distance (m)");
+    if (!c.law.IsValid(where, error)) return false;
   }
   return true;
 }

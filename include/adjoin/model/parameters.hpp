@@ -13,6 +13,8 @@
 // so that a user can find the offending line.
 #include <string>
 
+#include "adjoin/structure/contact.hpp"
+
 namespace adjoin {
 
 // The ranges the model supports: ratios rho, eps in [1/kMaxRatio, kMaxRatio], mu and |gap0|
@@ -40,6 +42,9 @@ struct Model {
   double gap0 = 2.0;  // initial gap xi0 between the blocks
   Rod rod1{0.23, 1.183, 0.004, false};
   Rod rod2{0.53, 4.0, 0.2, false};
+  // What happens when the gap closes (SPEC §6), dimensionless: a linear stiffness in units of
+  // k1, a Hertz one in k1 / L^(1/2). None: the blocks pass through each other (the paper).
+  structure::ContactLaw contact;
 
   bool IsValid(std::string* error) const;
   // The paper's common parameters (SPEC §1, "What the paper reports").

@@ -23,6 +23,9 @@ class Observer {
   virtual ~Observer() = default;
   virtual void begin(const RunInfo& /*info*/) {}
   virtual void observe(const State& state) = 0;
+  // An impact that ended in the step ending at the next observe() (called before it), or
+  // that is still going on at the end of the run (complete = false, before the last observe).
+  virtual void impact(const Impact& /*impact*/) {}
   virtual void end() {}
 };
 
@@ -34,6 +37,7 @@ class ObserverList final : public Observer {
   void add(Observer* observer) { observers_.push_back(observer); }
   void begin(const RunInfo& info) override { for (auto* o : observers_) o->begin(info); }
   void observe(const State& state) override { for (auto* o : observers_) o->observe(state); }
+  void impact(const Impact& i) override { for (auto* o : observers_) o->impact(i); }
   void end() override { for (auto* o : observers_) o->end(); }
 
  private:

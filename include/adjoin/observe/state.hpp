@@ -25,6 +25,25 @@ struct State {
   // its time (t - 2h < t_switch <= t: the onset that ends a stick shorter than a step, which
   // began in the step before, may lie there). Otherwise NaN: the switch is taken at t.
   double t_switch = std::numeric_limits<double>::quiet_NaN();
+  // Pounding (a model with a contact law, SPEC §6): the contact force at t (compressive > 0),
+  // and, accumulated from t = 0, the work the blocks have done on the contact (its stored
+  // elastic energy plus what it dissipated) and the part dissipated.
+  double fc = 0.0, contact_work = 0.0, contact_dissipated = 0.0;
+};
+
+// One impact of a contact pair, from the first touch (located inside its step) to separation.
+// In SI units from the building solver, in the dimensionless units of SPEC §1 from simulate().
+struct Impact {
+  int contact = 0;                 // 0-based contact index
+  double start = 0.0;              // first touch [s]
+  double duration = 0.0;           // [s] (0 for the Newton law)
+  double force_max = 0.0;          // [N] (0 for the Newton law)
+  double t_force_max = 0.0;        // [s]
+  double penetration_max = 0.0;    // [m] (0 for the Newton law)
+  double approach_speed = 0.0;     // closing speed at first touch [m/s]
+  double rebound_speed = 0.0;      // opening speed at separation [m/s]
+  double impulse = 0.0;            // integral of the force [N s]
+  bool complete = true;            // false: still in contact at the end of the run
 };
 
 }  // namespace adjoin

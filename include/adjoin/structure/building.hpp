@@ -12,6 +12,8 @@
 
 #include <Eigen/Dense>
 
+#include "adjoin/structure/contact.hpp"
+
 namespace adjoin::structure {
 
 // f + tau_f D^order f = k (d + tau_x D^order d): the paper's rod. 0 < order < 1,
@@ -62,10 +64,14 @@ struct Link {
   Zener zener;
 };
 
-// A pounding pair: clear gap at rest [m] between floor_a of A and floor_b of B (SPEC §6).
+// A pounding pair: clear gap at rest [m] between floor_a of A and floor_b of B, and what
+// happens when it closes (SPEC §6; law.model none: nothing, the floors pass through).
+// The gap is g = gap - s, s = x_A,i - x_B,j; a contact force p >= 0 acts as -p on A's floor
+// and +p on B's, as a link's force does.
 struct Contact {
   int floor_a = 1, floor_b = 1;
   double gap = 0.0;
+  ContactLaw law;
 };
 
 struct Structure {

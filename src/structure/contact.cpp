@@ -1,0 +1,82 @@
+#include "adjoin/structure/contact.hpp"
+
+#include <array>
+#include <utility>
+
+namespace adjoin::structure {
+namespace {
+
+constexpr std::array<std::pair<ContactModel, const char*>, 6> kNames{{{ContactModel::none, "none"},
+                                                                      {ContactModel::linear, "linear"},
+                                                                      {ContactModel::hertz, "hertz"},
+                                                                      {ContactModel::hertzdamp, "hertzdamp"},
+                                                                      {ContactModel::jankowski, "jankowski"},
+                                                                      {ContactModel::impact, "impact"}}};
+
+}  // namespace
+
+const char* to_string(ContactModel model) {
+  for (const auto& [m, name] : kNames)
+    if (m == model) return name;
+  return "none";
+}
+
+bool parse_contact_model(const std::string& word, ContactModel* model) {
+  for (const auto& [m, name] : kNames)
+    if (word == name) {
+      *model = m;
+      return true;
+    }
+  return false;
+}
+
+std::string contact_model_names() {
+  std::string out;
+  for (const auto& [m, name] : kNames) out += (out.empty() ? "" : ", ") + std::string(name);
+  return out;
+}
+
+double linear_damping_ratio(double e) {
+  const double l = std::log(e);
+  return -l / std::sqrt(M_PI * M_PI + l * l);
+}
+
+double hertzdamp_damping(double e) { return 8.0 * (1.0 - e) / (5.0 * e); }
+
+double jankowski_damping_ratio(double e) {
+  return 9.0 * std::sqrt(5.0) * (1.0 - e * e) / (2.0 * e * (e * (9.0 * M_PI - 16.0) + 16.0));
+}
+
+double linear_cut_rebound_ratio(double zeta) {
+  return std::exp(-zeta * (M_PI - 2.0 * std::asin(zeta)) / std::sqrt(1.0 - zeta * zeta));
+}
+
+double ContactLaw::damping_parameter() const {
+  if (!std::isnan(damping)) return damping;
+  switch (model) {
+    case ContactModel::linear: return linear_damping_ratio(restitution);
+    case ContactModel::hertzdamp: return hertzdamp_damping(restitution);
+    case ContactModel::jankowski: return jankowski_damping_ratio(restitution);
+    default: return 0.0;
+  }
+}
+
+bool ContactLaw::IsValid(const std::string& where, std::string* error) const {
+  auto fail = [&](const std::string& m) {
+    if (error) *error = m;
+    return false;
+  };
+  if (compliant() && !(std::isfinite(stiffness) && stiffness > 0.0))
+    return fail(where + ".stiffness: expected a positive contact stiffness");
+  if (!(std::isfinite(restitution) && restitution > 0.0 && restitution <= 1.0))
+    return fail(where + ".restitution: expected a coefficient of restitution e with 0 < e <= 1");
+  if (!std::isnan(damping) && !(std::isfinite(damping) && damping >= 0.0))
+    return fail(where + ".damping: expected a non-negative damping parameter");
+  if (model == ContactModel::linear && !std::isnan(damping) && damping >= 1.0)
+    return fail(where + ".damping: the linear model's damping ratio must be below 1");
+  if (tension_cut && model != ContactModel::linear)
+    return fail(where + ".tension_cut: only the linear model pulls before separation");
+  return true;
+}
+
+}  // namespace adjoin::structure
