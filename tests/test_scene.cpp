@@ -2,6 +2,7 @@
 // a clear error (file:line or --set, the key, what is expected) and exit status 2.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <fstream>
 
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
@@ -37,6 +38,13 @@ std::string num(double v) {
   char text[40];
   std::snprintf(text, sizeof text, "%.17g", v);
   return text;
+}
+
+// Writes `text` to a file of this test process's scratch folder; its path.
+std::string scratch_file(const std::string& name, const std::string& text) {
+  const std::string path = std::string(ADJOIN_TEST_TMP) + "/" + name;
+  std::ofstream(path) << text;
+  return path;
 }
 
 int line_of(const std::string& text, const std::string& needle) {
@@ -220,4 +228,84 @@ TEST_CASE("the adjoin program exits 2 with error: for bad scenes and 3 for numer
   CHECK(r.err.find("set solver.h below") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir / "summary.json"));
   CHECK_FALSE(std::filesystem::exists(dir / "timeseries.csv"));
+}
+
+TEST_CASE("[model.contact] reads a contact law at the gap model.gap0, dimensionless as given", "[scene][contact]") {
+  const std::string implicit = replace(kStrong, "scheme = \"paper\"", "scheme = \"implicit\"");
+  Scene s = parse_scene(implicit, "x.toml");
+  CHECK(s.model.contact.model == structure::ContactModel::none);  // absent: today's behaviour
+  s = parse_scene(implicit + "\n[model.contact]\nmodel = \"linear\"\nstiffness = 500.0\nrestitution = 0.65\ntension_cut = true\n", "x.toml");
+  CHECK(s.model.contact.model == structure::ContactModel::linear);
+  CHECK(s.model.contact.stiffness == 500.0);  // in units of k1
+  CHECK(s.model.contact.restitution == 0.65);
+  CHECK(s.model.contact.tension_cut);
+  CHECK(std::isnan(s.model.contact.damping));
+  // --set builds the table and edits it; a model drops the keys it does not take, and
+  // restitution and damping replace each other.
+  s = parse_scene(implicit, "x.toml", {"model.contact.model=jankowski", "model.contact.stiffness=1000", "model.contact.damping=0.2"});
+  CHECK(s.model.contact.model == structure::ContactModel::jankowski);
+  CHECK(s.model.contact.stiffness == 1000.0);  // in units of k1 / X0^(1/2)
+  CHECK(s.model.contact.damping == 0.2);
+  const std::string file = scratch_file("contact-scene.toml",
+                                              implicit + "\n[model.contact]\nmodel = \"linear\"\nstiffness = 500.0\ndamping = 0.1\n");
+  s = load_scene(file, {"model.contact.restitution=0.8"});
+  CHECK(s.model.contact.restitution == 0.8);
+  CHECK(std::isnan(s.model.contact.damping));
+  s = load_scene(file, {"model.contact.model=impact", "model.contact.restitution=0.5"});
+  CHECK(s.model.contact.model == structure::ContactModel::impact);
+  CHECK(s.model.contact.restitution == 0.5);
+  s = load_scene(file, {"model.contact.model=hertz"});
+  CHECK(s.model.contact.model == structure::ContactModel::hertz);
+  CHECK(s.model.contact.stiffness == 500.0);
+  CHECK(load_scene(file, {"model.contact.model=none"}).model.contact.model == structure::ContactModel::none);
+}
+
+TEST_CASE("[model.contact] of an SI scene: stiffness in N/m or N/m^1.5, scaled by k1 or F0 / X0^1.5", "[scene][contact][units]") {
+  // m1 = 2e5 kg, k1 = 8e6 N/m: X0 = m1 g / k1 = 0.24516625 m, F0 = m1 g = 1961330 N.
+  const std::string si = test::slurp(std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/si-record.toml");
+  const std::string record = std::string(ADJOIN_SOURCE_DIR) + "/records/synthetic/cp-ec8b-seed1.txt";
+  const std::string scene = replace(replace(si, "../synthetic/cp-ec8b-seed1.txt", record), "[model.rod1]", "[model.contact]\nmodel = \"linear\"\nstiffness = 4.0e8\nrestitution = 0.65\n\n[model.rod1]");
+  const std::string file = scratch_file("si-contact.toml", scene);
+  Scene s = load_scene(file);
+  CHECK(s.model.contact.model == structure::ContactModel::linear);
+  CHECK(s.model.contact.stiffness == Approx(50.0).epsilon(1e-14));  // 4e8 / 8e6
+  CHECK(s.model.contact.restitution == 0.65);
+  s = load_scene(file, {"model.contact.model=hertz", "model.contact.stiffness=2.0e9"});
+  // F0 / X0^1.5 = 1961330 / 0.24516625^1.5 = 16156959.8168 N/m^1.5.
+  CHECK(s.model.contact.stiffness == Approx(123.78566405282965).epsilon(1e-12));
+  s = load_scene(file, {"model.contact.model=jankowski", "model.contact.stiffness=2.0e9", "model.contact.damping=0.25"});
+  CHECK(s.model.contact.stiffness == Approx(123.78566405282965).epsilon(1e-12));
+  CHECK(s.model.contact.damping == 0.25);  // dimensionless in both unit systems
+}
+
+TEST_CASE("[model.contact] mistakes name the key and what is expected", "[scene][contact][errors]") {
+  const std::string implicit = replace(kStrong, "scheme = \"paper\"", "scheme = \"implicit\"");
+  const std::string table = implicit + "\n[model.contact]\n";
+  const int line = line_of(table, "[model.contact]") + 1;  // the first key
+  const auto at = [&](int offset) { return "bad.toml:" + std::to_string(line + offset) + ": "; };
+  CHECK(error_of(table + "stiffness = 10.0\n").rfind(at(0) + "model.contact.stiffness: a key of a contact law, but the contact has no model: set model.contact.model", 0) == 0);
+  CHECK(error_of(table + "model = \"soft\"\n").rfind(at(0) + "model.contact.model = \"soft\" must be one of", 0) == 0);
+  CHECK(error_of(table + "model = \"linear\"\nrestitution = 0.5\n").find("model.contact: missing key stiffness: the linear model needs its contact stiffness k (a positive number, in units of k1)") != std::string::npos);
+  CHECK(error_of(table + "model = \"hertz\"\n").find("in units of k1 / X0^(1/2)") != std::string::npos);
+  CHECK(error_of(table + "model = \"hertzdamp\"\nstiffness = 10.0\n").find("model.contact: missing key restitution or damping") != std::string::npos);
+  CHECK(error_of(table + "model = \"linear\"\nstiffness = 10.0\nrestitution = 0.5\ndamping = 0.1\n").rfind(at(3) + "model.contact.damping: give restitution or damping, not both", 0) == 0);
+  CHECK(error_of(table + "model = \"impact\"\n").find("model.contact: missing key restitution: the impact model") != std::string::npos);
+  CHECK(error_of(table + "model = \"impact\"\nrestitution = 0.5\nstiffness = 10.0\n").rfind(at(2) + "model.contact.stiffness: the impact model (Newton's law) has no stiffness", 0) == 0);
+  CHECK(error_of(table + "model = \"impact\"\nrestitution = 0.5\ndamping = 0.1\n").rfind(at(2) + "model.contact.damping: the impact model", 0) == 0);
+  CHECK(error_of(table + "model = \"hertz\"\nstiffness = 10.0\nrestitution = 0.5\n").rfind(at(2) + "model.contact.restitution: the hertz model is elastic", 0) == 0);
+  CHECK(error_of(table + "model = \"jankowski\"\nstiffness = 10.0\nrestitution = 0.5\ntension_cut = true\n").rfind(at(3) + "model.contact.tension_cut: only the linear model", 0) == 0);
+  CHECK(error_of(table + "model = \"linear\"\nstiffness = 10.0\nrestitution = 0.5\ntension_cut = \"yes\"\n").find("model.contact.tension_cut must be true or false") != std::string::npos);
+  CHECK(error_of(table + "model = \"linear\"\nstiffness = 0.0\nrestitution = 0.5\n").rfind(at(1) + "model.contact.stiffness: expected a positive contact stiffness (in units of k1)", 0) == 0);
+  CHECK(error_of(table + "model = \"linear\"\nstiffness = 10.0\nrestitution = 1.5\n").find("model.contact.restitution: expected a coefficient of restitution e with 0 < e <= 1") != std::string::npos);
+  CHECK(error_of(table + "model = \"linear\"\nstiffness = 10.0\ndamping = 1.0\n").find("model.contact.damping: expected the damping ratio zeta, 0 <= zeta < 1") != std::string::npos);
+  CHECK(error_of(table + "model = \"linear\"\nstiffnes = 10.0\n").find("unknown key model.contact.stiffnes; did you mean model.contact.stiffness?") != std::string::npos);
+  // A bad value from --set is blamed on the --set.
+  CHECK(error_of(implicit, {"model.contact.model=impact", "model.contact.restitution=0"}).rfind("--set model.contact.restitution=0: model.contact.restitution: expected", 0) == 0);
+  CHECK(error_of(implicit, {"model.contact.model=linear"}).rfind("--set model.contact.model=linear: model.contact: missing key stiffness", 0) == 0);
+  // The paper's explicit scheme has no contact forces.
+  const std::string e = error_of(kStrong, {"model.contact.model=impact", "model.contact.restitution=0.5"});
+  CHECK(e.rfind("bad.toml:" + std::to_string(line_of(kStrong, "scheme = \"paper\"")) + ": solver.scheme = \"paper\": the contact laws need the implicit scheme", 0) == 0);
+  // With a law the blocks may not start inside each other.
+  CHECK(error_of(implicit, {"model.contact.model=impact", "model.contact.restitution=0.5", "model.gap0=-0.1"}).find("model.gap0 = -0.1 is negative: with a contact law") != std::string::npos);
+  CHECK(error_of(implicit, {"model.contact=3"}).find("model.contact must be a table ([model.contact])") != std::string::npos);
 }

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <toml++/toml.h>
 
+#include "contact_keys.hpp"
 #include "toml_text.hpp"
 
 #include "../detail/nearest.hpp"
@@ -49,6 +50,9 @@ const std::vector<KeySpec>& schema() {
       {"model.rod1.tau_f", Kind::number}, {"model.rod1.elastic", Kind::boolean},
       {"model.rod2.order", Kind::number}, {"model.rod2.tau_x", Kind::number},
       {"model.rod2.tau_f", Kind::number}, {"model.rod2.elastic", Kind::boolean},
+      {"model.contact.model", Kind::string},
+      {"model.contact.stiffness", Kind::number}, {"model.contact.restitution", Kind::number},
+      {"model.contact.damping", Kind::number},   {"model.contact.tension_cut", Kind::boolean},
       {"ground.source", Kind::string},
       {"ground.u0", Kind::number},        {"ground.omega", Kind::number},
       {"ground.k", Kind::number},
@@ -89,8 +93,8 @@ const std::vector<KeySpec>& schema() {
   return keys;
 }
 
-const std::vector<std::string> kTables = {"model", "model.rod1", "model.rod2", "ground", "solver",
-                                          "output", "output.spectra"};
+const std::vector<std::string> kTables = {"model", "model.rod1", "model.rod2", "model.contact", "ground",
+                                          "solver", "output", "output.spectra"};
 
 // Which ground keys each source takes.
 const std::map<std::string, std::vector<std::string>>& ground_keys() {
@@ -322,9 +326,48 @@ Rod read_rod(const SceneReader& r, const std::string& prefix, double time_scale)
 std::string rod_key_of(const std::string& message) {
   for (const char* key : {"model.rod1.order", "model.rod1.tau_x", "model.rod1.tau_f",
                           "model.rod2.order", "model.rod2.tau_x", "model.rod2.tau_f", "model.rho",
-                          "model.eps", "model.mu", "model.gap0"})
+                          "model.eps", "model.mu", "model.gap0", "model.contact.stiffness",
+                          "model.contact.restitution", "model.contact.damping", "model.contact.tension_cut"})
     if (message.rfind(key, 0) == 0) return key;
   return "model";
+}
+
+// [model.contact] (SPEC §6): the law at the blocks' gap model.gap0, by the rules of
+// contact_keys.hpp, absent: model "none". A dimensionless scene gives the stiffness in units
+// of k1 (linear) or k1 / X0^(1/2) (Hertz-type laws); an SI scene in N/m or N/m^1.5, scaled
+// here to those units (divided by k1 = F0 / X0, or by F0 / X0^(3/2)).
+structure::ContactLaw read_contact(const SceneReader& r, const Scales& scales) {
+  structure::ContactModel model = structure::ContactModel::none;
+  if (r.has("model.contact.model")) {
+    const std::string word = r.string("model.contact.model", "");
+    if (!structure::parse_contact_model(word, &model))
+      r.fail("model.contact.model", "model.contact.model = \"" + word + "\" must be one of \"none\", \"linear\", \"hertz\", "
+                                    "\"hertzdamp\", \"jankowski\" or \"impact\"");
+  }
+  const auto linear = [](structure::ContactModel m) { return m == structure::ContactModel::linear; };
+  detail::ContactTable t;
+  t.where = "model.contact";
+  t.has = [&](const std::string& key) { return r.has("model.contact." + key); };
+  t.number = [&](const std::string& key) { return r.number("model.contact." + key); };
+  t.boolean = [&](const std::string& key) { return r.boolean("model.contact." + key, false); };
+  t.fail = [&](const std::string& key, const std::string& message) {
+    const std::string path = key.empty() ? "model.contact" : "model.contact." + key;
+    r.fail(path, path + ": " + message);
+  };
+  t.stiffness_unit = [&](structure::ContactModel m) -> std::string {
+    if (scales.si) return linear(m) ? "N/m" : "N/m^1.5";
+    return linear(m) ? "in units of k1" : "in units of k1 / X0^(1/2)";
+  };
+  structure::ContactLaw law = detail::read_contact_law(t, model);
+  if (scales.si && law.compliant()) {
+    const double unit = linear(model) ? scales.force / scales.length : scales.force / std::pow(scales.length, 1.5);
+    law.stiffness /= unit;
+    if (!(std::isfinite(law.stiffness) && law.stiffness > 0.0))
+      r.fail("model.contact.stiffness", "model.contact.stiffness = " + format_number(r.number("model.contact.stiffness")) +
+                                            " is out of range: divided by the scene's unit " + format_number(unit) +
+                                            " it is not a finite positive number");
+  }
+  return law;
 }
 
 // What a record or synthetic ground is built from, as text: the [ground] table after the
@@ -681,6 +724,11 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
     if (!r.has(rod)) r.fail(rod, std::string("missing section [") + rod + "]");
   m.rod1 = read_rod(r, "model.rod1", scene.scales.time);
   m.rod2 = read_rod(r, "model.rod2", scene.scales.time);
+  m.contact = read_contact(r, scene.scales);
+  if (m.contact.model != structure::ContactModel::none && !(m.gap0 >= 0.0))
+    r.fail("model.gap0", "model.gap0 = " + format_number(r.number("model.gap0")) +
+                             " is negative: with a contact law (model.contact.model = \"" + to_string(m.contact.model) +
+                             "\") the blocks may not start inside each other; expected a gap >= 0");
   std::string error;
   if (!m.IsValid(&error)) {
     // Word SI relaxation times back in the user's units by re-checking the raw values.
@@ -735,6 +783,9 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
   o.locate_switches = r.boolean("solver.locate_switches", o.locate_switches);
   read_step_and_horizon(r, scene);
   if (!o.IsValid(&error)) r.fail(error.substr(0, error.find(' ')), error);
+  if (m.contact.model != structure::ContactModel::none && o.scheme == Scheme::paper)
+    r.fail("solver.scheme", "solver.scheme = \"" + scheme + "\": the contact laws need the implicit scheme (model.contact.model = \"" +
+                                to_string(m.contact.model) + "\"); remove solver.scheme (the default is \"implicit\") or choose an implicit one");
 
   // ---- output ----
   OutputOptions& out = scene.output;
@@ -840,6 +891,13 @@ std::vector<std::string> implied_unsets(const std::string& key, const std::strin
     if (key == std::string(rod) + ".elastic" && value == "true")
       for (const char* k : {".order", ".tau_x", ".tau_f"}) out.push_back(std::string(rod) + k);
   if (key == "ground.source" && unquoted(value) != current_source) out.push_back("ground");
+  // A contact law's restitution and damping replace each other; a model drops the keys it
+  // does not take (contact_keys.hpp), as editing the file would.
+  if (key == "model.contact.restitution") out.push_back("model.contact.damping");
+  if (key == "model.contact.damping") out.push_back("model.contact.restitution");
+  structure::ContactModel model;
+  if (key == "model.contact.model" && structure::parse_contact_model(unquoted(value), &model))
+    for (const auto& k : detail::contact_keys_refused(model)) out.push_back("model.contact." + k);
   return out;
 }
 

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "adjoin/errors.hpp"
+#include "contact_keys.hpp"
 #include "toml_text.hpp"
 
 namespace adjoin::detail {
@@ -108,7 +109,23 @@ void set(toml::table& root, const std::string& text, std::map<std::string, std::
   toml::table* table = parent.node->as_table();
   if (!table) throw InputError(origin + ": " + parent.path + " is a list: name one of its tables by number");
   const toml::table holder = toml_value_of(value);
-  for (const auto& other : alternatives(parts.back())) table->erase(other);
+  const bool contact = parent.path.rfind("contact[", 0) == 0;
+  if (!contact)
+    for (const auto& other : alternatives(parts.back())) table->erase(other);
+  // A contact law's restitution and damping replace each other, and a model drops the keys
+  // it does not take (contact_keys.hpp), as editing the file would; not those another --set
+  // put there (that is a contradiction the reader reports).
+  if (contact) {
+    std::vector<std::string> dropped;
+    if (parts.back() == "restitution") dropped = {"damping"};
+    if (parts.back() == "damping") dropped = {"restitution"};
+    structure::ContactModel model;
+    if (parts.back() == "model")
+      if (const auto word = holder["v"].value<std::string>(); word && structure::parse_contact_model(*word, &model))
+        dropped = contact_keys_refused(model);
+    for (const auto& other : dropped)
+      if (!origins.count(parent.path + "." + other)) table->erase(other);
+  }
   table->insert_or_assign(parts.back(), *holder.get("v"));
   origins[parent.path + "." + parts.back()] = origin;
 }

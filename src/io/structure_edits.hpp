@@ -7,7 +7,9 @@
 // `contact.N.KEY`, with N counted from 1 in the order of the scene's tables; `--unset` takes a
 // key, a numbered table (`link.2`) or a whole section (`link`, `building.B`). Setting one of
 // the alternatives `stiffness`, `stiffnesses`, `period` (or `mass`, `masses`; or a friction
-// link's `slip_force`, `slip_ratio`) removes the others, as editing the file would.
+// link's `slip_force`, `slip_ratio`) removes the others, as editing the file would; so do a
+// contact's `restitution` and `damping`, and a contact's `model` removes the law keys that
+// model does not take (contact_keys.hpp), unless another --set put them there.
 #include <map>
 #include <string>
 #include <vector>

@@ -8,6 +8,7 @@
 
 #include <toml++/toml.h>
 
+#include "contact_keys.hpp"
 #include "structure_edits.hpp"
 #include "toml_text.hpp"
 
@@ -235,6 +236,30 @@ Building read_building(const toml::table& root, const std::string& name, const T
   return b;
 }
 
+// A [[contact]]'s law (SPEC §6): model (default "none"), stiffness [N/m or N/m^1.5],
+// restitution, damping, tension_cut, by the rules of contact_keys.hpp.
+structure::ContactLaw read_contact_law(const TableReader& r) {
+  structure::ContactModel model = structure::ContactModel::none;
+  if (r.has("model")) {
+    const toml::node* n = r.table().get("model");
+    const auto word = n->value_exact<std::string>();
+    if (!word || !structure::parse_contact_model(*word, &model))
+      r.fail("model", "expected one of \"none\", \"linear\", \"hertz\", \"hertzdamp\", \"jankowski\", \"impact\"");
+  }
+  detail::ContactTable t;
+  t.where = r.path();
+  t.has = [&](const std::string& key) { return r.has(key); };
+  t.number = [&](const std::string& key) { return r.number(key); };
+  t.boolean = [&](const std::string& key) {
+    const auto v = r.table().get(key)->value_exact<bool>();
+    if (!v) r.fail(key, "expected true or false");
+    return *v;
+  };
+  t.fail = [&](const std::string& key, const std::string& message) { r.fail(key, message); };
+  t.stiffness_unit = [](structure::ContactModel m) { return m == structure::ContactModel::linear ? "N/m" : "N/m^1.5"; };
+  return detail::read_contact_law(t, model);
+}
+
 double building_weight(const Building& b) { return b.masses.sum() * kStandardGravity; }
 
 }  // namespace
@@ -333,13 +358,14 @@ structure::Structure parse_structure(const std::string& text, const std::string&
       const toml::table* ct = node.as_table();
       if (!ct) top.fail("contact", "expected [[contact]] tables");
       const TableReader r = top.inner(*ct, "contact[" + std::to_string(index) + "]");
-      r.only({"floors", "gap", "model", "stiffness", "restitution", "damping"});
+      r.only({"floors", "gap", "model", "stiffness", "restitution", "damping", "tension_cut"});
       structure::Contact c;
       const auto f = floors_of(r);
       c.floor_a = f[0];
       c.floor_b = f[1];
       c.gap = r.number("gap");
       if (!(c.gap >= 0.0)) r.fail("gap", "expected a clear distance at rest >= 0 (m)");
+      c.law = read_contact_law(r);
       s.contacts.push_back(c);
     }
   } else if (root.contains("contact")) {
