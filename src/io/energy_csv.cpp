@@ -1,6 +1,7 @@
 #include "adjoin/io/energy_csv.hpp"
 
 #include <charconv>
+#include <iterator>
 
 #include "../detail/finite_output.hpp"
 
@@ -14,7 +15,9 @@ void EnergyCsvWriter::begin(const RunInfo& info) {
   steps_ = info.steps;
   count_ = 0;
   buffer_.clear();
-  out_ << "t,input,kinetic,rod1,rod2,friction,residual\n";
+  contact_law_ = info.model.contact.model != structure::ContactModel::none;
+  out_ << (contact_law_ ? "t,input,kinetic,rod1,rod2,friction,contact,contact_dissipated,residual\n"
+                        : "t,input,kinetic,rod1,rod2,friction,residual\n");
 }
 
 void EnergyCsvWriter::observe(const State& s) {
@@ -23,14 +26,18 @@ void EnergyCsvWriter::observe(const State& s) {
   if (index % every_ != 0 && index != steps_) return;
   const EnergyBalance& e = energy_.balance();
   const double k = scales_.energy;
-  const double values[] = {e.t * scales_.time, e.input * k, e.kinetic * k, e.rod1 * k, e.rod2 * k, e.friction * k, e.residual * k};
-  static const char* const columns[] = {"t", "input", "kinetic", "rod1", "rod2", "friction", "residual"};
+  const double values[] = {e.t * scales_.time, e.input * k,   e.kinetic * k, e.rod1 * k,
+                           e.rod2 * k,         e.friction * k, e.contact * k, e.contact_dissipated * k,
+                           e.residual * k};
+  static const char* const columns[] = {"t",    "input",    "kinetic", "rod1",    "rod2",
+                                        "friction", "contact", "contact_dissipated", "residual"};
   char number[32];
-  for (std::size_t i = 0; i < 7; ++i) {
+  for (std::size_t i = 0; i < std::size(values); ++i) {
+    if (!contact_law_ && (i == 6 || i == 7)) continue;
     detail::require_finite_output(values[i], "energy.csv", columns[i], e.t * scales_.time, e.t);
     auto [end, ec] = std::to_chars(number, number + sizeof number, values[i]);
     buffer_.append(number, end);
-    buffer_.push_back(i + 1 < 7 ? ',' : '\n');
+    buffer_.push_back(i + 1 < std::size(values) ? ',' : '\n');
   }
   if (buffer_.size() > (1 << 16)) { out_ << buffer_; buffer_.clear(); }
 }

@@ -517,7 +517,52 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
     result.images.push_back(target("gap"));
   }
 
-  // (5) energy shares, when an energy history is there
+  // (5) pounding with a contact law (impacts.csv): the gap and the contact force on one t
+  // axis, each impact marked (a band from its start to its end, and its peak force)
+  const fs::path impacts_file = dir / "impacts.csv";
+  if (fs::exists(impacts_file)) {
+    const CsvTable im = read_csv_table(impacts_file);
+    const std::string context = "the impacts of `adjoin run` with a contact law";
+    const std::vector<double> start = im.numbers("t_start", context), duration = im.numbers("duration", context),
+                              peak = im.numbers("force_max", context), t_peak = im.numbers("t_force_max", context);
+    const bool force = ts.has("fc");
+    std::vector<double> fc = force ? ts.numbers("fc") : std::vector<double>(t.size(), 0.0);
+    std::ostringstream s;
+    s << kPreamble;
+    datablock(s, "d", {t, gap, fc});
+    if (!start.empty()) datablock(s, "p", {t_peak, peak, start});
+    s << "set multiplot layout 2,1 title "
+      << gnuplot_quote(run.scene + ": pounding, " + std::to_string(start.size()) +
+                       (start.size() == 1 ? " impact" : " impacts"))
+      << " noenhanced font ',12' margins 0.11,0.97,0.09,0.91 spacing 0,0.025\n"
+      << xrange;
+    // The impacts as light bands behind both panels (a Newton impact, of no duration, as a line).
+    for (std::size_t i = 0; i < start.size(); ++i) {
+      if (!std::isfinite(start[i])) continue;
+      const double width = std::isfinite(duration[i]) ? duration[i] : 0.0;
+      if (width > 0.0)
+        s << "set object " << 10000 + i << " rect from " << num(start[i]) << ", graph 0 to " << num(start[i] + width)
+          << ", graph 1 behind fillcolor rgb '#f4d6cc' fillstyle solid 1.0 noborder\n";
+      else
+        s << "set arrow " << 10000 + i << " from " << num(start[i]) << ", graph 0 to " << num(start[i])
+          << ", graph 1 nohead lc rgb '#e08a6e' lw 1\n";
+    }
+    s << "set format x ''\nunset xlabel\nset key " << key_corner(t, {gap, std::vector<double>(t.size(), 0.0)}) << "\n"
+      << "set ylabel 'gap ξ" << unit(si, "m") << "'\n"
+      << "plot $d using 1:2 with lines lt 1 title 'ξ = ξ_0 + x_2 − x_1', 0 with lines lc rgb '#b00000' lw 1.5 "
+         "title 'contact (ξ = 0)'";
+    if (!start.empty())
+      s << ", $p using 3:(0) with points pt 9 ps 1.2 lc rgb '#d0451b' title 'first touch'";
+    s << "\nset key " << key_corner(t, {fc}) << "\nset format x '%g'\n" << tlabel
+      << "set ylabel 'contact force f_c" << unit(si, "N") << "'\n"
+      << "plot $d using 1:3 with lines lt 2 title " << gnuplot_quote(force ? "contact force f_c" : "contact force (not in timeseries.csv)");
+    if (!start.empty()) s << ", $p using 1:2 with points pt 7 ps 1.2 lc rgb '#d0451b' title 'peak of each impact'";
+    s << "\nunset multiplot\n";
+    render_gnuplot(s.str(), target("contact"), style);
+    result.images.push_back(target("contact"));
+  }
+
+  // (6) energy shares, when an energy history is there
   const fs::path energy_file = dir / "energy.csv";
   if (fs::exists(energy_file)) {
     const CsvTable e = read_csv_table(energy_file);
@@ -526,7 +571,8 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
     std::vector<std::string> names;
     std::vector<double> sum(te.size(), 0.0);
     const std::vector<std::pair<const char*, const char*>> parts{
-        {"kinetic", "kinetic"}, {"rod1", "rod 1"}, {"rod2", "rod 2"}, {"friction", "friction (damper)"}};
+        {"kinetic", "kinetic"}, {"rod1", "rod 1"}, {"rod2", "rod 2"}, {"friction", "friction (damper)"},
+        {"contact", "contact (pounding)"}};
     // Final shares of the input energy, for the key.
     double input_final = kNaN;
     if (e.has("input"))

@@ -55,6 +55,16 @@ ordered_json error_estimate_json(const ErrorEstimate& e, const Scales& k) {
       {"switches_note", e.switches_matched ? "" : "the companion run found other phases; instants not estimated"}};
 }
 
+// The flag of a run without a contact law whose gap closed (summary and terminal).
+std::string outside_model_warning(const Scene& scene, double t_first_contact) {
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "the gap closes at t = %.6g%s and the model has no contact law: the blocks pass through each "
+                "other, and every value after that time is outside the model (set [model.contact])",
+                t_first_contact * scene.scales.time, scene.scales.si ? " s" : "");
+  return text;
+}
+
 ordered_json peak(const Peak& p, double scale, double time_scale) {
   return ordered_json{{"max_abs", p.max_abs * scale}, {"t", p.t * time_scale}};
 }
@@ -121,6 +131,18 @@ std::string summary_json(const Scene& scene, const RunReport& r, const ErrorEsti
         {"t_min_gap", g.t_min_gap * k.time},
         {"contact", g.contact},
         {"t_first_contact", g.t_first_contact ? ordered_json(*g.t_first_contact * k.time) : ordered_json(nullptr)}};
+    if (g.has_law()) {
+      ordered_json& p = j["pounding"];
+      p["model"] = structure::to_string(g.model);
+      p["impacts"] = g.impacts.size();
+      p["force_max"] = g.force_max * k.force;
+      p["t_force_max"] = g.impacts.empty() && g.force_max == 0.0 ? ordered_json(nullptr) : ordered_json(g.t_force_max * k.time);
+      p["penetration_max"] = g.penetration_max * k.length;
+      p["energy"] = g.dissipated * k.energy;
+    } else if (g.outside_model()) {
+      j["pounding"]["model"] = "none";
+      j["pounding"]["outside_model_from"] = *g.t_first_contact * k.time;
+    }
   } else {
     j["pounding"] = nullptr;
   }
@@ -129,6 +151,11 @@ std::string summary_json(const Scene& scene, const RunReport& r, const ErrorEsti
     j["energy"] = ordered_json{{"input", e.input * k.energy},       {"kinetic", e.kinetic * k.energy},
                                {"rod1", e.rod1 * k.energy},         {"rod2", e.rod2 * k.energy},
                                {"friction", e.friction * k.energy}, {"residual", e.residual * k.energy}};
+    if (scene.model.contact.model != structure::ContactModel::none) {
+      // The residual already subtracts the contact term (observe/energy.hpp).
+      j["energy"]["contact"] = e.contact * k.energy;
+      j["energy"]["contact_dissipated"] = e.contact_dissipated * k.energy;
+    }
   } else {
     j["energy"] = nullptr;
   }
@@ -146,6 +173,7 @@ std::string summary_json(const Scene& scene, const RunReport& r, const ErrorEsti
     j["spectra"] = spectra;
   }
   if (estimate) j["error_estimate"] = error_estimate_json(*estimate, k);
+  if (r.outside_model_from) j["warnings"] = ordered_json::array({outside_model_warning(scene, *r.outside_model_from)});
   const double t_end = static_cast<double>(r.solver.steps) * r.solver.h;
   require_finite(j, "", t_end * k.time, t_end);
   return j.dump(2) + "\n";
@@ -199,7 +227,22 @@ std::string brief_report(const Scene& scene, const RunReport& r, const ErrorEsti
                   p.f2.max_abs * k.force, u("N").c_str());
     s << line;
   }
-  if (r.pounding) {
+  if (r.pounding && r.pounding->has_law()) {
+    const PoundingMargin& g = *r.pounding;
+    s << "pounding (" << structure::to_string(g.model) << "): ";
+    if (!g.contact) {
+      std::snprintf(line, sizeof line, "min gap %.6g%s at t = %.4g, no contact\n", g.min_gap * k.length, u("m").c_str(),
+                    g.t_min_gap * k.time);
+    } else {
+      std::snprintf(line, sizeof line,
+                    "%zu impact%s from t = %.4g%s, peak force %.6g%s at t = %.4g, max penetration %.4g%s, "
+                    "dissipated %.4g%s\n",
+                    g.impacts.size(), g.impacts.size() == 1 ? "" : "s", *g.t_first_contact * k.time, u("s").c_str(),
+                    g.force_max * k.force, u("N").c_str(), g.t_force_max * k.time, g.penetration_max * k.length,
+                    u("m").c_str(), g.dissipated * k.energy, u("J").c_str());
+    }
+    s << line;
+  } else if (r.pounding) {
     const PoundingMargin& g = *r.pounding;
     std::snprintf(
         line, sizeof line, "pounding: min gap %.6g%s at t = %.4g, %s\n", g.min_gap * k.length, u("m").c_str(),
@@ -207,12 +250,18 @@ std::string brief_report(const Scene& scene, const RunReport& r, const ErrorEsti
         g.contact ? ("CONTACT first at t = " + std::to_string(*g.t_first_contact * k.time)).c_str() : "no contact");
     s << line;
   }
+  if (r.outside_model_from) s << "WARNING: " << outside_model_warning(scene, *r.outside_model_from) << "\n";
   if (r.energy) {
     const EnergyBalance& e = *r.energy;
-    std::snprintf(line, sizeof line,
-                  "energy%s: input %.6g, kinetic %.6g, rod1 %.6g, rod2 %.6g, friction %.6g, residual %.3g\n",
+    std::snprintf(line, sizeof line, "energy%s: input %.6g, kinetic %.6g, rod1 %.6g, rod2 %.6g, friction %.6g, ",
                   si ? " [J]" : " (per unit m1)", e.input * k.energy, e.kinetic * k.energy, e.rod1 * k.energy,
-                  e.rod2 * k.energy, e.friction * k.energy, e.residual * k.energy);
+                  e.rod2 * k.energy, e.friction * k.energy);
+    s << line;
+    if (scene.model.contact.model != structure::ContactModel::none) {
+      std::snprintf(line, sizeof line, "contact %.6g, ", e.contact * k.energy);
+      s << line;
+    }
+    std::snprintf(line, sizeof line, "residual %.3g\n", e.residual * k.energy);
     s << line;
   }
   if (estimate) {

@@ -4,6 +4,7 @@ namespace adjoin {
 
 void EnergyObserver::begin(const RunInfo& info) {
   rho_ = info.model.rho;
+  contact_law_ = info.model.contact.model != structure::ContactModel::none;
   count_ = 0;
   balance_ = EnergyBalance{};
   history_.clear();
@@ -21,8 +22,14 @@ void EnergyObserver::observe(const State& s) {
   }
   balance_.t = s.t;
   balance_.kinetic = 0.5 * s.v1 * s.v1 + 0.5 * s.v2 * s.v2 / rho_;
-  balance_.residual =
-      balance_.input - (balance_.kinetic + balance_.rod1 + balance_.rod2 + balance_.friction);
+  if (contact_law_) {
+    balance_.contact = s.contact_work;
+    balance_.contact_dissipated = s.contact_dissipated;
+    balance_.residual = balance_.input -
+                        (balance_.kinetic + balance_.rod1 + balance_.rod2 + balance_.friction + balance_.contact);
+  } else {
+    balance_.residual = balance_.input - (balance_.kinetic + balance_.rod1 + balance_.rod2 + balance_.friction);
+  }
   if (keep_history_ && count_ % every_ == 0) history_.push_back(balance_);
   previous_ = s;
   ++count_;

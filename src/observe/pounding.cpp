@@ -1,5 +1,6 @@
 #include "adjoin/observe/pounding.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "adjoin/observe/extremum.hpp"
@@ -9,7 +10,35 @@ namespace adjoin {
 void PoundingObserver::begin(const RunInfo& info) {
   gap0_ = info.model.gap0;
   started_ = false;
+  sampled_force_max_ = sampled_t_force_max_ = sampled_penetration_ = 0.0;
   margin_ = PoundingMargin{};
+  margin_.model = info.model.contact.model;
+}
+
+void PoundingObserver::impact(const Impact& i) { margin_.impacts.push_back(i); }
+
+void PoundingObserver::end() {
+  if (!margin_.has_law()) return;
+  if (margin_.impacts.empty()) {
+    margin_.force_max = sampled_force_max_;
+    margin_.t_force_max = sampled_t_force_max_;
+    margin_.penetration_max = margin_.model == structure::ContactModel::impact ? 0.0 : sampled_penetration_;
+    return;
+  }
+  // The impacts' own (located) values, so that the totals agree with impacts.csv.
+  margin_.force_max = 0.0;
+  margin_.t_force_max = margin_.impacts.front().t_force_max;
+  margin_.penetration_max = 0.0;
+  for (const Impact& i : margin_.impacts) {
+    if (i.force_max > margin_.force_max) {
+      margin_.force_max = i.force_max;
+      margin_.t_force_max = i.t_force_max;
+    }
+    margin_.penetration_max = std::max(margin_.penetration_max, i.penetration_max);
+  }
+  // The first touch, located inside its step (the Newton law never lets the gap below 0).
+  margin_.contact = true;
+  margin_.t_first_contact = margin_.impacts.front().start;
 }
 
 void PoundingObserver::observe(const State& s) {
@@ -44,6 +73,14 @@ void PoundingObserver::observe(const State& s) {
     double t = s.t;
     if (started_ && previous_.y > 0.0) t = previous_.t + (s.t - previous_.t) * previous_.y / (previous_.y - now.y);
     margin_.t_first_contact = t;
+  }
+  if (margin_.has_law()) {
+    if (s.fc > sampled_force_max_) {
+      sampled_force_max_ = s.fc;
+      sampled_t_force_max_ = s.t;
+    }
+    sampled_penetration_ = std::max(sampled_penetration_, -now.y);
+    margin_.dissipated = s.contact_dissipated;
   }
   previous_ = now;
   started_ = true;

@@ -278,6 +278,7 @@ std::vector<double> range_values(const SweepReader& r, const toml::table& axis, 
 const std::vector<std::string>& fixed_column_names() {
   static const std::vector<std::string> names = {
       "index", "motion", "units", "x1", "x2", "drift", "f1", "f2", "a1_abs", "a2_abs", "min_gap", "contact",
+      "outside_model", "contact.impacts", "contact.force_max", "contact.penetration_max",
       "energy_input", "share_rod1", "share_rod2", "share_friction", "share_residual", "stick_intervals",
       "slip_intervals", "switches", "pga_g", "wall_seconds", "error"};
   return names;
@@ -652,6 +653,13 @@ SweepRow run_sweep_point(const SweepSpec& spec, std::size_t index) {
     row.a2_abs = p.a2.max_abs * k.acceleration;
     row.min_gap = pounding.margin().min_gap * k.length;
     row.contact = pounding.margin().contact;
+    row.outside_model = pounding.margin().outside_model();
+    row.contact_law = pounding.margin().has_law();
+    if (row.contact_law) {
+      row.impacts = pounding.margin().impacts.size();
+      row.force_max = pounding.margin().force_max * k.force;
+      row.penetration_max = pounding.margin().penetration_max * k.length;
+    }
     const EnergyBalance& e = energy.balance();
     row.energy_input = e.input * k.energy;
     const double in = e.input != 0.0 ? e.input : kNaN;
@@ -680,7 +688,8 @@ SweepRow run_sweep_point(const SweepSpec& spec, std::size_t index) {
       SweepRow b;
       b.index = index;
       b.units = row.units;
-      for (double* v : {&b.x1, &b.x2, &b.drift, &b.f1, &b.f2, &b.a1_abs, &b.a2_abs, &b.min_gap, &b.energy_input,
+      for (double* v : {&b.x1, &b.x2, &b.drift, &b.f1, &b.f2, &b.a1_abs, &b.a2_abs, &b.min_gap, &b.force_max,
+                        &b.penetration_max, &b.energy_input,
                         &b.share_rod1, &b.share_rod2, &b.share_friction, &b.share_residual, &b.pga_g})
         *v = kNaN;
       b.sa_g.assign(spec.im_periods.size(), kNaN);
@@ -768,6 +777,12 @@ std::vector<SweepColumn> sweep_columns(const SweepSpec& spec) {
   }
   for (const char* n : {"x1", "x2", "drift", "f1", "f2", "a1_abs", "a2_abs", "min_gap"}) c.push_back({n, ColumnType::number});
   c.push_back({"contact", ColumnType::boolean});
+  // Pounding (SPEC §6): whether the run went on past a contact with no contact law, and the
+  // contact law's results (empty cells for a run without a law).
+  c.push_back({"outside_model", ColumnType::boolean});
+  c.push_back({"contact.impacts", ColumnType::integer, true});
+  c.push_back({"contact.force_max", ColumnType::number});
+  c.push_back({"contact.penetration_max", ColumnType::number});
   for (const char* n : {"energy_input", "share_rod1", "share_rod2", "share_friction", "share_residual"})
     c.push_back({n, ColumnType::number});
   for (const char* n : {"stick_intervals", "slip_intervals", "switches"}) c.push_back({n, ColumnType::integer});
@@ -785,6 +800,11 @@ void append_two_block_cells(const SweepRow& row, std::vector<std::string>& cells
   for (double v : {row.x1, row.x2, row.drift, row.f1, row.f2, row.a1_abs, row.a2_abs, row.min_gap}) cells.push_back(shortest(v));
   const bool failed = !row.error.empty();
   cells.push_back(failed ? "" : (row.contact ? "true" : "false"));
+  cells.push_back(failed ? "" : (row.outside_model ? "true" : "false"));
+  const bool law = !failed && row.contact_law;
+  cells.push_back(law ? std::to_string(row.impacts) : "");
+  cells.push_back(law ? shortest(row.force_max) : "");
+  cells.push_back(law ? shortest(row.penetration_max) : "");
   for (double v : {row.energy_input, row.share_rod1, row.share_rod2, row.share_friction, row.share_residual})
     cells.push_back(shortest(v));
   for (std::size_t v : {row.stick_intervals, row.slip_intervals, row.switches}) cells.push_back(failed ? "" : std::to_string(v));

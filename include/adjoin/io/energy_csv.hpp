@@ -4,6 +4,11 @@
 //
 //     t,input,kinetic,rod1,rod2,friction,residual
 //
+// With a contact law (SPEC §6) the work on the contact and the part it dissipated come before
+// the residual, which then subtracts the contact term:
+//
+//     t,input,kinetic,rod1,rod2,friction,contact,contact_dissipated,residual
+//
 // The definitions are those of observe/energy.hpp (and the README).
 #include <ostream>
 
@@ -24,6 +29,7 @@ class EnergyCsvWriter final : public Observer {
   Scales scales_;
   std::size_t every_, steps_ = 0, count_ = 0;
   EnergyObserver energy_;
+  bool contact_law_ = false;
   std::string buffer_;
 };
 

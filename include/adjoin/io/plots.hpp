@@ -7,8 +7,11 @@
 //                      stick intervals shaded                       (paper Fig. 4 / 7)
 //      rod-forces      f1 and f2 against t                          (paper Fig. 5 / 8)
 //      gap             the gap ξ with its minimum marked and the contact line ξ = 0
+//      contact         only when DIR/impacts.csv exists (a contact law): the gap and the
+//                      contact force fc on one t axis, each impact marked (its duration shaded,
+//                      its first touch and its peak force as points)
 //      energy          cumulative energy shares, only when DIR/energy.csv exists (header
-//                      t and any of input,kinetic,rod1,rod2,friction,residual)
+//                      t and any of input,kinetic,rod1,rod2,friction,contact,residual)
 //    Axis labels carry the scene's units ("(dimensionless)" or SI units), titles its name.
 //  - plot_spectrum_csv: PSA and SD against period (log axis), one curve per damping, from the
 //    CSV of `adjoin spectrum` (period,damping,sd,sv,sa,psv,psa).

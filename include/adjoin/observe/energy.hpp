@@ -7,7 +7,13 @@
 //     kinetic  = x1'^2/2 + x2'^2/(2 rho)             (relative to the moving base)
 //     rod1     = int f1 x1' dt,  rod2 = int f2 x2' dt   (stored plus dissipated in the rods)
 //     friction = int q (x1' - x2') dt                dissipated in the damper (>= 0)
-//     residual = input - (kinetic + rod1 + rod2 + friction)
+//     contact  = int fc (x1' - x2') dt               work on the contact law (SPEC §6): its
+//                                                    stored energy plus what it dissipated
+//     residual = input - (kinetic + rod1 + rod2 + friction + contact)
+//
+// The contact terms are the solver's own (State::contact_work and contact_dissipated,
+// integrated consistently with its step); without a contact law they are 0 and the residual is
+// the four-term one.
 //
 // The exact solution has residual 0; the discrete one goes to zero with the step. Integrals
 // use the trapezoidal rule on the grid samples.
@@ -20,6 +26,8 @@ namespace adjoin {
 struct EnergyBalance {
   double t = 0.0;
   double input = 0.0, kinetic = 0.0, rod1 = 0.0, rod2 = 0.0, friction = 0.0, residual = 0.0;
+  double contact = 0.0;              // work on the contact (0 without a contact law)
+  double contact_dissipated = 0.0;   // the part of it the contact dissipated
 };
 
 class EnergyObserver final : public Observer {
@@ -36,6 +44,7 @@ class EnergyObserver final : public Observer {
   bool keep_history_;
   std::size_t every_;
   double rho_ = 1.0;
+  bool contact_law_ = false;
   std::size_t count_ = 0;
   State previous_;
   EnergyBalance balance_;

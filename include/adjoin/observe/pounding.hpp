@@ -1,13 +1,23 @@
 #pragma once
 // The pounding margin: the gap xi(t) = gap0 + x2 - x1 between the blocks. xi <= 0 means the
-// structures pound, where the model no longer holds. The minimum is refined between samples
-// from the gap's derivatives, with the damper's located switch as a kink (step_extremum in
-// extremum.hpp: second order even when the minimum sits on a switch); the first contact
-// time is interpolated linearly between the grid points that bracket it.
+// structures touch. The minimum is refined between samples from the gap's derivatives, with
+// the damper's located switch as a kink (step_extremum in extremum.hpp: second order even when
+// the minimum sits on a switch); the first contact time is interpolated linearly between the
+// grid points that bracket it.
+//
+// With a contact law (Model::contact, SPEC §6) the observer also keeps the solver's impacts
+// (Observer::impact): their list, the peak contact force and its time, the largest
+// penetration, and the energy the contact dissipated (State::contact_dissipated). The first
+// contact is then the first impact's located start. Without a law (model none) the blocks pass
+// through each other: every value computed after the first contact is outside the model
+// (PoundingMargin::outside_model()).
+#include <cstddef>
 #include <optional>
+#include <vector>
 
 #include "adjoin/observe/extremum.hpp"
 #include "adjoin/observe/observer.hpp"
+#include "adjoin/structure/contact.hpp"
 
 namespace adjoin {
 
@@ -16,18 +26,38 @@ struct PoundingMargin {
   double t_min_gap = 0.0;
   bool contact = false;
   std::optional<double> t_first_contact;
+
+  // The contact law of the run (none: no law, the blocks pass through each other).
+  structure::ContactModel model = structure::ContactModel::none;
+  // With a law: every impact in order (the last one may be incomplete), the peak contact force
+  // over the run and its time, the largest penetration (0 for the Newton law), and the energy
+  // dissipated by the contact from t = 0 to the end. Taken from the impacts when there are
+  // any, otherwise from the sampled states.
+  std::vector<Impact> impacts;
+  double force_max = 0.0, t_force_max = 0.0;
+  double penetration_max = 0.0;
+  double dissipated = 0.0;
+
+  bool has_law() const { return model != structure::ContactModel::none; }
+  // No contact law and the gap closed: every value after t_first_contact is outside the model.
+  bool outside_model() const { return !has_law() && contact; }
 };
 
 class PoundingObserver final : public Observer {
  public:
   void begin(const RunInfo& info) override;
   void observe(const State& s) override;
+  void impact(const Impact& i) override;
+  void end() override;
   const PoundingMargin& margin() const { return margin_; }
 
  private:
   double gap0_ = 0.0;
   bool started_ = false;
   Sample previous_{};  // the gap, its rate and its acceleration at the previous sample
+  // The sampled contact force's peak and the deepest sampled penetration (the fallback when
+  // the solver reported no impact).
+  double sampled_force_max_ = 0.0, sampled_t_force_max_ = 0.0, sampled_penetration_ = 0.0;
   PoundingMargin margin_;
 };
 

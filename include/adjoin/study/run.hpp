@@ -33,6 +33,10 @@ struct RunReport {
   std::vector<PhaseInterval> phases;  // empty if output.phases = false
   Peaks peaks;                        // all zero if output.peaks = false
   std::optional<PoundingMargin> pounding;
+  // The model has no contact law and the gap closed: the first contact time, from which every
+  // value of the run is outside the model (set [model.contact]). Kept even when the pounding
+  // margin was not asked for (output.pounding = false).
+  std::optional<double> outside_model_from;
   std::optional<EnergyBalance> energy;
   std::vector<SignalSpectrum> spectra;
 };

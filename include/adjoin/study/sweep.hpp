@@ -111,6 +111,14 @@ struct SweepRow {
   double x1 = 0, x2 = 0, drift = 0, f1 = 0, f2 = 0, a1_abs = 0, a2_abs = 0;
   double min_gap = 0;   // pounding margin (scene units)
   bool contact = false;
+  // No contact law and the gap closed: the row's values after the first contact are outside
+  // the model.
+  bool outside_model = false;
+  // With a contact law (SPEC §6): the number of impacts, the peak contact force and the largest
+  // penetration (scene units); without one the cells stay empty.
+  bool contact_law = false;
+  std::size_t impacts = 0;
+  double force_max = 0, penetration_max = 0;
   double energy_input = 0;  // scene units (per unit m1, or J)
   double share_rod1 = 0, share_rod2 = 0, share_friction = 0, share_residual = 0;  // / input
   std::size_t stick_intervals = 0, slip_intervals = 0, switches = 0;
@@ -141,9 +149,10 @@ std::vector<SweepRow> run_sweep(const SweepSpec& spec, const SweepOptions& optio
 // ---- the table: what sweep.csv and sweep.json hold ----
 
 // index, the axes, motion, units, x1, x2, drift, f1, f2, a1_abs, a2_abs, min_gap, contact,
-// energy_input, share_rod1, share_rod2, share_friction, share_residual, stick_intervals,
-// slip_intervals, switches, pga_g, sa_<T>..., wall_seconds, error. A building sweep has its
-// channel columns (spec.channel_columns) in place of x1 ... switches.
+// outside_model, contact.impacts, contact.force_max, contact.penetration_max, energy_input,
+// share_rod1, share_rod2, share_friction, share_residual, stick_intervals, slip_intervals,
+// switches, pga_g, sa_<T>..., wall_seconds, error. A building sweep has its channel columns
+// (spec.channel_columns) in place of x1 ... switches.
 std::vector<SweepColumn> sweep_columns(const SweepSpec& spec);
 
 // Cells as text: numbers in their shortest round-trip form, NaN and absent values as "",

@@ -1,0 +1,38 @@
+#pragma once
+// Streams a two-block run's impacts (SPEC §6) to CSV as the solver reports them (one row per
+// Observer::impact, in order), in the scene's units like timeseries.csv (dimensionless, or s,
+// N, m, m/s and N s for SI scenes):
+//
+//     t_start,duration,force_max,t_force_max,penetration_max,approach_speed,rebound_speed,impulse,complete
+//
+// complete is true or false (false: still in contact at the end of the run). Written only
+// for a model with a contact law (io/run_files.cpp); numbers in the shortest form that reads
+// back to the same double.
+#include <ostream>
+#include <string>
+
+#include "adjoin/model/units.hpp"
+#include "adjoin/observe/observer.hpp"
+
+namespace adjoin {
+
+inline constexpr const char* kImpactsCsvHeader =
+    "t_start,duration,force_max,t_force_max,penetration_max,approach_speed,rebound_speed,impulse,complete";
+
+// One row (no newline) of impacts.csv for an impact in the solver's dimensionless units.
+std::string impact_csv_row(const Impact& impact, const Scales& scales);
+
+class ImpactsCsvWriter final : public Observer {
+ public:
+  ImpactsCsvWriter(std::ostream& out, const Scales& scales) : out_(out), scales_(scales) {}
+  void begin(const RunInfo& info) override;
+  void observe(const State& /*state*/) override {}
+  void impact(const Impact& impact) override;
+  void end() override { out_.flush(); }
+
+ private:
+  std::ostream& out_;
+  Scales scales_;
+};
+
+}  // namespace adjoin

@@ -1,0 +1,341 @@
+// What a two-block run reports about pounding (SPEC §6, issue 13 "Outputs"): the flags of a
+// run without a contact law whose gap closes (summary, time series, terminal, sweep row), the
+// unchanged outputs of a run that never pounds, and with a contact law impacts.csv, the
+// summary's totals, the contact force in the time series and the contact term of the energy
+// balance.
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "adjoin/io/energy_csv.hpp"
+#include "adjoin/io/impacts_csv.hpp"
+#include "adjoin/io/scene.hpp"
+#include "adjoin/io/summary.hpp"
+#include "adjoin/io/timeseries_csv.hpp"
+#include "adjoin/observe/energy.hpp"
+#include "adjoin/observe/pounding.hpp"
+#include "adjoin/study/run.hpp"
+#include "adjoin/study/sweep.hpp"
+#include "cli_helpers.hpp"
+
+using namespace adjoin;
+using adjoin::test::run_cli;
+using adjoin::test::slurp;
+
+namespace {
+
+const std::string kStrong = std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/paper-strong.toml";
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::vector<std::string> fields_of(const std::string& line) {
+  std::vector<std::string> cells;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+std::size_t index_of(const std::vector<std::string>& header, const std::string& name) {
+  const auto it = std::find(header.begin(), header.end(), name);
+  REQUIRE(it != header.end());
+  return static_cast<std::size_t>(it - header.begin());
+}
+
+std::vector<std::string> keys_of(const nlohmann::ordered_json& j) {
+  std::vector<std::string> keys;
+  for (const auto& [k, v] : j.items()) keys.push_back(k);
+  return keys;
+}
+
+std::filesystem::path fresh(const std::string& name) {
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / name;
+  std::filesystem::remove_all(dir);
+  return dir;
+}
+
+// Records the impacts the solver streams.
+class ImpactRecorder final : public Observer {
+ public:
+  void observe(const State& /*s*/) override {}
+  void impact(const Impact& i) override { impacts.push_back(i); }
+  std::vector<Impact> impacts;
+};
+
+State state_at(double t, double x1, double x2) {
+  State s;
+  s.t = t;
+  s.x1 = x1;
+  s.x2 = x2;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("no contact law and a closing gap: summary, time series and terminal flag the values after contact",
+          "[pounding][outputs]") {
+  // The paper's strong scene with a 0.3 joint: the gap closes at t = 1.607 and reaches -0.2519
+  // at t = 2.231 (the blocks pass through each other).
+  const auto dir = fresh("pounding-none");
+  const auto r = run_cli("run '" + kStrong + "' --set model.gap0=0.3 --out '" + dir.string() + "'");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("CONTACT first at t = 1.607"));
+  CHECK_THAT(r.out, Catch::Contains("WARNING: the gap closes at t = 1.6071 and the model has no contact law"));
+  CHECK_THAT(r.out, Catch::Contains("outside the model (set [model.contact])"));
+  CHECK_FALSE(std::filesystem::exists(dir / "impacts.csv"));
+
+  const auto j = nlohmann::json::parse(slurp(dir / "summary.json"));
+  const auto& p = j["pounding"];
+  CHECK(p["contact"].get<bool>());
+  CHECK(p["min_gap"].get<double>() == Approx(-0.251885).epsilon(1e-5));
+  const double t_contact = p["t_first_contact"].get<double>();
+  CHECK(t_contact == Approx(1.6071).margin(1e-4));
+  CHECK(p["model"] == "none");
+  CHECK(p["outside_model_from"].get<double>() == t_contact);
+  REQUIRE(j["warnings"].is_array());
+  REQUIRE(j["warnings"].size() == 1);
+  CHECK_THAT(j["warnings"][0].get<std::string>(), Catch::Contains("every value after that time is outside the model"));
+
+  // The time series: outside_model before phase, 0 up to the first grid point with gap <= 0,
+  // 1 from there on (even where the gap opens again).
+  const auto lines = lines_of(slurp(dir / "timeseries.csv"));
+  REQUIRE(lines.size() == 8002);
+  CHECK(lines[0] == "t,x1,x2,v1,v2,f1,f2,q,ag,gap,outside_model,phase");
+  std::size_t first_flag = 0, reopened = 0;
+  bool seen = false;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const auto f = fields_of(lines[i]);
+    REQUIRE(f.size() == 12);
+    const double t = std::stod(f[0]), gap = std::stod(f[9]);
+    if (gap <= 0.0 && !seen) {
+      seen = true;
+      first_flag = i;
+      CHECK(t >= t_contact);
+      CHECK(t - 0.002 < t_contact);
+    }
+    if (seen && gap > 0.0) ++reopened;
+    REQUIRE(f[10] == (seen ? "1" : "0"));
+  }
+  CHECK(first_flag == 805);  // t = 1.608, the first grid point past t = 1.6071
+  CHECK(reopened > 0);       // the gap opens again and the rows stay flagged
+
+  // The flagged series is streamed from a second pass: its numbers are the run's, digit for digit.
+  const Scene scene = load_scene(kStrong, {"model.gap0=0.3"});
+  std::ostringstream plain;
+  TimeSeriesCsvWriter writer(plain, scene.scales);
+  run_scene(scene, &writer);
+  const auto plain_lines = lines_of(plain.str());
+  REQUIRE(plain_lines.size() == lines.size());
+  CHECK(plain_lines[0] == "t,x1,x2,v1,v2,f1,f2,q,ag,gap,phase");
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    auto f = fields_of(lines[i]);
+    f.erase(f.begin() + 10);
+    std::string joined;
+    for (std::size_t k = 0; k < f.size(); ++k) joined += (k ? "," : "") + f[k];
+    REQUIRE(joined == plain_lines[i]);
+  }
+}
+
+TEST_CASE("no contact law: the flag stays when the pounding margin is not asked for", "[pounding][outputs]") {
+  const auto dir = fresh("pounding-none-unasked");
+  const auto r = run_cli("run '" + kStrong + "' --set model.gap0=0.3 --set output.pounding=false --set output.timeseries=false -q --out '" +
+                         dir.string() + "'");
+  REQUIRE(r.status == 0);
+  const auto j = nlohmann::json::parse(slurp(dir / "summary.json"));
+  CHECK(j["pounding"].is_null());
+  REQUIRE(j["warnings"].size() == 1);
+  CHECK_THAT(j["warnings"][0].get<std::string>(), Catch::Contains("t = 1.6071"));
+}
+
+TEST_CASE("a scene that never pounds keeps the outputs it had before contact laws", "[pounding][outputs]") {
+  const auto dir = fresh("pounding-never");
+  const auto r = run_cli("run '" + kStrong + "' --set output.energy_history=true --out '" + dir.string() + "'");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("pounding: min gap 1.44811 at t = 2.231, no contact\n"));
+  CHECK_THAT(r.out, !Catch::Contains("WARNING"));
+  CHECK_THAT(r.out, !Catch::Contains("contact "));
+  CHECK_FALSE(std::filesystem::exists(dir / "impacts.csv"));
+  CHECK(lines_of(slurp(dir / "timeseries.csv"))[0] == "t,x1,x2,v1,v2,f1,f2,q,ag,gap,phase");
+  CHECK(lines_of(slurp(dir / "energy.csv"))[0] == "t,input,kinetic,rod1,rod2,friction,residual");
+  const auto j = nlohmann::ordered_json::parse(slurp(dir / "summary.json"));
+  CHECK(keys_of(j["pounding"]) == std::vector<std::string>{"min_gap", "t_min_gap", "contact", "t_first_contact"});
+  CHECK(keys_of(j["energy"]) == std::vector<std::string>{"input", "kinetic", "rod1", "rod2", "friction", "residual"});
+  CHECK_FALSE(j.contains("warnings"));
+  CHECK(j["pounding"]["min_gap"].get<double>() == Approx(1.44811).epsilon(1e-5));
+}
+
+TEST_CASE("sweep rows say when their values are outside the model", "[pounding][sweep]") {
+  const auto file = test::write_temp("pounding-sweep.toml", "base = \"" + kStrong + "\"\n[[axis]]\nkey = \"model.gap0\"\nvalues = [2.0, 0.3]\n");
+  const SweepSpec spec = load_sweep(file);
+  const auto columns = sweep_columns(spec);
+  std::vector<std::string> names;
+  for (const auto& c : columns) names.push_back(c.name);
+  const std::size_t contact = index_of(names, "contact");
+  REQUIRE(contact + 5 < names.size());
+  CHECK(names[contact + 1] == "outside_model");
+  CHECK(names[contact + 2] == "contact.impacts");
+  CHECK(names[contact + 3] == "contact.force_max");
+  CHECK(names[contact + 4] == "contact.penetration_max");
+  CHECK(names[contact + 5] == "energy_input");
+
+  const auto rows = run_sweep(spec, {});
+  REQUIRE(rows.size() == 2);
+  CHECK_FALSE(rows[0].outside_model);
+  CHECK(rows[1].outside_model);
+  CHECK(rows[1].min_gap == Approx(-0.251885).epsilon(1e-5));
+  const auto never = sweep_cells(spec, rows[0]), pounds = sweep_cells(spec, rows[1]);
+  CHECK(never[contact] == "false");
+  CHECK(never[contact + 1] == "false");
+  CHECK(pounds[contact] == "true");
+  CHECK(pounds[contact + 1] == "true");
+  for (std::size_t k = 2; k <= 4; ++k) {
+    CHECK(never[contact + k].empty());  // no contact law: nothing to report
+    CHECK(pounds[contact + k].empty());
+  }
+  // The journal takes these rows back.
+  std::size_t index = 0;
+  CHECK(sweep_row_problem(spec, SweepShard{}, pounds, &index).empty());
+  CHECK(index == 1);
+}
+
+TEST_CASE("the pounding observer's totals come from the impacts it is given", "[pounding][outputs]") {
+  RunInfo info;
+  info.model.gap0 = 0.1;
+  info.model.contact.model = structure::ContactModel::linear;
+  info.model.contact.stiffness = 50.0;
+  info.h = 0.01;
+  PoundingObserver observer;
+  observer.begin(info);
+  observer.observe(state_at(0.0, 0.0, 0.0));
+  observer.observe(state_at(0.01, 0.08, 0.0));
+  State s = state_at(0.02, 0.13, 0.0);  // penetration 0.03 at a grid point
+  s.fc = 1.5;
+  s.contact_dissipated = 0.004;
+  observer.observe(s);
+  Impact first;
+  first.start = 0.014;
+  first.duration = 0.02;
+  first.force_max = 2.0;
+  first.t_force_max = 0.021;
+  first.penetration_max = 0.04;
+  observer.impact(first);
+  s = state_at(0.03, 0.05, 0.0);
+  s.contact_dissipated = 0.007;
+  observer.observe(s);
+  Impact second = first;
+  second.start = 0.5;
+  second.force_max = 3.0;
+  second.t_force_max = 0.51;
+  second.penetration_max = 0.035;
+  second.complete = false;
+  observer.impact(second);
+  s = state_at(0.04, 0.11, 0.0);
+  s.contact_dissipated = 0.009;  // cumulative: the last state's value is the run's
+  observer.observe(s);
+  observer.end();
+  const PoundingMargin& m = observer.margin();
+  CHECK(m.has_law());
+  CHECK_FALSE(m.outside_model());
+  REQUIRE(m.impacts.size() == 2);
+  CHECK(m.force_max == 3.0);
+  CHECK(m.t_force_max == 0.51);
+  CHECK(m.penetration_max == 0.04);
+  CHECK(m.dissipated == 0.009);
+  CHECK(m.contact);
+  CHECK(*m.t_first_contact == 0.014);  // the impact's located start, not the gap's crossing
+  CHECK(m.min_gap == Approx(-0.03));
+
+  // Without impacts (a run whose law saw none reported): the sampled values.
+  PoundingObserver sampled;
+  sampled.begin(info);
+  sampled.observe(state_at(0.0, 0.0, 0.0));
+  s = state_at(0.01, 0.13, 0.0);
+  s.fc = 1.5;
+  sampled.observe(s);
+  sampled.end();
+  CHECK(sampled.margin().impacts.empty());
+  CHECK(sampled.margin().force_max == 1.5);
+  CHECK(sampled.margin().t_force_max == 0.01);
+  CHECK(sampled.margin().penetration_max == Approx(0.03));
+}
+
+TEST_CASE("impacts.csv rows are in the scene's units", "[pounding][outputs]") {
+  const Scales k = Scales::SI(2.0e5, 8.0e6);
+  Impact i;
+  i.start = 3.0;
+  i.duration = 0.25;
+  i.force_max = 4.0;
+  i.t_force_max = 3.1;
+  i.penetration_max = 0.02;
+  i.approach_speed = 0.5;
+  i.rebound_speed = 0.3;
+  i.impulse = 0.7;
+  i.complete = false;
+  const auto f = fields_of(impact_csv_row(i, k));
+  REQUIRE(f.size() == 9);
+  CHECK(std::stod(f[0]) == Approx(3.0 * k.time).epsilon(1e-15));
+  CHECK(std::stod(f[1]) == Approx(0.25 * k.time).epsilon(1e-15));
+  CHECK(std::stod(f[2]) == Approx(4.0 * k.force).epsilon(1e-15));
+  CHECK(std::stod(f[3]) == Approx(3.1 * k.time).epsilon(1e-15));
+  CHECK(std::stod(f[4]) == Approx(0.02 * k.length).epsilon(1e-15));
+  CHECK(std::stod(f[5]) == Approx(0.5 * k.velocity).epsilon(1e-15));
+  CHECK(std::stod(f[6]) == Approx(0.3 * k.velocity).epsilon(1e-15));
+  CHECK(std::stod(f[7]) == Approx(0.7 * k.force * k.time).epsilon(1e-15));  // N s
+  CHECK(f[8] == "false");
+  CHECK(std::string(kImpactsCsvHeader) ==
+        "t_start,duration,force_max,t_force_max,penetration_max,approach_speed,rebound_speed,impulse,complete");
+}
+
+TEST_CASE("the energy balance subtracts the contact work only with a contact law", "[pounding][energy]") {
+  RunInfo info;
+  info.model.rho = 0.5;
+  State a, b;
+  b.t = 0.1;
+  b.v1 = 1.0;
+  b.contact_work = 0.25;
+  b.contact_dissipated = 0.05;
+  EnergyObserver none;
+  none.begin(info);
+  none.observe(a);
+  none.observe(b);
+  CHECK(none.balance().contact == 0.0);
+  CHECK(none.balance().residual == Approx(-0.5));  // input 0 - kinetic 1/2
+  info.model.contact.model = structure::ContactModel::hertz;
+  info.model.contact.stiffness = 10.0;
+  EnergyObserver law;
+  law.begin(info);
+  law.observe(a);
+  law.observe(b);
+  CHECK(law.balance().contact == 0.25);
+  CHECK(law.balance().contact_dissipated == 0.05);
+  CHECK(law.balance().residual == Approx(-0.75));
+}
+
+TEST_CASE("adjoin plot run draws the gap and the contact force when the run has impacts.csv", "[pounding][plot]") {
+  const auto dir = fresh("pounding-plot");
+  auto r = run_cli("run '" + kStrong + "' --set solver.scheme=implicit --set model.gap0=0.3 --set model.contact.model=linear " +
+                   "--set model.contact.stiffness=100 --set model.contact.restitution=0.65 -q --out '" + dir.string() + "'");
+  REQUIRE(r.status == 0);
+  REQUIRE(std::filesystem::exists(dir / "impacts.csv"));
+  r = run_cli("plot run '" + dir.string() + "' --format svg");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("contact.svg"));
+  const std::string svg = slurp(dir / "contact.svg");
+  CHECK_THAT(svg, Catch::Contains("contact force"));
+  CHECK_THAT(svg, Catch::Contains("impact"));
+  // A run without a contact law has no such figure.
+  const auto plain = fresh("pounding-plot-none");
+  REQUIRE(run_cli("run '" + kStrong + "' -q --out '" + plain.string() + "'").status == 0);
+  r = run_cli("plot run '" + plain.string() + "' --format svg");
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, !Catch::Contains("contact.svg"));
+}
