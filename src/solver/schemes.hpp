@@ -16,6 +16,11 @@ std::size_t run_paper_scheme(const SolverOptions& options, const Model& model, c
 std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                          Observer& observer);
 
+// A model with a contact law (model.contact): the two blocks as a structure on the structure
+// solver ("implicit" only), reported as two-block States.
+std::size_t run_two_block_contact(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                                  Observer& observer);
+
 // The friction force a stuck damper must carry: q = (rho f2 - f1) / (rho + 1).
 inline double stick_force(const Model& model, double f1, double f2) {
   return (model.rho * f2 - f1) / (model.rho + 1.0);

@@ -30,7 +30,9 @@ SolverSummary simulate(const SolverOptions& options, const Model& model, const G
 
   const auto start = std::chrono::steady_clock::now();
   std::size_t history_bytes = 0;
-  switch (options.scheme) {
+  if (model.contact.model != structure::ContactModel::none) {
+    history_bytes = detail::run_two_block_contact(options, model, ground, observer);
+  } else switch (options.scheme) {
     case Scheme::paper: history_bytes = detail::run_paper_scheme(options, model, ground, observer); break;
     case Scheme::implicit:
     case Scheme::implicit_damped:

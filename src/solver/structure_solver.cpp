@@ -12,6 +12,7 @@
 #include "adjoin/model/units.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "box_qp.hpp"
+#include "contact_step.hpp"
 #include "onset.hpp"
 #include "rod_law.hpp"
 
@@ -141,6 +142,17 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   std::string error;
   if (!options.IsValid(&error)) throw InputError(error);
   if (!s.IsValid(&error)) throw InputError(error);
+  for (const Eigen::VectorXd* v : {&options.x0, &options.v0})
+    if (v->size() != 0 && (v->size() != s.dofs() || !v->allFinite()))
+      throw InputError("the initial displacements and velocities need one finite value per floor");
+  if (options.x0.size() != 0 && !options.x0.isZero()) {
+    bool zener = false;
+    for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
+      if (b)
+        for (const auto& d : b->devices) zener = zener || d.type == DeviceType::zener;
+    for (const auto& l : s.links) zener = zener || l.type == LinkType::zener || l.type == LinkType::friction;
+    if (zener) throw InputError("initial displacements need a structure without Zener elements and friction links");
+  }
   const auto start = std::chrono::steady_clock::now();
   const double h = options.h;
   const std::size_t n_steps = options.steps();
@@ -254,6 +266,49 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   damper_response << a_inv_bt, c_a_inv_bt;
   const Eigen::MatrixXd delassus = nf > 0 ? Eigen::MatrixXd(h * bf * a_inv_bt) : Eigen::MatrixXd(0, 0);
   detail::BoxQp box_qp(delassus);
+
+  // Contact pairs (SPEC §6). Each with a law is a step force like a damper's, its impulse found
+  // by integrating the pair's own relative motion through the step (solver/contact_step.hpp);
+  // it needs A^-1 B_c' (and C A^-1 B_c'), its inverse effective mass kappa = B_c A^-1 B_c' and
+  // B_c A^-1 B_f' (how the dampers' step forces move it).
+  std::vector<int> active;  // contacts with a law
+  for (std::size_t k = 0; k < s.contacts.size(); ++k)
+    if (s.contacts[k].law.model != structure::ContactModel::none) active.push_back(static_cast<int>(k));
+  const int nc = static_cast<int>(active.size());
+  std::vector<Pair> contact_pair;
+  for (const auto& ct : s.contacts) contact_pair.push_back({s.dof('A', ct.floor_a), s.dof('B', ct.floor_b)});
+  Eigen::MatrixXd a_inv_bc = Eigen::MatrixXd::Zero(n, nc);
+  std::vector<detail::ContactStepper> contact_stepper;
+  std::vector<detail::ContactMemory> contact_memory(static_cast<std::size_t>(nc));
+  Eigen::VectorXd kappa(nc);
+  if (nc > 0) {
+    Eigen::MatrixXd bc = Eigen::MatrixXd::Zero(nc, n);
+    for (int ci = 0; ci < nc; ++ci) {
+      const Pair& p = contact_pair[active[ci]];
+      bc(ci, p.i) = 1.0;
+      bc(ci, p.j) = -1.0;
+      const double m_eff = mass[p.i] * mass[p.j] / (mass[p.i] + mass[p.j]);
+      contact_stepper.emplace_back(s.contacts[active[ci]].law, m_eff, active[ci]);
+    }
+    for (const Block& b : blocks) a_inv_bc.middleRows(b.offset, b.size) = b.a.solve(bc.transpose().middleRows(b.offset, b.size));
+    for (int ci = 0; ci < nc; ++ci) kappa[ci] = bc.row(ci).dot(a_inv_bc.col(ci));
+  }
+  const Eigen::MatrixXd c_a_inv_bc = nc > 0 ? Eigen::MatrixXd(c * a_inv_bc) : Eigen::MatrixXd(n, 0);
+  Eigen::MatrixXd contact_friction = Eigen::MatrixXd::Zero(nc, nf);  // B_c A^-1 B_f'
+  for (int ci = 0; ci < nc; ++ci)
+    for (int f = 0; f < nf; ++f) {
+      const Pair& p = contact_pair[active[ci]];
+      contact_friction(ci, f) = a_inv_bt(p.i, f) - a_inv_bt(p.j, f);
+    }
+  Eigen::VectorXd contact_impulse = Eigen::VectorXd::Zero(nc), contact_moment = Eigen::VectorXd::Zero(nc);
+  Eigen::VectorXd contact_end_force = Eigen::VectorXd::Zero(nc);
+  Eigen::VectorXd contact_bt_now = Eigen::VectorXd::Zero(n), contact_bt = Eigen::VectorXd::Zero(n);  // B_c' p at t_n, t_n+1
+  Eigen::VectorXd total_now = Eigen::VectorXd::Zero(n), total_next(n);  // storey, link and contact forces
+  std::vector<double> contact_work(static_cast<std::size_t>(nc), 0.0), step_work(static_cast<std::size_t>(nc), 0.0);
+  std::vector<detail::ContactMemory> memory_before;
+  Eigen::VectorXd v_free0(n), cv_free0(n);
+  std::vector<Impact> impacts;
+  impacts.reserve(16);
   const Eigen::VectorXd inv_mass = mass.cwiseInverse();
   // B M^-1 B': for the grid-point forces of stuck dampers and the kinks of ended slips.
   Eigen::MatrixXd g_all(nf, nf);
@@ -300,16 +355,21 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   const double g = kStandardGravity;
   StructureState now;
   now.t = 0.0;
-  now.x = now.v = Eigen::VectorXd::Zero(n);
+  now.x = options.x0.size() == n ? options.x0 : Eigen::VectorXd::Zero(n);
+  now.v = options.v0.size() == n ? options.v0 : Eigen::VectorXd::Zero(n);
   now.ag = g * ground.ag(0.0);
   now.link_force = now.link_stroke = now.link_velocity = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.links.size()));
   now.link_phase.assign(s.links.size(), Phase::stick);
+  const auto n_contacts = static_cast<Eigen::Index>(s.contacts.size());
+  now.contact_force = now.contact_work = now.contact_dissipated = Eigen::VectorXd::Zero(n_contacts);
+  now.contact_gap.resize(n_contacts);
+  for (std::size_t k = 0; k < s.contacts.size(); ++k) now.contact_gap[static_cast<Eigen::Index>(k)] = s.contacts[k].gap;
   now.link_switch.assign(s.links.size(), kNaN);
   for (auto& e : zener) e.law->commit(0.0, 0.0);
 
   std::vector<detail::DamperState> states(nf, detail::DamperState::stick);
   Eigen::VectorXd internal = Eigen::VectorXd::Zero(n);  // storey and link forces (not friction) at t_n
-  Eigen::VectorXd cv_now = Eigen::VectorXd::Zero(n);    // C v at t_n
+  Eigen::VectorXd cv_now = c * now.v;                   // C v at t_n
   Eigen::VectorXd friction_now = Eigen::VectorXd::Zero(nf);
   Eigen::VectorXd stick_force_now = Eigen::VectorXd::Zero(nf);  // the force that keeps each damper stuck
   Eigen::VectorXd stick_force_prev = Eigen::VectorXd::Zero(nf);
@@ -424,8 +484,10 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     for (int f = 0; f < nf; ++f) st.link_force[friction[f]] = q_friction[f];
   };
   now.a_abs = Eigen::VectorXd::Zero(n);
+  k0.apply(now.x, internal);
   fill_links(now, friction_now);
-  now.a_abs.setConstant(-now.ag);  // at rest: the floors move with the ground
+  if (now.x.isZero() && now.v.isZero()) now.a_abs.setConstant(-now.ag);  // at rest: the floors move with the ground
+  else now.a_abs = (mass * now.ag - cv_now - internal).cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, now.ag);
   observer.observe(now);
   StructureState next = now;  // its vectors are reused by every step (swapped with `now`)
 
@@ -515,7 +577,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       for (std::size_t d = 0; d < damper_dofs.size(); ++d) {
         const int k = damper_dofs[d];
         cv1[k] = cv_free[k] - h * c_a_inv_bt.row(k).dot(q);
-        p1[k] = k0.row(k, x1);
+        p1[k] = k0.row(k, x1) + contact_bt[k];
         for (const auto& [e, sign] : damper_zener[d]) {
           const auto& el = zener[static_cast<std::size_t>(e)];
           p1[k] += sign * (el.law->stiffness() * el.pair.of(x1) + offsets[e]);
@@ -534,6 +596,61 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       for (int f = 0; f < nf; ++f)
         if (!hold_[f]) (*q)[f] = fixed_[f];
     };
+    // The contact pairs' step: each pair's relative motion through the step under its free
+    // relative acceleration (the structure's free step with the dampers as they were), its
+    // impulse then applied to the free step as a step force before the dampers decide.
+    bool any_contact = false;
+    // One pass of the contact pairs with the dampers' step forces q_f (their impulses are
+    // applied to the free step held in v_free0, cv_free0).
+    auto contact_pass = [&](const Eigen::VectorXd& q_f) {
+      any_contact = false;
+      contact_bt.setZero();
+      impacts.clear();
+      for (int ci = 0; ci < nc; ++ci) {
+        const Pair& p = contact_pair[active[ci]];
+        detail::ContactStepIn in;
+        in.t0 = now.t;
+        in.h = h;
+        in.delta0 = p.of(now.x) - s.contacts[active[ci]].gap;
+        in.w0 = p.of(now.v);
+        in.a = (p.of(v_free0) - (nf > 0 ? h * contact_friction.row(ci).dot(q_f) : 0.0) - in.w0) / h;
+        in.kappa = kappa[ci];
+        contact_impulse[ci] = contact_moment[ci] = contact_end_force[ci] = 0.0;
+        contact_memory[ci] = memory_before[ci];
+        if (contact_stepper[ci].quiet(contact_memory[ci], in)) continue;
+        const detail::ContactStepOut out = contact_stepper[ci].step(contact_memory[ci], in, impacts);
+        contact_impulse[ci] = out.impulse;
+        contact_moment[ci] = out.moment;
+        contact_end_force[ci] = out.force;
+        step_work[ci] = out.work;
+        p.add(contact_bt, out.force);
+        any_contact = any_contact || out.touched;
+      }
+      v_free = v_free0;
+      cv_free = cv_free0;
+      if (any_contact) {
+        v_free.noalias() -= a_inv_bc * contact_impulse;
+        cv_free.noalias() -= c_a_inv_bc * contact_impulse;
+      }
+      for (int f = 0; f < nf; ++f) w_free[f] = v_free[fi[f]] - v_free[fj[f]];
+    };
+    if (nc > 0) {
+      v_free0 = v_free;
+      cv_free0 = cv_free;
+      memory_before = contact_memory;
+      std::fill(step_work.begin(), step_work.end(), 0.0);
+      q_trial.setZero();
+      if (nf > 0 && step > 0) {
+        fixed.setZero();
+        for (int f = 0; f < nf; ++f) {
+          const Phase ph = now.link_phase[friction[f]];
+          hold[f] = ph == Phase::stick;
+          if (!hold[f]) fixed[f] = ph == Phase::slip_right ? limit[f] : -limit[f];
+        }
+        solve_held(hold, fixed, &q_trial);
+      }
+      contact_pass(q_trial);
+    }
     std::fill(decided.begin(), decided.end(), detail::DamperState::stick);
     if (nf > 0 && step == 0) {  // from rest: the closed-form relay of the box QP
       const detail::BoxQpResult& r = box_qp.solve(w_free, limit, states);
@@ -594,7 +711,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
                                : (w_now != w1[f] ? std::clamp(w_now / (w_now - w1[f]), 0.0, 1.0) : 1.0);
           crossing[f] = theta;
           // The force that would keep it stuck, at t_n and at the end of slipping on.
-          const double s0 = would_stick(cv_now, internal, friction_now, f);
+          const double s0 = would_stick(cv_now, nc > 0 ? total_now : internal, friction_now, f);
           const double s1 = would_stick(cv1, p1, q1, f);
           const double at = s0 + theta * (s1 - s0);
           kink_theta[f] = theta;
@@ -625,6 +742,12 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       if (again) solve_held(hold2, fixed2, &q_step);
     }
     states = decided;
+    // The dampers' decided step forces move the pairs too: the contact step is taken again
+    // with them, so that each pair's end of step is its own (no penetration for the Newton
+    // law, the compliant force consistent with the floors' motion); the dampers keep their
+    // decisions.
+    if (any_contact && nf > 0) contact_pass(q_step);
+    for (int ci = 0; ci < nc; ++ci) contact_work[ci] += step_work[ci];
     if (nf > 0) {
       response_q.noalias() = damper_response * q_step;
       next.v = v_free - h * response_q.head(n);
@@ -659,6 +782,9 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     next.x = now.x + 0.5 * h * (now.v + next.v);
     if (step > 0 && std::any_of(kink_theta.begin(), kink_theta.end(), [](double t) { return !std::isnan(t); }))
       integrate_kinks(states, kink_theta, kink_jump, &next.x);
+    // The contact impulses' timing inside the step: the trapezoidal displacement takes each as
+    // spread over the step; A^-1 B_c' (h/2 I - J) makes the pair's penetration its own.
+    if (any_contact) next.x.noalias() += a_inv_bc * (0.5 * h * contact_impulse - contact_moment);
     k0.apply(next.x, p_next);
     for (std::size_t e = 0; e < zener.size(); ++e) {
       auto& el = zener[e];
@@ -677,10 +803,14 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       const double theta = before == Phase::stick ? onset[f] : crossing[f];
       next.link_switch[l] = now.t + (std::isnan(theta) ? 1.0 : theta) * h;
     }
-    grid_forces(cv_next, p_next, next.link_phase, &q_grid, &stick_grid);
+    // The grid point's forces with the contacts' (kept apart from `internal`: the trapezoidal
+    // rule must not see the contact forces, whose impulse the contact step gives).
+    if (nc > 0) total_next = p_next + contact_bt;
+    const Eigen::VectorXd& p_grid = nc > 0 ? total_next : p_next;
+    grid_forces(cv_next, p_grid, next.link_phase, &q_grid, &stick_grid);
     // Absolute accelerations at the grid point: x'' - a_g.
     add_bt(q_grid, &bq);
-    force = mass * next.ag - cv_next - p_next - bq;
+    force = mass * next.ag - cv_next - p_grid - bq;
     next.a_abs = force.cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, next.ag);
     fill_links(next, q_grid);
     // (One pass: Eigen's allFinite is x - x == x - x, two unvectorised reductions.)
@@ -697,8 +827,30 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       throw NumericalError(m.str(), next.t);
     }
     for (auto& e : zener) e.law->commit(e.pair.of(next.x), e.force);
+    for (std::size_t k = 0; k < s.contacts.size(); ++k)
+      next.contact_gap[static_cast<Eigen::Index>(k)] = s.contacts[k].gap - contact_pair[k].of(next.x);
+    for (int ci = 0; ci < nc; ++ci) {
+      const Eigen::Index k = active[ci];
+      next.contact_force[k] = contact_end_force[ci];
+      next.contact_work[k] = contact_work[ci];
+      next.contact_dissipated[k] =
+          contact_work[ci] - (contact_memory[ci].engaged ? contact_stepper[ci].stored(-next.contact_gap[k]) : 0.0);
+    }
+    for (const Impact& i : impacts) observer.impact(i);
+    if (step + 1 == n_steps)
+      for (int ci = 0; ci < nc; ++ci)
+        if (contact_memory[ci].engaged) {
+          Impact i = contact_memory[ci].current;
+          i.duration = next.t - i.start;
+          i.complete = false;
+          observer.impact(i);
+        }
     observer.observe(next);
     internal.swap(p_next);
+    if (nc > 0) {
+      total_now.swap(total_next);
+      contact_bt_now.swap(contact_bt);
+    }
     cv_now.swap(cv_next);
     friction_now = q_grid;
     stick_force_prev = stick_force_now;

@@ -44,6 +44,10 @@ struct StructureSolverOptions {
   double h = 0.001;     // s
   double t_end = 10.0;  // s
   HistoryEngine history = HistoryEngine::fft;
+  // The state at t = 0 (empty: at rest). Free vibration and impact tests start from these; an
+  // initial displacement needs a structure without Zener elements and friction links (their
+  // state at t = 0 is relaxed and stuck at zero deformation).
+  Eigen::VectorXd x0, v0;
   std::size_t steps() const;
   bool IsValid(std::string* error) const;
 };

@@ -1,0 +1,119 @@
+// The two-block system with a contact law (SPEC §6, `[model.contact]`): the paper's system is
+// the smallest structure (SPEC §5: one storey each, Zener storeys, one friction link, one
+// contact pair at gap0), so it runs on the structure solver, whose step is the implicit
+// scheme's for vectors (the two agree to rounding without contact: test_structure_solver), in
+// the model's dimensionless units, and its states are reported as the two-block State.
+#include <cmath>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/model/units.hpp"
+#include "adjoin/solver/structure_solver.hpp"
+#include "schemes.hpp"
+
+namespace adjoin::detail {
+namespace {
+
+// The structure solver reads a_g in g; a dimensionless ground is in the model's units.
+class InUnitsOfG final : public GroundMotion {
+ public:
+  explicit InUnitsOfG(const GroundMotion& inner) : inner_(inner) {}
+  double ag(double t) const override { return inner_.ag(t) / kStandardGravity; }
+  std::string describe() const override { return inner_.describe(); }
+
+ private:
+  const GroundMotion& inner_;
+};
+
+class AsTwoBlock final : public StructureObserver {
+ public:
+  AsTwoBlock(Observer& inner, bool damper) : inner_(inner), damper_(damper) {}
+  void observe(const StructureState& s) override {
+    State out;
+    out.t = s.t;
+    out.x1 = s.x[0];
+    out.x2 = s.x[1];
+    out.v1 = s.v[0];
+    out.v2 = s.v[1];
+    out.a1 = s.a_abs[0];
+    out.a2 = s.a_abs[1];
+    out.f1 = s.storey_force[0];
+    out.f2 = s.storey_force[1];
+    out.ag = s.ag;
+    if (damper_) {
+      out.q = s.link_force[0];
+      out.phase = s.link_phase[0];
+      out.t_switch = s.link_switch[0];
+    } else {
+      out.phase = s.v[0] - s.v[1] >= 0.0 ? Phase::slip_right : Phase::slip_left;
+    }
+    out.fc = s.contact_force[0];
+    out.contact_work = s.contact_work[0];
+    out.contact_dissipated = s.contact_dissipated[0];
+    inner_.observe(out);
+  }
+  void impact(const Impact& i) override { inner_.impact(i); }
+
+ private:
+  Observer& inner_;
+  bool damper_;
+};
+
+}  // namespace
+
+structure::Structure two_block_structure(const Model& m) {
+  auto storey = [](const Rod& rod, double mass, double stiffness, const char* name) {
+    structure::Building b;
+    b.name = name;
+    b.masses = Eigen::VectorXd::Constant(1, mass);
+    if (rod.elastic) {
+      b.springs = Eigen::VectorXd::Constant(1, stiffness);
+    } else {
+      b.springs = Eigen::VectorXd::Zero(1);
+      structure::StoreyDevice d;
+      d.type = structure::DeviceType::zener;
+      d.storeys = {1};
+      d.zener = {stiffness, rod.order, rod.tau_x, rod.tau_f};
+      b.devices.push_back(d);
+    }
+    return b;
+  };
+  structure::Structure s;
+  s.a = storey(m.rod1, 1.0, 1.0, "A");
+  s.b = storey(m.rod2, 1.0 / m.rho, m.eps, "B");
+  if (m.mu > 0.0) {
+    structure::Link l;
+    l.type = structure::LinkType::friction;
+    l.slip_force = m.mu;
+    s.links.push_back(l);
+  }
+  structure::Contact c;
+  c.gap = m.gap0;
+  c.law = m.contact;
+  s.contacts.push_back(c);
+  return s;
+}
+
+std::size_t run_two_block_contact(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                                  Observer& observer) {
+  if (options.scheme != Scheme::implicit)
+    throw InputError("solver.scheme = \"" + to_string(options.scheme) +
+                     "\": a contact law (model.contact) runs on the implicit scheme only; use solver.scheme = \"implicit\"");
+  if (!(model.gap0 >= 0.0)) throw InputError("model.gap0 must be >= 0 with a contact law (the blocks may not start overlapping)");
+  const structure::Structure s = two_block_structure(model);
+  StructureSolverOptions o;
+  o.h = options.h;
+  o.t_end = options.t_end;
+  o.history = options.history;
+  RunInfo info;
+  info.model = model;
+  info.h = options.h;
+  info.steps = options.steps();
+  observer.begin(info);
+  AsTwoBlock adapter(observer, model.mu > 0.0);
+  const InUnitsOfG g(ground);
+  const StructureRunSummary summary = simulate_structure(o, s, g, adapter);
+  observer.end();
+  return summary.history_bytes;
+}
+
+}  // namespace adjoin::detail
