@@ -128,7 +128,8 @@ TEST_CASE("building sweeps: the columns are the base structure's channels", "[bu
       "B.T1", "B.roof_max", "B.drift_max", "B.drift_storey", "B.accel_max", "B.base_shear_max", "B.share_inherent",
       "link1.force_max", "link1.stroke_max", "link1.switches", "link1.energy_share",
       "link2.force_max", "link2.stroke_max", "link2.switches", "link2.energy_share",
-      "contact1.min_gap", "contact1.contact", "energy_input", "share_residual", "pga_g", "wall_seconds", "error"};
+      "contact1.min_gap", "contact1.contact", "contact1.impacts", "contact1.force_max", "contact1.penetration_max",
+      "contact1.energy_share", "contact1.outside_model", "energy_input", "share_residual", "pga_g", "wall_seconds", "error"};
   CHECK(n == expected);
   // One building, no links: its columns only.
   const auto single = building_channel_columns(

@@ -1,6 +1,7 @@
 #include "adjoin/io/building_files.hpp"
 #include "adjoin/io/summary.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -67,11 +68,25 @@ class BuildingCsvWriter final : public StructureObserver {
     floors(s.a, "a", "_abs");
     if (s.b) floors(*s.b, "a", "_abs");
     for (std::size_t l = 1; l <= s.links.size(); ++l) out_ << ",link" << l << ".force,link" << l << ".stroke";
-    for (std::size_t k = 1; k <= s.contacts.size(); ++k) out_ << ",contact" << k << ".gap";
+    for (std::size_t k = 1; k <= s.contacts.size(); ++k) out_ << ",contact" << k << ".gap,contact" << k << ".force";
+    unmodelled_ = false;
+    flagged_ = std::any_of(s.contacts.begin(), s.contacts.end(),
+                           [](const structure::Contact& c) { return c.law.model == structure::ContactModel::none; });
+    if (flagged_) out_ << ",outside_model";
     out_ << "\n";
   }
   void observe(const StructureState& st) override {
     const std::size_t index = count_++;
+    // Gaps at every grid point (not only the written ones): the first overlap of a pair
+    // without a contact law puts every later row outside the model.
+    const auto n_contacts = static_cast<Eigen::Index>(s_->contacts.size());
+    gaps_.resize(s_->contacts.size());
+    for (std::size_t k = 0; k < s_->contacts.size(); ++k) {
+      const auto& c = s_->contacts[k];
+      gaps_[k] = st.contact_gap.size() == n_contacts ? st.contact_gap[static_cast<Eigen::Index>(k)]
+                                                     : c.gap - (st.x[s_->dof('A', c.floor_a)] - st.x[s_->dof('B', c.floor_b)]);
+      if (c.law.model == structure::ContactModel::none && gaps_[k] <= 0.0) unmodelled_ = true;
+    }
     if (index % every_ != 0 && index != steps_) return;
     values_.clear();
     values_.push_back(st.t);
@@ -82,8 +97,11 @@ class BuildingCsvWriter final : public StructureObserver {
       values_.push_back(st.link_force[l]);
       values_.push_back(st.link_stroke[l]);
     }
-    for (const auto& c : s_->contacts)
-      values_.push_back(c.gap - (st.x[s_->dof('A', c.floor_a)] - st.x[s_->dof('B', c.floor_b)]));
+    for (std::size_t k = 0; k < s_->contacts.size(); ++k) {
+      values_.push_back(gaps_[k]);
+      values_.push_back(st.contact_force.size() == n_contacts ? st.contact_force[static_cast<Eigen::Index>(k)] : 0.0);
+    }
+    if (flagged_) values_.push_back(unmodelled_ ? 1.0 : 0.0);
     char number[32];
     for (std::size_t i = 0; i < values_.size(); ++i) {
       detail::require_finite_output(values_[i], "timeseries.csv", "a value", st.t, st.t);
@@ -99,9 +117,30 @@ class BuildingCsvWriter final : public StructureObserver {
   std::ostream& out_;
   std::size_t every_, steps_ = 0, count_ = 0;
   const structure::Structure* s_ = nullptr;
-  std::vector<double> values_;
+  std::vector<double> values_, gaps_;
   std::string buffer_;
+  bool flagged_ = false, unmodelled_ = false;
 };
+
+std::string number_text(double v) {
+  char number[32];
+  auto [end, ec] = std::to_chars(number, number + sizeof number, v);
+  return std::string(number, end);
+}
+
+// Text for a time that may be absent (NaN): null.
+ordered_json time_or_null(bool present, double t) { return present ? ordered_json(t) : ordered_json(nullptr); }
+
+// The message of a pair without a contact law whose floors overlapped (summary flags,
+// terminal report).
+std::string unmodelled_message(std::size_t k, const structure::Contact& c, double t) {
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "contact%zu: floor %d of A and floor %d of B overlap from t = %.6g s with no contact law: pounding is not "
+                "modelled (set contact[%zu].model); every value after t = %.6g s is outside the model",
+                k + 1, c.floor_a, c.floor_b, t, k + 1, t);
+  return text;
+}
 
 }  // namespace
 
@@ -153,12 +192,28 @@ std::string building_summary_json(const BuildingScene& scene, const BuildingRepo
     const ContactReport& cr = r.contacts[k];
     contacts.push_back({{"floors", {c.floor_a, c.floor_b}},
                         {"gap", c.gap},
+                        {"model", structure::to_string(c.law.model)},
                         {"min_gap", cr.min_gap},
                         {"t_min_gap", cr.t_min_gap},
                         {"contact", cr.contact},
-                        {"t_first_contact", cr.contact ? ordered_json(cr.t_first_contact) : ordered_json(nullptr)}});
+                        {"t_first_contact", time_or_null(cr.contact, cr.t_first_contact)},
+                        {"impacts", cr.impacts},
+                        {"force_max", cr.force_max},
+                        {"t_force_max", time_or_null(cr.impacts > 0, cr.t_force_max)},
+                        {"penetration_max", cr.penetration_max},
+                        {"impulse", cr.impulse},
+                        {"impulse_max", cr.impulse_max},
+                        {"energy", cr.dissipated},
+                        {"work", cr.work},
+                        {"outside_model_from", time_or_null(cr.outside_model(), cr.unmodelled_from)}});
   }
   j["contacts"] = contacts;
+  // Values outside the model: a pair without a contact law whose floors overlapped.
+  ordered_json flags = ordered_json::array();
+  for (std::size_t k = 0; k < s.contacts.size(); ++k)
+    if (r.contacts[k].outside_model()) flags.push_back(unmodelled_message(k, s.contacts[k], r.contacts[k].unmodelled_from));
+  j["outside_model_from"] = time_or_null(!std::isnan(r.unmodelled_from()), r.unmodelled_from());
+  j["flags"] = flags;
   ordered_json energy;
   for (std::size_t b = 0; b < r.energy.buildings.size(); ++b) {
     const auto& part = r.energy.buildings[b];
@@ -166,6 +221,7 @@ std::string building_summary_json(const BuildingScene& scene, const BuildingRepo
                                   {"storeys", part.storeys}};
   }
   energy["links"] = r.energy.links;
+  energy["contacts"] = r.energy.contacts;
   energy["input"] = r.energy.input;
   energy["residual"] = r.energy.residual;
   j["energy"] = energy;
@@ -204,23 +260,67 @@ std::string building_brief_report(const BuildingScene& scene, const BuildingRepo
     o << "\n";
   }
   for (std::size_t k = 0; k < s.contacts.size(); ++k) {
-    std::snprintf(line, sizeof line, "contact%zu: min gap %.4g m at t = %.4g s%s\n", k + 1, r.contacts[k].min_gap, r.contacts[k].t_min_gap,
-                  r.contacts[k].contact ? " (the floors touch: pounding is not modelled yet)" : "");
-    o << line;
+    const ContactReport& c = r.contacts[k];
+    const structure::Contact& pair = s.contacts[k];
+    if (pair.law.model == structure::ContactModel::none) {
+      std::snprintf(line, sizeof line, "contact%zu: min gap %.4g m at t = %.4g s", k + 1, c.min_gap, c.t_min_gap);
+      o << line;
+      if (c.outside_model()) {
+        std::snprintf(line, sizeof line,
+                      " (the floors touch at t = %.4g s: pounding is not modelled (set contact[%zu].model); the results after "
+                      "t = %.4g s are not valid)",
+                      c.unmodelled_from, k + 1, c.unmodelled_from);
+        o << line;
+      }
+      o << "\n";
+    } else if (c.contact) {
+      std::snprintf(line, sizeof line,
+                    "contact%zu (%s): %zu impact%s, first contact at t = %.4g s, peak force %.4g N at t = %.4g s, max penetration "
+                    "%.4g m, dissipated %.4g J\n",
+                    k + 1, structure::to_string(pair.law.model), c.impacts, c.impacts == 1 ? "" : "s", c.t_first_contact,
+                    c.force_max, c.t_force_max, c.penetration_max, c.dissipated);
+      o << line;
+    } else {
+      std::snprintf(line, sizeof line, "contact%zu (%s): no contact, min gap %.4g m at t = %.4g s\n", k + 1,
+                    structure::to_string(pair.law.model), c.min_gap, c.t_min_gap);
+      o << line;
+    }
   }
   return o.str();
+}
+
+std::string building_impacts_csv(const BuildingReport& r) {
+  std::vector<Impact> all;
+  for (const auto& c : r.contacts) all.insert(all.end(), c.impact_list.begin(), c.impact_list.end());
+  std::stable_sort(all.begin(), all.end(), [](const Impact& a, const Impact& b) { return a.start < b.start; });
+  std::string out = "contact,start,duration,force_max,t_force_max,penetration_max,approach_speed,rebound_speed,impulse,complete\n";
+  for (const Impact& e : all) {
+    const double values[] = {e.start, e.duration, e.force_max, e.t_force_max, e.penetration_max, e.approach_speed, e.rebound_speed,
+                             e.impulse};
+    out += std::to_string(e.contact + 1);
+    for (double v : values) {
+      detail::require_finite_output(v, "impacts.csv", "a value", e.start, e.start);
+      out += ',' + number_text(v);
+    }
+    out += e.complete ? ",true\n" : ",false\n";
+  }
+  return out;
 }
 
 BuildingFiles run_building_to_folder(const BuildingScene& scene, const std::filesystem::path& dir) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
   if (error) throw InputError(dir.string() + ": cannot create the output folder: " + error.message());
-  FileSet set(dir, {"summary.json", "timeseries.csv", "energy.csv", "spectra.csv"});
+  FileSet set(dir, {"summary.json", "timeseries.csv", "energy.csv", "spectra.csv", "impacts.csv"});
   std::unique_ptr<BuildingCsvWriter> writer;
   if (scene.base.output.timeseries) writer = std::make_unique<BuildingCsvWriter>(set.open("timeseries.csv"), scene.base.output.every);
   BuildingFiles files;
   files.report = run_building(scene, writer.get());
   if (!files.report.spectra.empty()) set.open("spectra.csv") << spectra_csv(files.report.spectra);
+  const auto& contacts = scene.structure.contacts;
+  if (std::any_of(contacts.begin(), contacts.end(),
+                  [](const structure::Contact& c) { return c.law.model != structure::ContactModel::none; }))
+    set.open("impacts.csv") << building_impacts_csv(files.report);
   set.open("summary.json") << building_summary_json(scene, files.report);
   files.written = set.commit();
   return files;

@@ -1,5 +1,7 @@
 // Figures of a building run's folder (io/plots.hpp: plot_run hands building runs here): the
-// floor profiles of the peaks, both buildings side by side, and the roofs' and links' histories.
+// floor profiles of the peaks, both buildings side by side, the roofs' and links' histories,
+// and the contact pairs' gaps and forces with their impacts.
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -131,6 +133,84 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
   s << "unset multiplot\n";
   render_gnuplot(s.str(), target("roofs"), style);
   result.images.push_back(target("roofs"));
+
+  // (3) Contact pairs: gap and (with a contact law) contact force against time, each impact
+  // marked at its start (gap 0) and at its peak force (impacts.csv); a pair without a contact
+  // law marks the time from which the run is outside the model.
+  std::vector<std::string> pairs;
+  for (int k = 1; ts.has("contact" + std::to_string(k) + ".gap"); ++k) pairs.push_back("contact" + std::to_string(k));
+  if (!pairs.empty()) {
+    // The force panel for runs with a contact law (they write impacts.csv); without one the
+    // force is 0 throughout.
+    const fs::path impacts_file = dir / "impacts.csv";
+    bool forces = fs::exists(impacts_file);
+    for (const auto& p : pairs) forces = forces && ts.has(p + ".force");
+    std::ostringstream c;
+    c << kGnuplotPreamble;
+    std::vector<std::vector<double>> data{t};
+    for (const auto& p : pairs) data.push_back(ts.numbers(p + ".gap"));
+    if (forces)
+      for (const auto& p : pairs) data.push_back(ts.numbers(p + ".force"));
+    gnuplot_datablock(c, "c", data);
+    // Impacts of each pair: start, then t_force_max and force_max.
+    std::vector<bool> marked(pairs.size(), false);
+    if (fs::exists(impacts_file)) {
+      const CsvTable im = read_csv_table(impacts_file);
+      const std::vector<double> which = im.numbers("contact"), start = im.numbers("start"), tf = im.numbers("t_force_max"),
+                                f = im.numbers("force_max");
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        std::vector<double> s0, zero, t1, f1;
+        for (std::size_t i = 0; i < which.size(); ++i)
+          if (which[i] == static_cast<double>(k + 1)) {
+            s0.push_back(start[i]);
+            zero.push_back(0.0);
+            t1.push_back(tf[i]);
+            f1.push_back(f[i]);
+          }
+        if (s0.empty()) continue;
+        marked[k] = true;
+        gnuplot_datablock(c, "i" + std::to_string(k + 1), {s0, zero, t1, f1});
+      }
+    }
+    // From summary.json: where the run leaves the model (a pair without a contact law).
+    if (j.contains("outside_model_from") && j["outside_model_from"].is_number()) {
+      const double from = j["outside_model_from"].get<double>();
+      c << "set arrow from " << gnuplot_number(from) << ", graph 0 to " << gnuplot_number(from)
+        << ", graph 1 nohead dt 2 lc rgb '#c0392b'\n"
+        << "set label " << gnuplot_quote("outside the model from here (no contact law)") << " at "
+        << gnuplot_number(from) << ", graph 0.06 offset 0.5,0 textcolor rgb '#c0392b' noenhanced\n";
+    }
+    c << "set multiplot layout " << (forces ? 2 : 1) << ",1 title "
+      << gnuplot_quote(scene + ": contact gaps" + (forces ? " and forces" : "") +
+                     (std::find(marked.begin(), marked.end(), true) != marked.end() ? ", impacts marked" : "")) << " noenhanced font ',12'\n"
+      << "set xrange [" << gnuplot_number(t.front()) << ":" << gnuplot_number(t.back()) << "]\nset key top right\n"
+      << "set xlabel 'time t [s]'\nset ylabel 'gap [m]'\nplot 0 with lines lc rgb '#888888' dt 3 notitle";
+    for (std::size_t k = 0; k < pairs.size(); ++k) {
+      c << ", $c using 1:" << k + 2 << " with lines lt " << k + 1 << " noenhanced title '" << pairs[k] << ".gap'";
+      if (marked[k])
+        c << ", $i" << k + 1 << " using 1:2 with points lt " << k + 1 << " pt 6 title '" << pairs[k] << " impacts'";
+    }
+    c << "\n";
+    if (forces) {
+      c << "unset label\nunset arrow\n";
+      if (j.contains("outside_model_from") && j["outside_model_from"].is_number()) {
+        const double from = j["outside_model_from"].get<double>();
+        c << "set arrow from " << gnuplot_number(from) << ", graph 0 to " << gnuplot_number(from)
+          << ", graph 1 nohead dt 2 lc rgb '#c0392b'\n";
+      }
+      c << "set ylabel 'contact force [N]'\nplot ";
+      for (std::size_t k = 0; k < pairs.size(); ++k) {
+        c << (k ? ", " : "") << "$c using 1:" << pairs.size() + k + 2 << " with lines lt " << k + 1 << " noenhanced title '"
+          << pairs[k] << ".force'";
+        if (marked[k])
+          c << ", $i" << k + 1 << " using 3:4 with points lt " << k + 1 << " pt 7 title '" << pairs[k] << " peak forces'";
+      }
+      c << "\n";
+    }
+    c << "unset multiplot\n";
+    render_gnuplot(c.str(), target("contacts"), style);
+    result.images.push_back(target("contacts"));
+  }
   return result;
 }
 

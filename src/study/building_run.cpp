@@ -1,5 +1,6 @@
 #include "adjoin/study/building_run.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 
@@ -39,6 +40,8 @@ class BuildingObserver final : public StructureObserver {
                       names_[i].find(".force") == std::string::npos;
     links_.assign(s.links.size(), LinkReport{});
     contacts_.assign(s.contacts.size(), ContactReport{});
+    for (std::size_t k = 0; k < s.contacts.size(); ++k) contacts_[k].model = s.contacts[k].law.model;
+    contact_work_.assign(s.contacts.size(), 0.0);
     c_.clear();
     c_.push_back(structure::inherent_damping_matrix(s.a));
     if (s.b) c_.push_back(structure::inherent_damping_matrix(*s.b));
@@ -75,12 +78,18 @@ class BuildingObserver final : public StructureObserver {
         r.friction_energy += 0.5 * (st.t - last_t_) * (st.link_force[l] * st.link_velocity[l] + last_power_[l]);
       }
     }
+    const auto n_contacts = static_cast<Eigen::Index>(s_.contacts.size());
     for (std::size_t k = 0; k < s_.contacts.size(); ++k) {
       const auto& pair = s_.contacts[k];
-      const double gap = pair.gap - (st.x[s_.dof('A', pair.floor_a)] - st.x[s_.dof('B', pair.floor_b)]);
+      const auto i = static_cast<Eigen::Index>(k);
+      const double gap = st.contact_gap.size() == n_contacts
+                             ? st.contact_gap[i]
+                             : pair.gap - (st.x[s_.dof('A', pair.floor_a)] - st.x[s_.dof('B', pair.floor_b)]);
       ContactReport& r = contacts_[k];
       if (first_ || gap < r.min_gap) { r.min_gap = gap; r.t_min_gap = st.t; }
       if (!r.contact && gap <= 0.0) { r.contact = true; r.t_first_contact = st.t; }
+      if (st.contact_work.size() == n_contacts) contact_work_[k] = st.contact_work[i];
+      if (st.contact_dissipated.size() == n_contacts) r.dissipated = st.contact_dissipated[i];
     }
     energy_step(st);
     last_phase_ = st.link_phase;
@@ -88,6 +97,11 @@ class BuildingObserver final : public StructureObserver {
     for (std::size_t l = 0; l < s_.links.size(); ++l) last_power_[l] = st.link_force[l] * st.link_velocity[l];
     last_t_ = st.t;
     first_ = false;
+  }
+
+  void impact(const Impact& e) override {
+    if (e.contact >= 0 && static_cast<std::size_t>(e.contact) < contacts_.size())
+      contacts_[static_cast<std::size_t>(e.contact)].impact_list.push_back(e);
   }
 
   // Powers at a grid point, integrated by the trapezoidal rule between grid points.
@@ -132,6 +146,8 @@ class BuildingObserver final : public StructureObserver {
       for (double w : part.storeys) out += w;
     }
     for (double w : energy_.links) out += w;
+    energy_.contacts = contact_work_;  // exact from the solver, not integrated here
+    for (double w : energy_.contacts) out += w;
     energy_.residual = energy_.input - out;
   }
   const BuildingEnergy& energy() const { return energy_; }
@@ -142,7 +158,28 @@ class BuildingObserver final : public StructureObserver {
     return out;
   }
   const std::vector<LinkReport>& links() const { return links_; }
-  const std::vector<ContactReport>& contacts() const { return contacts_; }
+  // The contact pairs with their impacts' totals (in the order the impacts started).
+  std::vector<ContactReport> contacts() const {
+    std::vector<ContactReport> out = contacts_;
+    for (ContactReport& r : out) {
+      auto& list = r.impact_list;
+      std::stable_sort(list.begin(), list.end(), [](const Impact& a, const Impact& b) { return a.start < b.start; });
+      r.impacts = list.size();
+      for (const Impact& e : list) {
+        if (e.force_max > r.force_max) { r.force_max = e.force_max; r.t_force_max = e.t_force_max; }
+        r.penetration_max = std::max(r.penetration_max, e.penetration_max);
+        r.impulse += e.impulse;
+        r.impulse_max = std::max(r.impulse_max, e.impulse);
+      }
+      if (!list.empty()) {
+        r.t_first_contact = r.contact ? std::min(r.t_first_contact, list.front().start) : list.front().start;
+        r.contact = true;
+      }
+      if (r.model == structure::ContactModel::none && r.contact) r.unmodelled_from = r.t_first_contact;
+    }
+    for (std::size_t k = 0; k < out.size(); ++k) out[k].work = contact_work_[k];
+    return out;
+  }
 
  private:
   const structure::Structure& s_;
@@ -152,6 +189,7 @@ class BuildingObserver final : public StructureObserver {
   std::vector<bool> is_smooth_;
   std::vector<LinkReport> links_;
   std::vector<ContactReport> contacts_;
+  std::vector<double> contact_work_;  // the solver's contact_work at the last grid point
   std::vector<Phase> last_phase_;
   std::vector<Eigen::MatrixXd> c_;  // inherent damping matrices
   std::vector<double> work_, last_powers_;
@@ -190,6 +228,7 @@ class Both final : public StructureObserver {
   Both(StructureObserver& a, StructureObserver* b) : a_(a), b_(b) {}
   void begin(const structure::Structure& s, const StructureSolverOptions& o) override { a_.begin(s, o); if (b_) b_->begin(s, o); }
   void observe(const StructureState& st) override { a_.observe(st); if (b_) b_->observe(st); }
+  void impact(const Impact& e) override { a_.impact(e); if (b_) b_->impact(e); }
   void end() override { a_.end(); if (b_) b_->end(); }
 
  private:
@@ -198,6 +237,13 @@ class Both final : public StructureObserver {
 };
 
 }  // namespace
+
+double BuildingReport::unmodelled_from() const {
+  double t = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& c : contacts)
+    if (c.outside_model() && !(t <= c.unmodelled_from)) t = c.unmodelled_from;
+  return t;
+}
 
 BuildingReport run_building(const BuildingScene& scene, StructureObserver* extra) {
   BuildingReport r;

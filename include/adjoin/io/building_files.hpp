@@ -3,7 +3,10 @@
 // solver, ground, structure: periods, damping ratios and mode shapes of each building and the
 // coupled periods; peaks by channel; links; contact pairs) and, if output.timeseries,
 // timeseries.csv (t, a_g and every floor's displacement and absolute acceleration, each link's
-// force and stroke, each contact pair's gap; SI units). No NaN or Inf is written (exit 3).
+// force and stroke, each contact pair's gap and force, and `outside_model` (0, then 1 from the
+// first overlap of a pair without a contact law) when a pair has model none; SI units) and,
+// when a contact pair has a contact law, impacts.csv (one row per impact, in the order they
+// started; contact is 1-based). No NaN or Inf is written (exit 3).
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -20,6 +23,9 @@ struct BuildingFiles {
 
 std::string building_summary_json(const BuildingScene& scene, const BuildingReport& report);
 std::string building_brief_report(const BuildingScene& scene, const BuildingReport& report);
+// impacts.csv: contact,start,duration,force_max,t_force_max,penetration_max,approach_speed,
+// rebound_speed,impulse,complete (SI; complete: true or false).
+std::string building_impacts_csv(const BuildingReport& report);
 BuildingFiles run_building_to_folder(const BuildingScene& scene, const std::filesystem::path& dir);
 
 }  // namespace adjoin

@@ -8,11 +8,19 @@
 // Peaks are the largest samples; those of displacements, drifts and strokes are refined by a
 // parabola through the three samples around them (accelerations, shears and link forces have
 // kinks where a damper switches or saturates, and keep their samples).
+//
+// Contact pairs (SPEC §6): each pair's gap on the grid and, with a contact law, its impacts as
+// the solver reports them (StructureObserver::impact), their totals and the energy the
+// contact dissipated. A pair with model none lets the floors pass through each other: from
+// its first contact on every value of the run is outside the model (unmodelled_from).
+#include <cmath>
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "adjoin/io/building_scene.hpp"
+#include "adjoin/observe/state.hpp"
 #include "adjoin/observe/peaks.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/modal.hpp"
@@ -33,16 +41,32 @@ struct LinkReport {
 };
 
 struct ContactReport {
-  double min_gap = 0.0, t_min_gap = 0.0;
+  structure::ContactModel model = structure::ContactModel::none;
+  double min_gap = 0.0, t_min_gap = 0.0;  // on the grid [m, s]
+  // Whether the floors touched: a reported impact, or a grid gap <= 0; and when (the first
+  // impact's located start, else the first grid point with gap <= 0) [s].
   bool contact = false;
   double t_first_contact = 0.0;
+  // With a contact law: the impacts in the order they started, and their totals.
+  std::vector<Impact> impact_list;
+  std::size_t impacts = 0;
+  double force_max = 0.0, t_force_max = 0.0;  // the largest impact force_max [N] and its time [s]
+  double penetration_max = 0.0;               // [m]
+  double impulse = 0.0, impulse_max = 0.0;    // all impacts' impulses summed, the largest [N s]
+  double work = 0.0;        // work of the floors on the contact at t_end (stored + dissipated) [J]
+  double dissipated = 0.0;  // the part dissipated [J]
+  // Model none and the floors overlapped: every value from this time on is outside the model
+  // (t_first_contact); NaN otherwise.
+  double unmodelled_from = std::numeric_limits<double>::quiet_NaN();
+  bool outside_model() const { return !std::isnan(unmodelled_from); }
 };
 
 // The energy balance of a building run [J], integrated from the grid's powers (trapezoidal):
 // for each building the input a_g 1'M v, the kinetic energy 1/2 v'M v, the work dissipated by
 // its inherent damping v'C v and the work done on each storey (springs' strain energy and the
-// devices' stored and dissipated work together); each link's work; and the residual
-// input - kinetic - inherent - storeys - links, which tends to 0 at the scheme's order.
+// devices' stored and dissipated work together); each link's work; each contact pair's work
+// (its stored energy plus what it dissipated, exact from the solver); and the residual
+// input - kinetic - inherent - storeys - links - contacts, which tends to 0 at the scheme's order.
 struct BuildingEnergy {
   struct Part {
     double input = 0.0, kinetic = 0.0, inherent = 0.0;
@@ -50,6 +74,7 @@ struct BuildingEnergy {
   };
   std::vector<Part> buildings;  // A, then B
   std::vector<double> links;
+  std::vector<double> contacts;
   double input = 0.0, residual = 0.0;
 };
 
@@ -61,6 +86,8 @@ struct BuildingReport {
   std::vector<LinkReport> links;
   std::vector<ContactReport> contacts;
   BuildingEnergy energy;
+  // The earliest unmodelled_from of the contact pairs (NaN: every value is inside the model).
+  double unmodelled_from() const;
   // In-structure spectra ([output.spectra]): of "ground" and of floors' absolute accelerations
   // (X.aN_abs), from their histories at the solver's step h; SI units.
   std::vector<SignalSpectrum> spectra;
