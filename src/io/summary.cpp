@@ -173,7 +173,13 @@ std::string summary_json(const Scene& scene, const RunReport& r, const ErrorEsti
     j["spectra"] = spectra;
   }
   if (estimate) j["error_estimate"] = error_estimate_json(*estimate, k);
-  if (r.outside_model_from) j["warnings"] = ordered_json::array({outside_model_warning(scene, *r.outside_model_from)});
+  // As a building run's summary: the top-level time from which values are outside the model,
+  // and its flag in words (only for a run that has one, so a run that never pounds keeps its
+  // summary).
+  if (r.outside_model_from) {
+    j["outside_model_from"] = *r.outside_model_from * k.time;
+    j["flags"] = ordered_json::array({outside_model_warning(scene, *r.outside_model_from)});
+  }
   const double t_end = static_cast<double>(r.solver.steps) * r.solver.h;
   require_finite(j, "", t_end * k.time, t_end);
   return j.dump(2) + "\n";
