@@ -476,3 +476,35 @@ TEST_CASE("sweep rows with a contact law report the impacts", "[pounding][sweep]
   CHECK(std::stod(pounds[index_of(names, "contact.force_max")]) == r.pounding->force_max);
   CHECK(std::stod(pounds[index_of(names, "contact.penetration_max")]) == r.pounding->penetration_max);
 }
+
+TEST_CASE("with the Newton impact law the gap's minimum is 0 at the first touch and impulses are reported",
+          "[pounding][outputs]") {
+  const Scene scene = load_scene(kStrong, {"solver.scheme=implicit", "model.gap0=0.3", "model.contact.model=impact",
+                                           "model.contact.restitution=0.65"});
+  const auto dir = fresh("pounding-newton");
+  const RunFiles files = run_to_folder(scene, dir);
+  const auto lines = lines_of(slurp(dir / "impacts.csv"));
+  REQUIRE(lines.size() >= 3);
+  double impulse = 0.0, impulse_max = 0.0;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const auto f = fields_of(lines[i]);
+    CHECK(std::stod(f[1]) == 0.0);  // no duration, no force, no penetration
+    CHECK(std::stod(f[2]) == 0.0);
+    CHECK(std::stod(f[4]) == 0.0);
+    // Newton's law: the rebound is e times the approach (the rods and the damper act on a
+    // finite force scale, nothing during an instantaneous impact).
+    CHECK(std::stod(f[6]) == Approx(0.65 * std::stod(f[5])).epsilon(1e-9));
+    impulse += std::stod(f[7]);
+    impulse_max = std::max(impulse_max, std::stod(f[7]));
+  }
+  const auto j = nlohmann::json::parse(slurp(dir / "summary.json"));
+  const auto& p = j["pounding"];
+  CHECK(p["min_gap"].get<double>() == 0.0);
+  CHECK(p["t_min_gap"].get<double>() == p["t_first_contact"].get<double>());
+  CHECK(p["t_first_contact"].get<double>() == std::stod(fields_of(lines[1])[0]));
+  CHECK(p["force_max"].get<double>() == 0.0);
+  CHECK(p["t_force_max"].is_null());
+  CHECK(p["impulse"].get<double>() == Approx(impulse).epsilon(1e-15));
+  CHECK(p["impulse_max"].get<double>() == impulse_max);
+  CHECK_THAT(brief_report(scene, files.report), Catch::Contains("impacts from t = 1.607, largest impulse "));
+}

@@ -136,8 +136,10 @@ std::string summary_json(const Scene& scene, const RunReport& r, const ErrorEsti
       p["model"] = structure::to_string(g.model);
       p["impacts"] = g.impacts.size();
       p["force_max"] = g.force_max * k.force;
-      p["t_force_max"] = g.impacts.empty() && g.force_max == 0.0 ? ordered_json(nullptr) : ordered_json(g.t_force_max * k.time);
+      p["t_force_max"] = g.force_max > 0.0 ? ordered_json(g.t_force_max * k.time) : ordered_json(nullptr);
       p["penetration_max"] = g.penetration_max * k.length;
+      p["impulse"] = g.impulse * k.force * k.time;
+      p["impulse_max"] = g.impulse_max * k.force * k.time;
       p["energy"] = g.dissipated * k.energy;
     } else if (g.outside_model()) {
       j["pounding"]["model"] = "none";
@@ -239,6 +241,10 @@ std::string brief_report(const Scene& scene, const RunReport& r, const ErrorEsti
     if (!g.contact) {
       std::snprintf(line, sizeof line, "min gap %.6g%s at t = %.4g, no contact\n", g.min_gap * k.length, u("m").c_str(),
                     g.t_min_gap * k.time);
+    } else if (g.model == structure::ContactModel::impact) {
+      std::snprintf(line, sizeof line, "%zu impact%s from t = %.4g%s, largest impulse %.6g%s, dissipated %.4g%s\n",
+                    g.impacts.size(), g.impacts.size() == 1 ? "" : "s", *g.t_first_contact * k.time, u("s").c_str(),
+                    g.impulse_max * k.force * k.time, u("N s").c_str(), g.dissipated * k.energy, u("J").c_str());
     } else {
       std::snprintf(line, sizeof line,
                     "%zu impact%s from t = %.4g%s, peak force %.6g%s at t = %.4g, max penetration %.4g%s, "

@@ -35,6 +35,14 @@ void PoundingObserver::end() {
       margin_.t_force_max = i.t_force_max;
     }
     margin_.penetration_max = std::max(margin_.penetration_max, i.penetration_max);
+    margin_.impulse += i.impulse;
+    margin_.impulse_max = std::max(margin_.impulse_max, i.impulse);
+  }
+  if (margin_.model == structure::ContactModel::impact) {
+    // g >= 0 holds exactly: the gap's minimum is the first touch. (The refinement between
+    // samples would extrapolate across the velocity jump of the impact to below 0.)
+    margin_.min_gap = 0.0;
+    margin_.t_min_gap = margin_.impacts.front().start;
   }
   // The first touch, located inside its step (the Newton law never lets the gap below 0).
   margin_.contact = true;

@@ -8,7 +8,8 @@
 // With a contact law (Model::contact, SPEC §6) the observer also keeps the solver's impacts
 // (Observer::impact): their list, the peak contact force and its time, the largest
 // penetration, and the energy the contact dissipated (State::contact_dissipated). The first
-// contact is then the first impact's located start. Without a law (model none) the blocks pass
+// contact is then the first impact's located start; under the Newton law (no penetration) the
+// minimum gap is 0 at that instant. Without a law (model none) the blocks pass
 // through each other: every value computed after the first contact is outside the model
 // (PoundingMargin::outside_model()).
 #include <cstddef>
@@ -37,6 +38,7 @@ struct PoundingMargin {
   double force_max = 0.0, t_force_max = 0.0;
   double penetration_max = 0.0;
   double dissipated = 0.0;
+  double impulse = 0.0, impulse_max = 0.0;  // sum and largest of the impacts' impulses
 
   bool has_law() const { return model != structure::ContactModel::none; }
   // No contact law and the gap closed: every value after t_first_contact is outside the model.
