@@ -1,5 +1,7 @@
 #include "adjoin/io/structure_file.hpp"
 
+#include "adjoin/structure/two_block.hpp"
+
 #include <cmath>
 #include <limits>
 #include <map>
@@ -376,43 +378,6 @@ structure::Structure parse_structure(const std::string& text, const std::string&
   return s;
 }
 
-structure::Structure structure_of(const Scene& scene) {
-  const Model& m = scene.model;
-  const Scales& k = scene.scales;
-  const double m1 = k.force / k.acceleration, k1 = k.force / k.length;  // 1 and 1 when dimensionless
-  auto storey = [&](const Rod& rod, double mass, double stiffness, const char* name) {
-    Building b;
-    b.name = name;
-    b.masses = Eigen::VectorXd::Constant(1, mass);
-    if (rod.elastic) {
-      b.springs = Eigen::VectorXd::Constant(1, stiffness);
-    } else {
-      b.springs = Eigen::VectorXd::Zero(1);
-      structure::StoreyDevice d;
-      d.type = DeviceType::zener;
-      d.storeys = {1};
-      const double time_power = std::pow(k.time, rod.order);  // tau in s^order
-      d.zener = {stiffness, rod.order, rod.tau_x * time_power, rod.tau_f * time_power};
-      b.devices.push_back(d);
-    }
-    return b;
-  };
-  structure::Structure s;
-  s.a = storey(m.rod1, m1, k1, "A");
-  s.b = storey(m.rod2, m1 / m.rho, m.eps * k1, "B");
-  if (m.mu > 0.0) {
-    structure::Link l;
-    l.type = LinkType::friction;
-    l.slip_force = m.mu * k.force;
-    s.links.push_back(l);
-  }
-  structure::Contact contact;
-  contact.gap = m.gap0 * k.length;
-  contact.law = m.contact;
-  // Dimensionless stiffness in units of k1 (linear) or k1 / L^(1/2) (Hertz-type laws).
-  contact.law.stiffness *= m.contact.model == structure::ContactModel::linear ? k1 : k.force / std::pow(k.length, 1.5);
-  s.contacts.push_back(contact);
-  return s;
-}
+structure::Structure structure_of(const Scene& scene) { return structure::two_block_structure(scene.model, scene.scales); }
 
 }  // namespace adjoin

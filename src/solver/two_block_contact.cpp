@@ -8,6 +8,7 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/model/units.hpp"
 #include "adjoin/solver/structure_solver.hpp"
+#include "adjoin/structure/two_block.hpp"
 #include "schemes.hpp"
 
 namespace adjoin::detail {
@@ -60,38 +61,6 @@ class AsTwoBlock final : public StructureObserver {
 
 }  // namespace
 
-structure::Structure two_block_structure(const Model& m) {
-  auto storey = [](const Rod& rod, double mass, double stiffness, const char* name) {
-    structure::Building b;
-    b.name = name;
-    b.masses = Eigen::VectorXd::Constant(1, mass);
-    if (rod.elastic) {
-      b.springs = Eigen::VectorXd::Constant(1, stiffness);
-    } else {
-      b.springs = Eigen::VectorXd::Zero(1);
-      structure::StoreyDevice d;
-      d.type = structure::DeviceType::zener;
-      d.storeys = {1};
-      d.zener = {stiffness, rod.order, rod.tau_x, rod.tau_f};
-      b.devices.push_back(d);
-    }
-    return b;
-  };
-  structure::Structure s;
-  s.a = storey(m.rod1, 1.0, 1.0, "A");
-  s.b = storey(m.rod2, 1.0 / m.rho, m.eps, "B");
-  if (m.mu > 0.0) {
-    structure::Link l;
-    l.type = structure::LinkType::friction;
-    l.slip_force = m.mu;
-    s.links.push_back(l);
-  }
-  structure::Contact c;
-  c.gap = m.gap0;
-  c.law = m.contact;
-  s.contacts.push_back(c);
-  return s;
-}
 
 std::size_t run_two_block_contact(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                                   Observer& observer) {
@@ -99,7 +68,7 @@ std::size_t run_two_block_contact(const SolverOptions& options, const Model& mod
     throw InputError("solver.scheme = \"" + to_string(options.scheme) +
                      "\": a contact law (model.contact) runs on the implicit scheme only; use solver.scheme = \"implicit\"");
   if (!(model.gap0 >= 0.0)) throw InputError("model.gap0 must be >= 0 with a contact law (the blocks may not start overlapping)");
-  const structure::Structure s = two_block_structure(model);
+  const structure::Structure s = structure::two_block_structure(model);
   StructureSolverOptions o;
   o.h = options.h;
   o.t_end = options.t_end;
