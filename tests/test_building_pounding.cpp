@@ -221,10 +221,10 @@ TEST_CASE("pounding with a contact law: impacts.csv, summary and sweep cells are
   std::vector<Impact> events = rec.impacts;
   std::stable_sort(events.begin(), events.end(), [](const Impact& a, const Impact& b) { return a.start < b.start; });
   const CsvTable table = read_csv_table(dir / "impacts.csv");
-  REQUIRE(table.columns == std::vector<std::string>{"contact", "start", "duration", "force_max", "t_force_max", "penetration_max",
+  REQUIRE(table.columns == std::vector<std::string>{"contact", "t_start", "duration", "force_max", "t_force_max", "penetration_max",
                                                     "approach_speed", "rebound_speed", "impulse", "complete"});
   REQUIRE(table.rows.size() == events.size());
-  const std::vector<double> start = table.numbers("start"), force = table.numbers("force_max"),
+  const std::vector<double> start = table.numbers("t_start"), force = table.numbers("force_max"),
                             pen = table.numbers("penetration_max"), v0 = table.numbers("approach_speed"),
                             impulse = table.numbers("impulse"), duration = table.numbers("duration"),
                             complete = table.numbers("complete"), which = table.numbers("contact");

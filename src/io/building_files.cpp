@@ -293,7 +293,7 @@ std::string building_impacts_csv(const BuildingReport& r) {
   std::vector<Impact> all;
   for (const auto& c : r.contacts) all.insert(all.end(), c.impact_list.begin(), c.impact_list.end());
   std::stable_sort(all.begin(), all.end(), [](const Impact& a, const Impact& b) { return a.start < b.start; });
-  std::string out = "contact,start,duration,force_max,t_force_max,penetration_max,approach_speed,rebound_speed,impulse,complete\n";
+  std::string out = "contact,t_start,duration,force_max,t_force_max,penetration_max,approach_speed,rebound_speed,impulse,complete\n";
   for (const Impact& e : all) {
     const double values[] = {e.start, e.duration, e.force_max, e.t_force_max, e.penetration_max, e.approach_speed, e.rebound_speed,
                              e.impulse};

@@ -156,7 +156,7 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
     std::vector<bool> marked(pairs.size(), false);
     if (fs::exists(impacts_file)) {
       const CsvTable im = read_csv_table(impacts_file);
-      const std::vector<double> which = im.numbers("contact"), start = im.numbers("start"), tf = im.numbers("t_force_max"),
+      const std::vector<double> which = im.numbers("contact"), start = im.numbers("t_start"), tf = im.numbers("t_force_max"),
                                 f = im.numbers("force_max");
       for (std::size_t k = 0; k < pairs.size(); ++k) {
         std::vector<double> s0, zero, t1, f1;
