@@ -1,0 +1,188 @@
+// The minimum seismic joint (study/seismic_joint.hpp, issue 13 "Studies"): the bisection over
+// runs and the direct value s_max of one run without contact are two independent answers and
+// agree to the tolerance, on the paper's strong scene and on two frames under a record; a gap
+// of joint + tol never touches, one of joint - 10 tol does (without a contact law, and with
+// one: impacts); adjoin joint writes joint.json and says the same.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+
+#include <nlohmann/json.hpp>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/io/building_scene.hpp"
+#include "adjoin/io/scene.hpp"
+#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run.hpp"
+#include "adjoin/study/seismic_joint.hpp"
+#include "cli_helpers.hpp"
+
+using namespace adjoin;
+namespace fs = std::filesystem;
+
+namespace {
+
+const fs::path kStrong = fs::path(ADJOIN_SOURCE_DIR) / "records/scenes/paper-strong.toml";
+const fs::path kFrames = fs::path(ADJOIN_SOURCE_DIR) / "examples/buildings/two-frames-one-damper.toml";
+
+// The paper's strong scene on the implicit scheme (fft history: 8000 steps, a run in a few ms).
+Scene strong_scene() { return load_scene(kStrong, {"solver.scheme=implicit", "solver.history=fft"}); }
+
+// Two frames joined by a friction damper at floor 3, the first 10 s of the Newhall record.
+BuildingScene frames_scene() { return load_building_scene(kFrames, {"solver.t_end=10"}); }
+
+// A two-block run of `scene` with gap0 = gap (scene units) and the contact law `law`.
+PoundingMargin two_block_run(const Scene& scene, double gap, const structure::ContactLaw& law = {}) {
+  Scene s = scene;
+  s.model.gap0 = gap / s.scales.length;
+  s.model.contact = law;
+  return *run_scene(s).pounding;
+}
+
+ContactReport building_run(const BuildingScene& scene, double gap, const structure::ContactLaw& law = {}) {
+  BuildingScene s = scene;
+  s.structure.contacts.at(0).gap = gap;
+  s.structure.contacts.at(0).law = law;
+  return run_building(s).contacts.at(0);
+}
+
+void check_agreement(const SeismicJoint& j) {
+  INFO(std::setprecision(17) << "joint " << j.joint << ", low " << j.joint_low << ", s_max " << j.s_max << ", tol " << j.tol << ", runs " << j.runs);
+  CHECK(j.agree);
+  CHECK(j.s_max > 0.0);
+  CHECK(j.joint >= j.s_max);
+  CHECK(j.joint - j.s_max <= j.tol);
+  CHECK(j.joint_low <= j.s_max * (1.0 + 1e-12));  // touches (the first midpoint is s_max itself)
+  CHECK(j.joint - j.joint_low <= j.tol);
+  CHECK(j.tol == Approx(1e-6 * j.s_max));
+  // [0, 2 s_max] halved to 1e-6 s_max: 21 halvings, the top's check and the direct run.
+  CHECK(j.runs == 23);
+  CHECK(j.widenings == 0);
+  CHECK(j.srss == Approx(std::hypot(j.peak_a, j.peak_b)));
+  CHECK(j.abs_sum == Approx(j.peak_a + j.peak_b));
+  // s = x_A - x_B is at most |x_A| + |x_B|.
+  CHECK(j.s_max <= j.abs_sum * (1.0 + 1e-9));
+}
+
+}  // namespace
+
+TEST_CASE("seismic joint of the paper's strong scene: bisection and direct s_max agree", "[joint]") {
+  const Scene scene = strong_scene();
+  const SeismicJoint j = seismic_joint(scene);
+  check_agreement(j);
+  CHECK(j.gap_key == "model.gap0");
+  CHECK_FALSE(j.building);
+  // The scene's own run (gap0 = 2) reports the margin min_gap = gap0 - s_max.
+  const PoundingMargin own = *run_scene(scene).pounding;
+  CHECK(scene.model.gap0 - own.min_gap == Approx(j.s_max).epsilon(1e-12));
+  CHECK(j.t_critical == Approx(own.t_min_gap).epsilon(1e-12));
+
+  // A gap of joint + tol never touches; joint - 10 tol does, without a contact law and with
+  // the Newton law and a linear one (one impact at least).
+  CHECK_FALSE(two_block_run(scene, j.joint + j.tol).contact);
+  CHECK(two_block_run(scene, j.joint + j.tol).min_gap >= 0.0);
+  CHECK(two_block_run(scene, j.joint - 10.0 * j.tol).contact);
+  structure::ContactLaw newton;
+  newton.model = structure::ContactModel::impact;
+  newton.restitution = 0.65;
+  CHECK(two_block_run(scene, j.joint + j.tol, newton).impacts.empty());
+  CHECK_FALSE(two_block_run(scene, j.joint - 10.0 * j.tol, newton).impacts.empty());
+  structure::ContactLaw linear;
+  linear.model = structure::ContactModel::linear;
+  linear.stiffness = 1e3;  // dimensionless: 1000 k1
+  linear.restitution = 0.65;
+  CHECK(two_block_run(scene, j.joint + j.tol, linear).impacts.empty());
+  CHECK_FALSE(two_block_run(scene, j.joint - 10.0 * j.tol, linear).impacts.empty());
+
+  // A given tolerance, and the scene's contact law is not used.
+  SeismicJointOptions coarse;
+  coarse.tol = 1e-3;
+  Scene with_law = scene;
+  with_law.model.contact = linear;
+  const SeismicJoint c = seismic_joint(with_law, coarse);
+  CHECK(c.agree);
+  CHECK(c.tol == 1e-3);
+  CHECK(c.s_max == Approx(j.s_max).epsilon(1e-12));
+  CHECK(c.joint - c.s_max <= 1e-3);
+  CHECK(c.runs < j.runs);
+  CHECK_FALSE(c.notes.empty());
+}
+
+TEST_CASE("seismic joint of two frames under a record: bisection and direct s_max agree", "[joint]") {
+  const BuildingScene scene = frames_scene();
+  const SeismicJoint j = seismic_joint(scene);
+  check_agreement(j);
+  CHECK(j.building);
+  CHECK(j.gap_key == "contact.1.gap");
+  CHECK(j.floor_a == 3);
+  CHECK(j.floor_b == 3);
+  // The scene's own run (gap 0.05 m, no contact law) reports its minimum gap on the grid: the
+  // joint's s_max is refined between grid points, a little above 0.05 - min_gap (O(h^2)).
+  const ContactReport own = run_building(scene).contacts.at(0);
+  CHECK(j.s_max >= 0.05 - own.min_gap);
+  CHECK(j.s_max - (0.05 - own.min_gap) < 1e-3 * j.s_max);
+  CHECK(std::abs(j.t_critical - own.t_min_gap) <= scene.solver.h);
+
+  // joint + tol: no contact, without a law (on the grid) and with the Hertzdamp law and the
+  // Newton law (no impact: the solver locates touches on the parabola the joint is refined on);
+  // joint - 10 tol: an impact with either law.
+  CHECK_FALSE(building_run(scene, j.joint + j.tol).contact);
+  structure::ContactLaw hertzdamp;
+  hertzdamp.model = structure::ContactModel::hertzdamp;
+  hertzdamp.stiffness = 1e9;
+  hertzdamp.restitution = 0.65;
+  CHECK(building_run(scene, j.joint + j.tol, hertzdamp).impacts == 0);
+  CHECK(building_run(scene, j.joint - 10.0 * j.tol, hertzdamp).impacts > 0);
+  structure::ContactLaw newton;
+  newton.model = structure::ContactModel::impact;
+  newton.restitution = 0.65;
+  CHECK(building_run(scene, j.joint + j.tol, newton).impacts == 0);
+  CHECK(building_run(scene, j.joint - 10.0 * j.tol, newton).impacts > 0);
+  // Well below the joint the grid sees the overlap too.
+  CHECK(building_run(scene, 0.9 * j.joint).contact);
+}
+
+TEST_CASE("seismic joint: bad options are refused naming them", "[joint]") {
+  SeismicJointOptions o;
+  std::string error;
+  o.tol = 0.0;
+  CHECK_FALSE(o.IsValid(&error));
+  CHECK(error.find("tol") != std::string::npos);
+  o.tol = -1.0;
+  CHECK_THROWS_AS(seismic_joint(strong_scene(), o), InputError);
+  o = SeismicJointOptions{};
+  o.contact = 2;
+  CHECK_THROWS_WITH(seismic_joint(frames_scene(), o), Catch::Contains("contact 2: the scene has 1 contact pair"));
+  const BuildingScene none = load_building_scene(kFrames, {"solver.t_end=1"}, {"contact"});
+  CHECK_THROWS_WITH(seismic_joint(none), Catch::Contains("no contact pair"));
+}
+
+TEST_CASE("adjoin joint writes joint.json with the bisection, the direct value and the codes' rules", "[joint][cli]") {
+  const fs::path dir = fs::path(ADJOIN_TEST_TMP) / ("joint_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const auto r = adjoin::test::run_cli("joint '" + kStrong.string() +
+                                       "' --set solver.scheme=implicit --set solver.history=fft --tol 1e-4 --out '" +
+                                       dir.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("minimum seismic joint of paper-strong") != std::string::npos);
+  CHECK(r.out.find("agree within the tolerance") != std::string::npos);
+  CHECK(r.out.find("SRSS") != std::string::npos);
+  std::ifstream in(dir / "joint.json");
+  const auto json = nlohmann::json::parse(in);
+  const Scene scene = strong_scene();
+  const SeismicJoint j = seismic_joint(scene, [] { SeismicJointOptions o; o.tol = 1e-4; return o; }());
+  CHECK(json["joint"].get<double>() == Approx(j.joint).epsilon(1e-12));
+  CHECK(json["direct"]["s_max"].get<double>() == Approx(j.s_max).epsilon(1e-12));
+  CHECK(json["direct"]["agree"].get<bool>());
+  CHECK(json["bisection"]["runs"].get<std::size_t>() == j.runs);
+  CHECK(json["tolerance"].get<double>() == 1e-4);
+  CHECK(json["gap_key"] == "model.gap0");
+  CHECK(json["code_rules"]["srss"].get<double>() == Approx(j.srss));
+  CHECK(json["code_rules"]["srss_rule"].get<std::string>().find("ASCE 7") != std::string::npos);
+  CHECK(json["critical_approach"]["t"].get<double>() == Approx(j.t_critical));
+  fs::remove_all(dir);
+}
