@@ -9,6 +9,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -184,5 +187,52 @@ TEST_CASE("adjoin joint writes joint.json with the bisection, the direct value a
   CHECK(json["code_rules"]["srss"].get<double>() == Approx(j.srss));
   CHECK(json["code_rules"]["srss_rule"].get<std::string>().find("ASCE 7") != std::string::npos);
   CHECK(json["critical_approach"]["t"].get<double>() == Approx(j.t_critical));
+  fs::remove_all(dir);
+}
+
+TEST_CASE("the impact-force sweep example runs: no impact past the minimum joint, impacts short of it", "[joint][sweep]") {
+  const fs::path dir = fs::path(ADJOIN_TEST_TMP) / ("impact_force_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const fs::path sweep = fs::path(ADJOIN_SOURCE_DIR) / "examples/sweeps/impact-force.toml";
+  const auto r = adjoin::test::run_cli("sweep '" + sweep.string() + "' --out '" + dir.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  std::ifstream in(dir / "sweep.csv");
+  std::string line;
+  std::getline(in, line);
+  std::vector<std::string> header;
+  {
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) header.push_back(cell);
+  }
+  auto column = [&](const std::string& name) {
+    for (std::size_t i = 0; i < header.size(); ++i)
+      if (header[i] == name) return i;
+    FAIL("no column " << name);
+    return std::size_t{0};
+  };
+  const std::size_t gap = column("contact.1.gap"), slip = column("link.1.slip_ratio"),
+                    impacts = column("contact1.impacts"), force = column("contact1.force_max");
+  // The base's own slip ratio, 0.05: its minimum joint (whole record) from adjoin joint.
+  const double joint = seismic_joint(load_building_scene(kFrames)).joint;
+  int rows = 0, checked = 0;
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    ++rows;
+    if (cells.at(slip) != "0.05") continue;
+    const double g = std::stod(cells.at(gap));
+    INFO("gap " << g << ", joint " << joint);
+    if (g > joint) {
+      CHECK(std::stod(cells.at(impacts)) == 0);
+    } else {
+      CHECK(std::stod(cells.at(impacts)) > 0);
+      CHECK(std::stod(cells.at(force)) > 1e5);
+    }
+    ++checked;
+  }
+  CHECK(rows == 28);
+  CHECK(checked == 7);
   fs::remove_all(dir);
 }
