@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <sstream>
+
+#include "adjoin/errors.hpp"
 
 namespace adjoin::detail {
 namespace {
@@ -194,6 +197,13 @@ ContactStepOut ContactStepper::compliant_step(ContactMemory& memory, const Conta
       const Y y1 = flow.step(tau, y, dt, delta_ref * kTol, w_ref * kTol, &err);
       if (!(err <= 1.0)) {
         dt *= std::isfinite(err) ? std::clamp(0.9 * std::pow(err, -0.2), 0.1, 0.9) : 0.1;
+        if (!(dt > 1e-13 * h)) {
+          std::ostringstream m;
+          m << "contact pair " << index_ + 1 << " (" << structure::to_string(law_.model) << "): its motion in contact could not be "
+            << "integrated to the tolerance at t = " << in.t0 + tau << " (penetration " << y.delta << ", rate " << y.w
+            << "); check its stiffness and restitution, or the ground motion's scale";
+          throw NumericalError(m.str(), in.t0 + tau);
+        }
         continue;
       }
       const double grow = std::clamp(0.9 * std::pow(std::max(err, 1e-30), -0.2), 1.0, 5.0);
