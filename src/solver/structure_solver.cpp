@@ -599,6 +599,15 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     // The contact pairs' step: each pair's relative motion through the step under its free
     // relative acceleration (the structure's free step with the dampers as they were), its
     // impulse then applied to the free step as a step force before the dampers decide.
+    // The dampers as they were: the stuck ones held, the slipping ones at their limits.
+    auto hold_as_phased = [&] {
+      fixed.setZero();
+      for (int f = 0; f < nf; ++f) {
+        const Phase ph = now.link_phase[friction[f]];
+        hold[f] = ph == Phase::stick;
+        if (!hold[f]) fixed[f] = ph == Phase::slip_right ? limit[f] : -limit[f];
+      }
+    };
     bool any_contact = false;
     // One pass of the contact pairs with the dampers' step forces q_f (their impulses are
     // applied to the free step held in v_free0, cv_free0).
@@ -641,12 +650,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       std::fill(step_work.begin(), step_work.end(), 0.0);
       q_trial.setZero();
       if (nf > 0 && step > 0) {
-        fixed.setZero();
-        for (int f = 0; f < nf; ++f) {
-          const Phase ph = now.link_phase[friction[f]];
-          hold[f] = ph == Phase::stick;
-          if (!hold[f]) fixed[f] = ph == Phase::slip_right ? limit[f] : -limit[f];
-        }
+        hold_as_phased();
         solve_held(hold, fixed, &q_trial);
       }
       contact_pass(q_trial);
@@ -657,12 +661,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       q_step = r.q;
       decided = r.state;
     } else if (nf > 0) {
-      fixed.setZero();
-      for (int f = 0; f < nf; ++f) {
-        const Phase ph = now.link_phase[friction[f]];
-        hold[f] = ph == Phase::stick;
-        if (!hold[f]) fixed[f] = ph == Phase::slip_right ? limit[f] : -limit[f];
-      }
+      hold_as_phased();
       solve_held(hold, fixed, &q_trial);
       trial_state(q_trial);
       phase1 = now.link_phase;
