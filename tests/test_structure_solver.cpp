@@ -25,17 +25,6 @@ using namespace adjoin::structure;
 
 namespace {
 
-// A dimensionless scene's ground (a_g in the scene's unit) seen as g by the structure solver.
-class InUnitsOfG final : public GroundMotion {
- public:
-  explicit InUnitsOfG(const GroundMotion& inner) : inner_(inner) {}
-  double ag(double t) const override { return inner_.ag(t) / kStandardGravity; }
-  std::string describe() const override { return inner_.describe(); }
-
- private:
-  const GroundMotion& inner_;
-};
-
 class Recorder final : public StructureObserver {
  public:
   void observe(const StructureState& s) override { states.push_back(s); }
@@ -62,7 +51,7 @@ TEST_CASE("the paper's system as a structure follows the two-block implicit sche
     StructureSolverOptions o;
     o.h = h;
     o.t_end = scene.solver.t_end;
-    simulate_structure(o, s, InUnitsOfG(*scene.ground), general);
+    simulate_structure(o, s, ScaledGround(*scene.ground, 1.0 / kStandardGravity), general);
     REQUIRE(general.states.size() == two_block.states.size());
     double dx = 0.0, dq = 0.0, scale_x = 0.0;
     for (std::size_t i = 0; i < general.states.size(); ++i) {

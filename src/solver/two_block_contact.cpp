@@ -14,17 +14,6 @@
 namespace adjoin::detail {
 namespace {
 
-// The structure solver reads a_g in g; a dimensionless ground is in the model's units.
-class InUnitsOfG final : public GroundMotion {
- public:
-  explicit InUnitsOfG(const GroundMotion& inner) : inner_(inner) {}
-  double ag(double t) const override { return inner_.ag(t) / kStandardGravity; }
-  std::string describe() const override { return inner_.describe(); }
-
- private:
-  const GroundMotion& inner_;
-};
-
 class AsTwoBlock final : public StructureObserver {
  public:
   AsTwoBlock(Observer& inner, bool damper) : inner_(inner), damper_(damper) {}
@@ -79,7 +68,7 @@ std::size_t run_two_block_contact(const SolverOptions& options, const Model& mod
   info.steps = options.steps();
   observer.begin(info);
   AsTwoBlock adapter(observer, model.mu > 0.0);
-  const InUnitsOfG g(ground);
+  const ScaledGround g(ground, 1.0 / kStandardGravity);
   const StructureRunSummary summary = simulate_structure(o, s, g, adapter);
   observer.end();
   return summary.history_bytes;

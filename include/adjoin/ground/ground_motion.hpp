@@ -26,4 +26,19 @@ class GroundMotion {
   virtual double sample_interval() const { return 0.0; }
 };
 
+// Another source times a constant, e.g. 1/g: a dimensionless ground (in the model's units) as
+// the structure solver reads it (in g). `inner` must outlive it.
+class ScaledGround final : public GroundMotion {
+ public:
+  ScaledGround(const GroundMotion& inner, double factor) : inner_(inner), factor_(factor) {}
+  double ag(double t) const override { return inner_.ag(t) * factor_; }
+  std::string describe() const override { return inner_.describe(); }
+  double duration() const override { return inner_.duration(); }
+  double sample_interval() const override { return inner_.sample_interval(); }
+
+ private:
+  const GroundMotion& inner_;
+  double factor_;
+};
+
 }  // namespace adjoin
