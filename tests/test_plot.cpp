@@ -291,4 +291,24 @@ TEST_CASE("plot run on a building run draws floor profiles of both buildings and
   CHECK(roofs.find("A.x5") != std::string::npos);
   CHECK(roofs.find("B.x3") != std::string::npos);
   CHECK(roofs.find("link1.force") != std::string::npos);
+  // Chosen channels only: one panel each, with the names on the axes.
+  const fs::path chosen = scratch("building-channels") / "";
+  auto picked = run_cli("plot run '" + dir.string() + "' --channels A.x5,B.a3_abs,link1.stroke --size 700x900 --out '" +
+                        chosen.string() + "'");
+  INFO(picked.err);
+  REQUIRE(picked.status == 0);
+  CHECK(picked.out.find("channels.png") != std::string::npos);
+  require_png(chosen / "channels.png", 700, 900);
+  REQUIRE(run_cli("plot run '" + dir.string() + "' --channels A.x5,link1.stroke --format svg --out '" + chosen.string() + "'")
+              .status == 0);
+  const std::string panels = slurp(chosen / "channels.svg");
+  CHECK(panels.find("A.x5") != std::string::npos);
+  CHECK(panels.find("link1.stroke") != std::string::npos);
+  CHECK(panels.find("B.a3_abs") == std::string::npos);
+  // A name that is not a column names itself and lists the columns there are; exit 2.
+  picked = run_cli("plot run '" + dir.string() + "' --channels A.x5,A.x9 --out '" + chosen.string() + "'");
+  CHECK(picked.status == 2);
+  CHECK(picked.err.find("--channels") != std::string::npos);
+  CHECK(picked.err.find("'A.x9'") != std::string::npos);
+  CHECK(picked.err.find("A.x5") != std::string::npos);
 }

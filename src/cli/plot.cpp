@@ -1,4 +1,4 @@
-// adjoin plot run DIR [--out PREFIX] [--format png|svg] [--size WxH]
+// adjoin plot run DIR [--channels NAME[,NAME...]] [--out PREFIX] [--format png|svg] [--size WxH]
 // adjoin plot spectrum CSV [--out FILE] [--format png|svg] [--size WxH]
 // adjoin plot converge CSV [--out FILE] [--format png|svg] [--size WxH]
 // adjoin plot sweep CSV --x COLUMN --y COLUMN[,COLUMN...] [--group COLUMN] [--logx] [--logy]
@@ -28,7 +28,7 @@ namespace fs = std::filesystem;
 struct PlotArgs {
   std::string input, out, format, size = "900x600";
   std::string x, group, title;
-  std::vector<std::string> y;
+  std::vector<std::string> y, channels;
   bool log_x = false, log_y = false;
 };
 
@@ -54,6 +54,13 @@ int plot_run_command(const PlotArgs& a) {
   std::string prefix = a.out;
   if (prefix.empty()) prefix = (fs::path(a.input) / "").string();
   else if (fs::is_directory(prefix) && prefix.back() != '/') prefix += '/';
+  if (!a.channels.empty()) {
+    // Only the chosen channels: one figure, `channels` + extension after the prefix.
+    const fs::path image = prefix + "channels" + plot_extension(style.format);
+    plot_run_channels(a.input, a.channels, image, style);
+    std::cout << "wrote " << image.string() << "\n";
+    return 0;
+  }
   const RunPlots plots = plot_run(a.input, prefix, style);
   for (const auto& image : plots.images) std::cout << "wrote " << image.string() << "\n";
   for (const auto& note : plots.notes) std::cout << note << "\n";
@@ -119,6 +126,10 @@ const Registration registration(60, [](CLI::App& app) -> Runner {
       "run", "The paper's figures for a run folder: displacements, excitation/damper force/relative velocity, "
              "rod forces, gap, energy (if DIR/energy.csv exists)");
   run->add_option("dir", args->input, "Output folder of `adjoin run` (summary.json, timeseries.csv)")->required();
+  run->add_option("--channels", args->channels,
+                  "Draw only these columns of DIR/timeseries.csv against time, one panel each (e.g. "
+                  "A.x5,A.drift1,link1.force): PREFIXchannels.png")
+      ->delimiter(',');
   common_options(run, args.get(), "Prefix of the image files (default DIR/; e.g. figs/strong- gives figs/strong-gap.png)");
 
   auto* spectrum = plot->add_subcommand("spectrum", "PSA and SD against period, one curve per damping");

@@ -214,4 +214,42 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
   return result;
 }
 
+void plot_run_channels(const fs::path& dir, const std::vector<std::string>& channels, const fs::path& image,
+                       const PlotStyle& style, const std::string& option) {
+  constexpr std::size_t kMostPanels = 8;
+  if (channels.empty()) throw InputError(option + ": expected one or more channel names, comma separated");
+  if (channels.size() > kMostPanels)
+    throw InputError(option + ": " + std::to_string(channels.size()) + " channels given; at most " +
+                     std::to_string(kMostPanels) + " panels fit one figure");
+  const fs::path csv = dir / "timeseries.csv";
+  if (!fs::exists(csv))
+    throw InputError(option + ": " + csv.string() + " does not exist (output.timeseries = true writes it)");
+  const CsvTable ts = read_csv_table(csv);
+  // Every name is checked before anything is drawn, so a typo names itself and lists the rest.
+  for (const auto& name : channels) (void)ts.column(name, option);
+  const std::vector<double> t = ts.numbers("t");
+  if (t.empty()) throw InputError(csv.string() + ": no rows");
+  std::vector<std::vector<double>> data{t};
+  for (const auto& name : channels) data.push_back(ts.numbers(name));
+  std::string scene = dir.filename().string();
+  if (fs::exists(dir / "summary.json")) {
+    const nlohmann::json j = read_summary_json(dir / "summary.json");
+    if (j.is_object() && j.contains("scene") && j["scene"].is_string()) scene = j["scene"].get<std::string>();
+  }
+  std::ostringstream s;
+  s << kGnuplotPreamble;
+  gnuplot_datablock(s, "d", data);
+  s << "set multiplot layout " << channels.size() << ",1 title " << gnuplot_quote(scene + ": chosen channels")
+    << " noenhanced font ',12'\n"
+    << "set xrange [" << gnuplot_number(t.front()) << ":" << gnuplot_number(t.back()) << "]\nset key top right\n"
+    << "set format x ''\nunset xlabel\n";
+  for (std::size_t k = 0; k < channels.size(); ++k) {
+    if (k + 1 == channels.size()) s << "set format x '%g'\nset xlabel 'time t [s]'\n";
+    s << "set ylabel " << gnuplot_quote(channels[k]) << " noenhanced\nplot $d using 1:" << k + 2 << " with lines lt "
+      << k + 1 << " noenhanced title " << gnuplot_quote(channels[k]) << "\n";
+  }
+  s << "unset multiplot\n";
+  render_gnuplot(s.str(), image, style);
+}
+
 }  // namespace adjoin

@@ -89,6 +89,14 @@ RunPlots plot_run(const std::filesystem::path& dir, const std::string& prefix, c
 bool is_building_run(const std::filesystem::path& dir);
 RunPlots plot_building_run(const std::filesystem::path& dir, const std::string& prefix, const PlotStyle& style);
 
+// Chosen channels of any run folder (columns of its timeseries.csv: A.x5, link1.force, x1, fd,
+// ...) against time, one panel each, stacked with a shared time axis, to `image`. At most 8
+// channels; a name that is not a column is an InputError naming `option` and listing the
+// columns there are.
+void plot_run_channels(const std::filesystem::path& dir, const std::vector<std::string>& channels,
+                       const std::filesystem::path& image, const PlotStyle& style,
+                       const std::string& option = "--channels");
+
 // PSA and SD against period (log axis), one curve per damping; title after "Elastic response
 // spectra: ". From memory, or from the CSV of `adjoin spectrum` (title: the file's name).
 // `references` (e.g. a code spectrum) are drawn dashed on the PSA panel.
