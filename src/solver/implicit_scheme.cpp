@@ -45,6 +45,7 @@
 #include "rod_law.hpp"
 #include "onset.hpp"
 #include "schemes.hpp"
+#include "time_loop.hpp"
 
 namespace adjoin::detail {
 namespace {
@@ -98,128 +99,114 @@ Relay resolve_relay(double w0, double s, double mu, Phase before, double w_befor
   return {mu * d * (2.0 * theta - 1.0), d > 0.0 ? Phase::slip_left : Phase::slip_right, theta};
 }
 
-}  // namespace
+// The scheme as a stepper of the time loop (time_loop.hpp).
+class ImplicitStepper {
+ public:
+  ImplicitStepper(const SolverOptions& options, const Model& model, const GroundMotion& ground)
+      : options_(options), model_(model), ground_(ground), h_(options.h), n_steps_(options.steps()),
+        rho_(model.rho), mu_(model.mu), damper_(mu_ > 0.0),
+        rod1_(model.rod1, 1.0, h_, options.history, weights(options, model.rod1)),
+        rod2_(model.rod2, model.eps, h_, options.history, weights(options, model.rod2)),
+        k1_(rod1_.stiffness()), k2_(rod2_.stiffness()),
+        damped_steps_(damped_steps(options, h_, rho_, k1_, k2_)) {}
 
-std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                         Observer& observer) {
-  const double h = options.h;
-  const std::size_t n_steps = options.steps();
-  const double rho = model.rho, mu = model.mu;
-  const bool damper = mu > 0.0;
-  const bool second_order = options.scheme != Scheme::implicit_gl;
+  RunInfo info() const { return RunInfo{model_, h_, n_steps_}; }
+  std::size_t steps() const { return n_steps_; }
+  std::size_t history_bytes() const { return rod1_.bytes() + rod2_.bytes(); }
 
-  auto weights = [&](const Rod& rod) {
-    if (rod.elastic) return std::vector<double>{};
-    return second_order ? bdf2_weights(rod.order, n_steps + 2) : grunwald_letnikov_weights(rod.order, n_steps + 2);
-  };
-  RodLaw rod1(model.rod1, 1.0, h, options.history, weights(model.rod1));
-  RodLaw rod2(model.rod2, model.eps, h, options.history, weights(model.rod2));
-  const double k1 = rod1.stiffness(), k2 = rod2.stiffness();
-  // Backward-Euler steps after a switch (see the header): always for implicit-damped; for the
-  // other implicit schemes when the stiffest mode is not resolved by the step.
-  const double omega_h = h * std::sqrt(std::max({k1, rho * k2, (k1 + rho * k2) / (1.0 + rho)}));
-  const int damped_steps =
-      options.scheme == Scheme::implicit_damped || omega_h > kResolvedOmegaH ? 1 : 0;
-  int damped_left = 0;
+  const State& start() {
+    now_ = State{};  // at rest at t = 0
+    now_.ag = ground_.ag(0.0);
+    now_.a1 = now_.a2 = 0.0;
+    rod1_.commit(0.0, 0.0);
+    rod2_.commit(0.0, 0.0);
+    return now_;
+  }
 
-  observer.begin(RunInfo{model, h, n_steps});
-
-  State now;  // at rest at t = 0
-  now.ag = ground.ag(0.0);
-  now.a1 = now.a2 = 0.0;
-  rod1.commit(0.0, 0.0);
-  rod2.commit(0.0, 0.0);
-  observer.observe(now);
-  bool previous_stuck = false;  // the grid point before `now` was stuck, and its stick force
-  double previous_q = 0.0;
-  bool previous_same_slip = false;  // the grid point before `now` slipped as `now` does, and its w
-  double previous_w = 0.0;
-  double now_stick_q = 0.0;     // the stick force at `now` (unclamped; = now.q while inside the cone)
-  double stick_start_t = 0.0, stick_start_q = 0.0;  // where the last stick began, and its force
-
-  for (std::size_t n = 0; n < n_steps; ++n) {
+  // The step from t_n to t_{n+1}.
+  const State& advance(std::size_t n) {
     State next;
-    next.t = static_cast<double>(n + 1) * h;
-    next.ag = ground.ag(next.t);
-    const double r1 = rod1.offset(), r2 = rod2.offset();
+    next.t = static_cast<double>(n + 1) * h_;
+    next.ag = ground_.ag(next.t);
+    const double r1 = rod1_.offset(), r2 = rod2_.offset();
     // The mechanics' weight of the step's end: 1/2 trapezoidal, 1 backward Euler.
-    const double th = damped_left > 0 ? 1.0 : 0.5;
-    if (damped_left > 0) --damped_left;
-    const double d1 = 1.0 + th * th * h * h * k1;
-    const double d2 = 1.0 + th * th * rho * h * h * k2;
-    const double b1 = h / d1, b2 = rho * h / d2, s = b1 + b2;
-    const double impulse_ground = h * ((1.0 - th) * now.ag + th * next.ag);
+    const double th = damped_left_ > 0 ? 1.0 : 0.5;
+    if (damped_left_ > 0) --damped_left_;
+    const double d1 = 1.0 + th * th * h_ * h_ * k1_;
+    const double d2 = 1.0 + th * th * rho_ * h_ * h_ * k2_;
+    const double b1 = h_ / d1, b2 = rho_ * h_ / d2, s = b1 + b2;
+    const double impulse_ground = h_ * ((1.0 - th) * now_.ag + th * next.ag);
 
     // Velocities affine in the damper force Q: v1 = a1 - b1 Q, v2 = a2 + b2 Q.
-    const double a1 = (now.v1 + impulse_ground - (1.0 - th) * h * now.f1 -
-                       th * h * (k1 * (now.x1 + (1.0 - th) * h * now.v1) + r1)) / d1;
-    const double a2 = (now.v2 + impulse_ground - (1.0 - th) * rho * h * now.f2 -
-                       th * rho * h * (k2 * (now.x2 + (1.0 - th) * h * now.v2) + r2)) / d2;
+    const double a1 = (now_.v1 + impulse_ground - (1.0 - th) * h_ * now_.f1 -
+                       th * h_ * (k1_ * (now_.x1 + (1.0 - th) * h_ * now_.v1) + r1)) / d1;
+    const double a2 = (now_.v2 + impulse_ground - (1.0 - th) * rho_ * h_ * now_.f2 -
+                       th * rho_ * h_ * (k2_ * (now_.x2 + (1.0 - th) * h_ * now_.v2) + r2)) / d2;
 
     // The rod forces at t_{n+1} if the step ends with velocities (u1, u2).
     const auto end_forces = [&](double u1, double u2) {
-      const double x1 = now.x1 + h * ((1.0 - th) * now.v1 + th * u1);
-      const double x2 = now.x2 + h * ((1.0 - th) * now.v2 + th * u2);
-      return std::pair{k1 * x1 + r1, k2 * x2 + r2};
+      const double x1 = now_.x1 + h_ * ((1.0 - th) * now_.v1 + th * u1);
+      const double x2 = now_.x2 + h_ * ((1.0 - th) * now_.v2 + th * u2);
+      return std::pair{k1_ * x1 + r1, k2_ * x2 + r2};
     };
     double q = 0.0;
     double kink = 0.0;  // a slip ended inside this step (into stick, or turned): see below
-    if (damper) {
+    if (damper_) {
       const double stuck_v = (a1 * b2 + a2 * b1) / s;  // the one velocity if the blocks stick
       // The stick force at the fraction theta of a step spent slipping on in the current
       // direction: the rod forces interpolated between t_n and that slip's end.
       const auto stick_force_at = [&](double theta) {
-        const double d = now.phase == Phase::slip_right ? 1.0 : -1.0;
-        const auto [f1e, f2e] = end_forces(a1 - b1 * mu * d, a2 + b2 * mu * d);
-        return stick_force(model, now.f1 + theta * (f1e - now.f1), now.f2 + theta * (f2e - now.f2));
+        const double d = now_.phase == Phase::slip_right ? 1.0 : -1.0;
+        const auto [f1e, f2e] = end_forces(a1 - b1 * mu_ * d, a2 + b2 * mu_ * d);
+        return stick_force(model_, now_.f1 + theta * (f1e - now_.f1), now_.f2 + theta * (f2e - now_.f2));
       };
-      const Relay r = resolve_relay(a1 - a2, s, mu, now.phase, now.v1 - now.v2, n == 0, previous_same_slip,
-                                    previous_w, stick_force_at);
-      if (r.phase == Phase::stick && now.phase != Phase::stick) {
-        stick_start_t = now.t + r.theta * h;
-        stick_start_q = stick_force_at(r.theta);
+      const Relay r = resolve_relay(a1 - a2, s, mu_, now_.phase, now_.v1 - now_.v2, n == 0, previous_same_slip_,
+                                    previous_w_, stick_force_at);
+      if (r.phase == Phase::stick && now_.phase != Phase::stick) {
+        stick_start_t_ = now_.t + r.theta * h_;
+        stick_start_q_ = stick_force_at(r.theta);
       }
       q = r.q;
       next.phase = r.phase;
-      if (n > 0 && th == 0.5 && now.phase != Phase::stick && r.phase != now.phase) {
-        const double d = now.phase == Phase::slip_right ? 1.0 : -1.0;
-        const double q_after = r.phase == Phase::stick ? stick_force_at(r.theta) : -mu * d;
-        kink = 0.5 * h * h * r.theta * (1.0 - r.theta) * (q_after - mu * d);
+      if (n > 0 && th == 0.5 && now_.phase != Phase::stick && r.phase != now_.phase) {
+        const double d = now_.phase == Phase::slip_right ? 1.0 : -1.0;
+        const double q_after = r.phase == Phase::stick ? stick_force_at(r.theta) : -mu_ * d;
+        kink = 0.5 * h_ * h_ * r.theta * (1.0 - r.theta) * (q_after - mu_ * d);
       }
       double onset = -1.0;  // where a stick -> slip happens in this step, as a fraction of it
-      if (now.phase == Phase::stick && n > 0 && std::abs(now_stick_q) > mu) {
+      if (now_.phase == Phase::stick && n > 0 && std::abs(now_stick_q_) > mu_) {
         // A stick that began inside the last step (from a reversal whose crossing lay in the
         // cone) and whose stick force left the cone before t_n: the blocks slip already. The
         // onset lies between the stick's start and t_n, on the line between the stick forces
         // there; this step slips throughout.
-        const double d = now_stick_q > 0.0 ? 1.0 : -1.0;
-        if ((a1 - a2 - s * mu * d) * d > 0.0) {
-          q = mu * d;
+        const double d = now_stick_q_ > 0.0 ? 1.0 : -1.0;
+        if ((a1 - a2 - s * mu_ * d) * d > 0.0) {
+          q = mu_ * d;
           next.phase = slip_towards(d);
-          if (stick_start_t > now.t - h) {
-            const double f = (mu * d - stick_start_q) / (now_stick_q - stick_start_q);
-            onset = (stick_start_t + clamp01(f) * (now.t - stick_start_t) - now.t) / h;
+          if (stick_start_t_ > now_.t - h_) {
+            const double f = (mu_ * d - stick_start_q_) / (now_stick_q_ - stick_start_q_);
+            onset = (stick_start_t_ + clamp01(f) * (now_.t - stick_start_t_) - now_.t) / h_;
           } else {
             // A longer stick whose last step was (barely) too short to slip: the onset lies in
             // that step.
             const auto [f1e, f2e] = end_forces(stuck_v, stuck_v);
-            onset = locate_onset(mu * d, previous_stuck, previous_q, now_stick_q, stick_force(model, f1e, f2e), -1.0);
+            onset = locate_onset(mu_ * d, previous_stuck_, previous_q_, now_stick_q_, stick_force(model_, f1e, f2e), -1.0);
             onset = std::min(onset, 0.0);
           }
         }
-      } else if (now.phase == Phase::stick && n > 0) {
+      } else if (now_.phase == Phase::stick && n > 0) {
         // Stuck at t_n (so |stick force| <= mu there). The blocks slip from where the stick
         // force, had they stayed stuck, leaves the cone; decided at the grid point t_{n+1}
         // (not on the step's average force, which would snap onsets to the grid or put them
         // in the step before) and located on a parabola of grid stick forces.
         const auto [f1e, f2e] = end_forces(stuck_v, stuck_v);
-        const double q_end = stick_force(model, f1e, f2e);
-        if (std::abs(q_end) > mu) {
+        const double q_end = stick_force(model_, f1e, f2e);
+        if (std::abs(q_end) > mu_) {
           const double d = q_end > 0.0 ? 1.0 : -1.0;
-          const double theta = locate_onset(mu * d, previous_stuck, previous_q, now_stick_q, q_end, 0.0);
+          const double theta = locate_onset(mu_ * d, previous_stuck_, previous_q_, now_stick_q_, q_end, 0.0);
           // The step's average force: the stick force (about linear) up to the onset, the
           // limit after it.
-          const double q_slip = theta * 0.5 * (std::clamp(now_stick_q, -mu, mu) + mu * d) + (1.0 - theta) * mu * d;
+          const double q_slip = theta * 0.5 * (std::clamp(now_stick_q_, -mu_, mu_) + mu_ * d) + (1.0 - theta) * mu_ * d;
           if ((a1 - a2 - s * q_slip) * d > 0.0) {
             q = q_slip;
             next.phase = slip_towards(d);
@@ -233,8 +220,8 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
         next.v1 = a1 - b1 * q;
         next.v2 = a2 + b2 * q;
       }
-      if (options.locate_switches && next.phase != now.phase && n > 0) {
-        next.t_switch = now.t + (now.phase == Phase::stick ? onset : r.theta) * h;
+      if (options_.locate_switches && next.phase != now_.phase && n > 0) {
+        next.t_switch = now_.t + (now_.phase == Phase::stick ? onset : r.theta) * h_;
       }
     } else {
       next.v1 = a1;
@@ -243,13 +230,13 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
       next.phase = w > 0.0 ? Phase::slip_right : (w < 0.0 ? Phase::slip_left : Phase::stick);
       // Without a damper a "phase" is the sign of the relative velocity: its changes are
       // located where w crosses zero (linear interpolation, second order).
-      const double w_now = now.v1 - now.v2;
-      if (options.locate_switches && next.phase != now.phase && n > 0 && w_now != w)
-        next.t_switch = now.t + clamp01(w_now / (w_now - w)) * h;
+      const double w_now = now_.v1 - now_.v2;
+      if (options_.locate_switches && next.phase != now_.phase && n > 0 && w_now != w)
+        next.t_switch = now_.t + clamp01(w_now / (w_now - w)) * h_;
     }
 
-    next.x1 = now.x1 + h * ((1.0 - th) * now.v1 + th * next.v1);
-    next.x2 = now.x2 + h * ((1.0 - th) * now.v2 + th * next.v2);
+    next.x1 = now_.x1 + h_ * ((1.0 - th) * now_.v1 + th * next.v1);
+    next.x2 = now_.x2 + h_ * ((1.0 - th) * now_.v2 + th * next.v2);
     if (kink != 0.0) {
       // Where a slip ends inside the step, the damper force jumps by dq (from +-mu to the
       // stick force, or to -+mu), so each block's velocity has a kink there, which the
@@ -263,44 +250,82 @@ std::size_t run_implicit_scheme(const SolverOptions& options, const Model& model
       // does no work on it). A stick -> slip onset needs nothing: the force reaches mu
       // continuously there, no kink.
       next.x1 += kink;
-      next.x2 -= rho * kink;
+      next.x2 -= rho_ * kink;
     }
-    if (damper && next.phase != now.phase && n > 0) damped_left = damped_steps;
-    next.f1 = k1 * next.x1 + r1;
-    next.f2 = k2 * next.x2 + r2;
+    if (damper_ && next.phase != now_.phase && n > 0) damped_left_ = damped_steps_;
+    next.f1 = k1_ * next.x1 + r1;
+    next.f2 = k2_ * next.x2 + r2;
     // The reported damper force is its value at t_{n+1} (not the step's average Q, which is
     // the force half a step earlier): the stick force while stuck, the limit while slipping.
     // A stick that began inside this step (at a reversal) can end in the next one with its
     // grid stick force already beyond mu: the damper slips there already (the next step
     // locates the onset before t_{n+1}), and its force is the limit. Clamping reports exactly
     // that (and keeps |q| <= mu).
-    const double next_stick_q = stick_force(model, next.f1, next.f2);
-    if (damper)
-      next.q = next.phase == Phase::stick ? std::clamp(next_stick_q, -mu, mu)
-                                          : (next.phase == Phase::slip_right ? mu : -mu);
+    const double next_stick_q = stick_force(model_, next.f1, next.f2);
+    if (damper_)
+      next.q = next.phase == Phase::stick ? std::clamp(next_stick_q, -mu_, mu_)
+                                          : (next.phase == Phase::slip_right ? mu_ : -mu_);
     next.a1 = -next.f1 - next.q;
-    next.a2 = rho * (next.q - next.f2);
+    next.a2 = rho_ * (next.q - next.f2);
     if (!(std::abs(next.x1) < kRunaway && std::abs(next.x2) < kRunaway && std::abs(next.f1) < kRunaway &&
           std::abs(next.f2) < kRunaway && std::isfinite(next.v1 + next.v2))) {
       std::ostringstream m;
       m << "the response became " << (std::isfinite(next.x1 + next.x2 + next.f1 + next.f2) ? "larger than 1e12" : "non-finite")
-        << " at t = " << next.t << " with the " << to_string(options.scheme) << " scheme at solver.h = " << h
+        << " at t = " << next.t << " with the " << to_string(options_.scheme) << " scheme at solver.h = " << h_
         << "; check the ground motion's scale (ground.*) and the rods, or reduce solver.h";
       throw NumericalError(m.str(), next.t);
     }
-    rod1.commit(next.x1, next.f1);
-    rod2.commit(next.x2, next.f2);
+    rod1_.commit(next.x1, next.f1);
+    rod2_.commit(next.x2, next.f2);
 
-    observer.observe(next);
-    previous_stuck = now.phase == Phase::stick && n > 0;
-    previous_same_slip = n > 0 && now.phase != Phase::stick && next.phase == now.phase;
-    previous_w = now.v1 - now.v2;
-    previous_q = now_stick_q;
-    now_stick_q = next_stick_q;
-    now = next;
+    previous_stuck_ = now_.phase == Phase::stick && n > 0;
+    previous_same_slip_ = n > 0 && now_.phase != Phase::stick && next.phase == now_.phase;
+    previous_w_ = now_.v1 - now_.v2;
+    previous_q_ = now_stick_q_;
+    now_stick_q_ = next_stick_q;
+    now_ = next;
+    return now_;
   }
-  observer.end();
-  return rod1.bytes() + rod2.bytes();
+
+ private:
+  static std::vector<double> weights(const SolverOptions& options, const Rod& rod) {
+    if (rod.elastic) return std::vector<double>{};
+    const std::size_t n = options.steps() + 2;
+    return options.scheme != Scheme::implicit_gl ? bdf2_weights(rod.order, n) : grunwald_letnikov_weights(rod.order, n);
+  }
+  // Backward-Euler steps after a switch (see the header): always for implicit-damped; for the
+  // other implicit schemes when the stiffest mode is not resolved by the step.
+  static int damped_steps(const SolverOptions& options, double h, double rho, double k1, double k2) {
+    const double omega_h = h * std::sqrt(std::max({k1, rho * k2, (k1 + rho * k2) / (1.0 + rho)}));
+    return options.scheme == Scheme::implicit_damped || omega_h > kResolvedOmegaH ? 1 : 0;
+  }
+
+  const SolverOptions& options_;
+  const Model& model_;
+  const GroundMotion& ground_;
+  const double h_;
+  const std::size_t n_steps_;
+  const double rho_, mu_;
+  const bool damper_;
+  RodLaw rod1_, rod2_;
+  const double k1_, k2_;
+  const int damped_steps_;
+  int damped_left_ = 0;
+
+  State now_;
+  bool previous_stuck_ = false;  // the grid point before `now` was stuck, and its stick force
+  double previous_q_ = 0.0;
+  bool previous_same_slip_ = false;  // the grid point before `now` slipped as `now` does, and its w
+  double previous_w_ = 0.0;
+  double now_stick_q_ = 0.0;     // the stick force at `now` (unclamped; = now.q while inside the cone)
+  double stick_start_t_ = 0.0, stick_start_q_ = 0.0;  // where the last stick began, and its force
+};
+
+}  // namespace
+
+LoopResult run_implicit_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                               Observer& observer) {
+  return integrate<ImplicitStepper>(observer, options, model, ground);
 }
 
 }  // namespace adjoin::detail

@@ -20,6 +20,7 @@
 #include "adjoin/fractional/weights.hpp"
 #include "rod_law.hpp"
 #include "schemes.hpp"
+#include "time_loop.hpp"
 
 namespace adjoin::detail {
 namespace {
@@ -64,109 +65,140 @@ void check_stability(const SolverOptions& options, const Model& model) {
   throw NumericalError(s.str(), 0.0);
 }
 
-}  // namespace
+// The scheme as a stepper of the time loop (time_loop.hpp). The state at t_m needs x_{m+1}
+// (central-difference velocity), so grid point m is computed with the step to t_{m+1}:
+// start() takes the first step from rest and reports t_0, advance(n) takes the step from
+// t_{n+1} and reports t_{n+1}.
+class PaperStepper {
+ public:
+  PaperStepper(const SolverOptions& options, const Model& model, const GroundMotion& ground)
+      : options_(options), model_(stable(options, model)), ground_(ground), h_(options.h), h2_(h_ * h_), n_(options.steps()),
+        rho_(model.rho), mu_(model.mu), damper_(mu_ > 0.0),
+        rod1_(model.rod1, 1.0, h_, options.history,
+              model.rod1.elastic ? std::vector<double>{} : grunwald_letnikov_weights(model.rod1.order, n_ + 2)),
+        rod2_(model.rod2, model.eps, h_, options.history,
+              model.rod2.elastic ? std::vector<double>{} : grunwald_letnikov_weights(model.rod2.order, n_ + 2)) {}
 
-std::size_t run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                      Observer& observer) {
-  if (options.stability_check) check_stability(options, model);
-  const double h = options.h, h2 = h * h;
-  const std::size_t n = options.steps();
-  const double rho = model.rho, mu = model.mu;
-  const bool damper = mu > 0.0;
+  RunInfo info() const { return RunInfo{model_, h_, n_}; }
+  std::size_t steps() const { return n_; }
+  std::size_t history_bytes() const { return rod1_.bytes() + rod2_.bytes(); }
+  const State& start() { return grid_point(0); }
+  const State& advance(std::size_t n) { return grid_point(n + 1); }
 
-  RodLaw rod1(model.rod1, 1.0, h, options.history,
-              model.rod1.elastic ? std::vector<double>{} : grunwald_letnikov_weights(model.rod1.order, n + 2));
-  RodLaw rod2(model.rod2, model.eps, h, options.history,
-              model.rod2.elastic ? std::vector<double>{} : grunwald_letnikov_weights(model.rod2.order, n + 2));
+ private:
+  // The model, checked against the stability bound first: model_ is initialised before the
+  // rods, so an unstable step is refused before their weights are computed.
+  static const Model& stable(const SolverOptions& options, const Model& model) {
+    if (options.stability_check) check_stability(options, model);
+    return model;
+  }
 
-  observer.begin(RunInfo{model, h, n});
-
-  // x_{m-1}, x_m, and the first step from rest.
-  double x1_prev = 0.0, x2_prev = 0.0, x1 = 0.0, x2 = 0.0;
-  Phase phase = Phase::stick;
-  double c = 0.0;  // x1 - x2, frozen while stuck
-  bool first = true;
-
-  for (std::size_t m = 0; m <= n; ++m) {
+  // Grid point m: the rod forces and the damper's phase at t_m, the step to x_{m+1}, and the
+  // state at t_m.
+  const State& grid_point(std::size_t m) {
+    const double h = h_, h2 = h2_, rho = rho_, mu = mu_;
+    const bool damper = damper_;
     const double t = static_cast<double>(m) * h;
-    const double ag = ground.ag(t);
-    const double f1 = rod1.force(x1);
-    const double f2 = rod2.force(x2);
-    rod1.commit(x1, f1);
-    rod2.commit(x2, f2);
+    const double ag = ground_.ag(t);
+    const double f1 = rod1_.force(x1_);
+    const double f2 = rod2_.force(x2_);
+    rod1_.commit(x1_, f1);
+    rod2_.commit(x2_, f2);
 
     // The damper: decide the phase of the step t_m -> t_{m+1} and its force q_m.
     double q = 0.0;
     if (damper) {
-      const double q_stick = stick_force(model, f1, f2);
+      const double q_stick = stick_force(model_, f1, f2);
       const Phase towards = q_stick > 0.0 ? Phase::slip_right : Phase::slip_left;
-      if (phase == Phase::stick) {
-        if (std::abs(q_stick) >= mu) phase = towards;
+      if (phase_ == Phase::stick) {
+        if (std::abs(q_stick) >= mu) phase_ = towards;
       } else {
-        const double w = (x1 - x1_prev) - (x2 - x2_prev);  // relative velocity times h
-        const bool still_sliding = phase == Phase::slip_right ? w > 0.0 : w < 0.0;
-        if (!still_sliding && !first) {
+        const double w = (x1_ - x1_prev_) - (x2_ - x2_prev_);  // relative velocity times h
+        const bool still_sliding = phase_ == Phase::slip_right ? w > 0.0 : w < 0.0;
+        if (!still_sliding && !first_) {
           if (std::abs(q_stick) <= mu) {
-            phase = Phase::stick;
-            c = x1 - x2;
+            phase_ = Phase::stick;
+            c_ = x1_ - x2_;
           } else {
-            phase = towards;
+            phase_ = towards;
           }
         }
       }
-      q = phase == Phase::stick ? q_stick : (phase == Phase::slip_right ? mu : -mu);
+      q = phase_ == Phase::stick ? q_stick : (phase_ == Phase::slip_right ? mu : -mu);
     }
 
     // Explicit central differences.
     double a1, a2;  // absolute accelerations x'' - a_g
     double x1_next, x2_next;
-    if (damper && phase == Phase::stick) {
+    if (damper && phase_ == Phase::stick) {
       a1 = a2 = -rho / (rho + 1.0) * (f1 + f2);
-      x1_next = (first ? x1 + 0.5 * h2 * (ag + a1) : 2.0 * x1 - x1_prev + h2 * (ag + a1));
-      x2_next = x1_next - c;
+      x1_next = (first_ ? x1_ + 0.5 * h2 * (ag + a1) : 2.0 * x1_ - x1_prev_ + h2 * (ag + a1));
+      x2_next = x1_next - c_;
     } else {
       a1 = -f1 - q;
       a2 = rho * (q - f2);
-      x1_next = first ? x1 + 0.5 * h2 * (ag + a1) : 2.0 * x1 - x1_prev + h2 * (ag + a1);
-      x2_next = first ? x2 + 0.5 * h2 * (ag + a2) : 2.0 * x2 - x2_prev + h2 * (ag + a2);
+      x1_next = first_ ? x1_ + 0.5 * h2 * (ag + a1) : 2.0 * x1_ - x1_prev_ + h2 * (ag + a1);
+      x2_next = first_ ? x2_ + 0.5 * h2 * (ag + a2) : 2.0 * x2_ - x2_prev_ + h2 * (ag + a2);
     }
     // A finite but runaway response is as wrong as a NaN: stop before either reaches an output.
-    if (!(std::abs(x1_next) < kRunaway && std::abs(x2_next) < kRunaway)) {
-      std::ostringstream s;
-      s << "the displacement became " << (std::isfinite(x1_next + x2_next) ? "larger than 1e12" : "non-finite")
-        << " at t = " << t + h << " with the paper scheme at solver.h = " << h;
-      // The step was checked against the stability bound before the run: a runaway then
-      // comes from the amplitude of the forcing, not from the step.
-      if (options.stability_check)
-        s << ", which is within the scheme's stability bound: the ground motion drives the response beyond "
-             "1e12; check the ground motion's amplitude (ground.*) and units";
-      else
-        s << "; the explicit scheme is unstable here: reduce solver.h";
-      throw NumericalError(s.str(), t + h);
-    }
-    if (first) { x1_prev = x1_next; x2_prev = x2_next; }  // x_{-1} = x_1 (at rest at t = 0)
+    if (!(std::abs(x1_next) < kRunaway && std::abs(x2_next) < kRunaway)) runaway(x1_next, x2_next, t + h);
+    if (first_) { x1_prev_ = x1_next; x2_prev_ = x2_next; }  // x_{-1} = x_1 (at rest at t = 0)
 
-    State s;
+    State& s = state_;
     s.t = t;
-    s.x1 = x1; s.x2 = x2;
-    s.v1 = (x1_next - x1_prev) / (2.0 * h);
-    s.v2 = (x2_next - x2_prev) / (2.0 * h);
+    s.x1 = x1_; s.x2 = x2_;
+    s.v1 = (x1_next - x1_prev_) / (2.0 * h);
+    s.v2 = (x2_next - x2_prev_) / (2.0 * h);
     s.a1 = a1; s.a2 = a2;
     s.f1 = f1; s.f2 = f2; s.q = q; s.ag = ag;
     if (damper) {
-      s.phase = phase;
+      s.phase = phase_;
     } else {
       const double w = s.v1 - s.v2;
       s.phase = w > 0.0 ? Phase::slip_right : (w < 0.0 ? Phase::slip_left : Phase::stick);
     }
-    observer.observe(s);
 
-    x1_prev = x1; x2_prev = x2;
-    x1 = x1_next; x2 = x2_next;
-    first = false;
+    x1_prev_ = x1_; x2_prev_ = x2_;
+    x1_ = x1_next; x2_ = x2_next;
+    first_ = false;
+    return s;
   }
-  observer.end();
-  return rod1.bytes() + rod2.bytes();
+
+  [[noreturn]] void runaway(double x1_next, double x2_next, double t) const {
+    std::ostringstream s;
+    s << "the displacement became " << (std::isfinite(x1_next + x2_next) ? "larger than 1e12" : "non-finite")
+      << " at t = " << t << " with the paper scheme at solver.h = " << h_;
+    // The step was checked against the stability bound before the run: a runaway then
+    // comes from the amplitude of the forcing, not from the step.
+    if (options_.stability_check)
+      s << ", which is within the scheme's stability bound: the ground motion drives the response beyond "
+           "1e12; check the ground motion's amplitude (ground.*) and units";
+    else
+      s << "; the explicit scheme is unstable here: reduce solver.h";
+    throw NumericalError(s.str(), t);
+  }
+
+  const SolverOptions& options_;
+  const Model& model_;
+  const GroundMotion& ground_;
+  const double h_, h2_;
+  const std::size_t n_;
+  const double rho_, mu_;
+  const bool damper_;
+  RodLaw rod1_, rod2_;
+  // x_{m-1}, x_m, and the first step from rest.
+  double x1_prev_ = 0.0, x2_prev_ = 0.0, x1_ = 0.0, x2_ = 0.0;
+  Phase phase_ = Phase::stick;
+  double c_ = 0.0;  // x1 - x2, frozen while stuck
+  bool first_ = true;
+  State state_;
+};
+
+}  // namespace
+
+LoopResult run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                            Observer& observer) {
+  return integrate<PaperStepper>(observer, options, model, ground);
 }
 
 }  // namespace adjoin::detail

@@ -51,8 +51,8 @@ class AsTwoBlock final : public StructureObserver {
 }  // namespace
 
 
-std::size_t run_two_block_contact(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                                  Observer& observer) {
+LoopResult run_two_block_contact(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                                 Observer& observer) {
   if (options.scheme != Scheme::implicit)
     throw InputError("solver.scheme = \"" + to_string(options.scheme) +
                      "\": a contact law (model.contact) runs on the implicit scheme only; use solver.scheme = \"implicit\"");
@@ -71,7 +71,11 @@ std::size_t run_two_block_contact(const SolverOptions& options, const Model& mod
   const ScaledGround g(ground, 1.0 / kStandardGravity);
   const StructureRunSummary summary = simulate_structure(o, s, g, adapter);
   observer.end();
-  return summary.history_bytes;
+  LoopResult result;
+  result.steps = summary.steps;
+  result.wall_seconds = summary.wall_seconds;
+  result.history_bytes = summary.history_bytes;
+  return result;
 }
 
 }  // namespace adjoin::detail
