@@ -12,6 +12,7 @@
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/io/file_name.hpp"
 #include "adjoin/io/folder_lock.hpp"
+#include "adjoin/io/scene.hpp"
 #include "adjoin/post/intensity.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "adjoin/study/demand.hpp"

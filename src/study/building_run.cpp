@@ -245,7 +245,7 @@ double BuildingReport::unmodelled_from() const {
   return t;
 }
 
-BuildingReport run_building(const BuildingScene& scene, StructureObserver* extra) {
+BuildingReport run_building(const BuildingRunSpec& scene, StructureObserver* extra) {
   BuildingReport r;
   const structure::Structure& s = scene.structure;
   r.modes.push_back(structure::building_modes(s.a));

@@ -9,6 +9,7 @@
 #include <toml++/toml.h>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/model/units.hpp"
 #include "adjoin/post/spectrum.hpp"
@@ -19,7 +20,7 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 
-const structure::Building& building(const BuildingScene& scene, std::size_t k) {
+const structure::Building& building(const BuildingRunSpec& scene, std::size_t k) {
   return k == 0 ? scene.structure.a : *scene.structure.b;
 }
 
@@ -31,7 +32,7 @@ double peak(const BuildingReport& r, const std::string& name) {
 }
 
 // The largest peak of the channels X.<stem>1 ... X.<stem>n<suffix>, and where (1-based).
-std::pair<double, int> largest(const BuildingScene& scene, const BuildingReport& r, std::size_t k, const std::string& stem,
+std::pair<double, int> largest(const BuildingRunSpec& scene, const BuildingReport& r, std::size_t k, const std::string& stem,
                                const std::string& suffix = "") {
   const structure::Building& b = building(scene, k);
   double best = 0.0;
@@ -161,51 +162,51 @@ const std::vector<SweepChannel>& building_sweep_channels() {
   using T = ColumnType;
   static const std::vector<SweepChannel> channels = {
       {S::building, "X.T1", T::number, "s", "fundamental period of building X alone (static stiffness)",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t k) { return r.modes[k].periods[0]; }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.modes[k].periods[0]; }},
       {S::building, "X.roof_max", T::number, "m", "peak roof displacement relative to the ground (peak of X.xN, N the top floor)",
-       [](const BuildingScene& s, const BuildingReport& r, std::size_t k) {
+       [](const BuildingRunSpec& s, const BuildingReport& r, std::size_t k) {
          const auto& b = building(s, k);
          return peak(r, b.name + ".x" + std::to_string(b.floors()));
        }},
       {S::building, "X.drift_max", T::number, "m", "largest peak interstorey drift over the storeys (of X.drift1 ... X.driftN)",
-       [](const BuildingScene& s, const BuildingReport& r, std::size_t k) { return largest(s, r, k, "drift").first; }},
+       [](const BuildingRunSpec& s, const BuildingReport& r, std::size_t k) { return largest(s, r, k, "drift").first; }},
       {S::building, "X.drift_storey", T::integer, "", "the storey where X.drift_max occurs (1 = ground storey)",
-       [](const BuildingScene& s, const BuildingReport& r, std::size_t k) {
+       [](const BuildingRunSpec& s, const BuildingReport& r, std::size_t k) {
          return static_cast<double>(largest(s, r, k, "drift").second);
        }},
       {S::building, "X.accel_max", T::number, "m/s^2", "largest peak absolute floor acceleration (of X.a1_abs ... X.aN_abs)",
-       [](const BuildingScene& s, const BuildingReport& r, std::size_t k) { return largest(s, r, k, "a", "_abs").first; }},
+       [](const BuildingRunSpec& s, const BuildingReport& r, std::size_t k) { return largest(s, r, k, "a", "_abs").first; }},
       {S::building, "X.base_shear_max", T::number, "N", "peak base shear (X.base_shear: the floors' inertia forces summed)",
-       [](const BuildingScene& s, const BuildingReport& r, std::size_t k) { return peak(r, building(s, k).name + ".base_shear"); }},
+       [](const BuildingRunSpec& s, const BuildingReport& r, std::size_t k) { return peak(r, building(s, k).name + ".base_shear"); }},
       {S::building, "X.share_inherent", T::number, "", "work of X's inherent (Rayleigh or modal) damping / total input energy",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t k) { return share(r.energy.buildings[k].inherent, r); }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return share(r.energy.buildings[k].inherent, r); }},
       {S::link, "linkN.force_max", T::number, "N", "peak force of link N",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t k) { return r.links[k].force_max; }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.links[k].force_max; }},
       {S::link, "linkN.stroke_max", T::number, "m", "peak stroke of link N (relative displacement of its two floors)",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t k) { return r.links[k].stroke_max; }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.links[k].stroke_max; }},
       {S::link, "linkN.switches", T::integer, "", "stick/slip phase changes of link N (friction; 0 for other link types)",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t k) { return static_cast<double>(r.links[k].switches); }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return static_cast<double>(r.links[k].switches); }},
       {S::link, "linkN.energy_share", T::number, "", "work done on link N / total input energy (friction: dissipated)",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t k) { return share(r.energy.links[k], r); }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return share(r.energy.links[k], r); }},
       {S::contact, "contactN.min_gap", T::number, "m", "smallest gap of contact pair N (negative: the floors overlapped)",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t k) { return r.contacts[k].min_gap; }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.contacts[k].min_gap; }},
       {S::contact, "contactN.contact", T::boolean, "", "whether the floors of pair N touched (an impact, or the gap reached 0)",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t k) { return r.contacts[k].contact ? 1.0 : 0.0; }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.contacts[k].contact ? 1.0 : 0.0; }},
       {S::contact, "contactN.impacts", T::integer, "", "impacts of pair N (0 without a contact law)",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t k) { return static_cast<double>(r.contacts[k].impacts); }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return static_cast<double>(r.contacts[k].impacts); }},
       {S::contact, "contactN.force_max", T::number, "N", "largest peak force of pair N's impacts",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t k) { return r.contacts[k].force_max; }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.contacts[k].force_max; }},
       {S::contact, "contactN.penetration_max", T::number, "m", "largest penetration of pair N's impacts",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t k) { return r.contacts[k].penetration_max; }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.contacts[k].penetration_max; }},
       {S::contact, "contactN.energy_share", T::number, "", "energy dissipated by pair N's impacts / total input energy",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t k) { return share(r.contacts[k].dissipated, r); }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return share(r.contacts[k].dissipated, r); }},
       {S::contact, "contactN.outside_model", T::boolean, "",
        "pair N has no contact law and its floors overlapped: the row's values are outside the model",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t k) { return r.contacts[k].outside_model() ? 1.0 : 0.0; }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.contacts[k].outside_model() ? 1.0 : 0.0; }},
       {S::whole, "energy_input", T::number, "J", "input energy of the ground motion, both buildings",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t) { return r.energy.input; }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t) { return r.energy.input; }},
       {S::whole, "share_residual", T::number, "", "energy balance residual / input (closes at the scheme's order)",
-       [](const BuildingScene&, const BuildingReport& r, std::size_t) { return share(r.energy.residual, r); }},
+       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t) { return share(r.energy.residual, r); }},
   };
   return channels;
 }
@@ -218,7 +219,7 @@ std::vector<SweepColumn> building_channel_columns(const structure::Structure& s)
   return columns;
 }
 
-std::vector<std::string> building_channel_cells(const structure::Structure& base, const BuildingScene& scene,
+std::vector<std::string> building_channel_cells(const structure::Structure& base, const BuildingRunSpec& scene,
                                                 const BuildingReport& report) {
   std::vector<std::string> cells;
   for_each_column(base, [&](const SweepChannel& c, std::size_t k) {
@@ -238,16 +239,16 @@ std::vector<std::string> building_channel_cells(const structure::Structure& base
 
 void prepare_building_sweep(SweepSpec& spec) {
   // Checked whole, as `adjoin run` would read it (its own errors name its file and line).
-  const BuildingScene scene = parse_building_scene(spec.base_text, spec.base);
+  const BuildingRunSpec scene = parse_building_scene(spec.base_text, spec.base);
   spec.base_structure = std::make_shared<const structure::Structure>(scene.structure);
   spec.channel_columns = building_channel_columns(scene.structure);
 }
 
-BuildingScene building_sweep_scene(const SweepSpec& spec, std::size_t index) {
+BuildingRunSpec building_sweep_scene(const SweepSpec& spec, std::size_t index) {
   const auto settings = spec.settings(index);
   std::vector<std::string> overrides, unsets;
   gather_edits(spec, settings, overrides, unsets);
-  BuildingScene scene;
+  BuildingRunSpec scene;
   try {
     scene = parse_building_scene(spec.base_text, spec.base, overrides, unsets);
   } catch (const InputError& e) {
@@ -271,7 +272,7 @@ SweepRow run_building_sweep_point(const SweepSpec& spec, std::size_t index) {
   SweepRow row;
   row.index = index;
   row.units = "SI";
-  BuildingScene scene = building_sweep_scene(spec, index);
+  BuildingRunSpec scene = building_sweep_scene(spec, index);
   scene.base.output.spectra.reset();  // a sweep writes no run files: no in-structure spectra
   GroundHistory ground(!spec.im_periods.empty());
   try {

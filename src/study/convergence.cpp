@@ -106,7 +106,7 @@ bool ConvergenceOptions::IsValid(std::string* error) const {
   return true;
 }
 
-ConvergenceResult run_convergence(const Scene& scene, const ConvergenceOptions& options) {
+ConvergenceResult run_convergence(const RunSpec& scene, const ConvergenceOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw InputError(error);
   std::vector<double> steps = options.steps;
@@ -117,7 +117,7 @@ ConvergenceResult run_convergence(const Scene& scene, const ConvergenceOptions& 
   for (double h : steps) stride_of(coarse, h);
 
   auto with = [&](Scheme scheme, HistoryEngine engine, double h) {
-    Scene s = scene;
+    RunSpec s = scene;
     s.solver.scheme = scheme;
     s.solver.history = engine;
     s.solver.h = h;
@@ -153,7 +153,7 @@ ConvergenceResult run_convergence(const Scene& scene, const ConvergenceOptions& 
   if (!analytic) {
     const double h_ref = finest / options.reference_factor;
     CoarseGrid grid(stride_of(coarse, h_ref));
-    Scene s = with(Scheme::implicit, HistoryEngine::fft, h_ref);
+    RunSpec s = with(Scheme::implicit, HistoryEngine::fft, h_ref);
     RunReport r;
     try {
       r = run_scene(s, &grid);
@@ -190,7 +190,7 @@ ConvergenceResult run_convergence(const Scene& scene, const ConvergenceOptions& 
         row.h = h;
         CoarseGrid grid(stride_of(coarse, h));
         try {
-          const Scene s = with(scheme, engine, h);
+          const RunSpec s = with(scheme, engine, h);
           row.steps = s.solver.steps();
           const RunReport r = run_scene(s, &grid);
           row.wall_seconds = r.solver.wall_seconds;

@@ -48,7 +48,7 @@ void compare_runs(const RunReport& fine, const RunReport& c, double ratio, Error
 
 }  // namespace
 
-ErrorEstimate estimate_error(const Scene& scene, const RunReport& fine) {
+ErrorEstimate estimate_error(const RunSpec& scene, const RunReport& fine) {
   ErrorEstimate e;
   e.order = scheme_order(scene.solver.scheme);
   const std::size_t n = fine.solver.steps;
@@ -57,7 +57,7 @@ ErrorEstimate estimate_error(const Scene& scene, const RunReport& fine) {
     return e;
   }
   const std::size_t n_coarse = n / 2;
-  Scene coarse = scene;
+  RunSpec coarse = scene;
   coarse.solver.h = static_cast<double>(n) * fine.solver.h / static_cast<double>(n_coarse);
   coarse.solver.t_end = static_cast<double>(n) * fine.solver.h;
   coarse.output.spectra.reset();  // not estimated; not needed
@@ -74,7 +74,7 @@ ErrorEstimate estimate_error(const Scene& scene, const RunReport& fine) {
   return e;
 }
 
-TolerantRun run_to_tolerance(const Scene& scene, double tolerance, Observer* extra) {
+TolerantRun run_to_tolerance(const RunSpec& scene, double tolerance, Observer* extra) {
   if (!(tolerance > 0.0 && tolerance < 1.0)) throw InputError("solver.tolerance must lie in (0, 1)");
   TolerantRun out;
   out.tolerance = tolerance;
@@ -87,7 +87,7 @@ TolerantRun run_to_tolerance(const Scene& scene, double tolerance, Observer* ext
   std::optional<RunReport> previous;  // the last rung run, and its step
   double previous_h = 0.0;
   for (int rung = 0; rung < 6; ++rung) {
-    Scene s = scene;
+    RunSpec s = scene;
     s.solver.h = h;
     if (memory > 0.0 && estimated_history_bytes(s.solver, s.model) > memory)
       throw NumericalError("solver.tolerance = " + std::to_string(tolerance) + " would need solver.h = " + std::to_string(h) +

@@ -26,7 +26,7 @@ class AccelerationRecorder final : public Observer {
   std::vector<double> ag, a1, a2;
 };
 
-std::vector<SignalSpectrum> spectra_of(const Scene& scene, const AccelerationRecorder& recorded) {
+std::vector<SignalSpectrum> spectra_of(const RunSpec& scene, const AccelerationRecorder& recorded) {
   const SpectraOutput& asked = *scene.output.spectra;
   const Scales& k = scene.scales;
   SpectrumOptions options;
@@ -55,7 +55,7 @@ std::vector<SignalSpectrum> spectra_of(const Scene& scene, const AccelerationRec
 
 }  // namespace
 
-RunReport run_scene(const Scene& scene, Observer* extra) {
+RunReport run_scene(const RunSpec& scene, Observer* extra) {
   const OutputOptions& asked = scene.output;
   PeakObserver peaks;
   PhaseObserver phases;

@@ -228,7 +228,7 @@ bool SeismicJointOptions::IsValid(std::string* error) const {
   return true;
 }
 
-SeismicJoint seismic_joint(const Scene& scene, const SeismicJointOptions& options) {
+SeismicJoint seismic_joint(const RunSpec& scene, const SeismicJointOptions& options) {
   SeismicJoint j;
   j.scene = scene.name;
   j.building = false;
@@ -261,7 +261,7 @@ SeismicJoint seismic_joint(const Scene& scene, const SeismicJointOptions& option
   return find_joint(j, options, run_at);
 }
 
-SeismicJoint seismic_joint(const BuildingScene& scene, const SeismicJointOptions& options) {
+SeismicJoint seismic_joint(const BuildingRunSpec& scene, const SeismicJointOptions& options) {
   const auto& contacts = scene.structure.contacts;
   if (contacts.empty())
     throw InputError(scene.file.string() + ": the scene has no contact pair: add a [[contact]] with floors = [i, j] "

@@ -23,6 +23,7 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/record_motion.hpp"
 #include "adjoin/io/file_name.hpp"
+#include "adjoin/io/scene.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/observe/energy.hpp"
 #include "adjoin/observe/peaks.hpp"
@@ -593,7 +594,7 @@ void check_sweep_memory(const SweepSpec& spec, std::size_t runs) {
                    "; use fewer points on the axes, or split it with --shard I/N over several machines");
 }
 
-Scene sweep_scene(const SweepSpec& spec, std::size_t index) {
+RunSpec sweep_scene(const SweepSpec& spec, std::size_t index) {
   const auto settings = spec.settings(index);
   std::vector<std::string> overrides, unset;
   // The structure an edit makes obsolete is dropped by the rule `adjoin run --set` follows
@@ -608,7 +609,7 @@ Scene sweep_scene(const SweepSpec& spec, std::size_t index) {
     }
   }
   try {
-    Scene scene = parse_scene(spec.base_text, spec.base.string(), overrides, unset);
+    RunSpec scene = parse_scene(spec.base_text, spec.base.string(), overrides, unset);
     scene.file = spec.base;
     return scene;
   } catch (const InputError& e) {
@@ -631,7 +632,7 @@ SweepRow run_sweep_point(const SweepSpec& spec, std::size_t index) {
   const auto start = std::chrono::steady_clock::now();
   SweepRow row;
   row.index = index;
-  const Scene scene = sweep_scene(spec, index);
+  const RunSpec scene = sweep_scene(spec, index);
   const Scales& k = scene.scales;
   row.units = k.units_name();
 

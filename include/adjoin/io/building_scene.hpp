@@ -7,20 +7,12 @@
 #include <vector>
 
 #include "adjoin/io/scene.hpp"
-#include "adjoin/solver/structure_solver.hpp"
-#include "adjoin/structure/building.hpp"
+#include "adjoin/study/run_spec.hpp"
 
 namespace adjoin {
 
-struct BuildingScene {
-  std::string name;
-  std::filesystem::path file;
-  structure::Structure structure;
-  Scene base;  // ground (a_g in g, time in s), output; its model is a unit placeholder
-  StructureSolverOptions solver;
-  std::string h_rule, t_end_rule;
-  std::vector<std::string> warnings;
-};
+// The run description itself is study's (study/run_spec.hpp); io reads files into it.
+using BuildingScene = BuildingRunSpec;
 
 // `overrides`: --set edits by dotted path of any key: the structure's (building.A.period,
 // building.B.damping.ratio, link.1.slip_ratio, contact.1.gap; io/structure_file.hpp) and

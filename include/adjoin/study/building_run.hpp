@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/io/building_scene.hpp"
+#include "adjoin/study/run_spec.hpp"
 #include "adjoin/observe/state.hpp"
 #include "adjoin/observe/peaks.hpp"
 #include "adjoin/solver/structure_solver.hpp"
@@ -93,6 +93,6 @@ struct BuildingReport {
   std::vector<SignalSpectrum> spectra;
 };
 
-BuildingReport run_building(const BuildingScene& scene, StructureObserver* extra = nullptr);
+BuildingReport run_building(const BuildingRunSpec& scene, StructureObserver* extra = nullptr);
 
 }  // namespace adjoin

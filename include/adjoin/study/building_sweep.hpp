@@ -18,7 +18,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/io/building_scene.hpp"
+#include "adjoin/study/run_spec.hpp"
 #include "adjoin/study/building_run.hpp"
 #include "adjoin/study/sweep.hpp"
 
@@ -35,7 +35,7 @@ struct SweepChannel {
   std::string meaning;  // for the README and --help
   // The value for element k (building 0 = A, 1 = B; link or contact k counted from 0; 0 for
   // `whole`). Counts and booleans as 0/1...; NaN for "no value" (a share of zero input energy).
-  std::function<double(const BuildingScene&, const BuildingReport&, std::size_t k)> value;
+  std::function<double(const BuildingRunSpec&, const BuildingReport&, std::size_t k)> value;
 };
 
 // The registry, in column order within each scope.
@@ -46,7 +46,7 @@ std::vector<SweepColumn> building_channel_columns(const structure::Structure& s)
 
 // The cells of those columns for a run of `scene` (the run's own structure) with its report;
 // groups the base has and the run does not are empty.
-std::vector<std::string> building_channel_cells(const structure::Structure& base, const BuildingScene& scene,
+std::vector<std::string> building_channel_cells(const structure::Structure& base, const BuildingRunSpec& scene,
                                                 const BuildingReport& report);
 
 // Sets spec.base_structure and spec.channel_columns from spec.base_text, and checks the base
@@ -55,7 +55,7 @@ void prepare_building_sweep(SweepSpec& spec);
 
 // The building scene of run `index` (InputError prefixed with the sweep file, the line of the
 // edit that caused it and the run).
-BuildingScene building_sweep_scene(const SweepSpec& spec, std::size_t index);
+BuildingRunSpec building_sweep_scene(const SweepSpec& spec, std::size_t index);
 
 // One run (InputError propagates; NumericalError is caught into row.error).
 SweepRow run_building_sweep_point(const SweepSpec& spec, std::size_t index);

@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/io/scene.hpp"
+#include "adjoin/study/run_spec.hpp"
 
 namespace adjoin {
 
@@ -64,6 +64,6 @@ struct ConvergenceResult {
   std::vector<ConvergenceRow> rows;
 };
 
-ConvergenceResult run_convergence(const Scene& scene, const ConvergenceOptions& options);
+ConvergenceResult run_convergence(const RunSpec& scene, const ConvergenceOptions& options);
 
 }  // namespace adjoin

@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/io/scene.hpp"
+#include "adjoin/study/run_spec.hpp"
 #include "adjoin/study/run.hpp"
 
 namespace adjoin {
@@ -52,7 +52,7 @@ struct ErrorEstimate {
   double max_relative_peak = 0.0;
 };
 
-ErrorEstimate estimate_error(const Scene& scene, const RunReport& fine);
+ErrorEstimate estimate_error(const RunSpec& scene, const RunReport& fine);
 
 struct TolerantRun {
   RunReport report;
@@ -65,6 +65,6 @@ struct TolerantRun {
 
 // `scene.solver.h` is ignored; the rest of the scene is used as is. `extra` sees the run of
 // every rung tried (its begin() starts each); the last one is the run reported.
-TolerantRun run_to_tolerance(const Scene& scene, double tolerance, Observer* extra = nullptr);
+TolerantRun run_to_tolerance(const RunSpec& scene, double tolerance, Observer* extra = nullptr);
 
 }  // namespace adjoin

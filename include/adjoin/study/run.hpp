@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/io/scene.hpp"
+#include "adjoin/study/run_spec.hpp"
 #include "adjoin/observe/energy.hpp"
 #include "adjoin/observe/peaks.hpp"
 #include "adjoin/observe/phases.hpp"
@@ -42,6 +42,6 @@ struct RunReport {
 };
 
 // `extra` (optional, not owned) also sees every grid point, e.g. a time-series writer.
-RunReport run_scene(const Scene& scene, Observer* extra = nullptr);
+RunReport run_scene(const RunSpec& scene, Observer* extra = nullptr);
 
 }  // namespace adjoin

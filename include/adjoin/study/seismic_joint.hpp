@@ -40,8 +40,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/io/building_scene.hpp"
-#include "adjoin/io/scene.hpp"
+#include "adjoin/study/run_spec.hpp"
 
 namespace adjoin {
 
@@ -87,9 +86,9 @@ struct SeismicJoint {
 
 // Two-block scene (SPEC §3): the joint is model.gap0 (the scene's [model.contact] is not
 // used). InputError if the options are not valid.
-SeismicJoint seismic_joint(const Scene& scene, const SeismicJointOptions& options = {});
+SeismicJoint seismic_joint(const RunSpec& scene, const SeismicJointOptions& options = {});
 // Building scene (SPEC §5): the joint is contact `options.contact`'s gap. InputError if the
 // scene has no contact pair or `contact` is out of range (the message names "contact N").
-SeismicJoint seismic_joint(const BuildingScene& scene, const SeismicJointOptions& options = {});
+SeismicJoint seismic_joint(const BuildingRunSpec& scene, const SeismicJointOptions& options = {});
 
 }  // namespace adjoin

@@ -31,7 +31,7 @@
 #include <utility>
 #include <vector>
 
-#include "adjoin/io/scene.hpp"
+#include "adjoin/study/run_spec.hpp"
 
 namespace adjoin {
 
@@ -101,7 +101,7 @@ SweepSpec load_sweep(const std::filesystem::path& file);
 SweepSpec parse_sweep(const std::string& text, const std::string& name);
 
 // The scene of run `index` (InputError prefixed with the sweep file and the run).
-Scene sweep_scene(const SweepSpec& spec, std::size_t index);
+RunSpec sweep_scene(const SweepSpec& spec, std::size_t index);
 
 struct SweepRow {
   std::size_t index = 0;
