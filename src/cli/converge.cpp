@@ -1,8 +1,9 @@
-// adjoin converge SCENE [--set K=V]... [--schemes LIST] [--history LIST] [--steps LIST]
+// adjoin converge SCENE [--set K=V]... [--unset K]... [--schemes LIST] [--history LIST] [--steps LIST]
 //                       [--out DIR] [--plot FILE | --no-plot]
 //
 // Error against run time for each scheme and history engine on a ladder of steps: prints a
-// table, writes DIR/convergence.csv and draws DIR/work-precision.png (gnuplot).
+// table, writes DIR/convergence.csv and draws DIR/work-precision.png (gnuplot). A building
+// scene's ladder is the structure step's, with every channel's peak among the quantities.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -13,7 +14,10 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/plots.hpp"
+#include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/scene.hpp"
+#include "adjoin/io/structure_file.hpp"
+#include "adjoin/study/building_convergence.hpp"
 #include "adjoin/study/convergence.hpp"
 #include "command.hpp"
 
@@ -22,7 +26,7 @@ namespace {
 
 struct ConvergeArgs {
   std::string scene, out, plot;
-  std::vector<std::string> overrides, schemes, engines;
+  std::vector<std::string> overrides, unsets, schemes, engines;
   std::vector<double> steps;
   bool no_plot = false;
 };
@@ -75,7 +79,7 @@ void print_quantities(const ConvergenceResult& result, double time_unit) {
         if (std::find(names.begin(), names.end(), q.name) == names.end()) names.push_back(q.name);
     int switches = 0, hidden = 0;
     for (const auto& name : names) {
-      if (name.rfind("switch", 0) == 0 && ++switches > 12) { ++hidden; continue; }
+      if (name.find("switch ") != std::string::npos && ++switches > 12) { ++hidden; continue; }
       std::printf("%-16s", name.c_str());
       for (std::size_t i = begin; i < end; ++i) {
         std::string text = "-";
@@ -96,12 +100,43 @@ void print_quantities(const ConvergenceResult& result, double time_unit) {
   std::printf("\n");
 }
 
+// The history engines named by --history (the default when none).
+std::vector<HistoryEngine> engines_of(const ConvergeArgs& args, std::vector<HistoryEngine> fallback) {
+  if (args.engines.empty()) return fallback;
+  std::vector<HistoryEngine> engines;
+  for (const auto& name : args.engines) {
+    HistoryEngine e;
+    if (!parse_history_engine(name, &e)) throw InputError("--history: \"" + name + "\" must be direct or fft");
+    engines.push_back(e);
+  }
+  return engines;
+}
+
+int write_and_print(const ConvergeArgs& args, const ConvergenceResult& result, const std::string& name, double time_unit);
+
+// A building scene (SPEC §5): the structure step's ladder; --schemes may only name implicit.
+int converge_building(const ConvergeArgs& args) {
+  const BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
+  for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
+  for (const auto& name : args.schemes)
+    if (name != "implicit")
+      throw InputError("--schemes: \"" + name + "\": building scenes run the structure step (implicit) only; the other "
+                       "schemes are the two-block system's");
+  BuildingConvergenceOptions options;
+  options.engines = engines_of(args, options.engines);
+  options.steps = args.steps;
+  std::string error;
+  if (!options.IsValid(&error)) throw InputError("--steps/--history: " + error);
+  return write_and_print(args, run_building_convergence(scene, options), scene.name, 1.0);
+}
+
 int converge_command(const ConvergeArgs& args) {
   if (!args.plot.empty()) {  // a bad image name is found before the ladder runs
     PlotStyle style;
     plot_target(args.plot, {}, "", &style, "--plot");
   }
-  const Scene scene = load_scene(args.scene, args.overrides);
+  if (is_building_scene(args.scene)) return converge_building(args);
+  const Scene scene = load_scene(args.scene, args.overrides, args.unsets);
   for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
   ConvergenceOptions options;
   if (!args.schemes.empty()) {
@@ -112,21 +147,18 @@ int converge_command(const ConvergeArgs& args) {
       options.schemes.push_back(s);
     }
   }
-  if (!args.engines.empty()) {
-    options.engines.clear();
-    for (const auto& name : args.engines) {
-      HistoryEngine e;
-      if (!parse_history_engine(name, &e)) throw InputError("--history: \"" + name + "\" must be direct or fft");
-      options.engines.push_back(e);
-    }
-  }
+  options.engines = engines_of(args, options.engines);
   for (double h : args.steps) options.steps.push_back(h / scene.scales.time);
   std::string error;
   if (!options.IsValid(&error)) throw InputError("--steps/--schemes/--history: " + error);
 
-  const ConvergenceResult result = run_convergence(scene, options);
+  return write_and_print(args, run_convergence(scene, options), scene.name, scene.scales.time);
+}
 
-  const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args.out);
+// convergence.csv, convergence-quantities.csv and the work-precision figure in --out, and the
+// tables on stdout; h and instants in the scene's time unit (`time_unit` per solver unit).
+int write_and_print(const ConvergeArgs& args, const ConvergenceResult& result, const std::string& name, double time_unit) {
+  const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / name : std::filesystem::path(args.out);
   std::filesystem::create_directories(dir);
   const auto csv_path = dir / "convergence.csv";
   {
@@ -136,7 +168,7 @@ int converge_command(const ConvergeArgs& args) {
     for (const auto& r : result.rows) {
       auto v = [](double x) { return std::isnan(x) ? std::string() : std::to_string(x); };
       char h[32];
-      std::snprintf(h, sizeof h, "%.10g", r.h * scene.scales.time);
+      std::snprintf(h, sizeof h, "%.10g", r.h * time_unit);
       csv.stream() << r.scheme << "," << r.history << "," << h << "," << r.steps << "," << v(r.wall_seconds) << ","
                    << (std::isnan(r.error) ? "" : cell(r.error, "%.6e")) << "," << v(r.order) << ","
                    << (std::isnan(r.peak_x1) ? "" : cell(r.peak_x1, "%.6e")) << ","
@@ -146,27 +178,27 @@ int converge_command(const ConvergeArgs& args) {
     csv.commit();
   }
 
-  std::printf("convergence of %s; errors against %s\n", scene.name.c_str(), result.reference.c_str());
+  std::printf("convergence of %s; errors against %s\n", name.c_str(), result.reference.c_str());
   std::printf("%-12s %-7s %10s %8s %10s %10s %6s %10s %10s %10s\n", "scheme", "history", "h", "steps", "wall [s]",
               "error", "order", "peak x1", "min gap", "friction");
   for (const auto& r : result.rows) {
     if (r.failed) {
-      std::printf("%-12s %-7s %10.4g %8zu   stopped: %s\n", r.scheme.c_str(), r.history.c_str(), r.h * scene.scales.time,
+      std::printf("%-12s %-7s %10.4g %8zu   stopped: %s\n", r.scheme.c_str(), r.history.c_str(), r.h * time_unit,
                   r.steps, r.message.c_str());
       continue;
     }
     std::printf("%-12s %-7s %10.4g %8zu %10.4g %10s %6s %10s %10s %10s\n", r.scheme.c_str(), r.history.c_str(),
-                r.h * scene.scales.time, r.steps, r.wall_seconds, cell(r.error).c_str(), cell(r.order, "%.2f").c_str(),
+                r.h * time_unit, r.steps, r.wall_seconds, cell(r.error).c_str(), cell(r.order, "%.2f").c_str(),
                 cell(r.peak_x1).c_str(), cell(r.min_gap).c_str(), cell(r.friction).c_str());
   }
   const auto quantities_path = dir / "convergence-quantities.csv";
-  if (write_quantities(result, scene.scales.time, quantities_path)) print_quantities(result, scene.scales.time);
+  if (write_quantities(result, time_unit, quantities_path)) print_quantities(result, time_unit);
   std::printf("wrote %s", csv_path.string().c_str());
   if (std::filesystem::exists(quantities_path)) std::printf(", %s", quantities_path.string().c_str());
   if (!args.no_plot) {
     PlotStyle style;
     const std::filesystem::path image = plot_target(args.plot, dir / "work-precision.png", "", &style, "--plot");
-    plot_convergence_csv(csv_path, image, style, scene.name + " (reference: " + result.reference + ")");
+    plot_convergence_csv(csv_path, image, style, name + " (reference: " + result.reference + ")");
     std::printf(", %s", image.string().c_str());
   }
   std::printf("\n");
@@ -178,6 +210,8 @@ const Registration registration(40, [](CLI::App& app) -> Runner {
   auto* sub = app.add_subcommand("converge", "Error against run time for each scheme and history engine on a ladder of steps");
   sub->add_option("scene", args->scene, "Scene file (TOML)")->required();
   sub->add_option("--set", args->overrides, "Override a scene key by dotted path")->allow_extra_args(false);
+  sub->add_option("--unset", args->unsets, "Remove a scene key or section before the --set overrides (e.g. --unset link)")
+      ->allow_extra_args(false);
   sub->add_option("--schemes", args->schemes, "Schemes to compare (default paper,implicit-gl,implicit)")->delimiter(',');
   sub->add_option("--history", args->engines, "History engines (default direct)")->delimiter(',');
   sub->add_option("--steps", args->steps, "Steps h in the scene's time unit (default: the scene's h times 4,2,1,1/2,1/4)")
