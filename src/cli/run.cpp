@@ -30,7 +30,9 @@ int run_building_command(const RunArgs& args) {
   const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args.out);
   const BuildingFiles files = run_building_to_folder(scene, dir);
   if (!args.quiet) {
-    std::cout << building_brief_report(scene, files.report) << "wrote ";
+    std::cout << building_brief_report(scene, files.report, files.estimate ? &*files.estimate : nullptr,
+                                       files.tolerant ? &*files.tolerant : nullptr)
+              << "wrote ";
     for (std::size_t i = 0; i < files.written.size(); ++i) std::cout << (i ? ", " : "") << files.written[i].string();
     std::cout << "\n";
   }

@@ -142,21 +142,77 @@ std::string unmodelled_message(std::size_t k, const structure::Contact& c, doubl
   return text;
 }
 
+// Estimated absolute errors of the reported values (SI), shaped as a two-block run's.
+ordered_json building_error_json(const BuildingScene& scene, const BuildingErrorEstimate& e) {
+  if (!e.available) return ordered_json{{"available", false}, {"reason", e.reason}};
+  ordered_json peaks = ordered_json::object();
+  for (const auto& p : e.peaks) peaks[p.channel] = {{"max_abs", p.error.max_abs}, {"t", p.error.t}};
+  ordered_json links = ordered_json::array();
+  for (std::size_t l = 0; l < e.links.size(); ++l) {
+    const LinkError& le = e.links[l];
+    ordered_json o = {{"force_max", le.force_max}, {"stroke_max", le.stroke_max}};
+    if (scene.structure.links[l].type == structure::LinkType::friction) {
+      o["energy"] = le.energy;
+      o["switch_times"] = le.switches_matched ? ordered_json(le.switches) : ordered_json(nullptr);
+      o["switches_note"] = le.switches_note;
+    }
+    links.push_back(o);
+  }
+  ordered_json contacts = ordered_json::array();
+  for (const auto& c : e.contacts) contacts.push_back({{"min_gap", c.min_gap}, {"t_min_gap", c.t_min_gap}});
+  return ordered_json{{"available", true},
+                      {"method", "richardson"},
+                      {"companion_h", e.companion_h},
+                      {"order", e.order},
+                      {"companion_wall_seconds", e.companion_wall_seconds},
+                      {"max_relative_peak", e.max_relative_peak},
+                      {"worst_channel", e.worst_channel},
+                      {"peaks", peaks},
+                      {"links", links},
+                      {"contacts", contacts}};
+}
+
+// The streamed writer, started afresh with each run it sees: a run to a tolerance streams every
+// rung it tries into the same file, and the rung it keeps is the last one written.
+class RestartingWriter final : public StructureObserver {
+ public:
+  RestartingWriter(FileSet& set, StructureObserver& writer) : set_(set), writer_(writer) {}
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override {
+    if (started_) set_.restart();
+    started_ = true;
+    writer_.begin(s, o);
+  }
+  void observe(const StructureState& st) override { writer_.observe(st); }
+  void impact(const Impact& e) override { writer_.impact(e); }
+  void end() override { writer_.end(); }
+
+ private:
+  FileSet& set_;
+  StructureObserver& writer_;
+  bool started_ = false;
+};
+
 }  // namespace
 
-std::string building_summary_json(const BuildingScene& scene, const BuildingReport& r) {
+std::string building_summary_json(const BuildingScene& scene, const BuildingReport& r, const BuildingErrorEstimate* estimate,
+                                  const BuildingTolerantRun* tolerant) {
   const structure::Structure& s = scene.structure;
   ordered_json j;
   j["scene"] = scene.name;
   j["units"] = "SI";
   j["solver"] = {{"scheme", "implicit"},
                  {"history", to_string(scene.solver.history)},
-                 {"h", scene.solver.h},
+                 {"h", tolerant ? tolerant->h : scene.solver.h},
                  {"steps", r.solver.steps},
                  {"wall_seconds", r.solver.wall_seconds},
                  {"t_end", scene.solver.t_end},
                  {"h_rule", scene.h_rule},
                  {"t_end_rule", scene.t_end_rule}};
+  if (tolerant) {
+    j["solver"]["tolerance"] = tolerant->tolerance;
+    j["solver"]["steps_tried"] = tolerant->ladder;
+    j["solver"]["tolerance_met"] = tolerant->met;
+  }
   j["ground"] = scene.base.ground->describe();
   ordered_json st;
   st["A"] = modes_json(r.modes[0]);
@@ -225,16 +281,22 @@ std::string building_summary_json(const BuildingScene& scene, const BuildingRepo
   energy["input"] = r.energy.input;
   energy["residual"] = r.energy.residual;
   j["energy"] = energy;
+  if (estimate) j["error_estimate"] = building_error_json(scene, *estimate);
   require_finite(j, "", scene.solver.t_end);
   return j.dump(2) + "\n";
 }
 
-std::string building_brief_report(const BuildingScene& scene, const BuildingReport& r) {
+std::string building_brief_report(const BuildingScene& scene, const BuildingReport& r, const BuildingErrorEstimate* estimate,
+                                  const BuildingTolerantRun* tolerant) {
   std::ostringstream o;
-  char line[256];
+  char line[512];
   const structure::Structure& s = scene.structure;
+  std::string h_rule = scene.h_rule;
+  if (tolerant)
+    h_rule += "; " + std::to_string(tolerant->ladder.size()) + (tolerant->ladder.size() == 1 ? " run" : " runs") +
+              (tolerant->met ? "" : "; NOT met, see error_estimate");
   std::snprintf(line, sizeof line, "%s: %d + %d floors, h = %.4g s (%s), t_end = %.4g s (%s), %zu steps in %.3g s\n",
-                scene.name.c_str(), s.a.floors(), s.b ? s.b->floors() : 0, scene.solver.h, scene.h_rule.c_str(),
+                scene.name.c_str(), s.a.floors(), s.b ? s.b->floors() : 0, tolerant ? tolerant->h : scene.solver.h, h_rule.c_str(),
                 scene.solver.t_end, scene.t_end_rule.c_str(), r.solver.steps, r.solver.wall_seconds);
   o << line;
   for (std::size_t b = 0; b < r.modes.size(); ++b) {
@@ -286,6 +348,17 @@ std::string building_brief_report(const BuildingScene& scene, const BuildingRepo
       o << line;
     }
   }
+  if (estimate && !estimate->available) {
+    o << "error estimate: not available (" << estimate->reason << ")\n";
+  } else if (estimate) {
+    std::snprintf(line, sizeof line, "error estimate (companion h = %.4g s): peaks %.2g relative%s%s%s", estimate->companion_h,
+                  estimate->max_relative_peak, estimate->worst_channel.empty() ? "" : " (", estimate->worst_channel.c_str(),
+                  estimate->worst_channel.empty() ? "" : ")");
+    o << line;
+    for (std::size_t l = 0; l < estimate->links.size(); ++l)
+      if (!estimate->links[l].switches_matched) o << ", link" << l + 1 << " switches: not estimated (the companion run found other switches)";
+    o << "\n";
+  }
   return o.str();
 }
 
@@ -313,15 +386,28 @@ BuildingFiles run_building_to_folder(const BuildingScene& scene, const std::file
   if (error) throw InputError(dir.string() + ": cannot create the output folder: " + error.message());
   FileSet set(dir, {"summary.json", "timeseries.csv", "energy.csv", "spectra.csv", "impacts.csv"});
   std::unique_ptr<BuildingCsvWriter> writer;
-  if (scene.base.output.timeseries) writer = std::make_unique<BuildingCsvWriter>(set.open("timeseries.csv"), scene.base.output.every);
+  std::unique_ptr<RestartingWriter> restarting;
+  if (scene.base.output.timeseries) {
+    writer = std::make_unique<BuildingCsvWriter>(set.open("timeseries.csv"), scene.base.output.every);
+    restarting = std::make_unique<RestartingWriter>(set, *writer);
+  }
   BuildingFiles files;
-  files.report = run_building(scene, writer.get());
+  const AccuracyOptions& accuracy = scene.base.accuracy;
+  if (accuracy.tolerance) {
+    files.tolerant = run_to_tolerance(scene, *accuracy.tolerance, restarting.get());
+    files.report = files.tolerant->report;
+    files.estimate = files.tolerant->estimate;
+  } else {
+    files.report = run_building(scene, restarting.get());
+    if (accuracy.error_estimate) files.estimate = estimate_error(scene, files.report);
+  }
   if (!files.report.spectra.empty()) set.open("spectra.csv") << spectra_csv(files.report.spectra);
   const auto& contacts = scene.structure.contacts;
   if (std::any_of(contacts.begin(), contacts.end(),
                   [](const structure::Contact& c) { return c.law.model != structure::ContactModel::none; }))
     set.open("impacts.csv") << building_impacts_csv(files.report);
-  set.open("summary.json") << building_summary_json(scene, files.report);
+  set.open("summary.json") << building_summary_json(scene, files.report, files.estimate ? &*files.estimate : nullptr,
+                                                    files.tolerant ? &*files.tolerant : nullptr);
   files.written = set.commit();
   return files;
 }

@@ -15,15 +15,6 @@
 namespace adjoin {
 namespace {
 
-bool has_key(const std::string& text, const std::string& section, const std::string& key) {
-  try {
-    const toml::table root = toml::parse(text);
-    return root[section][key].node() != nullptr;
-  } catch (const toml::parse_error&) {
-    return false;
-  }
-}
-
 bool overridden(const std::vector<std::string>& overrides, const std::string& key) {
   return std::any_of(overrides.begin(), overrides.end(), [&](const std::string& o) {
     const auto eq = o.find('=');
@@ -112,19 +103,22 @@ BuildingScene parse_building_scene(const std::string& text, const std::filesyste
   }
   if (b.structure.b) t_longest = std::max(t_longest, structure::coupled_modes(b.structure).periods_free[0]);
 
-  const bool h_given = has_key(text, "solver", "h") || overridden(overrides, "solver.h");
-  const bool t_end_given = has_key(text, "solver", "t_end") || overridden(overrides, "solver.t_end");
-  if (has_key(text, "solver", "tolerance") || overridden(overrides, "solver.tolerance"))
-    throw InputError(file.string() + ": solver.tolerance is not supported for building scenes yet; give solver.h [s]");
+  // The base read [solver] after the --unset and --set edits: it chose a tolerance exactly
+  // when solver.h is not given, and says a rule for t_end exactly when t_end is not.
+  const bool h_given = !b.base.accuracy.tolerance;
+  const bool t_end_given = b.base.accuracy.t_end_rule.empty();
   const double dt = b.base.ground->sample_interval();  // s (unit time scale)
   if (h_given) {
     b.solver.h = b.base.solver.h;
     b.h_rule = "given";
   } else {
+    // Without solver.h the step is chosen for solver.tolerance (given, or the two-block
+    // scenes' default; base.accuracy holds it): this is the ladder's first rung, and the step
+    // of a sweep's rows, which do not climb the ladder.
     b.solver.h = t_shortest_fundamental / 200.0;
     if (dt > 0.0) b.solver.h = std::min(b.solver.h, dt);
-    b.h_rule = "the shortest fundamental period / 200" + std::string(dt > 0.0 ? ", no coarser than the record's dt" : "") + " = " +
-               number(b.solver.h) + " s";
+    b.h_rule = b.base.accuracy.h_rule + ", from h = the shortest fundamental period / 200" +
+               std::string(dt > 0.0 ? ", no coarser than the record's dt" : "") + " = " + number(b.solver.h) + " s";
   }
   const double duration = b.base.ground->duration();
   if (t_end_given) {

@@ -1,11 +1,11 @@
 #include "adjoin/study/error_estimate.hpp"
 
 #include <algorithm>
-#include <optional>
 #include <cmath>
 
 #include "adjoin/errors.hpp"
 #include "adjoin/solver/simulate.hpp"
+#include "step_ladder.hpp"
 
 namespace adjoin {
 namespace {
@@ -74,64 +74,65 @@ ErrorEstimate estimate_error(const RunSpec& scene, const RunReport& fine) {
   return e;
 }
 
-TolerantRun run_to_tolerance(const RunSpec& scene, double tolerance, Observer* extra) {
-  if (!(tolerance > 0.0 && tolerance < 1.0)) throw InputError("solver.tolerance must lie in (0, 1)");
-  TolerantRun out;
-  out.tolerance = tolerance;
-  const double t_end = scene.solver.t_end;
-  double h = t_end / 2000.0;
-  const double dt = scene.ground->sample_interval();
-  if (dt > 0.0) h = std::min(h, dt);
-  const double memory = 0.8 * physical_memory_bytes();
-  const int p = scheme_order(scene.solver.scheme);
-  std::optional<RunReport> previous;  // the last rung run, and its step
-  double previous_h = 0.0;
-  for (int rung = 0; rung < 6; ++rung) {
-    RunSpec s = scene;
+namespace {
+
+// The rungs of a two-block scene's ladder: run_scene at each step, estimate_error to decide.
+class TwoBlockRungs final : public detail::StepLadder {
+ public:
+  TwoBlockRungs(const RunSpec& scene, double tolerance, Observer* extra) : scene_(scene), tolerance_(tolerance), extra_(extra) {}
+  void run(double h) override {
+    RunSpec s = scene_;
     s.solver.h = h;
-    if (memory > 0.0 && estimated_history_bytes(s.solver, s.model) > memory)
-      throw NumericalError("solver.tolerance = " + std::to_string(tolerance) + " would need solver.h = " + std::to_string(h) +
+    if (memory_ > 0.0 && estimated_history_bytes(s.solver, s.model) > memory_)
+      throw NumericalError("solver.tolerance = " + std::to_string(tolerance_) + " would need solver.h = " + std::to_string(h) +
                                " (dimensionless), whose history does not fit in memory; loosen solver.tolerance or set solver.h",
                            0.0);
-    const bool last = rung == 5;
-    out.ladder.push_back(h);
+    previous = std::move(current);
     // The extra observer (a streaming writer) sees every rung's run (not the companions);
     // each begin() starts a new one, and the last it sees is the run that is kept.
-    RunReport r = run_scene(s, extra);
-    // After the first rung, the previous rung (H = h / factor, at least 2h) is a free
-    // companion: its estimate decides whether this rung can meet the tolerance and, if not,
-    // the next step. Only a rung that looks good pays for the run at 2h, whose estimate is
-    // the one reported (the previous rung is too coarse to be trusted for that).
-    if (previous && !last) {
-      ErrorEstimate quick;
-      quick.order = p;
-      compare_runs(r, *previous, previous_h / h, &quick);
-      const double guess = quick.available ? quick.max_relative_peak : INFINITY;
-      if (std::isfinite(guess) && guess > 2.0 * tolerance) {
-        const double factor = guess > 0.0 ? std::pow(0.7 * tolerance / guess, 1.0 / p) : 0.5;
-        previous = std::move(r);
-        previous_h = h;
-        h *= std::clamp(factor, 1.0 / 16.0, 0.5);
-        continue;
-      }
-    }
-    ErrorEstimate e = estimate_error(s, r);
-    const double achieved = e.available ? e.max_relative_peak : INFINITY;
-    if (achieved <= tolerance || last) {
-      out.report = std::move(r);
-      out.estimate = std::move(e);
-      out.h = h;
-      out.met = achieved <= tolerance;
-      return out;
-    }
-    // The step the tolerance asks for, by the observed error and the order; at most 16x finer
-    // per rung, and a failed estimate halves the step.
-    const double factor = std::isfinite(achieved) && achieved > 0.0 ? std::pow(0.7 * tolerance / achieved, 1.0 / p) : 0.5;
-    previous = std::move(r);
-    previous_h = h;
-    h *= std::clamp(factor, 1.0 / 16.0, 0.5);
+    current = run_scene(s, extra_);
+    h_ = h;
   }
-  return out;  // not reached
+  double quick_error(double ratio) override {
+    ErrorEstimate quick;
+    quick.order = scheme_order(scene_.solver.scheme);
+    compare_runs(current, previous, ratio, &quick);
+    return quick.max_relative_peak;
+  }
+  double estimate() override {
+    RunSpec s = scene_;
+    s.solver.h = h_;
+    kept = estimate_error(s, current);
+    return kept.available ? kept.max_relative_peak : INFINITY;
+  }
+  RunReport current, previous;
+  ErrorEstimate kept;  // the last rung's own estimate
+
+ private:
+  const RunSpec& scene_;
+  double tolerance_;
+  Observer* extra_;
+  double memory_ = 0.8 * physical_memory_bytes();
+  double h_ = 0.0;
+};
+
+}  // namespace
+
+TolerantRun run_to_tolerance(const RunSpec& scene, double tolerance, Observer* extra) {
+  if (!(tolerance > 0.0 && tolerance < 1.0)) throw InputError("solver.tolerance must lie in (0, 1)");
+  double h0 = scene.solver.t_end / 2000.0;
+  const double dt = scene.ground->sample_interval();
+  if (dt > 0.0) h0 = std::min(h0, dt);
+  TwoBlockRungs rungs(scene, tolerance, extra);
+  const detail::LadderOutcome climbed = detail::climb_to_tolerance(rungs, h0, tolerance, scheme_order(scene.solver.scheme));
+  TolerantRun out;
+  out.tolerance = tolerance;
+  out.report = std::move(rungs.current);
+  out.estimate = std::move(rungs.kept);
+  out.h = climbed.h;
+  out.ladder = climbed.ladder;
+  out.met = climbed.met;
+  return out;
 }
 
 }  // namespace adjoin

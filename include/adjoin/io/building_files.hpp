@@ -7,22 +7,33 @@
 // first overlap of a pair without a contact law) when a pair has model none; SI units) and,
 // when a contact pair has a contact law, impacts.csv (one row per impact, in the order they
 // started; contact is 1-based). No NaN or Inf is written (exit 3).
+//
+// The step is the scene's solver.h, or chosen for solver.tolerance (run_to_tolerance); the
+// run's error is estimated from a companion run at about 2h unless solver.error_estimate =
+// false (study/building_error_estimate.hpp); the summary's `error_estimate` holds it.
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "adjoin/io/building_scene.hpp"
+#include "adjoin/study/building_error_estimate.hpp"
 #include "adjoin/study/building_run.hpp"
 
 namespace adjoin {
 
 struct BuildingFiles {
   BuildingReport report;
+  std::optional<BuildingErrorEstimate> estimate;  // when the scene asks (solver.error_estimate)
+  std::optional<BuildingTolerantRun> tolerant;    // when the step was chosen for a tolerance (its
+                                                  // report and estimate are the two above)
   std::vector<std::filesystem::path> written;
 };
 
-std::string building_summary_json(const BuildingScene& scene, const BuildingReport& report);
-std::string building_brief_report(const BuildingScene& scene, const BuildingReport& report);
+std::string building_summary_json(const BuildingScene& scene, const BuildingReport& report,
+                                  const BuildingErrorEstimate* estimate = nullptr, const BuildingTolerantRun* tolerant = nullptr);
+std::string building_brief_report(const BuildingScene& scene, const BuildingReport& report,
+                                  const BuildingErrorEstimate* estimate = nullptr, const BuildingTolerantRun* tolerant = nullptr);
 // impacts.csv: contact,start,duration,force_max,t_force_max,penetration_max,approach_speed,
 // rebound_speed,impulse,complete (SI; complete: true or false).
 std::string building_impacts_csv(const BuildingReport& report);
