@@ -4,7 +4,10 @@
 #include <cmath>
 #include <memory>
 
+#include "adjoin/errors.hpp"
+#include "adjoin/observe/channel_values.hpp"
 #include "adjoin/post/spectrum.hpp"
+#include "adjoin/structure/channels.hpp"
 #include "adjoin/structure/modal.hpp"
 
 namespace adjoin {
@@ -18,26 +21,17 @@ class BuildingObserver final : public StructureObserver {
   explicit BuildingObserver(const structure::Structure& s) : s_(s) {}
 
   void begin(const structure::Structure& s, const StructureSolverOptions&) override {
-    names_.clear();
-    auto building = [&](const structure::Building& b) {
-      for (int i = 1; i <= b.floors(); ++i) names_.push_back(b.name + ".x" + std::to_string(i));
-      for (int i = 1; i <= b.floors(); ++i) names_.push_back(b.name + ".drift" + std::to_string(i));
-      for (int i = 1; i <= b.floors(); ++i) names_.push_back(b.name + ".a" + std::to_string(i) + "_abs");
-      for (int i = 1; i <= b.floors(); ++i) names_.push_back(b.name + ".shear" + std::to_string(i));
-      names_.push_back(b.name + ".base_shear");
-    };
-    building(s.a);
-    if (s.b) building(*s.b);
-    for (std::size_t l = 0; l < s.links.size(); ++l) {
-      names_.push_back("link" + std::to_string(l + 1) + ".force");
-      names_.push_back("link" + std::to_string(l + 1) + ".stroke");
-    }
-    smooth_.assign(names_.size(), SmoothPeak{});
-    sampled_.assign(names_.size(), Peak{});
-    is_smooth_.assign(names_.size(), true);
-    for (std::size_t i = 0; i < names_.size(); ++i)
-      is_smooth_[i] = names_[i].find("_abs") == std::string::npos && names_[i].find("shear") == std::string::npos &&
-                      names_[i].find(".force") == std::string::npos;
+    // Every channel with a peak (structure/channels.hpp): floors, storeys, buildings, links.
+    std::vector<structure::Channel> peaked;
+    for (auto& c : structure::channels(s))
+      if (structure::info(c.quantity).peak != structure::PeakRule::none) peaked.push_back(std::move(c));
+    values_ = ChannelValues(s, std::move(peaked));
+    row_.assign(values_.size(), 0.0);
+    smooth_.assign(values_.size(), SmoothPeak{});
+    sampled_.assign(values_.size(), Peak{});
+    is_smooth_.assign(values_.size(), true);
+    for (std::size_t i = 0; i < values_.size(); ++i)
+      is_smooth_[i] = structure::info(values_.channels()[i].quantity).peak == structure::PeakRule::refined;
     links_.assign(s.links.size(), LinkReport{});
     contacts_.assign(s.contacts.size(), ContactReport{});
     for (std::size_t k = 0; k < s.contacts.size(); ++k) contacts_[k].model = s.contacts[k].law.model;
@@ -49,23 +43,12 @@ class BuildingObserver final : public StructureObserver {
   }
 
   void observe(const StructureState& st) override {
-    std::size_t c = 0;
-    auto building = [&](const structure::Building& b, int offset) {
-      const int n = b.floors();
-      for (int i = 0; i < n; ++i) smooth_[c++].update(st.x[offset + i], st.t);
-      for (int i = 0; i < n; ++i) smooth_[c++].update(st.x[offset + i] - (i > 0 ? st.x[offset + i - 1] : 0.0), st.t);
-      for (int i = 0; i < n; ++i) sampled_[c++].update(st.a_abs[offset + i], st.t);
-      for (int i = 0; i < n; ++i) sampled_[c++].update(st.storey_force[offset + i], st.t);
-      // Base shear: the sum of the floors' inertia forces, -sum m_i a_i,abs.
-      double shear = 0.0;
-      for (int i = 0; i < n; ++i) shear -= b.masses[i] * st.a_abs[offset + i];
-      sampled_[c++].update(shear, st.t);
-    };
-    building(s_.a, 0);
-    if (s_.b) building(*s_.b, s_.a.floors());
+    values_.read(st, row_.data());
+    for (std::size_t c = 0; c < row_.size(); ++c) {
+      if (is_smooth_[c]) smooth_[c].update(row_[c], st.t);
+      else sampled_[c].update(row_[c], st.t);
+    }
     for (std::size_t l = 0; l < s_.links.size(); ++l) {
-      sampled_[c++].update(st.link_force[l], st.t);  // kinks where a damper saturates
-      smooth_[c++].update(st.link_stroke[l], st.t);
       LinkReport& r = links_[l];
       r.force_max = std::max(r.force_max, std::abs(st.link_force[l]));
       r.stroke_max = std::max(r.stroke_max, std::abs(st.link_stroke[l]));
@@ -154,7 +137,8 @@ class BuildingObserver final : public StructureObserver {
 
   std::vector<ChannelPeak> peaks() const {
     std::vector<ChannelPeak> out;
-    for (std::size_t i = 0; i < names_.size(); ++i) out.push_back({names_[i], is_smooth_[i] ? smooth_[i].peak() : sampled_[i]});
+    for (std::size_t i = 0; i < values_.size(); ++i)
+      out.push_back({values_.channels()[i].name, is_smooth_[i] ? smooth_[i].peak() : sampled_[i]});
     return out;
   }
   const std::vector<LinkReport>& links() const { return links_; }
@@ -183,7 +167,8 @@ class BuildingObserver final : public StructureObserver {
 
  private:
   const structure::Structure& s_;
-  std::vector<std::string> names_;
+  ChannelValues values_{s_, {}};
+  std::vector<double> row_;          // the channels' values at the current grid point
   std::vector<SmoothPeak> smooth_;   // displacements, drifts, strokes: refined between samples
   std::vector<Peak> sampled_;        // accelerations, shears, link forces: kinks at switches
   std::vector<bool> is_smooth_;
@@ -206,9 +191,11 @@ class SignalRecorder final : public StructureObserver {
     for (const auto& signal : signals) {
       int index = -1;  // a_g
       if (signal != "ground") {
-        const char building = signal[0];
-        const int floor = std::stoi(signal.substr(3, signal.size() - 7));
-        index = s.dof(building, floor);
+        // io checked the name: a floor's absolute acceleration (X.aN_abs).
+        const auto channel = structure::find_channel(s, signal);
+        if (!channel || channel->quantity != structure::Quantity::absolute_acceleration)
+          throw InputError("output.spectra.signals: \"" + signal + "\" is not a floor's absolute acceleration (A.a3_abs)");
+        index = channel->dof;
       }
       index_.push_back(index);
     }
