@@ -10,6 +10,7 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/io/building_scene.hpp"
+#include "adjoin/io/sweep_files.hpp"
 #include "adjoin/study/building_run.hpp"
 #include "adjoin/study/building_sweep.hpp"
 #include "adjoin/study/demand.hpp"

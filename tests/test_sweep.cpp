@@ -13,6 +13,7 @@
 #include "adjoin/io/file_name.hpp"
 #include "adjoin/io/folder_lock.hpp"
 #include "adjoin/io/scene.hpp"
+#include "adjoin/io/sweep_files.hpp"
 #include "adjoin/post/intensity.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "adjoin/study/demand.hpp"

@@ -30,6 +30,7 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/folder_lock.hpp"
+#include "adjoin/io/sweep_files.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "command.hpp"
@@ -114,19 +115,6 @@ class Progress {
   std::chrono::steady_clock::time_point start_, last_{};
 };
 
-void write_table(const SweepTableFile& table, const std::filesystem::path& csv, const std::filesystem::path& json) {
-  {
-    AtomicFile file(csv);
-    file.stream() << sweep_csv(table.table);
-    file.commit();
-  }
-  AtomicFile file(json);
-  file.stream() << sweep_json(table);
-  file.commit();
-}
-
-std::size_t cell_index(const std::vector<std::string>& cells) { return std::stoull(cells.at(0)); }
-
 // The command as the lock file records it, for the message of a second sweep that finds it.
 std::string command_text(const SweepArgs& args, const SweepShard& shard) {
   std::string text = "adjoin sweep " + args.sweep;
@@ -147,49 +135,24 @@ struct ShardRows {
 // have, ...) are dropped with a warning and run again.
 ShardRows run_shard(const SweepSpec& spec, const SweepShard& shard, const std::filesystem::path& dir, unsigned jobs,
                     bool progress_bar, bool verbose) {
-  const std::filesystem::path journal_path = dir / (sweep_file_stem(shard) + ".partial.csv");
   std::vector<std::string> dropped;
-  std::vector<std::vector<std::string>> rows = read_sweep_journal(journal_path, spec, shard, &dropped);
+  SweepJournal journal(spec, shard, dir, &dropped);
   constexpr std::size_t kShown = 10;
   for (std::size_t i = 0; i < dropped.size() && i < kShown; ++i)
     std::cerr << "warning: " << printable_message(dropped[i]) << "; that row is dropped and its run done again\n";
   if (dropped.size() > kShown)
-    std::cerr << "warning: " << dropped.size() - kShown << " more rows of " << journal_path.string()
+    std::cerr << "warning: " << dropped.size() - kShown << " more rows of " << journal.path().string()
               << " dropped the same way (" << dropped.size() << " in all)\n";
-  const std::size_t from_journal = rows.size();
+  const std::size_t from_journal = journal.from_journal();
   if (from_journal > 0 && verbose)
-    std::cerr << "resuming: " << from_journal << " runs from the journal " << journal_path.string() << "\n";
-  std::set<std::size_t> done;
-  for (const auto& r : rows) done.insert(cell_index(r));
-
-  // Rewrite the journal with what can be trusted (drops a torn last line or another sweep's rows).
-  {
-    AtomicFile file(journal_path);
-    file.stream() << sweep_journal_preamble(spec, shard);
-    for (const auto& r : rows) file.stream() << csv_line(r) << "\n";
-    file.commit();
-  }
-  std::vector<std::size_t> pending;
-  std::size_t total = 0;
-  for (std::size_t i = shard.index; i < spec.runs(); i += shard.count) {
-    ++total;
-    if (!done.count(i)) pending.push_back(i);
-  }
-  if (!pending.empty()) {
-    std::ofstream journal(journal_path, std::ios::binary | std::ios::app);
-    if (!journal) throw InputError(journal_path.string() + ": cannot append to the sweep journal");
-    Progress progress(progress_bar, total - pending.size(), total);
+    std::cerr << "resuming: " << from_journal << " runs from the journal " << journal.path().string() << "\n";
+  if (!journal.pending().empty()) {
+    Progress progress(progress_bar, journal.from_journal(), journal.from_journal() + journal.pending().size());
     SweepOptions options;
     options.jobs = jobs;
-    options.indices = pending;
-    options.on_row = [&](const SweepRow& row) {
-      auto cells = sweep_cells(spec, row);
-      journal << csv_line(cells) << "\n";
-      journal.flush();
-      if (!journal) throw InputError(journal_path.string() + ": cannot write the sweep journal (disk full?)");
-      rows.push_back(std::move(cells));
-      progress.tick();
-    };
+    options.indices = journal.pending();
+    options.sink = &journal;
+    options.on_row = [&](const SweepRow&) { progress.tick(); };
     try {
       run_sweep(spec, options);
     } catch (...) {
@@ -198,8 +161,7 @@ ShardRows run_shard(const SweepSpec& spec, const SweepShard& shard, const std::f
     }
     progress.finish();
   }
-  std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return cell_index(a) < cell_index(b); });
-  return ShardRows{std::move(rows), from_journal};
+  return ShardRows{journal.rows(), from_journal};
 }
 
 // The runs of one shard (all runs for a whole sweep).
@@ -243,7 +205,7 @@ int sweep_local(const SweepArgs& args) {
   auto [rows, from_journal] = run_shard(spec, shard, dir, args.jobs, !args.quiet, !args.quiet);
   SweepTable table{sweep_columns(spec), std::move(rows)};
   const SweepTableFile file = sweep_table_file(spec, std::move(table), shard);
-  write_table(file, dir / (stem + ".csv"), dir / (stem + ".json"));
+  write_sweep_table(file, dir / (stem + ".csv"), dir / (stem + ".json"));
   std::filesystem::remove(dir / (stem + ".partial.csv"));
   report(args, spec, file, dir, stem,
          std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), from_journal);
@@ -281,6 +243,8 @@ struct MpiSession {
   MpiSession(const MpiSession&) = delete;
   MpiSession& operator=(const MpiSession&) = delete;
 };
+
+std::size_t cell_index(const std::vector<std::string>& cells) { return std::stoull(cells.at(0)); }
 
 // Rank 0 receives every rank's text.
 std::vector<std::string> gather_text(const std::string& mine, const MpiSession& mpi) {
@@ -363,7 +327,7 @@ int sweep_mpi(const SweepArgs& args, const MpiSession& mpi) {
       }
       std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return cell_index(a) < cell_index(b); });
       const SweepTableFile file = sweep_table_file(spec, SweepTable{sweep_columns(spec), std::move(rows)}, SweepShard{});
-      write_table(file, dir / "sweep.csv", dir / "sweep.json");
+      write_sweep_table(file, dir / "sweep.csv", dir / "sweep.json");
       written = 1;
       report(args, spec, file, dir, "sweep", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
              static_cast<std::size_t>(journal_rows));
@@ -449,7 +413,7 @@ int merge_command(const MergeArgs& args) {
     json = json / "sweep.json";
   }
   if (csv.has_parent_path()) std::filesystem::create_directories(csv.parent_path());
-  write_table(merged, csv, json);
+  write_sweep_table(merged, csv, json);
   std::printf("merged %zu tables: %zu runs of sweep %s\nwrote %s, %s\n", parts.size(), merged.table.rows.size(),
               merged.sweep.c_str(), csv.string().c_str(), json.string().c_str());
   return 0;

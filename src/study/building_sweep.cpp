@@ -5,12 +5,9 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
-
-#include <toml++/toml.h>
+#include <stdexcept>
 
 #include "adjoin/errors.hpp"
-#include "adjoin/io/building_scene.hpp"
-#include "adjoin/io/structure_file.hpp"
 #include "adjoin/model/units.hpp"
 #include "adjoin/post/spectrum.hpp"
 
@@ -79,27 +76,12 @@ void for_each_column(const structure::Structure& s, F each) {
   scope(ChannelScope::whole, 0);
 }
 
-// The run's edits as --set / --unset strings, with the unsets an edit implies (ground.source
-// to another source drops the base's [ground] keys), as sweep_scene() gathers them.
-void gather_edits(const SweepSpec& spec, const std::vector<SweepSetting>& settings, std::vector<std::string>& overrides,
-                  std::vector<std::string>& unsets) {
-  std::string source = spec.base_source;
-  for (const auto& s : settings) {
-    for (auto& o : s.overrides()) overrides.push_back(std::move(o));
-    unsets.insert(unsets.end(), s.unset.begin(), s.unset.end());
-    for (const auto& [key, text] : s.set) {
-      for (auto& k : implied_unsets(key, text, source)) unsets.push_back(std::move(k));
-      if (key == "ground.source") source = toml::parse("v = " + text)["v"].value_or(std::string());
-    }
-  }
-}
-
 bool starts_with(const std::string& text, const std::string& prefix) { return text.rfind(prefix, 0) == 0; }
 
 // The line of the first setting whose edits touch `prefix` (e.g. "link"), or 0.
 std::size_t line_of_edit(const std::vector<SweepSetting>& settings, const std::string& prefix) {
   for (const auto& s : settings) {
-    for (const auto& [key, text] : s.set)
+    for (const auto& [key, value] : s.set)
       if (key == prefix || starts_with(key, prefix + ".")) return s.line;
     for (const auto& key : s.unset)
       if (key == prefix || starts_with(key, prefix + ".")) return s.line;
@@ -237,33 +219,16 @@ std::vector<std::string> building_channel_cells(const structure::Structure& base
   return cells;
 }
 
-void prepare_building_sweep(SweepSpec& spec) {
-  // Checked whole, as `adjoin run` would read it (its own errors name its file and line).
-  const BuildingRunSpec scene = parse_building_scene(spec.base_text, spec.base);
-  spec.base_structure = std::make_shared<const structure::Structure>(scene.structure);
-  spec.channel_columns = building_channel_columns(scene.structure);
+void prepare_building_sweep(SweepSpec& spec, const structure::Structure& base) {
+  spec.base_structure = std::make_shared<const structure::Structure>(base);
+  spec.channel_columns = building_channel_columns(base);
 }
 
 BuildingRunSpec building_sweep_scene(const SweepSpec& spec, std::size_t index) {
-  const auto settings = spec.settings(index);
-  std::vector<std::string> overrides, unsets;
-  gather_edits(spec, settings, overrides, unsets);
-  BuildingRunSpec scene;
-  try {
-    scene = parse_building_scene(spec.base_text, spec.base, overrides, unsets);
-  } catch (const InputError& e) {
-    // Point at the axis value or motion whose edit the message names, when there is one.
-    std::size_t line = 0;
-    const std::string message = e.what();
-    for (const auto& s : settings) {
-      for (const auto& o : s.overrides())
-        if (!line && message.find("--set " + o) != std::string::npos) line = s.line;
-      for (const auto& key : s.unset)
-        if (!line && message.find("--unset " + key) != std::string::npos) line = s.line;
-    }
-    throw InputError(at(spec, line) + "run " + std::to_string(index) + " (" + spec.describe(index) + "): " + message);
-  }
-  check_groups(spec, index, settings, scene.structure);
+  if (!spec.scenes)
+    throw std::logic_error("building_sweep_scene: the sweep has no SweepScenes (read it with load_sweep or parse_sweep)");
+  BuildingRunSpec scene = spec.scenes->building_scene(spec, index);
+  check_groups(spec, index, spec.settings(index), scene.structure);
   return scene;
 }
 

@@ -1,7 +1,7 @@
 #pragma once
-// Sweeps whose base is a building scene (SPEC §5). A run is the base scene's text (read once
-// per sweep) parsed with the run's edits, exactly `adjoin run BASE --set KEY=VALUE ... --unset
-// KEY ...` (structure keys by dotted path: building.A.period, link.1.slip_ratio,
+// Sweeps whose base is a building scene (SPEC §5). A run is the base scene with the run's
+// edits (spec.scenes, io's), exactly `adjoin run BASE --set KEY=VALUE ... --unset KEY ...`
+// (structure keys by dotted path: building.A.period, link.1.slip_ratio,
 // building.A.device.2.c, contact.1.gap; and the ground, solver and output keys), then
 // run_building() without writing files, plus the motion's intensity measures (pga_g, sa_T).
 //
@@ -49,12 +49,12 @@ std::vector<SweepColumn> building_channel_columns(const structure::Structure& s)
 std::vector<std::string> building_channel_cells(const structure::Structure& base, const BuildingRunSpec& scene,
                                                 const BuildingReport& report);
 
-// Sets spec.base_structure and spec.channel_columns from spec.base_text, and checks the base
-// scene as `adjoin run` would (its errors name its file and line).
-void prepare_building_sweep(SweepSpec& spec);
+// Sets spec.base_structure and spec.channel_columns from the base scene's structure (the sweep
+// file's reader calls it once it has checked the base scene as `adjoin run` would).
+void prepare_building_sweep(SweepSpec& spec, const structure::Structure& base);
 
-// The building scene of run `index` (InputError prefixed with the sweep file, the line of the
-// edit that caused it and the run).
+// The building scene of run `index` (spec.scenes; InputError prefixed with the sweep file, the
+// line of the edit that caused it and the run), its groups checked against the base's.
 BuildingRunSpec building_sweep_scene(const SweepSpec& spec, std::size_t index);
 
 // One run (InputError propagates; NumericalError is caught into row.error).

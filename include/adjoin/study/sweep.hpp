@@ -10,25 +10,29 @@
 // slowest and the motion fastest, i = ((v0 n1 + v1) n2 + ...) n_motions + m. Rows are placed by
 // index, so the table is the same whatever the parallelism (threads, shards, MPI ranks).
 //
-// A run builds its scene from the base file with the run's overrides (the axis values, then
-// the motion), exactly like `adjoin run BASE --set KEY=VALUE...`, and integrates it with the
-// observers run_scene() uses (peaks, phases, pounding, energy) plus the ground-motion intensity
-// measures of the forcing the solver actually saw (PGA; Sa(T, damping) at the sweep's
-// im_periods). A NumericalError is recorded in the row's `error`; an InputError stops the sweep
-// with the sweep file, the run and the key. A building scene as the base (SPEC §5) runs as
-// `adjoin run` runs it (study/building_run.hpp), its columns generated from its structure's
-// channels (study/building_sweep.hpp).
+// A run's description is the base scene with the run's edits (the axis values, then the
+// motion), exactly like `adjoin run BASE --set KEY=VALUE...`; the sweep asks spec.scenes for it
+// (SweepScenes: io reads the base once and applies the edits, io/sweep_scenes.hpp). It is
+// integrated with the observers run_scene() uses (peaks, phases, pounding, energy) plus the
+// ground-motion intensity measures of the forcing the solver actually saw (PGA; Sa(T, damping)
+// at the sweep's im_periods). A NumericalError is recorded in the row's `error`; an InputError
+// stops the sweep with the sweep file, the run and the key. A building scene as the base
+// (SPEC §5) runs as `adjoin run` runs it (study/building_run.hpp), its columns generated from its
+// structure's channels (study/building_sweep.hpp). Finished rows go to a SweepRowSink (io's
+// journal, io/sweep_files.hpp, is the one a resumed sweep reads back).
 //
 // Values are in the base scene's units (SI scenes: m, N, m/s^2, J); energy shares are ratios to
 // the input energy; pga_g and sa_T are in g with T in seconds (a dimensionless scene: T in its
 // time unit, i.e. ground.time_scale seconds for a record, 1 otherwise).
 #include <cstddef>
+#include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <utility>
+#include <variant>
 #include <vector>
 
 #include "adjoin/study/run_spec.hpp"
@@ -49,12 +53,19 @@ struct SweepColumn {
   bool may_be_empty = false;
 };
 
+// The value an edit gives a scene key: typed, as the sweep file wrote it, with its spelling as
+// a TOML value (what a --set of it would say, for messages).
+struct SweepValue {
+  std::variant<std::int64_t, double, bool, std::string> value;
+  std::string text;
+};
+
 // One value of an axis, or one ground motion: a label for the table and the scene edits it makes.
 struct SweepSetting {
   std::string label;                    // the table cell (an axis value) or the motion's name
   std::optional<double> number;         // the value, when it is a number (label = shortest repr)
   std::vector<std::string> unset;       // dotted keys removed from the base scene first
-  std::vector<std::pair<std::string, std::string>> set;  // dotted key -> TOML value text
+  std::vector<std::pair<std::string, SweepValue>> set;  // dotted key -> value
   std::size_t line = 0;                 // where it was written in the sweep file
   // "--set" style strings "key=value", in order.
   std::vector<std::string> overrides() const;
@@ -65,6 +76,29 @@ struct SweepAxis {
   std::string key;   // the scene key a plain value sets (empty if every value is a set of edits)
   std::vector<SweepSetting> values;
   std::size_t line = 0;  // in the sweep file
+};
+
+struct SweepSpec;
+struct SweepRow;
+
+// How a run's description is made from the base scene and the run's edits. io implements it
+// with its scene reader (io/sweep_scenes.hpp); the sweep file's reader gives every spec one.
+class SweepScenes {
+ public:
+  virtual ~SweepScenes() = default;
+  // The description of run `index` of a two-block sweep, of a building sweep (InputError
+  // prefixed with the sweep file, the line of the edit that caused it and the run).
+  virtual RunSpec scene(const SweepSpec& spec, std::size_t index) const = 0;
+  virtual BuildingRunSpec building_scene(const SweepSpec& spec, std::size_t index) const = 0;
+};
+
+// Where finished rows go (io's journal, io/sweep_files.hpp, writes them as they come, so that
+// an interrupted sweep resumes).
+class SweepRowSink {
+ public:
+  virtual ~SweepRowSink() = default;
+  // Called once per finished row, one call at a time (under a lock), from the worker threads.
+  virtual void take(const SweepRow& row) = 0;
 };
 
 struct SweepSpec {
@@ -79,6 +113,7 @@ struct SweepSpec {
   std::string fingerprint;            // hash of the sweep text, the base scene text and the version
   std::string base_text;              // the base scene file's text, read once
   std::string base_source;            // its ground.source ("" if it has none)
+  std::shared_ptr<const SweepScenes> scenes;  // makes each run's description (set by the reader)
   // A building scene as the base (SPEC §5; study/building_sweep.hpp): its structure as read
   // (without edits), which decides the channel columns; null for a two-block base.
   std::shared_ptr<const structure::Structure> base_structure;
@@ -95,13 +130,21 @@ struct SweepSpec {
 };
 
 // Reads a sweep file (TOML; README "Sweeps"). Every problem is an InputError "FILE:LINE: ...".
-// The base scene is loaded once to check it (its own errors name its file and line).
+// The base scene is read and checked once (its own errors name its file and line), and the
+// spec's `scenes` make the runs' descriptions from it. Reading files is io's: these two are
+// defined in src/io/sweep_file.cpp, and declared here for the sweep's callers.
 SweepSpec load_sweep(const std::filesystem::path& file);
 // The same from text; `name` stands for the file in messages and paths are relative to its folder.
 SweepSpec parse_sweep(const std::string& text, const std::string& name);
 
 // The scene of run `index` (InputError prefixed with the sweep file and the run).
 RunSpec sweep_scene(const SweepSpec& spec, std::size_t index);
+
+// The column names every two-block sweep table has (an axis may not take one of them).
+const std::vector<std::string>& sweep_fixed_column_names();
+// "" if the table of a sweep with one axis of `n` points fits in this machine's memory; else
+// why not ("would need about 4.1 GB of memory for the sweep's table alone, more than ...").
+std::string sweep_axis_memory_problem(std::size_t n);
 
 struct SweepRow {
   std::size_t index = 0;
@@ -136,8 +179,9 @@ SweepRow run_sweep_point(const SweepSpec& spec, std::size_t index);
 struct SweepOptions {
   unsigned jobs = 0;                  // threads; 0: std::thread::hardware_concurrency()
   std::vector<std::size_t> indices;   // runs to do; empty: all
-  // Called once per finished row, one call at a time (under a lock), from the worker threads:
-  // journals, progress bars.
+  // Where each finished row goes (a journal), then on_row (a progress bar): one call at a time
+  // (under a lock), from the worker threads. Either may be empty.
+  SweepRowSink* sink = nullptr;
   std::function<void(const SweepRow&)> on_row;
 };
 
@@ -181,48 +225,8 @@ struct SweepShard {
   bool contains(std::size_t run) const { return run % count == index; }
 };
 
-// sweep.json: {"sweep", "base", "fingerprint", "runs", "shard" ({"index","count"} or null),
-// "columns": [{"name","type"}], "rows": [{column: value}]} with numbers as numbers and empty
-// cells as null.
-// A table (a shard's or a whole sweep's) with its bookkeeping, as sweep.json holds it.
-struct SweepTableFile {
-  std::filesystem::path file;  // where it was read from (empty if made here)
-  std::string sweep, base, fingerprint;
-  std::size_t runs = 0;
-  SweepShard shard;
-  SweepTable table;
-};
-SweepTableFile sweep_table_file(const SweepSpec& spec, SweepTable table, const SweepShard& shard);
-std::string sweep_json(const SweepTableFile& table);
-SweepTableFile read_sweep_json(const std::filesystem::path& file);
-
-// Combines shard tables into the table of the whole sweep: same fingerprint and columns, every
-// run exactly once (InputError naming the file otherwise).
-SweepTableFile merge_sweep_tables(const std::vector<SweepTableFile>& parts);
-
-// ---- the journal: DIR/sweep.partial.csv (or sweep.shard-I-of-N.partial.csv) ----
-// Line 1 "# adjoin sweep journal fingerprint=F runs=N shard=I/N", line 2 the CSV header,
-// then one row per finished run, appended and flushed as each run ends (any order).
-
-std::string sweep_journal_preamble(const SweepSpec& spec, const SweepShard& shard);
-// Rows of a journal that match the spec and shard: returns what can be trusted ({} if the file
-// does not exist). A torn last line is dropped quietly (an interrupted run); every other row
-// that is not one of this sweep's (sweep_row_problem), and a journal of another sweep, is
-// dropped with a "FILE:LINE: why" in `dropped`, so the caller can warn and run it again.
-std::vector<std::vector<std::string>> read_sweep_journal(const std::filesystem::path& file,
-                                                         const SweepSpec& spec, const SweepShard& shard,
-                                                         std::vector<std::string>* dropped = nullptr);
-// Why `cells` cannot be a row of this sweep and shard ("" if it can; *index is then its run):
-// the cell count, the index, the axis values and motion of that run, the units, and every
-// number finite (empty only where a run leaves it empty), counts and booleans well formed.
-std::string sweep_row_problem(const SweepSpec& spec, const SweepShard& shard, const std::vector<std::string>& cells,
-                              std::size_t* index);
-
 // Refuses (InputError naming the sweep file) a sweep whose table for `runs` runs (those of one
 // process: a shard's) would not fit in 80 % of the machine's memory, saying how much it needs.
 void check_sweep_memory(const SweepSpec& spec, std::size_t runs);
-
-// File names inside the output folder: "sweep" or "sweep.shard-I-of-N".
-std::string sweep_file_stem(const SweepShard& shard);
 
 }  // namespace adjoin

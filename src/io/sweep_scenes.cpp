@@ -1,0 +1,94 @@
+#include "adjoin/io/sweep_scenes.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <toml++/toml.h>
+
+#include "adjoin/errors.hpp"
+#include "adjoin/io/building_scene.hpp"
+#include "adjoin/io/scene.hpp"
+
+namespace adjoin {
+namespace {
+
+// The run's edits as --set / --unset strings, with the unsets an edit implies (ground.source
+// to another source drops the base's [ground] keys; io/scene.hpp implied_unsets), the ground
+// source being the one the edits so far leave.
+void gather_edits(const SweepSpec& spec, const std::vector<SweepSetting>& settings, std::vector<std::string>& overrides,
+                  std::vector<std::string>& unsets) {
+  std::string source = spec.base_source;
+  for (const auto& s : settings) {
+    for (auto& o : s.overrides()) overrides.push_back(std::move(o));
+    unsets.insert(unsets.end(), s.unset.begin(), s.unset.end());
+    for (const auto& [key, value] : s.set) {
+      for (auto& k : implied_unsets(key, value.text, source)) unsets.push_back(std::move(k));
+      if (key == "ground.source") {
+        const auto* text = std::get_if<std::string>(&value.value);
+        source = text ? *text : std::string();
+      }
+    }
+  }
+}
+
+std::string at(const SweepSpec& spec, std::size_t line) {
+  return spec.file.string() + (line ? ":" + std::to_string(line) : std::string()) + ": ";
+}
+
+}  // namespace
+
+struct SceneSweepScenes::Base {
+  std::string text, name;
+};
+
+SceneSweepScenes::SceneSweepScenes(const SweepSpec& spec)
+    : base_(std::make_unique<const Base>(Base{spec.base_text, spec.base.string()})) {}
+
+SceneSweepScenes::~SceneSweepScenes() = default;
+
+RunSpec SceneSweepScenes::base() const { return parse_scene(base_->text, base_->name); }
+
+RunSpec SceneSweepScenes::scene(const SweepSpec& spec, std::size_t index) const {
+  const auto settings = spec.settings(index);
+  std::vector<std::string> overrides, unset;
+  gather_edits(spec, settings, overrides, unset);
+  try {
+    RunSpec scene = parse_scene(base_->text, base_->name, overrides, unset);
+    scene.file = spec.base;
+    return scene;
+  } catch (const InputError& e) {
+    // Point at the axis value or motion that set the offending key, when there is one.
+    std::size_t line = 0;
+    const std::string message = e.what();
+    for (const auto& s : settings) {
+      for (const auto& o : s.overrides())
+        if (message.rfind("--set " + o + ":", 0) == 0) line = s.line;
+      for (const auto& key : s.unset)
+        if (message.find("missing key " + key + " ") != std::string::npos) line = s.line;
+    }
+    throw InputError(at(spec, line) + "run " + std::to_string(index) + " (" + spec.describe(index) + "): " + message);
+  }
+}
+
+BuildingRunSpec SceneSweepScenes::building_scene(const SweepSpec& spec, std::size_t index) const {
+  const auto settings = spec.settings(index);
+  std::vector<std::string> overrides, unsets;
+  gather_edits(spec, settings, overrides, unsets);
+  try {
+    return parse_building_scene(base_->text, spec.base, overrides, unsets);
+  } catch (const InputError& e) {
+    // Point at the axis value or motion whose edit the message names, when there is one.
+    std::size_t line = 0;
+    const std::string message = e.what();
+    for (const auto& s : settings) {
+      for (const auto& o : s.overrides())
+        if (!line && message.find("--set " + o) != std::string::npos) line = s.line;
+      for (const auto& key : s.unset)
+        if (!line && message.find("--unset " + key) != std::string::npos) line = s.line;
+    }
+    throw InputError(at(spec, line) + "run " + std::to_string(index) + " (" + spec.describe(index) + "): " + message);
+  }
+}
+
+}  // namespace adjoin
