@@ -125,7 +125,13 @@ class ImplicitStepper {
 
   // The step from t_n to t_{n+1}.
   const State& advance(std::size_t n) {
-    State next;
+    // `now` becomes the state the last advance returned only here, after the observers have
+    // read it: the state they read is then the one this step wrote field by field, not a
+    // fresh copy of it (copying at the end of the step instead made the strong scene with
+    // elastic rods, where the step is cheapest, about 10 % slower).
+    if (n > 0) now_ = next_;
+    State& next = next_;
+    next = State{};
     next.t = static_cast<double>(n + 1) * h_;
     next.ag = ground_.ag(next.t);
     const double r1 = rod1_.offset(), r2 = rod2_.offset();
@@ -269,11 +275,7 @@ class ImplicitStepper {
     next.a2 = rho_ * (next.q - next.f2);
     if (!(std::abs(next.x1) < kRunaway && std::abs(next.x2) < kRunaway && std::abs(next.f1) < kRunaway &&
           std::abs(next.f2) < kRunaway && std::isfinite(next.v1 + next.v2))) {
-      std::ostringstream m;
-      m << "the response became " << (std::isfinite(next.x1 + next.x2 + next.f1 + next.f2) ? "larger than 1e12" : "non-finite")
-        << " at t = " << next.t << " with the " << to_string(options_.scheme) << " scheme at solver.h = " << h_
-        << "; check the ground motion's scale (ground.*) and the rods, or reduce solver.h";
-      throw NumericalError(m.str(), next.t);
+      runaway(next);
     }
     rod1_.commit(next.x1, next.f1);
     rod2_.commit(next.x2, next.f2);
@@ -283,11 +285,17 @@ class ImplicitStepper {
     previous_w_ = now_.v1 - now_.v2;
     previous_q_ = now_stick_q_;
     now_stick_q_ = next_stick_q;
-    now_ = next;
-    return now_;
+    return next_;
   }
 
  private:
+  [[noreturn]] void runaway(const State& next) const {
+    std::ostringstream m;
+    m << "the response became " << (std::isfinite(next.x1 + next.x2 + next.f1 + next.f2) ? "larger than 1e12" : "non-finite")
+      << " at t = " << next.t << " with the " << to_string(options_.scheme) << " scheme at solver.h = " << h_
+      << "; check the ground motion's scale (ground.*) and the rods, or reduce solver.h";
+    throw NumericalError(m.str(), next.t);
+  }
   static std::vector<double> weights(const SolverOptions& options, const Rod& rod) {
     if (rod.elastic) return std::vector<double>{};
     const std::size_t n = options.steps() + 2;
@@ -312,7 +320,7 @@ class ImplicitStepper {
   const int damped_steps_;
   int damped_left_ = 0;
 
-  State now_;
+  State now_, next_;
   bool previous_stuck_ = false;  // the grid point before `now` was stuck, and its stick force
   double previous_q_ = 0.0;
   bool previous_same_slip_ = false;  // the grid point before `now` slipped as `now` does, and its w
