@@ -5,6 +5,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <set>
 #include <sstream>
 
@@ -611,6 +612,63 @@ set = {"model.rod1.elastic" = true}
   // model.rod1.elastic = true drops the rod's order and relaxation times, as --set does.
   CHECK(sweep_scene(spec, 1).model.rod1.elastic);
   CHECK(load_scene(kStrong, {"model.rod1.elastic=true"}).model.rod1.elastic);
+}
+
+TEST_CASE("a run's scene from the base parsed once is the scene, and the message, of adjoin run --set", "[sweep]") {
+  // The sweep reads its base once and sets each run's edits as typed values on a copy of the
+  // tree; `adjoin run BASE --set ... --unset ...` parses the text with the same edits. Their
+  // scenes and their messages (file lines of the base included) must be the same.
+  const SweepSpec spec = load_sweep(sweep_file("tree.toml", R"(
+[[axis]]
+name = "edit"
+values = [{name = "mu", set = {"model.mu" = 0.45, "solver.h" = 0.01, "name" = "swept"}},
+          {name = "si", set = {"model.units" = "SI"}},
+          {name = "no-order", unset = ["model.rod1.order"]},
+          {name = "eps", set = {"model.eps" = -1.0}},
+          {name = "rod3", set = {"model.rod3.order" = 0.5}},
+          {name = "not-a-table", set = {"model.mu.x" = 1}},
+          {name = "tau", set = {"model.rod2.tau_f" = 9.0}},
+          {name = "every", set = {"output.every" = 0}}]
+)"));
+  std::size_t base_lines = 0;
+  for (std::size_t i = 0; i < spec.runs(); ++i) {
+    const SweepSetting& edit = spec.axes[0].values[i];
+    std::string expected = "no error";
+    std::optional<Scene> run;
+    try {
+      run = load_scene(kStrong, edit.overrides(), edit.unset);
+    } catch (const InputError& e) {
+      expected = e.what();
+    }
+    std::string got = "no error";
+    std::optional<Scene> swept;
+    try {
+      swept = sweep_scene(spec, i);
+    } catch (const InputError& e) {
+      got = e.what();
+      // "tree.toml:LINE: run i (edit=..., motion=base): " + the scene's own message
+      const std::string prefix = "run " + std::to_string(i) + " (" + spec.describe(i) + "): ";
+      REQUIRE(got.find(prefix) != std::string::npos);
+      got = got.substr(got.find(prefix) + prefix.size());
+    }
+    INFO("run " << i << " (" << edit.label << ")");
+    CHECK(got == expected);
+    if (expected.rfind(kStrong + ":", 0) == 0) ++base_lines;
+    if (run && swept) {
+      CHECK(swept->name == run->name);
+      CHECK(swept->model.mu == run->model.mu);
+      CHECK(swept->model.eps == run->model.eps);
+      CHECK(swept->model.rod1.order == run->model.rod1.order);
+      CHECK(swept->model.rod2.tau_x == run->model.rod2.tau_x);
+      CHECK(swept->solver.h == run->solver.h);
+      CHECK(swept->solver.t_end == run->solver.t_end);
+      for (double t : {0.3, 1.7}) CHECK(swept->ground->ag(t) == run->ground->ag(t));
+    }
+  }
+  CHECK(spec.axes[0].values[0].label == "mu");
+  CHECK(sweep_scene(spec, 0).name == "swept");
+  // Some of those messages cite lines of the base file (read from the tree parsed once).
+  CHECK(base_lines >= 2);
 }
 
 TEST_CASE("sweep files are read as text files: folders, FIFOs, UTF-16 and binary are refused", "[sweep]") {

@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "contact_keys.hpp"
+#include "sweep_scene_tree.hpp"
 #include "toml_text.hpp"
 
 #include "../detail/nearest.hpp"
@@ -138,11 +139,13 @@ std::string format_number(double v) {
 }
 
 // Reads typed values out of the parsed (and overridden) TOML, and words errors with the file
-// and line of the key, or the --set option that put it there.
+// and line of the key, or the --set option that put it there. `lines`: the parsed file the
+// table was copied from (a copy's nodes do not keep their lines), or null.
 class SceneReader {
  public:
-  SceneReader(toml::table table, std::string name, std::map<std::string, std::string> origins)
-      : table_(std::move(table)), name_(std::move(name)), origins_(std::move(origins)) {}
+  SceneReader(toml::table table, std::string name, std::map<std::string, std::string> origins,
+              const toml::table* lines = nullptr)
+      : table_(std::move(table)), name_(std::move(name)), origins_(std::move(origins)), lines_(lines) {}
 
   [[noreturn]] void fail(const std::string& key, const std::string& message) const {
     throw InputError(where(key) + message);
@@ -153,7 +156,9 @@ class SceneReader {
     for (std::string k = key; !k.empty();) {
       if (auto it = origins_.find(k); it != origins_.end()) return it->second + ": ";
       if (auto node = table_.at_path(k); node) {
-        const auto& source = node.node()->source();
+        // A key no edit made is the file's: its line is in the parsed file.
+        const toml::node* original = lines_ ? lines_->at_path(k).node() : nullptr;
+        const auto& source = (original ? original : node.node())->source();
         if (source.begin.line > 0) return name_ + ":" + std::to_string(source.begin.line) + ": ";
       }
       const auto dot = k.rfind('.');
@@ -204,6 +209,7 @@ class SceneReader {
   toml::table table_;
   std::string name_;
   std::map<std::string, std::string> origins_;
+  const toml::table* lines_;
 };
 
 std::vector<std::string> all_known_keys() {
@@ -266,8 +272,10 @@ bool remove_key(toml::table& table, const std::string& key) {
   return true;
 }
 
-// Splits "a.b.c=value" and puts the TOML value (or a bare string) at that path.
-void apply_override(toml::table& table, const std::string& text, std::map<std::string, std::string>& origins) {
+// Splits "a.b.c=value" and puts the TOML value (or a bare string) at that path; `typed` is the
+// value already parsed ({"v" = value}; a sweep's), or null.
+void apply_override(toml::table& table, const std::string& text, std::map<std::string, std::string>& origins,
+                    const toml::table* typed = nullptr) {
   const auto eq = text.find('=');
   const std::string origin = "--set " + text;
   if (eq == std::string::npos || eq == 0)
@@ -276,7 +284,8 @@ void apply_override(toml::table& table, const std::string& text, std::map<std::s
   std::string key = trim(text.substr(0, eq));
   const std::string value = trim(text.substr(eq + 1));
   if (key.empty()) throw InputError(origin + ": expected KEY=VALUE with a dotted key, e.g. solver.h=0.001");
-  const toml::table holder = detail::toml_value_of(value);
+  const toml::table holder = typed ? toml::table{} : detail::toml_value_of(value);
+  const toml::table& valued = typed ? *typed : holder;
   std::vector<std::string> parts;
   std::stringstream stream(key);
   for (std::string part; std::getline(stream, part, '.');) {
@@ -297,7 +306,7 @@ void apply_override(toml::table& table, const std::string& text, std::map<std::s
     if (!next->is_table()) throw InputError(origin + ": " + parts[i] + " is not a table");
     current = next->as_table();
   }
-  current->insert_or_assign(parts.back(), *holder.get("v"));
+  current->insert_or_assign(parts.back(), *valued.get("v"));
   origins[key] = origin;
 }
 
@@ -831,7 +840,13 @@ const std::vector<std::string>& known_scene_keys() {
 
 Scene parse_scene(const std::string& text, const std::string& name, const std::vector<std::string>& overrides,
                   const std::vector<std::string>& removed) {
-  toml::table table = detail::parse_toml_text(text, name);
+  std::vector<detail::SceneEdit> edits;
+  for (const auto& o : overrides) edits.push_back({o});
+  return detail::scene_from_tree(detail::parse_toml_text(text, name), name, edits, removed);
+}
+
+Scene detail::scene_from_tree(toml::table table, const std::string& name, const std::vector<SceneEdit>& edits,
+                              const std::vector<std::string>& removed, const toml::table* lines) {
   if (const toml::node* building = table.get("building")) {
     // A building scene (SPEC §5): io/building_scene.hpp reads it (its structure, and its
     // ground, solver and output sections through parse_building_base below).
@@ -841,8 +856,8 @@ Scene parse_scene(const std::string& text, const std::string& name, const std::v
   }
   for (const auto& key : removed) remove_key(table, key);
   std::map<std::string, std::string> origins;
-  for (const auto& o : overrides) apply_override(table, o, origins);
-  SceneReader reader(std::move(table), name, std::move(origins));
+  for (const auto& e : edits) apply_override(table, e.text, origins, e.typed);
+  SceneReader reader(std::move(table), name, std::move(origins), lines);
   check_keys(reader, reader.table(), "");
   return build_scene(reader, name);
 }

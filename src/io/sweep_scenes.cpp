@@ -9,6 +9,8 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/scene.hpp"
+#include "sweep_scene_tree.hpp"
+#include "toml_text.hpp"
 
 namespace adjoin {
 namespace {
@@ -32,29 +34,56 @@ void gather_edits(const SweepSpec& spec, const std::vector<SweepSetting>& settin
   }
 }
 
+// An edit's value as the scene reader takes it: {"v" = value}.
+toml::table typed_value(const SweepValue& value) {
+  toml::table holder;
+  std::visit([&](const auto& v) { holder.insert("v", v); }, value.value);
+  return holder;
+}
+
 std::string at(const SweepSpec& spec, std::size_t line) {
   return spec.file.string() + (line ? ":" + std::to_string(line) : std::string()) + ": ";
 }
 
 }  // namespace
 
+// The base scene: its text (a building scene's runs read it with their edits) and, for a
+// two-block scene, its tree, parsed once: each run reads a copy with its edits set as typed
+// values, and messages cite the lines of this tree.
 struct SceneSweepScenes::Base {
   std::string text, name;
+  toml::table tree;  // empty for a building scene
 };
 
-SceneSweepScenes::SceneSweepScenes(const SweepSpec& spec)
-    : base_(std::make_unique<const Base>(Base{spec.base_text, spec.base.string()})) {}
+SceneSweepScenes::SceneSweepScenes(const SweepSpec& spec) {
+  auto base = std::make_unique<Base>();
+  base->text = spec.base_text;
+  base->name = spec.base.string();
+  base->tree = detail::parse_toml_text(base->text, base->name);
+  if (base->tree.contains("building")) base->tree.clear();
+  base_ = std::move(base);
+}
 
 SceneSweepScenes::~SceneSweepScenes() = default;
 
-RunSpec SceneSweepScenes::base() const { return parse_scene(base_->text, base_->name); }
+RunSpec SceneSweepScenes::base() const { return detail::scene_from_tree(base_->tree, base_->name, {}, {}, &base_->tree); }
 
 RunSpec SceneSweepScenes::scene(const SweepSpec& spec, std::size_t index) const {
   const auto settings = spec.settings(index);
   std::vector<std::string> overrides, unset;
   gather_edits(spec, settings, overrides, unset);
+  // The same edits typed (overrides holds them in this order), set on a copy of the base tree.
+  std::vector<toml::table> values;
+  std::vector<bool> keyed;  // a key with '=' in it is split as --set splits it: its text is read
+  for (const auto& s : settings)
+    for (const auto& [key, value] : s.set) {
+      values.push_back(typed_value(value));
+      keyed.push_back(key.find('=') == std::string::npos);
+    }
+  std::vector<detail::SceneEdit> edits;
+  for (std::size_t i = 0; i < overrides.size(); ++i) edits.push_back({overrides[i], keyed[i] ? &values[i] : nullptr});
   try {
-    RunSpec scene = parse_scene(base_->text, base_->name, overrides, unset);
+    RunSpec scene = detail::scene_from_tree(base_->tree, base_->name, edits, unset, &base_->tree);
     scene.file = spec.base;
     return scene;
   } catch (const InputError& e) {
