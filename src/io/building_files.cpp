@@ -13,6 +13,8 @@
 #include "../detail/finite_output.hpp"
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
+#include "adjoin/observe/channel_values.hpp"
+#include "adjoin/structure/channels.hpp"
 
 namespace adjoin {
 namespace {
@@ -51,7 +53,9 @@ ordered_json modes_json(const structure::Modes& m) {
           {"mode_shapes", shapes}};
 }
 
-// Streams every `every`-th grid point of a building run.
+// Streams every `every`-th grid point of a building run: t, a_g, then every channel the
+// registry marks for the time series (structure/channels.hpp), in its order, and
+// `outside_model` when a contact pair has no law.
 class BuildingCsvWriter final : public StructureObserver {
  public:
   BuildingCsvWriter(std::ostream& out, std::size_t every) : out_(out), every_(every == 0 ? 1 : every) {}
@@ -59,48 +63,33 @@ class BuildingCsvWriter final : public StructureObserver {
     s_ = &s;
     steps_ = o.steps();
     count_ = 0;
+    std::vector<structure::Channel> columns;
+    for (auto& c : structure::channels(s))
+      if (structure::info(c.quantity).timeseries) columns.push_back(std::move(c));
+    columns_ = ChannelValues(s, std::move(columns));
     out_ << "t,ag";
-    auto floors = [&](const structure::Building& b, const char* what, const char* suffix) {
-      for (int i = 1; i <= b.floors(); ++i) out_ << "," << b.name << "." << what << i << suffix;
-    };
-    floors(s.a, "x", "");
-    if (s.b) floors(*s.b, "x", "");
-    floors(s.a, "a", "_abs");
-    if (s.b) floors(*s.b, "a", "_abs");
-    for (std::size_t l = 1; l <= s.links.size(); ++l) out_ << ",link" << l << ".force,link" << l << ".stroke";
-    for (std::size_t k = 1; k <= s.contacts.size(); ++k) out_ << ",contact" << k << ".gap,contact" << k << ".force";
+    for (const auto& c : columns_.channels()) out_ << "," << c.name;
     unmodelled_ = false;
     flagged_ = std::any_of(s.contacts.begin(), s.contacts.end(),
                            [](const structure::Contact& c) { return c.law.model == structure::ContactModel::none; });
     if (flagged_) out_ << ",outside_model";
     out_ << "\n";
+    // The gap of each pair without a law, read at every grid point (not only the written
+    // ones): its first overlap puts every later row outside the model.
+    gaps_.clear();
+    for (std::size_t k = 0; k < s.contacts.size(); ++k)
+      if (s.contacts[k].law.model == structure::ContactModel::none)
+        gaps_.push_back({"", structure::Quantity::contact_gap, 'A', static_cast<int>(k + 1), -1});
   }
   void observe(const StructureState& st) override {
     const std::size_t index = count_++;
-    // Gaps at every grid point (not only the written ones): the first overlap of a pair
-    // without a contact law puts every later row outside the model.
-    const auto n_contacts = static_cast<Eigen::Index>(s_->contacts.size());
-    gaps_.resize(s_->contacts.size());
-    for (std::size_t k = 0; k < s_->contacts.size(); ++k) {
-      const auto& c = s_->contacts[k];
-      gaps_[k] = st.contact_gap.size() == n_contacts ? st.contact_gap[static_cast<Eigen::Index>(k)]
-                                                     : c.gap - (st.x[s_->dof('A', c.floor_a)] - st.x[s_->dof('B', c.floor_b)]);
-      if (c.law.model == structure::ContactModel::none && gaps_[k] <= 0.0) unmodelled_ = true;
-    }
+    for (const auto& gap : gaps_)
+      if (channel_value(*s_, gap, st) <= 0.0) unmodelled_ = true;
     if (index % every_ != 0 && index != steps_) return;
-    values_.clear();
-    values_.push_back(st.t);
-    values_.push_back(st.ag);
-    for (int i = 0; i < st.x.size(); ++i) values_.push_back(st.x[i]);
-    for (int i = 0; i < st.a_abs.size(); ++i) values_.push_back(st.a_abs[i]);
-    for (int l = 0; l < st.link_force.size(); ++l) {
-      values_.push_back(st.link_force[l]);
-      values_.push_back(st.link_stroke[l]);
-    }
-    for (std::size_t k = 0; k < s_->contacts.size(); ++k) {
-      values_.push_back(gaps_[k]);
-      values_.push_back(st.contact_force.size() == n_contacts ? st.contact_force[static_cast<Eigen::Index>(k)] : 0.0);
-    }
+    values_.resize(2 + columns_.size());
+    values_[0] = st.t;
+    values_[1] = st.ag;
+    columns_.read(st, values_.data() + 2);
     if (flagged_) values_.push_back(unmodelled_ ? 1.0 : 0.0);
     char number[32];
     for (std::size_t i = 0; i < values_.size(); ++i) {
@@ -117,7 +106,9 @@ class BuildingCsvWriter final : public StructureObserver {
   std::ostream& out_;
   std::size_t every_, steps_ = 0, count_ = 0;
   const structure::Structure* s_ = nullptr;
-  std::vector<double> values_, gaps_;
+  ChannelValues columns_;
+  std::vector<structure::Channel> gaps_;
+  std::vector<double> values_;
   std::string buffer_;
   bool flagged_ = false, unmodelled_ = false;
 };

@@ -167,7 +167,7 @@ class BuildingObserver final : public StructureObserver {
 
  private:
   const structure::Structure& s_;
-  ChannelValues values_{s_, {}};
+  ChannelValues values_;
   std::vector<double> row_;          // the channels' values at the current grid point
   std::vector<SmoothPeak> smooth_;   // displacements, drifts, strokes: refined between samples
   std::vector<Peak> sampled_;        // accelerations, shears, link forces: kinks at switches

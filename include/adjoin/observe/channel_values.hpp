@@ -43,6 +43,7 @@ inline double channel_value(const structure::Structure& s, const structure::Chan
 
 class ChannelValues {
  public:
+  ChannelValues() = default;  // no channels
   ChannelValues(const structure::Structure& s, std::vector<structure::Channel> channels)
       : s_(&s), channels_(std::move(channels)) {}
   const std::vector<structure::Channel>& channels() const { return channels_; }
@@ -53,7 +54,7 @@ class ChannelValues {
   }
 
  private:
-  const structure::Structure* s_;
+  const structure::Structure* s_ = nullptr;
   std::vector<structure::Channel> channels_;
 };
 
