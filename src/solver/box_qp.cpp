@@ -16,33 +16,51 @@ BoxQpResult solve_box_qp(const Eigen::MatrixXd& s, const Eigen::VectorXd& w0, co
   return qp.solve(w0, limit, hint);
 }
 
-BoxQp::BoxQp(Eigen::MatrixXd s) : s_(std::move(s)) {}
-
-BoxQp::Stuck& BoxQp::inverted(const std::vector<int>& stuck) {
-  // Consecutive solves mostly meet the same stuck set: check it before the map.
-  if (last_ != nullptr && *last_key_ == stuck) return *last_;
-  auto it = cache_.find(stuck);
+SubsetInverses::System& SubsetInverses::of(const std::vector<int>& set) {
+  // Consecutive calls mostly meet the same set: check it before the map.
+  if (last_ != nullptr && *last_key_ == set) return *last_;
+  auto it = cache_.find(set);
   if (it == cache_.end()) {
-    // A stuck set is met again and again (dampers switch a few times per cycle): keep them
-    // all (at most 2^n, in practice a handful).
-    const int m = static_cast<int>(stuck.size());
+    const int m = static_cast<int>(set.size());
     Eigen::MatrixXd a(m, m);
     for (int i = 0; i < m; ++i)
-      for (int j = 0; j < m; ++j) a(i, j) = s_(stuck[i], stuck[j]);
-    Stuck entry;
+      for (int j = 0; j < m; ++j) a(i, j) = s_(set[i], set[j]);
+    System entry;
     entry.inverse = a.ldlt().solve(Eigen::MatrixXd::Identity(m, m));
     entry.b.resize(m);
     entry.x.resize(m);
-    it = cache_.emplace(stuck, std::move(entry)).first;
+    it = cache_.emplace(set, std::move(entry)).first;
   }
   last_key_ = &it->first;
   last_ = &it->second;
   return it->second;
 }
 
+BoxQp::BoxQp(Eigen::MatrixXd s) : inverses_(std::move(s)) {}
+
+void BoxQp::solve_held(const Eigen::VectorXd& w0, const std::vector<bool>& held, const Eigen::VectorXd& fixed,
+                       Eigen::VectorXd* q) {
+  const int n = static_cast<int>(w0.size());
+  held_.clear();
+  for (int k = 0; k < n; ++k)
+    if (held[k]) held_.push_back(k);
+  *q = fixed;
+  if (held_.empty()) return;
+  SubsetInverses::System& sys = inverses_.of(held_);
+  for (std::size_t i = 0; i < held_.size(); ++i) {
+    const int h = held_[i];
+    double b = w0[h];
+    for (int k = 0; k < n; ++k)
+      if (!held[k]) b -= inverses_.matrix()(h, k) * fixed[k];
+    sys.b[static_cast<Eigen::Index>(i)] = b;
+  }
+  sys.x.noalias() = sys.inverse.lazyProduct(sys.b);
+  for (std::size_t i = 0; i < held_.size(); ++i) (*q)[held_[i]] = sys.x[static_cast<Eigen::Index>(i)];
+}
+
 const BoxQpResult& BoxQp::solve(const Eigen::VectorXd& w0, const Eigen::VectorXd& limit,
                                 const std::vector<DamperState>& hint) {
-  const Eigen::MatrixXd& s = s_;
+  const Eigen::MatrixXd& s = inverses_.matrix();
   const int n = static_cast<int>(w0.size());
   BoxQpResult& r = r_;
   if (hint.size() == static_cast<std::size_t>(n)) r.state = hint;
@@ -66,7 +84,7 @@ const BoxQpResult& BoxQp::solve(const Eigen::VectorXd& w0, const Eigen::VectorXd
     }
     if (!stuck.empty()) {
       const int m = static_cast<int>(stuck.size());
-      Stuck& sys = inverted(stuck);
+      SubsetInverses::System& sys = inverses_.of(stuck);
       for (int i = 0; i < m; ++i) {
         sys.b[i] = w0[stuck[i]];
         for (int k = 0; k < n; ++k)

@@ -33,6 +33,26 @@ struct BoxQpResult {
 BoxQpResult solve_box_qp(const Eigen::MatrixXd& s, const Eigen::VectorXd& w0, const Eigen::VectorXd& limit,
                          const std::vector<DamperState>& hint = {});
 
+// The inverses of a symmetric positive definite matrix's principal submatrices S_ss, one per
+// index set s, each computed when its set is first met and kept (a time loop meets a handful
+// of sets again and again; at most 2^n).
+class SubsetInverses {
+ public:
+  explicit SubsetInverses(Eigen::MatrixXd s) : s_(std::move(s)) {}
+  struct System {
+    Eigen::MatrixXd inverse;  // S_ss^-1
+    Eigen::VectorXd b, x;     // work vectors of the set's size
+  };
+  System& of(const std::vector<int>& set);
+  const Eigen::MatrixXd& matrix() const { return s_; }
+
+ private:
+  Eigen::MatrixXd s_;
+  std::map<std::vector<int>, System> cache_;
+  const std::vector<int>* last_key_ = nullptr;  // the last set's key in cache_
+  System* last_ = nullptr;
+};
+
 // The same for many problems with one S (a time loop's: the Delassus matrix is constant for a
 // fixed step). Each stuck set's system S_ss is inverted once and kept (the dampers are few and
 // S_ss is well conditioned: a product with its inverse is as accurate as a solve, and much
@@ -44,18 +64,15 @@ class BoxQp {
   // Valid until the next call.
   const BoxQpResult& solve(const Eigen::VectorXd& w0, const Eigen::VectorXd& limit,
                            const std::vector<DamperState>& hint = {});
+  // The forces of the dampers `held` stuck (w_k = 0) when the others' are `fixed`: a linear
+  // solve, q_H = S_HH^-1 (w0_H - S_HF fixed_F), q_F = fixed_F (what solve() returns with
+  // infinite limits for the held and the fixed forces taken out of w0, without its iterations).
+  void solve_held(const Eigen::VectorXd& w0, const std::vector<bool>& held, const Eigen::VectorXd& fixed,
+                  Eigen::VectorXd* q);
 
  private:
-  struct Stuck {
-    Eigen::MatrixXd inverse;  // S_ss^-1
-    Eigen::VectorXd b, x;
-  };
-  Stuck& inverted(const std::vector<int>& stuck);
-  Eigen::MatrixXd s_;
-  std::map<std::vector<int>, Stuck> cache_;
-  const std::vector<int>* last_key_ = nullptr;  // the last stuck set's key in cache_
-  Stuck* last_ = nullptr;
-  std::vector<int> stuck_;
+  SubsetInverses inverses_;
+  std::vector<int> stuck_, held_;
   BoxQpResult r_;
 };
 

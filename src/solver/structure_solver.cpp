@@ -13,6 +13,7 @@
 #include "adjoin/structure/modal.hpp"
 #include "box_qp.hpp"
 #include "contact_step.hpp"
+#include "dense_product.hpp"
 #include "onset.hpp"
 #include "rod_law.hpp"
 
@@ -220,8 +221,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     int offset = 0, size = 0;
     Eigen::LDLT<Eigen::MatrixXd> a;  // A's diagonal block, factorised
     Eigen::MatrixXd c;               // C's diagonal block
-    Eigen::MatrixXd step;            // [A^-1; C A^-1] of the block (2 size x size)
-    Eigen::VectorXd out;             // [v_free; C v_free] of the block
+    detail::DenseProduct step;       // [A^-1; C A^-1] of the block (2 size x size)
   };
   std::vector<Block> blocks;
   {
@@ -236,13 +236,16 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       if (b.a.info() != Eigen::Success)
         throw NumericalError("the step matrix M + h/2 C + h^2/4 K is not positive definite", 0.0);
       b.c = c.block(offset, offset, size, size);
-      b.step.resize(2 * size, size);
-      b.step.topRows(size) = b.a.solve(Eigen::MatrixXd::Identity(size, size));
-      b.step.bottomRows(size) = b.c * b.step.topRows(size);
-      b.out.resize(2 * size);
+      Eigen::MatrixXd step(2 * size, size);
+      step.topRows(size) = b.a.solve(Eigen::MatrixXd::Identity(size, size));
+      step.bottomRows(size) = b.c * step.topRows(size);
+      b.step = detail::DenseProduct(std::move(step));
       blocks.push_back(std::move(b));
     }
   }
+  std::vector<int> block_of(n);  // each dof's block
+  for (std::size_t bi = 0; bi < blocks.size(); ++bi)
+    std::fill_n(block_of.begin() + blocks[bi].offset, blocks[bi].size, static_cast<int>(bi));
   const int nf = static_cast<int>(friction.size());
   Eigen::MatrixXd bf = Eigen::MatrixXd::Zero(nf, n);
   Eigen::VectorXd limit(nf);
@@ -262,8 +265,9 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     for (const Block& b : blocks)
       a_inv_bt.middleRows(b.offset, b.size) = b.a.solve(bf.transpose().middleRows(b.offset, b.size));
   const Eigen::MatrixXd c_a_inv_bt = nf > 0 ? Eigen::MatrixXd(c * a_inv_bt) : Eigen::MatrixXd(n, 0);
-  Eigen::MatrixXd damper_response(2 * n, nf);  // [A^-1 B'; C A^-1 B']: one product per step
-  damper_response << a_inv_bt, c_a_inv_bt;
+  Eigen::MatrixXd stacked(2 * n, nf);
+  stacked << a_inv_bt, c_a_inv_bt;
+  const detail::DenseProduct damper_response(std::move(stacked));  // [A^-1 B'; C A^-1 B']: one product per step
   const Eigen::MatrixXd delassus = nf > 0 ? Eigen::MatrixXd(h * bf * a_inv_bt) : Eigen::MatrixXd(0, 0);
   detail::BoxQp box_qp(delassus);
 
@@ -342,6 +346,17 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   }
   std::sort(trial_dofs.begin(), trial_dofs.end());
   trial_dofs.erase(std::unique(trial_dofs.begin(), trial_dofs.end()), trial_dofs.end());
+  // The rows of A^-1 B' at the trial's floors and of C A^-1 B' at the dampers'. Their products
+  // with q are summed column after column (vectorised across the rows), so each row's sum is
+  // formed in the order of its columns, as Eigen sums a row of the full matrices alone.
+  Eigen::MatrixXd trial_response(trial_dofs.size(), nf), damper_damping(damper_dofs.size(), nf);
+  for (std::size_t t = 0; t < trial_dofs.size(); ++t) trial_response.row(t) = a_inv_bt.row(trial_dofs[t]);
+  for (std::size_t d = 0; d < damper_dofs.size(); ++d) damper_damping.row(d) = c_a_inv_bt.row(damper_dofs[d]);
+  Eigen::VectorXd trial_dv(trial_dofs.size()), damper_dcv(damper_dofs.size());
+  auto in_column_order = [nf](const Eigen::MatrixXd& m, const Eigen::VectorXd& q, Eigen::VectorXd* out) {
+    *out = m.col(0) * q[0];
+    for (int f = 1; f < nf; ++f) *out += m.col(f) * q[f];
+  };
   // B' q, where each damper acts -q on A's floor and +q on B's (as bf' q, without the zeros).
   auto add_bt = [&](const Eigen::VectorXd& q, Eigen::VectorXd* out) {
     out->setZero();
@@ -353,23 +368,25 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
 
   observer.begin(s, options);
   const double g = kStandardGravity;
-  StructureState now;
-  now.t = 0.0;
-  now.x = options.x0.size() == n ? options.x0 : Eigen::VectorXd::Zero(n);
-  now.v = options.v0.size() == n ? options.v0 : Eigen::VectorXd::Zero(n);
-  now.ag = g * ground.ag(0.0);
-  now.link_force = now.link_stroke = now.link_velocity = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.links.size()));
-  now.link_phase.assign(s.links.size(), Phase::stick);
+  // The grid points t_n (`now`) and t_n+1 (`next`): two states whose vectors every step reuses,
+  // their roles swapped after each step.
+  StructureState first;
+  first.t = 0.0;
+  first.x = options.x0.size() == n ? options.x0 : Eigen::VectorXd::Zero(n);
+  first.v = options.v0.size() == n ? options.v0 : Eigen::VectorXd::Zero(n);
+  first.ag = g * ground.ag(0.0);
+  first.link_force = first.link_stroke = first.link_velocity = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.links.size()));
+  first.link_phase.assign(s.links.size(), Phase::stick);
   const auto n_contacts = static_cast<Eigen::Index>(s.contacts.size());
-  now.contact_force = now.contact_work = now.contact_dissipated = Eigen::VectorXd::Zero(n_contacts);
-  now.contact_gap.resize(n_contacts);
-  for (std::size_t k = 0; k < s.contacts.size(); ++k) now.contact_gap[static_cast<Eigen::Index>(k)] = s.contacts[k].gap;
-  now.link_switch.assign(s.links.size(), kNaN);
+  first.contact_force = first.contact_work = first.contact_dissipated = Eigen::VectorXd::Zero(n_contacts);
+  first.contact_gap.resize(n_contacts);
+  for (std::size_t k = 0; k < s.contacts.size(); ++k) first.contact_gap[static_cast<Eigen::Index>(k)] = s.contacts[k].gap;
+  first.link_switch.assign(s.links.size(), kNaN);
   for (auto& e : zener) e.law->commit(0.0, 0.0);
 
   std::vector<detail::DamperState> states(nf, detail::DamperState::stick);
   Eigen::VectorXd internal = Eigen::VectorXd::Zero(n);  // storey and link forces (not friction) at t_n
-  Eigen::VectorXd cv_now = c * now.v;                   // C v at t_n
+  Eigen::VectorXd cv_now = c * first.v;                 // C v at t_n
   Eigen::VectorXd friction_now = Eigen::VectorXd::Zero(nf);
   Eigen::VectorXd stick_force_now = Eigen::VectorXd::Zero(nf);  // the force that keeps each damper stuck
   Eigen::VectorXd stick_force_prev = Eigen::VectorXd::Zero(nf);
@@ -381,9 +398,9 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   // The step's work vectors, sized once: a step allocates nothing (but the box QP's small
   // systems).
   Eigen::VectorXd offsets(static_cast<Eigen::Index>(zener.size()));  // each Zener element's f - k_eff d
-  Eigen::VectorXd response_q(2 * n), off_dof(n), rhs(n), v_free(n), cv_free(n), v1(n), x1(n), p1(n), cv1(n), p_next(n), cv_next(n), v_pre(n);
-  Eigen::VectorXd bq(n), force(n), w_free(nf), w_end(nf), q_step(nf), q_trial(nf), q1(nf), stick1(nf), w1(nf);
-  Eigen::VectorXd fixed(nf), fixed2(nf), q_grid(nf), stick_grid(nf), others(nf), held_q(nf), held_w0(nf), held_lim(nf);
+  Eigen::VectorXd response_q(2 * n), off_dof = Eigen::VectorXd::Zero(n), rhs(n), v_free(n), cv_free(n), v1(n), x1(n), p1(n), cv1(n), p_next(n), cv_next(n), v_pre(n);
+  Eigen::VectorXd bq(n), w_free(nf), w_end(nf), q_step(nf), q_trial(nf), q1(nf), stick1(nf), w1(nf);
+  Eigen::VectorXd fixed(nf), fixed2(nf), q_grid(nf), stick_grid(nf), others(nf);
   std::vector<double> onset(nf), crossing(nf), kink_theta(nf), kink_jump(nf);
   std::vector<detail::DamperState> decided(nf);
   std::vector<bool> hold(nf), hold2(nf);
@@ -391,20 +408,36 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   std::vector<int> touched;
   touched.reserve(2 * static_cast<std::size_t>(nf));
 
-  // The stuck dampers' system (B_s M^-1 B_s'), inverted for the last stuck set (it changes
-  // only at a switch; a product with the inverse of this small, well conditioned matrix is
-  // as accurate as a solve and much faster than a dynamic-size LDLT solve).
-  std::vector<int> stuck, stuck_factorised;
-  Eigen::MatrixXd stuck_inverse;
-  Eigen::VectorXd stuck_rhs, stuck_q;
-  // A damper's floor's acceleration term without the ground: M^-1 (-C v - P - B' q) at dof k.
-  auto accel = [&](const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const Eigen::VectorXd& btq, int k) {
-    return (-cv[k] - p[k] - btq[k]) * inv_mass[k];
+  // The stuck dampers' systems (B_s M^-1 B_s'), inverted per stuck set (a product with the
+  // inverse of this small, well conditioned matrix is as accurate as a solve and much faster
+  // than a dynamic-size LDLT solve).
+  detail::SubsetInverses stuck_systems(g_all);
+  std::vector<int> stuck;
+  // B' q at the dampers' floors (damper_dofs), in btq_dampers: only there is it read by the
+  // dampers' forces (each damper acts -q on A's floor and +q on B's).
+  Eigen::VectorXd btq_dampers(static_cast<Eigen::Index>(damper_dofs.size()));
+  std::vector<int> pi(nf), pj(nf);  // each damper's floors' places in damper_dofs
+  for (int f = 0; f < nf; ++f) {
+    pi[f] = static_cast<int>(std::lower_bound(damper_dofs.begin(), damper_dofs.end(), fi[f]) - damper_dofs.begin());
+    pj[f] = static_cast<int>(std::lower_bound(damper_dofs.begin(), damper_dofs.end(), fj[f]) - damper_dofs.begin());
+  }
+  auto damper_bt = [&](const Eigen::VectorXd& q) {
+    btq_dampers.setZero();
+    for (int f = 0; f < nf; ++f) {
+      btq_dampers[pi[f]] += q[f];
+      btq_dampers[pj[f]] -= q[f];
+    }
+  };
+  // Damper f's relative acceleration without the ground, b_f M^-1 (-C v - P - B' q), B' q from
+  // damper_bt.
+  auto relative_accel = [&](const Eigen::VectorXd& cv, const Eigen::VectorXd& p, int f) {
+    const int i = fi[f], j = fj[f];
+    return (-cv[i] - p[i] - btq_dampers[pi[f]]) * inv_mass[i] - (-cv[j] - p[j] - btq_dampers[pj[f]]) * inv_mass[j];
   };
   // Grid-point forces: slipping dampers at +-F; the stuck ones carry what keeps their relative
   // acceleration zero, (B_s M^-1 B_s') q_s = B_s M^-1 (M 1 a_g - C v - P - B_l' q_l) (the ground
   // term cancels: B 1 = 0). Also returns each damper's stick force (unclamped) for onsets.
-  // `cv` is C v. Only the dampers' floors are needed: O(nf) after B' q.
+  // `cv` is C v. Only the dampers' floors are needed: O(nf^2).
   auto grid_forces = [&](const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const std::vector<Phase>& phase,
                          Eigen::VectorXd* q, Eigen::VectorXd* stick) {
     q->setZero();
@@ -415,25 +448,14 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     }
     stick->setZero();
     if (stuck.empty()) return;
-    add_bt(*q, &bq);
+    damper_bt(*q);
     const int m = static_cast<int>(stuck.size());
-    if (stuck != stuck_factorised) {
-      Eigen::MatrixXd a(m, m);
-      for (int i = 0; i < m; ++i)
-        for (int j = 0; j < m; ++j) a(i, j) = g_all(stuck[i], stuck[j]);
-      stuck_inverse = a.ldlt().solve(Eigen::MatrixXd::Identity(m, m));
-      stuck_factorised = stuck;
-      stuck_rhs.resize(m);
-      stuck_q.resize(m);
-    }
+    detail::SubsetInverses::System& sys = stuck_systems.of(stuck);
+    for (int i = 0; i < m; ++i) sys.b[i] = relative_accel(cv, p, stuck[i]);
+    sys.x.noalias() = sys.inverse.lazyProduct(sys.b);
     for (int i = 0; i < m; ++i) {
-      const int f = stuck[i];
-      stuck_rhs[i] = accel(cv, p, bq, fi[f]) - accel(cv, p, bq, fj[f]);
-    }
-    stuck_q.noalias() = stuck_inverse.lazyProduct(stuck_rhs);
-    for (int i = 0; i < m; ++i) {
-      (*stick)[stuck[i]] = stuck_q[i];
-      (*q)[stuck[i]] = std::clamp(stuck_q[i], -limit[stuck[i]], limit[stuck[i]]);
+      (*stick)[stuck[i]] = sys.x[i];
+      (*q)[stuck[i]] = std::clamp(sys.x[i], -limit[stuck[i]], limit[stuck[i]]);
     }
   };
   // The force that would keep slipping damper f stuck at this instant, the others at their
@@ -441,8 +463,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   auto would_stick = [&](const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const Eigen::VectorXd& q, int f) {
     others = q;
     others[f] = 0.0;
-    add_bt(others, &bq);
-    return (accel(cv, p, bq, fi[f]) - accel(cv, p, bq, fj[f])) / g_all(f, f);
+    damper_bt(others);
+    return relative_accel(cv, p, f) / g_all(f, f);
   };
 
   // Storey forces: the storey springs, spring and dashpot devices, Zener devices.
@@ -457,13 +479,17 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   };
   storeys_of(s.a, 0);
   if (s.b) storeys_of(*s.b, s.a.floors());
+  const Eigen::Map<const Eigen::VectorXd> spring_of(storey_spring.data(), n), dashpot_of(storey_dashpot.data(), n);
   auto fill_storeys = [&](StructureState& st) {
     st.storey_force.resize(n);
+    // Storey i's drift is x_i - x_(i-1), the first storey's x_1 (the ground is at rest).
     auto building = [&](const structure::Building& b, int offset) {
-      for (int i = 0; i < b.floors(); ++i) {
-        const Pair p{offset + i, i > 0 ? offset + i - 1 : -1};
-        st.storey_force[offset + i] = storey_spring[offset + i] * p.of(st.x) + storey_dashpot[offset + i] * p.of(st.v);
-      }
+      const int nb = b.floors();
+      st.storey_force[offset] = spring_of[offset] * st.x[offset] + dashpot_of[offset] * st.v[offset];
+      if (nb < 2) return;
+      const auto above = Eigen::seqN(offset + 1, nb - 1), below = Eigen::seqN(offset, nb - 1);
+      st.storey_force(above) = spring_of(above).cwiseProduct(st.x(above) - st.x(below)) +
+                               dashpot_of(above).cwiseProduct(st.v(above) - st.v(below));
     };
     building(s.a, 0);
     if (s.b) building(*s.b, s.a.floors());
@@ -483,13 +509,15 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     }
     for (int f = 0; f < nf; ++f) st.link_force[friction[f]] = q_friction[f];
   };
-  now.a_abs = Eigen::VectorXd::Zero(n);
-  k0.apply(now.x, internal);
-  fill_links(now, friction_now);
-  if (now.x.isZero() && now.v.isZero()) now.a_abs.setConstant(-now.ag);  // at rest: the floors move with the ground
-  else now.a_abs = (mass * now.ag - cv_now - internal).cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, now.ag);
-  observer.observe(now);
-  StructureState next = now;  // its vectors are reused by every step (swapped with `now`)
+  first.a_abs = Eigen::VectorXd::Zero(n);
+  k0.apply(first.x, internal);
+  fill_links(first, friction_now);
+  if (first.x.isZero() && first.v.isZero()) first.a_abs.setConstant(-first.ag);  // at rest: the floors move with the ground
+  else first.a_abs = (mass * first.ag - cv_now - internal).cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, first.ag);
+  observer.observe(first);
+  StructureState second = first;
+  StructureState* now_p = &first;
+  StructureState* next_p = &second;
 
   // Where a damper's slip ends inside a step (it sticks, or turns), its force jumps by dq at
   // the located fraction theta, so the floors' velocities have a kink there, which the
@@ -531,6 +559,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   };
 
   for (std::size_t step = 0; step < n_steps; ++step) {
+    StructureState& now = *now_p;
+    StructureState& next = *next_p;
     next.link_phase = now.link_phase;
     next.link_switch = now.link_switch;
     next.t = static_cast<double>(step + 1) * h;
@@ -538,17 +568,18 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     // The Zener elements' history terms: constant through the step (until commit).
     for (std::size_t e = 0; e < zener.size(); ++e) offsets[static_cast<Eigen::Index>(e)] = zener[e].law->offset();
     // rhs = M v + h/2 (M 1 (ag_n + ag_n+1) - C v - P - K_eff (x + h/2 v) - offsets).
-    off_dof.setZero();
-    for (std::size_t e = 0; e < zener.size(); ++e) zener[e].pair.add(off_dof, offsets[static_cast<Eigen::Index>(e)]);
+    if (!zener.empty()) {  // (else it stays zero)
+      off_dof.setZero();
+      for (std::size_t e = 0; e < zener.size(); ++e) zener[e].pair.add(off_dof, offsets[static_cast<Eigen::Index>(e)]);
+    }
     x1 = now.x + 0.5 * h * now.v;  // (the predictor, in x1's storage)
     k_eff.apply(x1, p1);
     rhs = mass.cwiseProduct(now.v) + 0.5 * h * (mass * (now.ag + next.ag) - cv_now - internal - p1 - off_dof);
     // v_free = A^-1 rhs and its damping forces C v_free: the step's only O(n^2) work (with
     // dense C).
-    for (Block& b : blocks) {
-      b.out.noalias() = b.step * rhs.segment(b.offset, b.size);
-      v_free.segment(b.offset, b.size) = b.out.head(b.size);
-      cv_free.segment(b.offset, b.size) = b.out.tail(b.size);
+    for (const Block& b : blocks) {
+      b.step.apply(rhs.data() + b.offset, v_free.data() + b.offset, 0, b.size);
+      b.step.apply(rhs.data() + b.offset, cv_free.data() + b.offset, b.size, b.size);
     }
     // The dampers' step, decided per damper as in the two-block scheme, from a trial step in
     // which the dampers stuck at t_n stay stuck and the slipping ones slip on:
@@ -570,13 +601,16 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     // where P there needs them), C v and P (Zener forces at their offsets), as the step's end
     // below computes them everywhere.
     auto trial_state = [&](const Eigen::VectorXd& q) {
-      for (int k : trial_dofs) {
-        v1[k] = v_free[k] - h * a_inv_bt.row(k).dot(q);
+      in_column_order(trial_response, q, &trial_dv);
+      in_column_order(damper_damping, q, &damper_dcv);
+      for (std::size_t t = 0; t < trial_dofs.size(); ++t) {
+        const int k = trial_dofs[t];
+        v1[k] = v_free[k] - h * trial_dv[t];
         x1[k] = now.x[k] + 0.5 * h * (now.v[k] + v1[k]);
       }
       for (std::size_t d = 0; d < damper_dofs.size(); ++d) {
         const int k = damper_dofs[d];
-        cv1[k] = cv_free[k] - h * c_a_inv_bt.row(k).dot(q);
+        cv1[k] = cv_free[k] - h * damper_dcv[d];
         p1[k] = k0.row(k, x1) + contact_bt[k];
         for (const auto& [e, sign] : damper_zener[d]) {
           const auto& el = zener[static_cast<std::size_t>(e)];
@@ -586,15 +620,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     };
     // Solves for the held dampers (limit infinite) with the others' step forces fixed.
     auto solve_held = [&](const std::vector<bool>& hold_, const Eigen::VectorXd& fixed_, Eigen::VectorXd* q) {
-      held_w0 = w_free;
-      held_lim.setZero();
-      for (int f = 0; f < nf; ++f) {
-        if (hold_[f]) held_lim[f] = std::numeric_limits<double>::infinity();
-        else held_w0 -= delassus.col(f) * fixed_[f];
-      }
-      *q = box_qp.solve(held_w0, held_lim, states).q;
-      for (int f = 0; f < nf; ++f)
-        if (!hold_[f]) (*q)[f] = fixed_[f];
+      box_qp.solve_held(w_free, hold_, fixed_, q);
     };
     // The contact pairs' step: each pair's relative motion through the step under its free
     // relative acceleration (the structure's free step with the dampers as they were), its
@@ -727,7 +753,9 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
           }
         }
       }
-      solve_held(hold2, fixed2, &q_step);
+      // (Mostly the dampers go on as they were, and the trial's forces are the step's.)
+      if (hold2 == hold && fixed2 == fixed) q_step = q_trial;
+      else solve_held(hold2, fixed2, &q_step);
       // A starting damper that the others leave no room to slip stays stuck this step.
       w_end.noalias() = w_free - delassus * q_step;
       bool again = false;
@@ -748,7 +776,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     if (any_contact && nf > 0) contact_pass(q_step);
     for (int ci = 0; ci < nc; ++ci) contact_work[ci] += step_work[ci];
     if (nf > 0) {
-      response_q.noalias() = damper_response * q_step;
+      damper_response.apply(q_step.data(), response_q.data());
       next.v = v_free - h * response_q.head(n);
       cv_next = cv_free - h * response_q.tail(n);
     } else {
@@ -776,7 +804,9 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     for (int k : touched) {
       const double dv = next.v[k] - v_pre[k];
-      if (dv != 0.0) cv_next += c.col(k) * dv;
+      if (dv == 0.0) continue;
+      const Block& b = blocks[block_of[k]];  // (C's other rows are zero in column k)
+      cv_next.segment(b.offset, b.size) += b.c.col(k - b.offset) * dv;
     }
     next.x = now.x + 0.5 * h * (now.v + next.v);
     if (step > 0 && std::any_of(kink_theta.begin(), kink_theta.end(), [](double t) { return !std::isnan(t); }))
@@ -808,17 +838,19 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     const Eigen::VectorXd& p_grid = nc > 0 ? total_next : p_next;
     grid_forces(cv_next, p_grid, next.link_phase, &q_grid, &stick_grid);
     // Absolute accelerations at the grid point: x'' - a_g.
-    add_bt(q_grid, &bq);
-    force = mass * next.ag - cv_next - p_grid - bq;
-    next.a_abs = force.cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, next.ag);
-    fill_links(next, q_grid);
-    // (One pass: Eigen's allFinite is x - x == x - x, two unvectorised reductions.)
-    bool finite = true;
-    double largest = 0.0;
-    for (int k = 0; k < n; ++k) {
-      finite = finite && std::isfinite(next.x[k]) && std::isfinite(next.v[k]);
-      largest = std::max(largest, std::abs(next.x[k]));
+    // The dampers' forces B' q are added at their floors only.
+    next.a_abs = (mass * next.ag - cv_next - p_grid).cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, next.ag);
+    if (nf > 0) {
+      damper_bt(q_grid);
+      for (std::size_t d = 0; d < damper_dofs.size(); ++d) {
+        const int k = damper_dofs[d];
+        next.a_abs[k] = (mass[k] * next.ag - cv_next[k] - p_grid[k] - btq_dampers[d]) * inv_mass[k] - next.ag;
+      }
     }
+    fill_links(next, q_grid);
+    // x - x is 0 for a finite x, NaN for an infinite or NaN one: one vectorised pass.
+    const bool finite = (next.x - next.x + next.v - next.v).sum() == 0.0;
+    const double largest = finite ? next.x.cwiseAbs().maxCoeff() : 0.0;
     if (!finite || largest > 1e6) {
       std::ostringstream m;
       m << "the response became " << (next.x.allFinite() ? "larger than 1e6 m" : "non-finite") << " at t = " << next.t
@@ -860,7 +892,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       prev_same_slip[f] = step > 0 && ph != Phase::stick && next.link_phase[friction[f]] == ph;
       w_prev[f] = now.link_velocity[friction[f]];
     }
-    std::swap(now, next);
+    std::swap(now_p, next_p);
   }
   observer.end();
   StructureRunSummary summary;

@@ -1,0 +1,67 @@
+#include "dense_product.hpp"
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define ADJOIN_AVX_PRODUCT 1
+#endif
+
+namespace adjoin::detail {
+namespace {
+
+// Eigen splits its sums into blocks of columns from 128 columns on; below, one sum per row.
+constexpr Eigen::Index kEigenBlockColumns = 128;
+
+#ifdef ADJOIN_AVX_PRODUCT
+// Multiplies and adds separately, as Eigen's baseline kernel does (no fused multiply-add: that
+// rounds once, not twice, and would change the sums).
+// The column-major a has leading dimension `stride`.
+__attribute__((target("avx"))) void product_avx(const double* a, Eigen::Index stride, Eigen::Index rows, Eigen::Index cols,
+                                                const double* x, double* y) {
+  Eigen::Index i = 0;
+  for (; i + 16 <= rows; i += 16) {
+    __m256d c0 = _mm256_setzero_pd(), c1 = _mm256_setzero_pd(), c2 = _mm256_setzero_pd(), c3 = _mm256_setzero_pd();
+    for (Eigen::Index j = 0; j < cols; ++j) {
+      const double* col = a + j * stride + i;
+      const __m256d b = _mm256_set1_pd(x[j]);
+      c0 = _mm256_add_pd(c0, _mm256_mul_pd(_mm256_loadu_pd(col), b));
+      c1 = _mm256_add_pd(c1, _mm256_mul_pd(_mm256_loadu_pd(col + 4), b));
+      c2 = _mm256_add_pd(c2, _mm256_mul_pd(_mm256_loadu_pd(col + 8), b));
+      c3 = _mm256_add_pd(c3, _mm256_mul_pd(_mm256_loadu_pd(col + 12), b));
+    }
+    _mm256_storeu_pd(y + i, c0);
+    _mm256_storeu_pd(y + i + 4, c1);
+    _mm256_storeu_pd(y + i + 8, c2);
+    _mm256_storeu_pd(y + i + 12, c3);
+  }
+  for (; i + 4 <= rows; i += 4) {
+    __m256d c0 = _mm256_setzero_pd();
+    for (Eigen::Index j = 0; j < cols; ++j) c0 = _mm256_add_pd(c0, _mm256_mul_pd(_mm256_loadu_pd(a + j * stride + i), _mm256_set1_pd(x[j])));
+    _mm256_storeu_pd(y + i, c0);
+  }
+  for (; i < rows; ++i) {
+    double c = 0.0;
+    for (Eigen::Index j = 0; j < cols; ++j) c += a[j * stride + i] * x[j];
+    y[i] = c;
+  }
+}
+#endif
+
+}  // namespace
+
+DenseProduct::DenseProduct(Eigen::MatrixXd a) : a_(std::move(a)) {
+#ifdef ADJOIN_AVX_PRODUCT
+  wide_ = a_.cols() < kEigenBlockColumns && __builtin_cpu_supports("avx");
+#endif
+}
+
+void DenseProduct::apply(const double* x, double* y, Eigen::Index first, Eigen::Index rows) const {
+#ifdef ADJOIN_AVX_PRODUCT
+  if (wide_) {
+    product_avx(a_.data() + first, a_.rows(), rows, a_.cols(), x, y);
+    return;
+  }
+#endif
+  Eigen::Map<Eigen::VectorXd>(y, rows).noalias() = a_.middleRows(first, rows) * Eigen::Map<const Eigen::VectorXd>(x, a_.cols());
+}
+
+}  // namespace adjoin::detail
