@@ -11,6 +11,11 @@
 // throws NumericalError with the time and what to change; no non-finite value is ever
 // passed to an observer.
 //
+// Every scheme is a stepper driven by the same time loop (src/solver/time_loop.hpp), so the
+// observer sees the same order whichever runs: begin once, the grid points t_0..t_N in order
+// (a step's impacts just before its state), end once; a throw ends the run without end().
+// SolverSummary::wall_seconds is the loop's: the scheme's set-up (weights) included.
+//
 // The solver never reads files and never prints.
 #include <cstddef>
 #include <string>
