@@ -14,7 +14,7 @@
 #include <map>
 #include <string>
 
-#include "adjoin/study/sweep.hpp"
+#include "adjoin/io/sweep_file.hpp"
 
 namespace {
 

@@ -16,6 +16,7 @@
 #include "adjoin/io/building_files.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/plots.hpp"
+#include "adjoin/io/sweep_file.hpp"
 #include "adjoin/study/building_run.hpp"
 #include "adjoin/study/building_sweep.hpp"
 #include "adjoin/study/sweep.hpp"

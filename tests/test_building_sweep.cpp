@@ -11,6 +11,7 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/sweep_files.hpp"
+#include "adjoin/io/sweep_file.hpp"
 #include "adjoin/study/building_run.hpp"
 #include "adjoin/study/building_sweep.hpp"
 #include "adjoin/study/demand.hpp"

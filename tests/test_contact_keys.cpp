@@ -13,6 +13,7 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/structure_file.hpp"
+#include "adjoin/io/sweep_file.hpp"
 #include "adjoin/model/units.hpp"
 #include "adjoin/structure/building.hpp"
 #include "adjoin/study/sweep.hpp"

@@ -16,6 +16,7 @@
 #include "adjoin/io/run_files.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/summary.hpp"
+#include "adjoin/io/sweep_file.hpp"
 #include "adjoin/io/sweep_files.hpp"
 #include "adjoin/io/timeseries_csv.hpp"
 #include "adjoin/observe/energy.hpp"

@@ -15,6 +15,7 @@
 #include "adjoin/io/folder_lock.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/sweep_files.hpp"
+#include "adjoin/io/sweep_file.hpp"
 #include "adjoin/post/intensity.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "adjoin/study/demand.hpp"

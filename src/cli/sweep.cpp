@@ -30,6 +30,7 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/folder_lock.hpp"
+#include "adjoin/io/sweep_file.hpp"
 #include "adjoin/io/sweep_files.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/study/sweep.hpp"

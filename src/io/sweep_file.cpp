@@ -1,4 +1,4 @@
-// The sweep file's reader (study/sweep.hpp declares parse_sweep and load_sweep): the sweep's
+// The sweep file's reader (io/sweep_file.hpp): the sweep's
 // axes and motions as typed edits, the base scene read once, and io's SweepScenes.
 #include <algorithm>
 #include <charconv>
@@ -14,6 +14,7 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/file_name.hpp"
+#include "adjoin/io/sweep_file.hpp"
 #include "adjoin/io/sweep_scenes.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/study/building_sweep.hpp"
@@ -392,24 +393,17 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   check_axis_keys(r, spec);
 
   // The base scene: read once, and checked on its own (its errors name its file and line).
+  std::string base_text;
   try {
-    spec.base_text = read_text_file(spec.base, "scene");
+    base_text = read_text_file(spec.base, "scene");
   } catch (const InputError& e) {
     throw InputError(r.where(base) + "base: " + e.what());
   }
-  bool building = false;
-  try {
-    const toml::table base_table = toml::parse(spec.base_text, spec.base.string());
-    spec.base_source = base_table.at_path("ground.source").value_or(std::string());
-    building = base_table.contains("building");
-  } catch (const toml::parse_error&) {
-    // the scenes below word the syntax error with its line
-  }
-  const auto scenes = std::make_shared<const SceneSweepScenes>(spec);
+  const auto scenes = std::make_shared<const SceneSweepScenes>(spec, base_text);
   spec.scenes = scenes;
-  if (building) {
+  if (scenes->building()) {
     // Checked whole, as `adjoin run` would read it (its own errors name its file and line).
-    prepare_building_sweep(spec, parse_building_scene(spec.base_text, spec.base).structure);
+    prepare_building_sweep(spec, parse_building_scene(base_text, spec.base).structure);
     for (const auto& axis : spec.axes)
       for (const auto& c : spec.channel_columns)
         if (axis.name == c.name)
@@ -420,7 +414,7 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   }
   std::uint64_t hash = 14695981039346656037ull;
   hash = fnv1a(hash, text);
-  hash = fnv1a(hash, std::string(1, '\0') + spec.base_text);
+  hash = fnv1a(hash, std::string(1, '\0') + base_text);
   hash = fnv1a(hash, std::string(1, '\0') + ADJOIN_VERSION);
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));

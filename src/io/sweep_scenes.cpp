@@ -18,9 +18,9 @@ namespace {
 // The run's edits as --set / --unset strings, with the unsets an edit implies (ground.source
 // to another source drops the base's [ground] keys; io/scene.hpp implied_unsets), the ground
 // source being the one the edits so far leave.
-void gather_edits(const SweepSpec& spec, const std::vector<SweepSetting>& settings, std::vector<std::string>& overrides,
-                  std::vector<std::string>& unsets) {
-  std::string source = spec.base_source;
+void gather_edits(const std::string& base_source, const std::vector<SweepSetting>& settings,
+                  std::vector<std::string>& overrides, std::vector<std::string>& unsets) {
+  std::string source = base_source;
   for (const auto& s : settings) {
     for (auto& o : s.overrides()) overrides.push_back(std::move(o));
     unsets.insert(unsets.end(), s.unset.begin(), s.unset.end());
@@ -52,26 +52,32 @@ std::string at(const SweepSpec& spec, std::size_t line) {
 // values, and messages cite the lines of this tree.
 struct SceneSweepScenes::Base {
   std::string text, name;
+  std::string source;  // its ground.source ("" if it has none)
+  bool building = false;
   toml::table tree;  // empty for a building scene
 };
 
-SceneSweepScenes::SceneSweepScenes(const SweepSpec& spec) {
+SceneSweepScenes::SceneSweepScenes(const SweepSpec& spec, const std::string& base_text) {
   auto base = std::make_unique<Base>();
-  base->text = spec.base_text;
+  base->text = base_text;
   base->name = spec.base.string();
   base->tree = detail::parse_toml_text(base->text, base->name);
-  if (base->tree.contains("building")) base->tree.clear();
+  base->source = base->tree.at_path("ground.source").value_or(std::string());
+  base->building = base->tree.contains("building");
+  if (base->building) base->tree.clear();
   base_ = std::move(base);
 }
 
 SceneSweepScenes::~SceneSweepScenes() = default;
+
+bool SceneSweepScenes::building() const { return base_->building; }
 
 RunSpec SceneSweepScenes::base() const { return detail::scene_from_tree(base_->tree, base_->name, {}, {}, &base_->tree); }
 
 RunSpec SceneSweepScenes::scene(const SweepSpec& spec, std::size_t index) const {
   const auto settings = spec.settings(index);
   std::vector<std::string> overrides, unset;
-  gather_edits(spec, settings, overrides, unset);
+  gather_edits(base_->source, settings, overrides, unset);
   // The same edits typed (overrides holds them in this order), set on a copy of the base tree.
   std::vector<toml::table> values;
   std::vector<bool> keyed;  // a key with '=' in it is split as --set splits it: its text is read
@@ -103,7 +109,7 @@ RunSpec SceneSweepScenes::scene(const SweepSpec& spec, std::size_t index) const 
 BuildingRunSpec SceneSweepScenes::building_scene(const SweepSpec& spec, std::size_t index) const {
   const auto settings = spec.settings(index);
   std::vector<std::string> overrides, unsets;
-  gather_edits(spec, settings, overrides, unsets);
+  gather_edits(base_->source, settings, overrides, unsets);
   try {
     return parse_building_scene(base_->text, spec.base, overrides, unsets);
   } catch (const InputError& e) {

@@ -3,8 +3,9 @@
 // the run's edits, read exactly as `adjoin run BASE --set KEY=VALUE ... --unset KEY ...` reads
 // it (the edits' implied unsets too: io/scene.hpp implied_unsets), with messages prefixed by
 // the sweep file, the line of the axis value or motion whose edit caused them, and the run.
-// parse_sweep() gives every spec one.
+// parse_sweep() (io/sweep_file.hpp) gives every spec one.
 #include <memory>
+#include <string>
 
 #include "adjoin/study/sweep.hpp"
 
@@ -12,10 +13,12 @@ namespace adjoin {
 
 class SceneSweepScenes final : public SweepScenes {
  public:
-  // Reads spec.base_text (spec.base names it in messages): its syntax errors are InputError
-  // "BASE:LINE: not valid TOML: ...".
-  explicit SceneSweepScenes(const SweepSpec& spec);
+  // Parses the base scene's text (spec.base names it in messages): its syntax errors are
+  // InputError "BASE:LINE: not valid TOML: ...".
+  SceneSweepScenes(const SweepSpec& spec, const std::string& base_text);
   ~SceneSweepScenes() override;
+  // True if the base is a building scene (SPEC §5: it has a [building] table).
+  bool building() const;
   // The base scene without edits (a two-block base), checked as `adjoin run BASE` checks it.
   RunSpec base() const;
   RunSpec scene(const SweepSpec& spec, std::size_t index) const override;

@@ -2,7 +2,7 @@
 // Sweeps for damper design (SPEC §2 "Studies"): a base scene, axes over any scene key, and a
 // set of ground motions; one run per point of their cartesian product, one table row per run.
 //
-//     SweepSpec spec = load_sweep("examples/sweeps/slip-force.toml");
+//     SweepSpec spec = load_sweep("examples/sweeps/slip-force.toml");   // io/sweep_file.hpp
 //     std::vector<SweepRow> rows = run_sweep(spec);          // all local cores
 //     SweepTable table = sweep_table(spec, rows);            // the CSV/JSON cells
 //
@@ -111,8 +111,6 @@ struct SweepSpec {
   std::vector<double> im_periods;     // [output] im_periods: Sa(T) columns [s]
   double im_damping = 0.05;           // [output] im_damping
   std::string fingerprint;            // hash of the sweep text, the base scene text and the version
-  std::string base_text;              // the base scene file's text, read once
-  std::string base_source;            // its ground.source ("" if it has none)
   std::shared_ptr<const SweepScenes> scenes;  // makes each run's description (set by the reader)
   // A building scene as the base (SPEC §5; study/building_sweep.hpp): its structure as read
   // (without edits), which decides the channel columns; null for a two-block base.
@@ -128,14 +126,6 @@ struct SweepSpec {
   // "model.mu=0.3, motion=elcentro": for messages.
   std::string describe(std::size_t index) const;
 };
-
-// Reads a sweep file (TOML; README "Sweeps"). Every problem is an InputError "FILE:LINE: ...".
-// The base scene is read and checked once (its own errors name its file and line), and the
-// spec's `scenes` make the runs' descriptions from it. Reading files is io's: these two are
-// defined in src/io/sweep_file.cpp, and declared here for the sweep's callers.
-SweepSpec load_sweep(const std::filesystem::path& file);
-// The same from text; `name` stands for the file in messages and paths are relative to its folder.
-SweepSpec parse_sweep(const std::string& text, const std::string& name);
 
 // The scene of run `index` (InputError prefixed with the sweep file and the run).
 RunSpec sweep_scene(const SweepSpec& spec, std::size_t index);
