@@ -7,6 +7,7 @@
 #include <set>
 #include <sstream>
 
+#include "../detail/parse_number.hpp"
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/sweep_files.hpp"
@@ -15,19 +16,8 @@
 namespace adjoin {
 namespace {
 
-bool parse_double(const std::string& text, double* value) {
-  if (text.empty()) return false;
-  const char* end = text.data() + text.size();
-  const auto result = std::from_chars(text.data(), end, *value);
-  return result.ec == std::errc() && result.ptr == end;
-}
-
-bool parse_size(const std::string& text, std::size_t* value) {
-  if (text.empty()) return false;
-  const char* end = text.data() + text.size();
-  const auto result = std::from_chars(text.data(), end, *value);
-  return result.ec == std::errc() && result.ptr == end;
-}
+using detail::parse_double;
+using detail::parse_size;
 
 std::size_t cell_index(const std::vector<std::string>& cells) { return std::stoull(cells.at(0)); }
 

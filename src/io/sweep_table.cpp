@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "../detail/parse_number.hpp"
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/sweep_files.hpp"
@@ -15,21 +16,10 @@ namespace adjoin {
 
 namespace {
 
+using detail::parse_double;
+using detail::parse_size;
+
 std::string shortest(double v) { return sweep_number_cell(v); }
-
-bool parse_double(const std::string& text, double* value) {
-  if (text.empty()) return false;
-  const char* end = text.data() + text.size();
-  const auto result = std::from_chars(text.data(), end, *value);
-  return result.ec == std::errc() && result.ptr == end;
-}
-
-bool parse_size(const std::string& text, std::size_t* value) {
-  if (text.empty()) return false;
-  const char* end = text.data() + text.size();
-  const auto result = std::from_chars(text.data(), end, *value);
-  return result.ec == std::errc() && result.ptr == end;
-}
 
 std::string read_text(const std::filesystem::path& file, const std::string& what) {
   // A folder or a FIFO is not opened (a FIFO would block the program).

@@ -1,3 +1,4 @@
+#include "../detail/parse_number.hpp"
 #include "adjoin/study/demand.hpp"
 
 #include <algorithm>
@@ -14,12 +15,7 @@
 namespace adjoin {
 namespace {
 
-bool parse_double(const std::string& text, double* value) {
-  if (text.empty()) return false;
-  const char* end = text.data() + text.size();
-  const auto result = std::from_chars(text.data(), end, *value);
-  return result.ec == std::errc() && result.ptr == end;
-}
+using detail::parse_double;
 
 }  // namespace
 
