@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <optional>
 #include <sstream>
 
 #include "adjoin/errors.hpp"
@@ -188,6 +189,77 @@ values = [{name = "both"},
     CHECK(m.find("1 link but the base scene has 2 links") != std::string::npos);
     CHECK(m.find("unset = [\"link\"]") != std::string::npos);
   }
+}
+
+TEST_CASE("building sweeps: each run's scene and message from the base parsed once equal adjoin run --set", "[building_sweep]") {
+  // The sweep parses its base once and reads each run from a copy of the tree with the run's
+  // edits; `adjoin run BASE --set ... --unset ...` parses the text with the same edits. Their
+  // scenes and messages (the base's lines included, also after --unset link.1 shifts the
+  // [[link]] tables) must be the same.
+  const SweepSpec spec = load_sweep(sweep_file("tree.toml", kTwoDampers, R"(
+[[axis]]
+name = "edit"
+values = [{name = "ok", set = {"link.1.slip_ratio" = 0.05, "building.A.period" = 1.5, "name" = "swept"}},
+          {name = "shifted", unset = ["link.1"], set = {"building.A.storeys" = 1}},
+          {name = "no-stiffness", unset = ["building.A.stiffness"]},
+          {name = "ratio", set = {"building.A.damping.ratio" = 1.5}},
+          {name = "link3", set = {"link.3.slip_ratio" = 0.1}},
+          {name = "units", set = {"model.units" = "SI"}},
+          {name = "no-file", unset = ["ground.file"]},
+          {name = "of", set = {"link.2.of" = "C"}},
+          {name = "typo", set = {"building.A.stifness" = 1.0}},
+          {name = "gap", set = {"contact.1.gap" = -0.01}},
+          {name = "upper", unset = ["link.2", "solver.t_end"], set = {"building.B.period" = 0.6}}]
+)"));
+  std::size_t base_lines = 0, compared = 0;
+  for (std::size_t i = 0; i < spec.runs(); ++i) {
+    std::vector<std::string> overrides, unsets;
+    for (const auto& s : spec.settings(i)) {
+      for (const auto& o : s.overrides()) overrides.push_back(o);
+      unsets.insert(unsets.end(), s.unset.begin(), s.unset.end());
+    }
+    std::string expected = "no error";
+    std::optional<BuildingScene> run;
+    try {
+      run = load_building_scene(kTwoDampers, overrides, unsets);
+    } catch (const InputError& e) {
+      expected = e.what();
+    }
+    std::string got = "no error";
+    std::optional<BuildingScene> swept;
+    try {
+      swept = spec.scenes->building_scene(spec, i);
+    } catch (const InputError& e) {
+      got = e.what();
+      // "tree.toml:LINE: run i (edit=..., motion=base): " + the scene's own message
+      const std::string prefix = "run " + std::to_string(i) + " (" + spec.describe(i) + "): ";
+      REQUIRE(got.find(prefix) != std::string::npos);
+      got = got.substr(got.find(prefix) + prefix.size());
+    }
+    INFO("run " << i << " (" << spec.axes[0].values[i].label << ")");
+    CHECK(got == expected);
+    if (expected.rfind(kTwoDampers.string() + ":", 0) == 0) ++base_lines;
+    if (run && swept) {
+      ++compared;
+      CHECK(swept->name == run->name);
+      CHECK(swept->structure.a.springs == run->structure.a.springs);
+      CHECK(swept->structure.b->masses == run->structure.b->masses);
+      REQUIRE(swept->structure.links.size() == run->structure.links.size());
+      for (std::size_t l = 0; l < run->structure.links.size(); ++l)
+        CHECK(swept->structure.links[l].slip_force == run->structure.links[l].slip_force);
+      CHECK(swept->solver.h == run->solver.h);
+      CHECK(swept->solver.t_end == run->solver.t_end);
+      CHECK(swept->h_rule == run->h_rule);
+      CHECK(swept->t_end_rule == run->t_end_rule);
+      CHECK(swept->warnings == run->warnings);
+      for (double t : {0.3, 1.7}) CHECK(swept->base.ground->ag(t) == run->base.ground->ag(t));
+    }
+  }
+  CHECK(compared == 2);
+  CHECK(spec.scenes->building_scene(spec, 0).name == "swept");
+  CHECK(spec.scenes->building_scene(spec, 0).structure.links[0].slip_force != spec.scenes->building_scene(spec, 10).structure.links[0].slip_force);
+  // Those messages cite the base file's lines: a shifted [[link]], [building.A], [ground].
+  CHECK(base_lines >= 3);
 }
 
 TEST_CASE("building sweeps: an axis over a key the structure does not have names the line and key", "[building_sweep]") {

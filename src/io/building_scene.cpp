@@ -10,6 +10,8 @@
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "structure_edits.hpp"
+#include "sweep_scene_tree.hpp"
+#include "toml_text.hpp"
 #include "adjoin/structure/modal.hpp"
 
 namespace adjoin {
@@ -33,7 +35,7 @@ std::string number(double v) {
 }
 
 // The in-structure spectra's signals: "ground" or a floor's absolute acceleration X.aN_abs.
-void check_spectra_signals(const std::vector<std::string>& signals, const structure::Structure& s, const std::string& text,
+void check_spectra_signals(const std::vector<std::string>& signals, const structure::Structure& s, const toml::table& parsed,
                            const std::string& file, const std::vector<std::string>& overrides) {
   for (const auto& signal : signals) {
     if (signal == "ground") continue;
@@ -50,12 +52,8 @@ void check_spectra_signals(const std::vector<std::string>& signals, const struct
     std::string where = file;
     if (overridden(overrides, "output.spectra.signals")) {
       where = "--set output.spectra.signals";
-    } else {
-      try {
-        const toml::table root = toml::parse(text);
-        if (const toml::node* n = root.at_path("output.spectra.signals").node()) where += ":" + std::to_string(n->source().begin.line);
-      } catch (const toml::parse_error&) {
-      }
+    } else if (const toml::node* n = parsed.at_path("output.spectra.signals").node()) {
+      where += ":" + std::to_string(n->source().begin.line);
     }
     std::string expected = "\"ground\" or a floor's absolute acceleration A.aN_abs (N = 1.." + std::to_string(s.a.floors()) + ")";
     if (s.b) expected += " or B.aN_abs (N = 1.." + std::to_string(s.b->floors()) + ")";
@@ -72,6 +70,31 @@ BuildingScene load_building_scene(const std::filesystem::path& file, const std::
 
 BuildingScene parse_building_scene(const std::string& text, const std::filesystem::path& file,
                                    const std::vector<std::string>& overrides, const std::vector<std::string>& unsets) {
+  return detail::building_scene_from_tree(detail::parse_toml_text(text, file.string()), file, overrides, unsets);
+}
+
+detail::CopiedFrom detail::copied_from(const toml::node& copy, const toml::node& parsed) {
+  CopiedFrom map;
+  const auto walk = [&map](const auto& self, const toml::node& c, const toml::node& p) -> void {
+    map.emplace(&c, &p);
+    if (const toml::table* ct = c.as_table()) {
+      const toml::table* pt = p.as_table();
+      if (!pt) return;
+      for (const auto& [key, node] : *ct)
+        if (const toml::node* original = pt->get(key.str())) self(self, node, *original);
+    } else if (const toml::array* ca = c.as_array()) {
+      const toml::array* pa = p.as_array();
+      if (!pa) return;
+      for (std::size_t i = 0; i < ca->size() && i < pa->size(); ++i) self(self, *ca->get(i), *pa->get(i));
+    }
+  };
+  walk(walk, copy, parsed);
+  return map;
+}
+
+BuildingScene detail::building_scene_from_tree(const toml::table& parsed, const std::filesystem::path& file,
+                                               const std::vector<std::string>& overrides,
+                                               const std::vector<std::string>& unsets) {
   // The structure's edits go to its reader, the others to the ground, solver and output's.
   std::vector<std::string> base_overrides, base_unsets;
   for (const auto& o : overrides) {
@@ -83,13 +106,17 @@ BuildingScene parse_building_scene(const std::string& text, const std::filesyste
   }
   for (const auto& u : unsets)
     if (!detail::is_structure_key(u)) base_unsets.push_back(u);
+  // One copy of the parsed tree: the structure's edits are made on it and its structure read,
+  // then the rest (the base drops the structure's sections). Messages cite the parsed lines.
+  toml::table tree = parsed;
+  const CopiedFrom copied = copied_from(tree, parsed);
   BuildingScene b;
   b.file = file;
-  b.structure = parse_structure(text, file.string(), overrides, unsets);
-  b.base = parse_building_base(text, file.string(), base_overrides, base_unsets);
+  b.structure = structure_from_tree(tree, file.string(), overrides, unsets, &copied);
+  b.base = building_base_from_tree(std::move(tree), file.string(), base_overrides, base_unsets, &parsed);
   b.base.file = file;
   b.name = b.base.name;
-  if (b.base.output.spectra) check_spectra_signals(b.base.output.spectra->signals, b.structure, text, file.string(), overrides);
+  if (b.base.output.spectra) check_spectra_signals(b.base.output.spectra->signals, b.structure, parsed, file.string(), overrides);
   for (const auto& w : b.base.warnings)
     if (w.find("period") == std::string::npos) b.warnings.push_back(w);  // (its periods are the placeholder's)
 

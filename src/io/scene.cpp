@@ -864,7 +864,11 @@ Scene detail::scene_from_tree(toml::table table, const std::string& name, const 
 
 Scene parse_building_base(const std::string& text, const std::string& name, const std::vector<std::string>& overrides,
                           const std::vector<std::string>& unsets) {
-  toml::table table = detail::parse_toml_text(text, name);
+  return detail::building_base_from_tree(detail::parse_toml_text(text, name), name, overrides, unsets);
+}
+
+Scene detail::building_base_from_tree(toml::table table, const std::string& name, const std::vector<std::string>& overrides,
+                                      const std::vector<std::string>& unsets, const toml::table* lines) {
   for (const auto& key : unsets)
     if (!remove_key(table, key)) throw InputError("--unset " + key + ": the scene has no key or section " + key);
   // The structure is read elsewhere; what stays is [ground], [solver], [output] and the name,
@@ -881,14 +885,19 @@ Scene parse_building_base(const std::string& text, const std::string& name, cons
   std::optional<std::vector<std::string>> signals;
   if (toml::array* list = table.at_path("output.spectra.signals").as_array()) {
     signals.emplace();
-    for (const auto& item : *list) {
+    // A list no --set wrote is the file's: a copy's items find their lines in `lines`.
+    const toml::array* parsed = lines && !origins.count("output.spectra.signals")
+                                    ? lines->at_path("output.spectra.signals").as_array() : nullptr;
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const toml::node& item = *list->get(i);
+      const toml::node* line = parsed && parsed->get(i) ? parsed->get(i) : &item;
       const auto signal = item.value_exact<std::string>();
-      if (!signal) throw InputError(name + ":" + std::to_string(item.source().begin.line) + ": output.spectra.signals: expected a list of names (\"ground\", \"A.a3_abs\")");
+      if (!signal) throw InputError(name + ":" + std::to_string(line->source().begin.line) + ": output.spectra.signals: expected a list of names (\"ground\", \"A.a3_abs\")");
       signals->push_back(*signal);
     }
     *list = toml::array{"ground"};
   }
-  SceneReader reader(std::move(table), name, std::move(origins));
+  SceneReader reader(std::move(table), name, std::move(origins), lines);
   check_keys(reader, reader.table(), "");
   Scene scene = build_scene(reader, name);
   if (signals && scene.output.spectra) scene.output.spectra->signals = *signals;

@@ -12,6 +12,7 @@
 
 #include "contact_keys.hpp"
 #include "structure_edits.hpp"
+#include "sweep_scene_tree.hpp"
 #include "toml_text.hpp"
 
 #include "adjoin/errors.hpp"
@@ -32,14 +33,17 @@ using Origins = std::map<std::string, std::string>;
 // Reads the keys of one table, each named by its dotted path in messages with the line.
 class TableReader {
  public:
-  TableReader(const toml::table& table, std::string path, std::string file, const Origins* origins = nullptr)
-      : table_(table), path_(std::move(path)), file_(std::move(file)), origins_(origins) {}
+  TableReader(const toml::table& table, std::string path, std::string file, const Origins* origins = nullptr,
+              const detail::CopiedFrom* copied = nullptr)
+      : table_(table), path_(std::move(path)), file_(std::move(file)), origins_(origins), copied_(copied) {}
   // A reader of a table inside this one (same file, same edits).
-  TableReader inner(const toml::table& table, const std::string& path) const { return {table, path, file_, origins_}; }
+  TableReader inner(const toml::table& table, const std::string& path) const {
+    return {table, path, file_, origins_, copied_};
+  }
 
   [[noreturn]] void fail(const std::string& key, const std::string& message) const {
     const toml::node* node = key.empty() ? nullptr : table_.get(key);
-    const auto& source = node ? node->source() : table_.source();
+    const auto& source = source_of(node ? *node : table_);
     std::ostringstream m;
     // A value a --set put there is blamed on the --set; the others on their file line.
     const std::string full = key.empty() ? path_ : path_ + "." + key;
@@ -119,9 +123,18 @@ class TableReader {
   const std::string& file() const { return file_; }
 
  private:
+  // Where `node` was written: its own source, or in a copy of the parsed tree the source of the
+  // node it was copied from.
+  const toml::source_region& source_of(const toml::node& node) const {
+    if (copied_)
+      if (const auto it = copied_->find(&node); it != copied_->end()) return it->second->source();
+    return node.source();
+  }
+
   const toml::table& table_;
   std::string path_, file_;
   const Origins* origins_ = nullptr;
+  const detail::CopiedFrom* copied_ = nullptr;
 };
 
 structure::Zener read_zener(const TableReader& r) {
@@ -289,9 +302,15 @@ bool is_structure_key(const std::string& key) { return detail::is_structure_key(
 structure::Structure parse_structure(const std::string& text, const std::string& file,
                                      const std::vector<std::string>& overrides, const std::vector<std::string>& unsets) {
   toml::table root = detail::parse_toml_text(text, file);
+  return detail::structure_from_tree(root, file, overrides, unsets);
+}
+
+structure::Structure detail::structure_from_tree(toml::table& root, const std::string& file,
+                                                 const std::vector<std::string>& overrides,
+                                                 const std::vector<std::string>& unsets, const CopiedFrom* copied) {
   Origins origins;
   detail::edit_structure(root, overrides, unsets, origins);
-  TableReader top(root, "scene", file, &origins);
+  TableReader top(root, "scene", file, &origins, copied);
   const toml::table* model = root["model"].as_table();
   if (!model || root["model"]["units"].value<std::string>() != "SI")
     top.fail("", "a building scene is in SI units: add [model] with units = \"SI\"");

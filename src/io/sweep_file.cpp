@@ -12,7 +12,6 @@
 
 #include "../detail/nearest.hpp"
 #include "adjoin/errors.hpp"
-#include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/file_name.hpp"
 #include "adjoin/io/sweep_file.hpp"
 #include "adjoin/io/sweep_scenes.hpp"
@@ -403,7 +402,7 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   spec.scenes = scenes;
   if (scenes->building()) {
     // Checked whole, as `adjoin run` would read it (its own errors name its file and line).
-    prepare_building_sweep(spec, parse_building_scene(base_text, spec.base).structure);
+    prepare_building_sweep(spec, scenes->building_base().structure);
     for (const auto& axis : spec.axes)
       for (const auto& c : spec.channel_columns)
         if (axis.name == c.name)

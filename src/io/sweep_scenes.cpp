@@ -1,5 +1,6 @@
 #include "adjoin/io/sweep_scenes.hpp"
 
+#include <filesystem>
 #include <string>
 #include <utility>
 #include <vector>
@@ -7,7 +8,6 @@
 #include <toml++/toml.h>
 
 #include "adjoin/errors.hpp"
-#include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/scene.hpp"
 #include "sweep_scene_tree.hpp"
 #include "toml_text.hpp"
@@ -47,24 +47,24 @@ std::string at(const SweepSpec& spec, std::size_t line) {
 
 }  // namespace
 
-// The base scene: its text (a building scene's runs read it with their edits) and, for a
-// two-block scene, its tree, parsed once: each run reads a copy with its edits set as typed
-// values, and messages cite the lines of this tree.
+// The base scene's tree, parsed once: each run reads a copy with its edits (a two-block scene's
+// set as typed values; a building scene's made as --set makes them, io/structure_edits.hpp),
+// and messages cite the lines of this tree.
 struct SceneSweepScenes::Base {
-  std::string text, name;
+  std::filesystem::path file;
+  std::string name;  // file, as messages spell it
   std::string source;  // its ground.source ("" if it has none)
   bool building = false;
-  toml::table tree;  // empty for a building scene
+  toml::table tree;
 };
 
 SceneSweepScenes::SceneSweepScenes(const SweepSpec& spec, const std::string& base_text) {
   auto base = std::make_unique<Base>();
-  base->text = base_text;
+  base->file = spec.base;
   base->name = spec.base.string();
-  base->tree = detail::parse_toml_text(base->text, base->name);
+  base->tree = detail::parse_toml_text(base_text, base->name);
   base->source = base->tree.at_path("ground.source").value_or(std::string());
   base->building = base->tree.contains("building");
-  if (base->building) base->tree.clear();
   base_ = std::move(base);
 }
 
@@ -73,6 +73,10 @@ SceneSweepScenes::~SceneSweepScenes() = default;
 bool SceneSweepScenes::building() const { return base_->building; }
 
 RunSpec SceneSweepScenes::base() const { return detail::scene_from_tree(base_->tree, base_->name, {}, {}, &base_->tree); }
+
+BuildingRunSpec SceneSweepScenes::building_base() const {
+  return detail::building_scene_from_tree(base_->tree, base_->file, {}, {});
+}
 
 RunSpec SceneSweepScenes::scene(const SweepSpec& spec, std::size_t index) const {
   const auto settings = spec.settings(index);
@@ -111,7 +115,7 @@ BuildingRunSpec SceneSweepScenes::building_scene(const SweepSpec& spec, std::siz
   std::vector<std::string> overrides, unsets;
   gather_edits(base_->source, settings, overrides, unsets);
   try {
-    return parse_building_scene(base_->text, spec.base, overrides, unsets);
+    return detail::building_scene_from_tree(base_->tree, spec.base, overrides, unsets);
   } catch (const InputError& e) {
     // Point at the axis value or motion whose edit the message names, when there is one.
     std::size_t line = 0;

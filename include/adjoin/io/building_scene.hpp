@@ -20,8 +20,9 @@ using BuildingScene = BuildingRunSpec;
 // (link.1, link, building.A.device.2, ground.scale_pga).
 BuildingScene load_building_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides = {},
                                   const std::vector<std::string>& unsets = {});
-// The same from the scene's text (read once by a sweep); `file` names it in messages and its
-// folder is where the scene's relative paths (ground.file) start.
+// The same from the scene's text; `file` names it in messages and its folder is where the
+// scene's relative paths (ground.file) start. (A sweep parses its base once and reads each run
+// from a copy of the tree: src/io/sweep_scene_tree.hpp building_scene_from_tree.)
 BuildingScene parse_building_scene(const std::string& text, const std::filesystem::path& file,
                                    const std::vector<std::string>& overrides = {},
                                    const std::vector<std::string>& unsets = {});
