@@ -38,7 +38,7 @@ SubsetInverses::System& SubsetInverses::of(const std::vector<int>& set) {
 
 BoxQp::BoxQp(Eigen::MatrixXd s) : inverses_(std::move(s)) {}
 
-void BoxQp::solve_held(const Eigen::VectorXd& w0, const std::vector<bool>& held, const Eigen::VectorXd& fixed,
+void BoxQp::solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held, const Eigen::VectorXd& fixed,
                        Eigen::VectorXd* q) {
   const int n = static_cast<int>(w0.size());
   held_.clear();
@@ -54,7 +54,7 @@ void BoxQp::solve_held(const Eigen::VectorXd& w0, const std::vector<bool>& held,
       if (!held[k]) b -= inverses_.matrix()(h, k) * fixed[k];
     sys.b[static_cast<Eigen::Index>(i)] = b;
   }
-  sys.x.noalias() = sys.inverse.lazyProduct(sys.b);
+  sys.solve();
   for (std::size_t i = 0; i < held_.size(); ++i) (*q)[held_[i]] = sys.x[static_cast<Eigen::Index>(i)];
 }
 
@@ -90,7 +90,7 @@ const BoxQpResult& BoxQp::solve(const Eigen::VectorXd& w0, const Eigen::VectorXd
         for (int k = 0; k < n; ++k)
           if (r.state[k] != DamperState::stick) sys.b[i] -= s(stuck[i], k) * r.q[k];
       }
-      sys.x.noalias() = sys.inverse.lazyProduct(sys.b);
+      sys.solve();
       for (int i = 0; i < m; ++i) r.q[stuck[i]] = sys.x[i];
     }
     r.w.noalias() = w0 - s * r.q;

@@ -42,6 +42,15 @@ class SubsetInverses {
   struct System {
     Eigen::MatrixXd inverse;  // S_ss^-1
     Eigen::VectorXd b, x;     // work vectors of the set's size
+    // x = S_ss^-1 b, each x_i summed over the columns in order (as Eigen's lazyProduct sums
+    // it), in plain loops: the sets are small, where Eigen's dynamic-size setup dominates.
+    void solve() {
+      const Eigen::Index m = b.size();
+      const double* a = inverse.data();
+      for (Eigen::Index i = 0; i < m; ++i) x[i] = a[i] * b[0];
+      for (Eigen::Index j = 1; j < m; ++j)
+        for (Eigen::Index i = 0; i < m; ++i) x[i] += a[j * m + i] * b[j];
+    }
   };
   System& of(const std::vector<int>& set);
   const Eigen::MatrixXd& matrix() const { return s_; }
@@ -67,7 +76,7 @@ class BoxQp {
   // The forces of the dampers `held` stuck (w_k = 0) when the others' are `fixed`: a linear
   // solve, q_H = S_HH^-1 (w0_H - S_HF fixed_F), q_F = fixed_F (what solve() returns with
   // infinite limits for the held and the fixed forces taken out of w0, without its iterations).
-  void solve_held(const Eigen::VectorXd& w0, const std::vector<bool>& held, const Eigen::VectorXd& fixed,
+  void solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held, const Eigen::VectorXd& fixed,
                   Eigen::VectorXd* q);
 
  private:

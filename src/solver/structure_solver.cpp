@@ -73,11 +73,12 @@ class Banded {
   // p = K x (p not x).
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& p) const {
     const Eigen::Index n = x.size();
-    if (before_.empty() && n > 2) {  // one pass over the band (the usual case)
-      p[0] = diag_[0] * x[0] + sup_[0] * x[1];
-      p.segment(1, n - 2) = sub_.head(n - 2).cwiseProduct(x.head(n - 2)) + diag_.segment(1, n - 2).cwiseProduct(x.segment(1, n - 2)) +
-                            sup_.tail(n - 2).cwiseProduct(x.tail(n - 2));
-      p[n - 1] = sub_[n - 2] * x[n - 2] + diag_[n - 1] * x[n - 1];
+    if (before_.empty() && n > 2) {  // one pass over the band (the usual case), in a plain loop
+      const double *lo = sub_.data(), *di = diag_.data(), *up = sup_.data(), *xs = x.data();
+      double* ps = p.data();
+      ps[0] = di[0] * xs[0] + up[0] * xs[1];
+      for (Eigen::Index i = 1; i < n - 1; ++i) ps[i] = lo[i - 1] * xs[i - 1] + di[i] * xs[i] + up[i] * xs[i + 1];
+      ps[n - 1] = lo[n - 2] * xs[n - 2] + di[n - 1] * xs[n - 1];
       for (const Entry& e : after_) p[e.i] += e.value * x[e.j];
       return;
     }
@@ -346,16 +347,21 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   }
   std::sort(trial_dofs.begin(), trial_dofs.end());
   trial_dofs.erase(std::unique(trial_dofs.begin(), trial_dofs.end()), trial_dofs.end());
-  // The rows of A^-1 B' at the trial's floors and of C A^-1 B' at the dampers'. Their products
-  // with q are summed column after column (vectorised across the rows), so each row's sum is
-  // formed in the order of its columns, as Eigen sums a row of the full matrices alone.
-  Eigen::MatrixXd trial_response(trial_dofs.size(), nf), damper_damping(damper_dofs.size(), nf);
-  for (std::size_t t = 0; t < trial_dofs.size(); ++t) trial_response.row(t) = a_inv_bt.row(trial_dofs[t]);
-  for (std::size_t d = 0; d < damper_dofs.size(); ++d) damper_damping.row(d) = c_a_inv_bt.row(damper_dofs[d]);
-  Eigen::VectorXd trial_dv(trial_dofs.size()), damper_dcv(damper_dofs.size());
-  auto in_column_order = [nf](const Eigen::MatrixXd& m, const Eigen::VectorXd& q, Eigen::VectorXd* out) {
-    *out = m.col(0) * q[0];
-    for (int f = 1; f < nf; ++f) *out += m.col(f) * q[f];
+  // The rows of A^-1 B' at the trial's floors and below them those of C A^-1 B' at the dampers'.
+  // Their products with q are summed column after column (vectorised across the rows), so each
+  // row's sum is formed in the order of its columns, as Eigen sums a row of the full matrices.
+  const auto nt = static_cast<Eigen::Index>(trial_dofs.size()), nd = static_cast<Eigen::Index>(damper_dofs.size());
+  Eigen::MatrixXd trial_rows(nt + nd, nf);
+  for (Eigen::Index t = 0; t < nt; ++t) trial_rows.row(t) = a_inv_bt.row(trial_dofs[t]);
+  for (Eigen::Index d = 0; d < nd; ++d) trial_rows.row(nt + d) = c_a_inv_bt.row(damper_dofs[d]);
+  Eigen::VectorXd trial_change(nt + nd);  // A^-1 B' q at trial_dofs, then C A^-1 B' q at damper_dofs
+  auto trial_product = [&](const Eigen::VectorXd& q) {
+    const Eigen::Index rows = nt + nd;
+    const double* m = trial_rows.data();
+    double* out = trial_change.data();
+    for (Eigen::Index r = 0; r < rows; ++r) out[r] = m[r] * q[0];
+    for (int f = 1; f < nf; ++f)
+      for (Eigen::Index r = 0; r < rows; ++r) out[r] += m[f * rows + r] * q[f];
   };
   // B' q, where each damper acts -q on A's floor and +q on B's (as bf' q, without the zeros).
   auto add_bt = [&](const Eigen::VectorXd& q, Eigen::VectorXd* out) {
@@ -390,8 +396,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   Eigen::VectorXd friction_now = Eigen::VectorXd::Zero(nf);
   Eigen::VectorXd stick_force_now = Eigen::VectorXd::Zero(nf);  // the force that keeps each damper stuck
   Eigen::VectorXd stick_force_prev = Eigen::VectorXd::Zero(nf);
-  std::vector<bool> prev_stuck(nf, false);            // the grid point before `now` was stuck
-  std::vector<bool> prev_same_slip(nf, false);        // ... slipped as `now` does, with velocity:
+  std::vector<char> prev_stuck(nf, false);            // the grid point before `now` was stuck
+  std::vector<char> prev_same_slip(nf, false);        // ... slipped as `now` does, with velocity:
   std::vector<double> w_prev(nf, 0.0);
   std::vector<double> stick_start_t(nf, -INFINITY), stick_start_q(nf, 0.0);  // the last stick's start
 
@@ -403,8 +409,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   Eigen::VectorXd fixed(nf), fixed2(nf), q_grid(nf), stick_grid(nf), others(nf);
   std::vector<double> onset(nf), crossing(nf), kink_theta(nf), kink_jump(nf);
   std::vector<detail::DamperState> decided(nf);
-  std::vector<bool> hold(nf), hold2(nf);
-  std::vector<Phase> phase1;
+  std::vector<char> hold(nf), hold2(nf);  // (char, not the bit-packed vector<bool>: read in every step)
   std::vector<int> touched;
   touched.reserve(2 * static_cast<std::size_t>(nf));
 
@@ -422,10 +427,11 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     pj[f] = static_cast<int>(std::lower_bound(damper_dofs.begin(), damper_dofs.end(), fj[f]) - damper_dofs.begin());
   }
   auto damper_bt = [&](const Eigen::VectorXd& q) {
-    btq_dampers.setZero();
+    double* out = btq_dampers.data();
+    std::fill_n(out, btq_dampers.size(), 0.0);
     for (int f = 0; f < nf; ++f) {
-      btq_dampers[pi[f]] += q[f];
-      btq_dampers[pj[f]] -= q[f];
+      out[pi[f]] += q[f];
+      out[pj[f]] -= q[f];
     }
   };
   // Damper f's relative acceleration without the ground, b_f M^-1 (-C v - P - B' q), B' q from
@@ -440,22 +446,27 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   // `cv` is C v. Only the dampers' floors are needed: O(nf^2).
   auto grid_forces = [&](const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const std::vector<Phase>& phase,
                          Eigen::VectorXd* q, Eigen::VectorXd* stick) {
-    q->setZero();
     stuck.clear();
     for (int f = 0; f < nf; ++f) {
-      if (phase[friction[f]] == Phase::stick) stuck.push_back(f);
-      else (*q)[f] = phase[friction[f]] == Phase::slip_right ? limit[f] : -limit[f];
+      const Phase ph = phase[friction[f]];
+      (*stick)[f] = 0.0;
+      if (ph == Phase::stick) {
+        stuck.push_back(f);
+        (*q)[f] = 0.0;
+      } else {
+        (*q)[f] = ph == Phase::slip_right ? limit[f] : -limit[f];
+      }
     }
-    stick->setZero();
     if (stuck.empty()) return;
     damper_bt(*q);
     const int m = static_cast<int>(stuck.size());
     detail::SubsetInverses::System& sys = stuck_systems.of(stuck);
     for (int i = 0; i < m; ++i) sys.b[i] = relative_accel(cv, p, stuck[i]);
-    sys.x.noalias() = sys.inverse.lazyProduct(sys.b);
+    sys.solve();
     for (int i = 0; i < m; ++i) {
-      (*stick)[stuck[i]] = sys.x[i];
-      (*q)[stuck[i]] = std::clamp(sys.x[i], -limit[stuck[i]], limit[stuck[i]]);
+      const int f = stuck[i];
+      (*stick)[f] = sys.x[i];
+      (*q)[f] = std::clamp(sys.x[i], -limit[f], limit[f]);
     }
   };
   // The force that would keep slipping damper f stuck at this instant, the others at their
@@ -480,16 +491,19 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   storeys_of(s.a, 0);
   if (s.b) storeys_of(*s.b, s.a.floors());
   const Eigen::Map<const Eigen::VectorXd> spring_of(storey_spring.data(), n), dashpot_of(storey_dashpot.data(), n);
+  const bool dashpots_a = !dashpot_of.head(s.a.floors()).isZero(0.0), dashpots_b = !dashpot_of.tail(n - s.a.floors()).isZero(0.0);
   auto fill_storeys = [&](StructureState& st) {
     st.storey_force.resize(n);
     // Storey i's drift is x_i - x_(i-1), the first storey's x_1 (the ground is at rest).
     auto building = [&](const structure::Building& b, int offset) {
       const int nb = b.floors();
-      st.storey_force[offset] = spring_of[offset] * st.x[offset] + dashpot_of[offset] * st.v[offset];
+      const bool dashpots = offset == 0 ? dashpots_a : dashpots_b;
+      st.storey_force[offset] = spring_of[offset] * st.x[offset] + (dashpots ? dashpot_of[offset] * st.v[offset] : 0.0);
       if (nb < 2) return;
-      const auto above = Eigen::seqN(offset + 1, nb - 1), below = Eigen::seqN(offset, nb - 1);
-      st.storey_force(above) = spring_of(above).cwiseProduct(st.x(above) - st.x(below)) +
-                               dashpot_of(above).cwiseProduct(st.v(above) - st.v(below));
+      auto force = st.storey_force.segment(offset + 1, nb - 1);
+      force = spring_of.segment(offset + 1, nb - 1).cwiseProduct(st.x.segment(offset + 1, nb - 1) - st.x.segment(offset, nb - 1));
+      if (dashpots)
+        force += dashpot_of.segment(offset + 1, nb - 1).cwiseProduct(st.v.segment(offset + 1, nb - 1) - st.v.segment(offset, nb - 1));
     };
     building(s.a, 0);
     if (s.b) building(*s.b, s.a.floors());
@@ -601,16 +615,15 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     // where P there needs them), C v and P (Zener forces at their offsets), as the step's end
     // below computes them everywhere.
     auto trial_state = [&](const Eigen::VectorXd& q) {
-      in_column_order(trial_response, q, &trial_dv);
-      in_column_order(damper_damping, q, &damper_dcv);
+      trial_product(q);
       for (std::size_t t = 0; t < trial_dofs.size(); ++t) {
         const int k = trial_dofs[t];
-        v1[k] = v_free[k] - h * trial_dv[t];
+        v1[k] = v_free[k] - h * trial_change[t];
         x1[k] = now.x[k] + 0.5 * h * (now.v[k] + v1[k]);
       }
       for (std::size_t d = 0; d < damper_dofs.size(); ++d) {
         const int k = damper_dofs[d];
-        cv1[k] = cv_free[k] - h * damper_dcv[d];
+        cv1[k] = cv_free[k] - h * trial_change[nt + d];
         p1[k] = k0.row(k, x1) + contact_bt[k];
         for (const auto& [e, sign] : damper_zener[d]) {
           const auto& el = zener[static_cast<std::size_t>(e)];
@@ -619,7 +632,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       }
     };
     // Solves for the held dampers (limit infinite) with the others' step forces fixed.
-    auto solve_held = [&](const std::vector<bool>& hold_, const Eigen::VectorXd& fixed_, Eigen::VectorXd* q) {
+    auto solve_held = [&](const std::vector<char>& hold_, const Eigen::VectorXd& fixed_, Eigen::VectorXd* q) {
       box_qp.solve_held(w_free, hold_, fixed_, q);
     };
     // The contact pairs' step: each pair's relative motion through the step under its free
@@ -690,8 +703,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       hold_as_phased();
       solve_held(hold, fixed, &q_trial);
       trial_state(q_trial);
-      phase1 = now.link_phase;
-      grid_forces(cv1, p1, phase1, &q1, &stick1);
+      grid_forces(cv1, p1, now.link_phase, &q1, &stick1);
       for (int f = 0; f < nf; ++f) w1[f] = v1[fi[f]] - v1[fj[f]];
       std::fill(hold2.begin(), hold2.end(), false);
       fixed2.setZero();
@@ -757,7 +769,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       if (hold2 == hold && fixed2 == fixed) q_step = q_trial;
       else solve_held(hold2, fixed2, &q_step);
       // A starting damper that the others leave no room to slip stays stuck this step.
-      w_end.noalias() = w_free - delassus * q_step;
+      if (std::any_of(onset.begin(), onset.end(), [](double t) { return !std::isnan(t); }))
+        w_end.noalias() = w_free - delassus * q_step;
       bool again = false;
       for (int f = 0; f < nf; ++f)
         if (!std::isnan(onset[f]) && w_end[f] * fixed2[f] <= 0.0) {
