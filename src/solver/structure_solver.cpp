@@ -14,6 +14,7 @@
 #include "box_qp.hpp"
 #include "contact_step.hpp"
 #include "dense_product.hpp"
+#include "step_kernels.hpp"
 #include "onset.hpp"
 #include "rod_law.hpp"
 
@@ -69,17 +70,25 @@ class Banded {
     for (Eigen::Index j = 0; j < n; ++j)
       for (Eigen::Index i = 0; i < n; ++i)
         if (k(i, j) != 0.0 && std::abs(i - j) > 1) (j < i ? before_ : after_).push_back({static_cast<int>(i), static_cast<int>(j), k(i, j)});
+    for (const Entry& e : after_) after_rows_.push_back(e.i);
+    std::sort(after_rows_.begin(), after_rows_.end());
+    after_rows_.erase(std::unique(after_rows_.begin(), after_rows_.end()), after_rows_.end());
   }
+  // The usual case: no entries left of the band and more than two rows, where a product is
+  // one pass over the band (solver/step_kernels) and then the entries right of it.
+  bool banded() const { return before_.empty() && diag_.size() > 2; }
+  detail::Tridiagonal diagonals() const { return {sub_.data(), diag_.data(), sup_.data()}; }
+  // p += the entries right of the band times x, row by row in column order; `rows` lists them.
+  void add_after(const Eigen::VectorXd& x, Eigen::VectorXd& p) const {
+    for (const Entry& e : after_) p[e.i] += e.value * x[e.j];
+  }
+  const std::vector<int>& after_rows() const { return after_rows_; }
   // p = K x (p not x).
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& p) const {
     const Eigen::Index n = x.size();
-    if (before_.empty() && n > 2) {  // one pass over the band (the usual case), in a plain loop
-      const double *lo = sub_.data(), *di = diag_.data(), *up = sup_.data(), *xs = x.data();
-      double* ps = p.data();
-      ps[0] = di[0] * xs[0] + up[0] * xs[1];
-      for (Eigen::Index i = 1; i < n - 1; ++i) ps[i] = lo[i - 1] * xs[i - 1] + di[i] * xs[i] + up[i] * xs[i + 1];
-      ps[n - 1] = lo[n - 2] * xs[n - 2] + di[n - 1] * xs[n - 1];
-      for (const Entry& e : after_) p[e.i] += e.value * x[e.j];
+    if (banded()) {
+      detail::step_kernels().band(n, diagonals(), x.data(), p.data());
+      add_after(x, p);
       return;
     }
     p.setZero();
@@ -120,6 +129,7 @@ class Banded {
   };
   Eigen::VectorXd diag_, sub_, sup_;  // K(i, i), K(i + 1, i), K(i, i + 1)
   std::vector<Entry> before_, after_;  // off the band, left and right of it, in column order
+  std::vector<int> after_rows_;
 };
 
 }  // namespace
@@ -356,12 +366,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   for (Eigen::Index d = 0; d < nd; ++d) trial_rows.row(nt + d) = c_a_inv_bt.row(damper_dofs[d]);
   Eigen::VectorXd trial_change(nt + nd);  // A^-1 B' q at trial_dofs, then C A^-1 B' q at damper_dofs
   auto trial_product = [&](const Eigen::VectorXd& q) {
-    const Eigen::Index rows = nt + nd;
-    const double* m = trial_rows.data();
-    double* out = trial_change.data();
-    for (Eigen::Index r = 0; r < rows; ++r) out[r] = m[r] * q[0];
-    for (int f = 1; f < nf; ++f)
-      for (Eigen::Index r = 0; r < rows; ++r) out[r] += m[f * rows + r] * q[f];
+    detail::step_kernels().columns(nt + nd, nf, trial_rows.data(), q.data(), trial_change.data());
   };
   // B' q, where each damper acts -q on A's floor and +q on B's (as bf' q, without the zeros).
   auto add_bt = [&](const Eigen::VectorXd& q, Eigen::VectorXd* out) {
@@ -491,6 +496,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   storeys_of(s.a, 0);
   if (s.b) storeys_of(*s.b, s.a.floors());
   const Eigen::Map<const Eigen::VectorXd> spring_of(storey_spring.data(), n), dashpot_of(storey_dashpot.data(), n);
+  const detail::StepKernels& kernels = detail::step_kernels();
   const bool dashpots_a = !dashpot_of.head(s.a.floors()).isZero(0.0), dashpots_b = !dashpot_of.tail(n - s.a.floors()).isZero(0.0);
   auto fill_storeys = [&](StructureState& st) {
     st.storey_force.resize(n);
@@ -500,10 +506,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       const bool dashpots = offset == 0 ? dashpots_a : dashpots_b;
       st.storey_force[offset] = spring_of[offset] * st.x[offset] + (dashpots ? dashpot_of[offset] * st.v[offset] : 0.0);
       if (nb < 2) return;
-      auto force = st.storey_force.segment(offset + 1, nb - 1);
-      force = spring_of.segment(offset + 1, nb - 1).cwiseProduct(st.x.segment(offset + 1, nb - 1) - st.x.segment(offset, nb - 1));
-      if (dashpots)
-        force += dashpot_of.segment(offset + 1, nb - 1).cwiseProduct(st.v.segment(offset + 1, nb - 1) - st.v.segment(offset, nb - 1));
+      kernels.drifts(nb, spring_of.data() + offset, dashpots ? dashpot_of.data() + offset : nullptr, st.x.data() + offset,
+                     st.v.data() + offset, st.storey_force.data() + offset);
     };
     building(s.a, 0);
     if (s.b) building(*s.b, s.a.floors());
@@ -586,9 +590,21 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       off_dof.setZero();
       for (std::size_t e = 0; e < zener.size(); ++e) zener[e].pair.add(off_dof, offsets[static_cast<Eigen::Index>(e)]);
     }
-    x1 = now.x + 0.5 * h * now.v;  // (the predictor, in x1's storage)
-    k_eff.apply(x1, p1);
-    rhs = mass.cwiseProduct(now.v) + 0.5 * h * (mass * (now.ag + next.ag) - cv_now - internal - p1 - off_dof);
+    // (x1: the predictor x + h/2 v, in x1's storage; p1 = K_eff x1.)
+    if (k_eff.banded()) {
+      kernels.free_rhs(n, mass.data(), now.x.data(), now.v.data(), cv_now.data(), internal.data(), off_dof.data(),
+                       k_eff.diagonals(), 0.5 * h, now.ag + next.ag, x1.data(), p1.data(), rhs.data());
+      if (!k_eff.after_rows().empty()) {  // (the links' entries, then their rows' right-hand side again)
+        k_eff.add_after(x1, p1);
+        const double s_ag = now.ag + next.ag;
+        for (int i : k_eff.after_rows())
+          rhs[i] = mass[i] * now.v[i] + 0.5 * h * ((((mass[i] * s_ag - cv_now[i]) - internal[i]) - p1[i]) - off_dof[i]);
+      }
+    } else {
+      x1 = now.x + 0.5 * h * now.v;
+      k_eff.apply(x1, p1);
+      rhs = mass.cwiseProduct(now.v) + 0.5 * h * (mass * (now.ag + next.ag) - cv_now - internal - p1 - off_dof);
+    }
     // v_free = A^-1 rhs and its damping forces C v_free: the step's only O(n^2) work (with
     // dense C).
     for (const Block& b : blocks) {
@@ -790,8 +806,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     for (int ci = 0; ci < nc; ++ci) contact_work[ci] += step_work[ci];
     if (nf > 0) {
       damper_response.apply(q_step.data(), response_q.data());
-      next.v = v_free - h * response_q.head(n);
-      cv_next = cv_free - h * response_q.tail(n);
+      kernels.end_velocities(n, v_free.data(), cv_free.data(), response_q.data(), response_q.data() + n, h, next.v.data(),
+                             cv_next.data());
     } else {
       next.v = v_free;
       cv_next = cv_free;
@@ -819,9 +835,9 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       const double dv = next.v[k] - v_pre[k];
       if (dv == 0.0) continue;
       const Block& b = blocks[block_of[k]];  // (C's other rows are zero in column k)
-      cv_next.segment(b.offset, b.size) += b.c.col(k - b.offset) * dv;
+      kernels.axpy(b.size, dv, b.c.col(k - b.offset).data(), cv_next.data() + b.offset);
     }
-    next.x = now.x + 0.5 * h * (now.v + next.v);
+    kernels.trapezoid(n, now.x.data(), now.v.data(), next.v.data(), 0.5 * h, next.x.data());
     if (step > 0 && std::any_of(kink_theta.begin(), kink_theta.end(), [](double t) { return !std::isnan(t); }))
       integrate_kinks(states, kink_theta, kink_jump, &next.x);
     // The contact impulses' timing inside the step: the trapezoidal displacement takes each as
@@ -852,7 +868,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     grid_forces(cv_next, p_grid, next.link_phase, &q_grid, &stick_grid);
     // Absolute accelerations at the grid point: x'' - a_g.
     // The dampers' forces B' q are added at their floors only.
-    next.a_abs = (mass * next.ag - cv_next - p_grid).cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, next.ag);
+    kernels.accelerations(n, mass.data(), inv_mass.data(), cv_next.data(), p_grid.data(), next.ag, next.a_abs.data());
     if (nf > 0) {
       damper_bt(q_grid);
       for (std::size_t d = 0; d < damper_dofs.size(); ++d) {
@@ -861,10 +877,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       }
     }
     fill_links(next, q_grid);
-    // x - x is 0 for a finite x, NaN for an infinite or NaN one: one vectorised pass.
-    const bool finite = (next.x - next.x + next.v - next.v).sum() == 0.0;
-    const double largest = finite ? next.x.cwiseAbs().maxCoeff() : 0.0;
-    if (!finite || largest > 1e6) {
+    if (kernels.out_of_range(n, next.x.data(), next.v.data(), 1e6)) {
       std::ostringstream m;
       m << "the response became " << (next.x.allFinite() ? "larger than 1e6 m" : "non-finite") << " at t = " << next.t
         << " s at solver.h = " << h << " s; check the ground motion's scale and the structure's units";

@@ -1,0 +1,127 @@
+#include "step_kernels.hpp"
+
+#include <cmath>
+
+namespace adjoin::detail {
+namespace {
+
+using Index = Eigen::Index;
+#define ADJOIN_INLINE [[gnu::always_inline]] inline
+
+ADJOIN_INLINE void free_rhs_body(Index n, const double* __restrict m, const double* __restrict x,
+                                 const double* __restrict v, const double* __restrict cv, const double* __restrict p0,
+                                 const double* __restrict off, Tridiagonal k, double c, double s,
+                                 double* __restrict x1, double* __restrict p, double* __restrict rhs) {
+  for (Index i = 0; i < n; ++i) x1[i] = x[i] + c * v[i];
+  p[0] = k.di[0] * x1[0] + k.up[0] * x1[1];
+  for (Index i = 1; i < n - 1; ++i) p[i] = k.lo[i - 1] * x1[i - 1] + k.di[i] * x1[i] + k.up[i] * x1[i + 1];
+  p[n - 1] = k.lo[n - 2] * x1[n - 2] + k.di[n - 1] * x1[n - 1];
+  for (Index i = 0; i < n; ++i) rhs[i] = m[i] * v[i] + c * ((((m[i] * s - cv[i]) - p0[i]) - p[i]) - off[i]);
+}
+
+ADJOIN_INLINE void end_velocities_body(Index n, const double* __restrict vf, const double* __restrict cvf,
+                                       const double* __restrict rv, const double* __restrict rc, double h,
+                                       double* __restrict v, double* __restrict cv) {
+  for (Index i = 0; i < n; ++i) {
+    v[i] = vf[i] - h * rv[i];
+    cv[i] = cvf[i] - h * rc[i];
+  }
+}
+
+ADJOIN_INLINE void trapezoid_body(Index n, const double* __restrict x0, const double* __restrict v0,
+                                  const double* __restrict v1, double c, double* __restrict x1) {
+  for (Index i = 0; i < n; ++i) x1[i] = x0[i] + c * (v0[i] + v1[i]);
+}
+
+ADJOIN_INLINE void band_body(Index n, Tridiagonal k, const double* __restrict x, double* __restrict p) {
+  p[0] = k.di[0] * x[0] + k.up[0] * x[1];
+  for (Index i = 1; i < n - 1; ++i) p[i] = k.lo[i - 1] * x[i - 1] + k.di[i] * x[i] + k.up[i] * x[i + 1];
+  p[n - 1] = k.lo[n - 2] * x[n - 2] + k.di[n - 1] * x[n - 1];
+}
+
+ADJOIN_INLINE void accelerations_body(Index n, const double* __restrict m, const double* __restrict inv_m,
+                                      const double* __restrict cv, const double* __restrict p, double ag,
+                                      double* __restrict a) {
+  for (Index i = 0; i < n; ++i) a[i] = ((m[i] * ag - cv[i]) - p[i]) * inv_m[i] - ag;
+}
+
+ADJOIN_INLINE void drifts_body(Index n, const double* __restrict s, const double* __restrict d,
+                               const double* __restrict x, const double* __restrict v, double* __restrict f) {
+  if (d == nullptr) {
+    for (Index i = 1; i < n; ++i) f[i] = s[i] * (x[i] - x[i - 1]);
+  } else {
+    for (Index i = 1; i < n; ++i) f[i] = s[i] * (x[i] - x[i - 1]) + d[i] * (v[i] - v[i - 1]);
+  }
+}
+
+ADJOIN_INLINE void axpy_body(Index n, double a, const double* __restrict x, double* __restrict y) {
+  for (Index i = 0; i < n; ++i) y[i] += x[i] * a;
+}
+
+// (|x| <= limit is false for a NaN x; v - v is 0 for a finite v, NaN for an infinite or NaN one.
+// The flags are combined with |, not ||, so that the loop vectorises.)
+ADJOIN_INLINE bool out_of_range_body(Index n, const double* __restrict x, const double* __restrict v, double limit) {
+  int bad = 0;
+  for (Index i = 0; i < n; ++i) bad |= static_cast<int>(!(std::abs(x[i]) <= limit)) | static_cast<int>(!(v[i] - v[i] == 0.0));
+  return bad != 0;
+}
+
+ADJOIN_INLINE void columns_body(Index rows, Index cols, const double* __restrict m, const double* __restrict q,
+                                double* __restrict out) {
+  for (Index r = 0; r < rows; ++r) out[r] = m[r] * q[0];
+  for (Index j = 1; j < cols; ++j)
+    for (Index r = 0; r < rows; ++r) out[r] += m[j * rows + r] * q[j];
+}
+
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define ADJOIN_KERNEL(ret, name, params, args)        \
+  ret name##_base params { return name##_body args; } \
+  __attribute__((target("avx2"))) ret name##_avx2 params { return name##_body args; }
+#define ADJOIN_HAVE_AVX2 1
+#else
+#define ADJOIN_KERNEL(ret, name, params, args) \
+  ret name##_base params { return name##_body args; }
+#endif
+
+ADJOIN_KERNEL(void, free_rhs,
+              (Index n, const double* m, const double* x, const double* v, const double* cv, const double* p0,
+               const double* off, Tridiagonal k, double c, double s, double* x1, double* p, double* rhs),
+              (n, m, x, v, cv, p0, off, k, c, s, x1, p, rhs))
+ADJOIN_KERNEL(void, end_velocities,
+              (Index n, const double* vf, const double* cvf, const double* rv, const double* rc, double h, double* v,
+               double* cv),
+              (n, vf, cvf, rv, rc, h, v, cv))
+ADJOIN_KERNEL(void, trapezoid, (Index n, const double* x0, const double* v0, const double* v1, double c, double* x1),
+              (n, x0, v0, v1, c, x1))
+ADJOIN_KERNEL(void, band, (Index n, Tridiagonal k, const double* x, double* p), (n, k, x, p))
+ADJOIN_KERNEL(void, accelerations,
+              (Index n, const double* m, const double* inv_m, const double* cv, const double* p, double ag, double* a),
+              (n, m, inv_m, cv, p, ag, a))
+ADJOIN_KERNEL(void, drifts, (Index n, const double* s, const double* d, const double* x, const double* v, double* f),
+              (n, s, d, x, v, f))
+ADJOIN_KERNEL(void, axpy, (Index n, double a, const double* x, double* y), (n, a, x, y))
+ADJOIN_KERNEL(bool, out_of_range, (Index n, const double* x, const double* v, double limit), (n, x, v, limit))
+ADJOIN_KERNEL(void, columns, (Index rows, Index cols, const double* m, const double* q, double* out), (rows, cols, m, q, out))
+#undef ADJOIN_KERNEL
+
+const StepKernels kBaseline{&free_rhs_base,      &end_velocities_base, &trapezoid_base, &band_base,
+                            &accelerations_base, &drifts_base,         &axpy_base,      &out_of_range_base, &columns_base};
+#ifdef ADJOIN_HAVE_AVX2
+const StepKernels kAvx2{&free_rhs_avx2,      &end_velocities_avx2, &trapezoid_avx2, &band_avx2,
+                        &accelerations_avx2, &drifts_avx2,         &axpy_avx2,      &out_of_range_avx2, &columns_avx2};
+#endif
+
+}  // namespace
+
+const StepKernels& baseline_step_kernels() { return kBaseline; }
+
+const StepKernels& step_kernels() {
+#ifdef ADJOIN_HAVE_AVX2
+  static const StepKernels& chosen = __builtin_cpu_supports("avx2") ? kAvx2 : kBaseline;
+  return chosen;
+#else
+  return kBaseline;
+#endif
+}
+
+}  // namespace adjoin::detail
