@@ -10,6 +10,8 @@
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "../src/solver/box_qp.hpp"
+#include "../src/solver/dense_product.hpp"
+#include "../src/solver/step_kernels.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/ground/record_motion.hpp"
@@ -408,4 +410,100 @@ TEST_CASE("three friction dampers on two 20-storey buildings under a record: fin
       if (r.states[i].link_phase[l] != r.states[i - 1].link_phase[l]) ++switches[l];
     }
   for (int l = 0; l < 3; ++l) CHECK(switches[l] >= 2);
+}
+
+TEST_CASE("the structure step's kernels equal the Eigen expressions they replace bit for bit, on both processor paths", "[structure_solver][kernels]") {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  auto vec = [&](Eigen::Index n) {
+    Eigen::VectorXd v(n);
+    for (auto& x : v) x = u(random) * std::pow(10.0, 3.0 * u(random));
+    return v;
+  };
+  for (const detail::StepKernels* k : {&detail::baseline_step_kernels(), &detail::step_kernels()}) {
+    for (Eigen::Index n : {3, 4, 7, 20, 41}) {
+      INFO("n = " << n);
+      const Eigen::VectorXd m = vec(n).cwiseAbs(), x = vec(n), v = vec(n), cv = vec(n), p0 = vec(n), off = vec(n);
+      const Eigen::VectorXd lo = vec(n - 1), di = vec(n), up = vec(n - 1);
+      const detail::Tridiagonal band{lo.data(), di.data(), up.data()};
+      Eigen::MatrixXd kd = Eigen::MatrixXd::Zero(n, n);
+      kd.diagonal() = di;
+      kd.diagonal(-1) = lo;
+      kd.diagonal(1) = up;
+      const double c = 0.0025, s = 1.7;
+      // The free step: x1 = x + c v, p = K x1 (each row summed as a dense row is: left to right),
+      // rhs = m v + c (m s - cv - p0 - p - off).
+      Eigen::VectorXd x1(n), p(n), rhs(n);
+      k->free_rhs(n, m.data(), x.data(), v.data(), cv.data(), p0.data(), off.data(), band, c, s, x1.data(), p.data(), rhs.data());
+      const Eigen::VectorXd x1_e = x + c * v;
+      Eigen::VectorXd p_e(n);
+      for (Eigen::Index i = 0; i < n; ++i) {
+        double sum = 0.0;
+        bool first = true;
+        for (Eigen::Index j = std::max<Eigen::Index>(i - 1, 0); j <= std::min(i + 1, n - 1); ++j) {
+          sum = first ? kd(i, j) * x1_e[j] : sum + kd(i, j) * x1_e[j];
+          first = false;
+        }
+        p_e[i] = sum;
+      }
+      CHECK(x1 == x1_e);
+      CHECK(p == p_e);
+      CHECK(rhs == m.cwiseProduct(v) + c * (m * s - cv - p0 - p_e - off));
+      Eigen::VectorXd pb(n);
+      k->band(n, band, x1_e.data(), pb.data());
+      CHECK(pb == p_e);
+      // The end of the step.
+      const Eigen::VectorXd rv = vec(n), rc = vec(n);
+      Eigen::VectorXd v1(n), cv1(n), x2(n), a(n), f = Eigen::VectorXd::Zero(n), y = cv;
+      k->end_velocities(n, v.data(), cv.data(), rv.data(), rc.data(), 0.005, v1.data(), cv1.data());
+      CHECK(v1 == v - 0.005 * rv);
+      CHECK(cv1 == cv - 0.005 * rc);
+      k->trapezoid(n, x.data(), v.data(), v1.data(), c, x2.data());
+      CHECK(x2 == x + c * (v + v1));
+      const Eigen::VectorXd inv_m = m.cwiseInverse();
+      k->accelerations(n, m.data(), inv_m.data(), cv.data(), p0.data(), s, a.data());
+      CHECK(a == (m * s - cv - p0).cwiseProduct(inv_m) - Eigen::VectorXd::Constant(n, s));
+      k->drifts(n, m.data(), di.data(), x.data(), v.data(), f.data());
+      CHECK(f.tail(n - 1) == m.tail(n - 1).cwiseProduct(x.tail(n - 1) - x.head(n - 1)) +
+                                 di.tail(n - 1).cwiseProduct(v.tail(n - 1) - v.head(n - 1)));
+      k->axpy(n, 0.37, rv.data(), y.data());
+      CHECK(y == cv + rv * 0.37);
+      CHECK_FALSE(k->out_of_range(n, x.data(), v.data(), x.cwiseAbs().maxCoeff()));
+      CHECK(k->out_of_range(n, x.data(), v.data(), 0.999 * x.cwiseAbs().maxCoeff()));
+      Eigen::VectorXd bad = v;
+      bad[n / 2] = std::numeric_limits<double>::infinity();
+      CHECK(k->out_of_range(n, x.data(), bad.data(), 1e300));
+      bad[n / 2] = std::numeric_limits<double>::quiet_NaN();
+      CHECK(k->out_of_range(n, bad.data(), v.data(), 1e300));
+      // m q summed in column order from the first product, as a row of the matrix alone.
+      for (Eigen::Index cols : {1, 3, 6}) {
+        Eigen::MatrixXd mm(n, cols);
+        for (auto& e : mm.reshaped()) e = u(random);
+        const Eigen::VectorXd q = vec(cols);
+        Eigen::VectorXd out(n), out_e(n);
+        k->columns(n, cols, mm.data(), q.data(), out.data());
+        for (Eigen::Index r = 0; r < n; ++r) out_e[r] = mm.row(r).dot(q);
+        CHECK(out == out_e);
+      }
+    }
+  }
+  // The dense product against Eigen's, across the row blocks (16, 4, single rows) and the
+  // switch to Eigen itself from 128 columns.
+  for (Eigen::Index rows : {1, 5, 20, 37, 80})
+    for (Eigen::Index cols : {1, 3, 20, 130}) {
+      Eigen::MatrixXd a(rows, cols);
+      for (auto& e : a.reshaped()) e = u(random);
+      const Eigen::VectorXd x = vec(cols);
+      const detail::DenseProduct product(a);
+      Eigen::VectorXd y(rows);
+      product.apply(x.data(), y.data());
+      const Eigen::VectorXd y_e = a * x;
+      INFO(rows << " x " << cols);
+      CHECK(y == y_e);
+      if (rows > 2) {
+        Eigen::VectorXd part(rows - 2);
+        product.apply(x.data(), part.data(), 1, rows - 2);
+        CHECK(part == y_e.segment(1, rows - 2));
+      }
+    }
 }

@@ -579,8 +579,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   for (std::size_t step = 0; step < n_steps; ++step) {
     StructureState& now = *now_p;
     StructureState& next = *next_p;
-    next.link_phase = now.link_phase;
-    next.link_switch = now.link_switch;
+    // (next's phases and switches are set below for the friction links; the other links' stay
+    // as both states began.)
     next.t = static_cast<double>(step + 1) * h;
     next.ag = g * ground.ag(next.t);
     // The Zener elements' history terms: constant through the step (until commit).
@@ -797,7 +797,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
         }
       if (again) solve_held(hold2, fixed2, &q_step);
     }
-    states = decided;
+    states.swap(decided);  // (decided is filled again at the next step)
     // The dampers' decided step forces move the pairs too: the contact step is taken again
     // with them, so that each pair's end of step is its own (no penetration for the Newton
     // law, the compliant force consistent with the floors' motion); the dampers keep their
@@ -909,9 +909,10 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       contact_bt_now.swap(contact_bt);
     }
     cv_now.swap(cv_next);
-    friction_now = q_grid;
-    stick_force_prev = stick_force_now;
-    stick_force_now = stick_grid;
+    // (q_grid and stick_grid are written whole by the next grid_forces.)
+    friction_now.swap(q_grid);
+    stick_force_prev.swap(stick_force_now);
+    stick_force_now.swap(stick_grid);
     for (int f = 0; f < nf; ++f) {
       const Phase ph = now.link_phase[friction[f]];
       prev_stuck[f] = ph == Phase::stick && step > 0;
