@@ -25,6 +25,9 @@ using structure::DeviceType;
 using structure::LinkType;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Modes with omega h above this are not resolved by the step (as the two-block implicit
+// scheme's kResolvedOmegaH): trapezoidal mechanics passes them undamped.
+constexpr double kResolvedOmegaH = 1.0;
 
 // A two-node element: dof i and dof j (-1: the ground); its deformation is x_i - x_j.
 struct Pair {
@@ -218,45 +221,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   for (const auto& e : zener) e.pair.add(k_eff_dense, e.law->stiffness());
   // A shear building's stiffness is tridiagonal and a link adds four entries: O(n) products.
   const Banded k0(k0_dense), k_eff(k_eff_dense);
-  const Eigen::MatrixXd a_step = Eigen::MatrixXd(mass.asDiagonal()) + 0.5 * h * c + 0.25 * h * h * k_eff_dense;
 
-  // The step matrix is factorised once (it is constant for a fixed h). Inherent damping is
-  // per building and a friction link enters the step through the dampers' forces only, so
-  // without spring, dashpot or Zener links A and C are block diagonal, one block per building:
-  // each is handled on its own (half the dense work of the whole for two equal buildings).
-  // Per step a block needs v_free = A^-1 rhs and its damping forces C v_free: both from one
-  // matrix-vector product with [A^-1; C A^-1], formed once. (A triangular solve pair costs as
-  // many multiplications but runs at a fraction of a product's speed at these sizes; A is
-  // M + O(h) and well conditioned, so its explicit inverse is as accurate as the solve.)
-  struct Block {
-    int offset = 0, size = 0;
-    Eigen::LDLT<Eigen::MatrixXd> a;  // A's diagonal block, factorised
-    Eigen::MatrixXd c;               // C's diagonal block
-    detail::DenseProduct step;       // [A^-1; C A^-1] of the block (2 size x size)
-  };
-  std::vector<Block> blocks;
-  {
-    std::vector<std::pair<int, int>> ranges;
-    if (s.b && !coupled) ranges = {{0, s.a.floors()}, {s.a.floors(), s.b->floors()}};
-    else ranges = {{0, n}};
-    for (const auto& [offset, size] : ranges) {
-      Block b;
-      b.offset = offset;
-      b.size = size;
-      b.a.compute(a_step.block(offset, offset, size, size));
-      if (b.a.info() != Eigen::Success)
-        throw NumericalError("the step matrix M + h/2 C + h^2/4 K is not positive definite", 0.0);
-      b.c = c.block(offset, offset, size, size);
-      Eigen::MatrixXd step(2 * size, size);
-      step.topRows(size) = b.a.solve(Eigen::MatrixXd::Identity(size, size));
-      step.bottomRows(size) = b.c * step.topRows(size);
-      b.step = detail::DenseProduct(std::move(step));
-      blocks.push_back(std::move(b));
-    }
-  }
-  std::vector<int> block_of(n);  // each dof's block
-  for (std::size_t bi = 0; bi < blocks.size(); ++bi)
-    std::fill_n(block_of.begin() + blocks[bi].offset, blocks[bi].size, static_cast<int>(bi));
   const int nf = static_cast<int>(friction.size());
   Eigen::MatrixXd bf = Eigen::MatrixXd::Zero(nf, n);
   Eigen::VectorXd limit(nf);
@@ -266,22 +231,6 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     bf(f, p.j) = -1.0;
     limit[f] = s.links[friction[f]].slip_force;
   }
-  // A^-1 B' (the floors' velocity response to the dampers' step forces) and C A^-1 B' (the
-  // damping forces of that response), once: per step the velocities are v = v_free - h A^-1
-  // B' Q and their damping forces C v = C v_free - h C A^-1 B' Q, O(n nf) for any Q tried.
-  // No friction link (a building alone): nothing to solve, and Eigen's triangular solve must
-  // not see a matrix with no columns (it binds a reference to its null data).
-  Eigen::MatrixXd a_inv_bt = Eigen::MatrixXd::Zero(n, nf);
-  if (nf > 0)
-    for (const Block& b : blocks)
-      a_inv_bt.middleRows(b.offset, b.size) = b.a.solve(bf.transpose().middleRows(b.offset, b.size));
-  const Eigen::MatrixXd c_a_inv_bt = nf > 0 ? Eigen::MatrixXd(c * a_inv_bt) : Eigen::MatrixXd(n, 0);
-  Eigen::MatrixXd stacked(2 * n, nf);
-  stacked << a_inv_bt, c_a_inv_bt;
-  const detail::DenseProduct damper_response(std::move(stacked));  // [A^-1 B'; C A^-1 B']: one product per step
-  const Eigen::MatrixXd delassus = nf > 0 ? Eigen::MatrixXd(h * bf * a_inv_bt) : Eigen::MatrixXd(0, 0);
-  detail::BoxQp box_qp(delassus);
-
   // Contact pairs (SPEC §6). Each with a law is a step force like a damper's, its impulse found
   // by integrating the pair's own relative motion through the step (solver/contact_step.hpp);
   // it needs A^-1 B_c' (and C A^-1 B_c'), its inverse effective mass kappa = B_c A^-1 B_c' and
@@ -292,29 +241,129 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   const int nc = static_cast<int>(active.size());
   std::vector<Pair> contact_pair;
   for (const auto& ct : s.contacts) contact_pair.push_back({s.dof('A', ct.floor_a), s.dof('B', ct.floor_b)});
-  Eigen::MatrixXd a_inv_bc = Eigen::MatrixXd::Zero(n, nc);
   std::vector<detail::ContactStepper> contact_stepper;
   std::vector<detail::ContactMemory> contact_memory(static_cast<std::size_t>(nc));
-  Eigen::VectorXd kappa(nc);
-  if (nc > 0) {
-    Eigen::MatrixXd bc = Eigen::MatrixXd::Zero(nc, n);
-    for (int ci = 0; ci < nc; ++ci) {
-      const Pair& p = contact_pair[active[ci]];
-      bc(ci, p.i) = 1.0;
-      bc(ci, p.j) = -1.0;
-      const double m_eff = mass[p.i] * mass[p.j] / (mass[p.i] + mass[p.j]);
-      contact_stepper.emplace_back(s.contacts[active[ci]].law, m_eff, active[ci]);
-    }
-    for (const Block& b : blocks) a_inv_bc.middleRows(b.offset, b.size) = b.a.solve(bc.transpose().middleRows(b.offset, b.size));
-    for (int ci = 0; ci < nc; ++ci) kappa[ci] = bc.row(ci).dot(a_inv_bc.col(ci));
+  Eigen::MatrixXd bc = Eigen::MatrixXd::Zero(nc, n);
+  for (int ci = 0; ci < nc; ++ci) {
+    const Pair& p = contact_pair[active[ci]];
+    bc(ci, p.i) = 1.0;
+    bc(ci, p.j) = -1.0;
+    const double m_eff = mass[p.i] * mass[p.j] / (mass[p.i] + mass[p.j]);
+    contact_stepper.emplace_back(s.contacts[active[ci]].law, m_eff, active[ci]);
   }
-  const Eigen::MatrixXd c_a_inv_bc = nc > 0 ? Eigen::MatrixXd(c * a_inv_bc) : Eigen::MatrixXd(n, 0);
-  Eigen::MatrixXd contact_friction = Eigen::MatrixXd::Zero(nc, nf);  // B_c A^-1 B_f'
-  for (int ci = 0; ci < nc; ++ci)
-    for (int f = 0; f < nf; ++f) {
-      const Pair& p = contact_pair[active[ci]];
-      contact_friction(ci, f) = a_inv_bt(p.i, f) - a_inv_bt(p.j, f);
+
+  // The step's matrices for the mechanics' weight theta of the step's end (x_n+1 = x_n +
+  // h ((1 - theta) v_n + theta v_n+1), and the same for v): 1/2 the trapezoidal rule of every
+  // step, 1 the backward-Euler restart after a switch (below). Each is formed and factorised
+  // once (constant for a fixed h): A = M + theta h C + theta^2 h^2 K_eff.
+  //
+  // Inherent damping is per building and a friction link enters the step through the dampers'
+  // forces only, so without spring, dashpot or Zener links A and C are block diagonal, one
+  // block per building: each is handled on its own (half the dense work of the whole for two
+  // equal buildings). Per step a block needs v_free = A^-1 rhs and its damping forces C v_free:
+  // both from one matrix-vector product with [A^-1; C A^-1], formed once. (A triangular solve
+  // pair costs as many multiplications but runs at a fraction of a product's speed at these
+  // sizes; A is M + O(h) and well conditioned, so its explicit inverse is as accurate as the
+  // solve.)
+  struct Block {
+    int offset = 0, size = 0;
+    Eigen::LDLT<Eigen::MatrixXd> a;  // A's diagonal block, factorised
+    Eigen::MatrixXd c;               // C's diagonal block
+    detail::DenseProduct step;       // [A^-1; C A^-1] of the block (2 size x size)
+  };
+  struct StepMatrices {
+    double theta = 0.5;
+    std::vector<Block> blocks;
+    // A^-1 B' (the floors' velocity response to the dampers' step forces) and C A^-1 B' (the
+    // damping forces of that response): per step the velocities are v = v_free - h A^-1 B' Q
+    // and their damping forces C v = C v_free - h C A^-1 B' Q, O(n nf) for any Q tried.
+    Eigen::MatrixXd a_inv_bt, c_a_inv_bt;
+    detail::DenseProduct damper_response;  // [A^-1 B'; C A^-1 B']: one product per step
+    Eigen::MatrixXd delassus;              // S = h B A^-1 B'
+    std::unique_ptr<detail::BoxQp> box_qp;
+    Eigen::MatrixXd a_inv_bc, c_a_inv_bc, contact_friction;  // A^-1 B_c', C A^-1 B_c', B_c A^-1 B_f'
+    Eigen::VectorXd kappa;                                   // B_c A^-1 B_c' per pair
+    Eigen::MatrixXd trial_rows;  // the trial's rows of A^-1 B' and C A^-1 B' (below)
+  };
+  std::vector<std::pair<int, int>> ranges;
+  if (s.b && !coupled) ranges = {{0, s.a.floors()}, {s.a.floors(), s.b->floors()}};
+  else ranges = {{0, n}};
+  auto step_matrices = [&](double theta) {
+    auto m = std::make_unique<StepMatrices>();
+    m->theta = theta;
+    const Eigen::MatrixXd a_step = Eigen::MatrixXd(mass.asDiagonal()) + theta * h * c + theta * theta * h * h * k_eff_dense;
+    for (const auto& [offset, size] : ranges) {
+      Block b;
+      b.offset = offset;
+      b.size = size;
+      b.a.compute(a_step.block(offset, offset, size, size));
+      if (b.a.info() != Eigen::Success)
+        throw NumericalError("the step matrix M + theta h C + theta^2 h^2 K is not positive definite", 0.0);
+      b.c = c.block(offset, offset, size, size);
+      Eigen::MatrixXd step(2 * size, size);
+      step.topRows(size) = b.a.solve(Eigen::MatrixXd::Identity(size, size));
+      step.bottomRows(size) = b.c * step.topRows(size);
+      b.step = detail::DenseProduct(std::move(step));
+      m->blocks.push_back(std::move(b));
     }
+    // No friction link (a building alone): nothing to solve, and Eigen's triangular solve must
+    // not see a matrix with no columns (it binds a reference to its null data).
+    m->a_inv_bt = Eigen::MatrixXd::Zero(n, nf);
+    if (nf > 0)
+      for (const Block& b : m->blocks)
+        m->a_inv_bt.middleRows(b.offset, b.size) = b.a.solve(bf.transpose().middleRows(b.offset, b.size));
+    m->c_a_inv_bt = nf > 0 ? Eigen::MatrixXd(c * m->a_inv_bt) : Eigen::MatrixXd(n, 0);
+    Eigen::MatrixXd stacked(2 * n, nf);
+    stacked << m->a_inv_bt, m->c_a_inv_bt;
+    m->damper_response = detail::DenseProduct(std::move(stacked));
+    m->delassus = nf > 0 ? Eigen::MatrixXd(h * bf * m->a_inv_bt) : Eigen::MatrixXd(0, 0);
+    m->box_qp = std::make_unique<detail::BoxQp>(m->delassus);
+    m->a_inv_bc = Eigen::MatrixXd::Zero(n, nc);
+    m->kappa.resize(nc);
+    if (nc > 0) {
+      for (const Block& b : m->blocks)
+        m->a_inv_bc.middleRows(b.offset, b.size) = b.a.solve(bc.transpose().middleRows(b.offset, b.size));
+      for (int ci = 0; ci < nc; ++ci) m->kappa[ci] = bc.row(ci).dot(m->a_inv_bc.col(ci));
+    }
+    m->c_a_inv_bc = nc > 0 ? Eigen::MatrixXd(c * m->a_inv_bc) : Eigen::MatrixXd(n, 0);
+    m->contact_friction = Eigen::MatrixXd::Zero(nc, nf);
+    for (int ci = 0; ci < nc; ++ci)
+      for (int f = 0; f < nf; ++f) {
+        const Pair& p = contact_pair[active[ci]];
+        m->contact_friction(ci, f) = m->a_inv_bt(p.i, f) - m->a_inv_bt(p.j, f);
+      }
+    return m;
+  };
+  const std::unique_ptr<StepMatrices> trapezoidal = step_matrices(0.5);
+  // The backward-Euler restart (as the two-block implicit schemes have it: see
+  // solver/implicit_scheme.cpp). Trapezoidal mechanics does not damp the modes the step does
+  // not resolve (its amplification tends to -1 as omega h grows): a damper's switch (a jump of
+  // its force) excites the stiffest mode, which rings on and can drive a damper's relative
+  // velocity through zero again and again (spurious switches). The step after a switch is
+  // therefore taken with backward-Euler mechanics, which damps a mode by
+  // 1/sqrt(1 + (omega h)^2): automatically when the stiffest mode of the structure (with the
+  // Zener elements at their effective stiffness, the dampers free: locking them only lowers
+  // it) is unresolved, h omega_max > 1; after every switch with Restart::always (the
+  // implicit-damped rule). One first-order step per switch keeps the step second order.
+  double omega_max = 0.0;
+  if (nf > 0 && options.restart == StructureSolverOptions::Restart::automatic) {
+    const Eigen::VectorXd inv_sqrt_m = mass.cwiseSqrt().cwiseInverse();
+    const Eigen::MatrixXd scaled = inv_sqrt_m.asDiagonal() * k_eff_dense * inv_sqrt_m.asDiagonal();
+    omega_max = std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(scaled, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff()));
+  }
+  const int restart_steps =
+      nf > 0 && (options.restart == StructureSolverOptions::Restart::always ||
+                 (options.restart == StructureSolverOptions::Restart::automatic && h * omega_max > kResolvedOmegaH))
+          ? 1
+          : 0;
+  const std::unique_ptr<StepMatrices> backward = restart_steps > 0 ? step_matrices(1.0) : nullptr;
+  StepMatrices* sm = trapezoidal.get();  // this step's
+  int restart_left = 0;                  // backward-Euler steps still to take
+  // The blocks' offsets, sizes and damping matrices, which do not depend on theta.
+  const std::vector<Block>& blocks = trapezoidal->blocks;
+  std::vector<int> block_of(n);  // each dof's block
+  for (std::size_t bi = 0; bi < blocks.size(); ++bi)
+    std::fill_n(block_of.begin() + blocks[bi].offset, blocks[bi].size, static_cast<int>(bi));
   Eigen::VectorXd contact_impulse = Eigen::VectorXd::Zero(nc), contact_moment = Eigen::VectorXd::Zero(nc);
   Eigen::VectorXd contact_end_force = Eigen::VectorXd::Zero(nc);
   Eigen::VectorXd contact_bt_now = Eigen::VectorXd::Zero(n), contact_bt = Eigen::VectorXd::Zero(n);  // B_c' p at t_n, t_n+1
@@ -361,12 +410,15 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   // Their products with q are summed column after column (vectorised across the rows), so each
   // row's sum is formed in the order of its columns, as Eigen sums a row of the full matrices.
   const auto nt = static_cast<Eigen::Index>(trial_dofs.size()), nd = static_cast<Eigen::Index>(damper_dofs.size());
-  Eigen::MatrixXd trial_rows(nt + nd, nf);
-  for (Eigen::Index t = 0; t < nt; ++t) trial_rows.row(t) = a_inv_bt.row(trial_dofs[t]);
-  for (Eigen::Index d = 0; d < nd; ++d) trial_rows.row(nt + d) = c_a_inv_bt.row(damper_dofs[d]);
+  for (StepMatrices* m : {trapezoidal.get(), backward.get()}) {
+    if (m == nullptr) continue;
+    m->trial_rows.resize(nt + nd, nf);
+    for (Eigen::Index t = 0; t < nt; ++t) m->trial_rows.row(t) = m->a_inv_bt.row(trial_dofs[t]);
+    for (Eigen::Index d = 0; d < nd; ++d) m->trial_rows.row(nt + d) = m->c_a_inv_bt.row(damper_dofs[d]);
+  }
   Eigen::VectorXd trial_change(nt + nd);  // A^-1 B' q at trial_dofs, then C A^-1 B' q at damper_dofs
   auto trial_product = [&](const Eigen::VectorXd& q) {
-    detail::step_kernels().columns(nt + nd, nf, trial_rows.data(), q.data(), trial_change.data());
+    detail::step_kernels().columns(nt + nd, nf, sm->trial_rows.data(), q.data(), trial_change.data());
   };
   // B' q, where each damper acts -q on A's floor and +q on B's (as bf' q, without the zeros).
   auto add_bt = [&](const Eigen::VectorXd& q, Eigen::VectorXd* out) {
@@ -558,7 +610,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     for (int a = 0; a < m; ++a)
       for (int b = 0; b < m; ++b) g_held(a, b) = g_all(held[a], held[b]);
     Eigen::LDLT<Eigen::MatrixXd> held_solver;
-    if (m > 0) held_solver.compute(g_held);  // (never on an empty matrix: see a_inv_bt above)
+    if (m > 0) held_solver.compute(g_held);  // (never on an empty matrix: see a_inv_bt in step_matrices)
     Eigen::VectorXd dq(nf);
     for (int f = 0; f < nf; ++f) {
       if (std::isnan(kink_theta_[f])) continue;
@@ -585,13 +637,21 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     next.ag = g * ground.ag(next.t);
     // The Zener elements' history terms: constant through the step (until commit).
     for (std::size_t e = 0; e < zener.size(); ++e) offsets[static_cast<Eigen::Index>(e)] = zener[e].law->offset();
-    // rhs = M v + h/2 (M 1 (ag_n + ag_n+1) - C v - P - K_eff (x + h/2 v) - offsets).
     if (!zener.empty()) {  // (else it stays zero)
       off_dof.setZero();
       for (std::size_t e = 0; e < zener.size(); ++e) zener[e].pair.add(off_dof, offsets[static_cast<Eigen::Index>(e)]);
     }
-    // (x1: the predictor x + h/2 v, in x1's storage; p1 = K_eff x1.)
-    if (k_eff.banded()) {
+    // The step after a switch, where the restart applies, is backward Euler.
+    const bool restart = restart_left > 0;
+    if (restart) --restart_left;
+    sm = restart ? backward.get() : trapezoidal.get();
+    // Trapezoidal: rhs = M v + h/2 (M 1 (ag_n + ag_n+1) - C v - P - K_eff (x + h/2 v) - offsets);
+    // backward Euler: rhs = M v + h (M 1 ag_n+1 - K_eff x - offsets). (x1: the predictor, in
+    // x1's storage; p1 = K_eff x1.)
+    if (restart) {
+      k_eff.apply(now.x, p1);
+      rhs = mass.cwiseProduct(now.v) + h * (mass * next.ag - p1 - off_dof);
+    } else if (k_eff.banded()) {
       kernels.free_rhs(n, mass.data(), now.x.data(), now.v.data(), cv_now.data(), internal.data(), off_dof.data(),
                        k_eff.diagonals(), 0.5 * h, now.ag + next.ag, x1.data(), p1.data(), rhs.data());
       if (!k_eff.after_rows().empty()) {  // (the links' entries, then their rows' right-hand side again)
@@ -607,7 +667,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     }
     // v_free = A^-1 rhs and its damping forces C v_free: the step's only O(n^2) work (with
     // dense C).
-    for (const Block& b : blocks) {
+    for (const Block& b : sm->blocks) {
       b.step.apply(rhs.data() + b.offset, v_free.data() + b.offset, 0, b.size);
       b.step.apply(rhs.data() + b.offset, cv_free.data() + b.offset, b.size, b.size);
     }
@@ -635,7 +695,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       for (std::size_t t = 0; t < trial_dofs.size(); ++t) {
         const int k = trial_dofs[t];
         v1[k] = v_free[k] - h * trial_change[t];
-        x1[k] = now.x[k] + 0.5 * h * (now.v[k] + v1[k]);
+        x1[k] = restart ? now.x[k] + h * v1[k] : now.x[k] + 0.5 * h * (now.v[k] + v1[k]);
       }
       for (std::size_t d = 0; d < damper_dofs.size(); ++d) {
         const int k = damper_dofs[d];
@@ -649,7 +709,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     };
     // Solves for the held dampers (limit infinite) with the others' step forces fixed.
     auto solve_held = [&](const std::vector<char>& hold_, const Eigen::VectorXd& fixed_, Eigen::VectorXd* q) {
-      box_qp.solve_held(w_free, hold_, fixed_, q);
+      sm->box_qp->solve_held(w_free, hold_, fixed_, q);
     };
     // The contact pairs' step: each pair's relative motion through the step under its free
     // relative acceleration (the structure's free step with the dampers as they were), its
@@ -677,8 +737,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
         in.h = h;
         in.delta0 = p.of(now.x) - s.contacts[active[ci]].gap;
         in.w0 = p.of(now.v);
-        in.a = (p.of(v_free0) - (nf > 0 ? h * contact_friction.row(ci).dot(q_f) : 0.0) - in.w0) / h;
-        in.kappa = kappa[ci];
+        in.a = (p.of(v_free0) - (nf > 0 ? h * sm->contact_friction.row(ci).dot(q_f) : 0.0) - in.w0) / h;
+        in.kappa = sm->kappa[ci];
         contact_impulse[ci] = contact_moment[ci] = contact_end_force[ci] = 0.0;
         contact_memory[ci] = memory_before[ci];
         if (contact_stepper[ci].quiet(contact_memory[ci], in)) continue;
@@ -693,8 +753,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       v_free = v_free0;
       cv_free = cv_free0;
       if (any_contact) {
-        v_free.noalias() -= a_inv_bc * contact_impulse;
-        cv_free.noalias() -= c_a_inv_bc * contact_impulse;
+        v_free.noalias() -= sm->a_inv_bc * contact_impulse;
+        cv_free.noalias() -= sm->c_a_inv_bc * contact_impulse;
       }
       for (int f = 0; f < nf; ++f) w_free[f] = v_free[fi[f]] - v_free[fj[f]];
     };
@@ -712,7 +772,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     }
     std::fill(decided.begin(), decided.end(), detail::DamperState::stick);
     if (nf > 0 && step == 0) {  // from rest: the closed-form relay of the box QP
-      const detail::BoxQpResult& r = box_qp.solve(w_free, limit, states);
+      const detail::BoxQpResult& r = sm->box_qp->solve(w_free, limit, states);
       q_step = r.q;
       decided = r.state;
     } else if (nf > 0) {
@@ -786,7 +846,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       else solve_held(hold2, fixed2, &q_step);
       // A starting damper that the others leave no room to slip stays stuck this step.
       if (std::any_of(onset.begin(), onset.end(), [](double t) { return !std::isnan(t); }))
-        w_end.noalias() = w_free - delassus * q_step;
+        w_end.noalias() = w_free - sm->delassus * q_step;
       bool again = false;
       for (int f = 0; f < nf; ++f)
         if (!std::isnan(onset[f]) && w_end[f] * fixed2[f] <= 0.0) {
@@ -805,7 +865,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     if (any_contact && nf > 0) contact_pass(q_step);
     for (int ci = 0; ci < nc; ++ci) contact_work[ci] += step_work[ci];
     if (nf > 0) {
-      damper_response.apply(q_step.data(), response_q.data());
+      sm->damper_response.apply(q_step.data(), response_q.data());
       kernels.end_velocities(n, v_free.data(), cv_free.data(), response_q.data(), response_q.data() + n, h, next.v.data(),
                              cv_next.data());
     } else {
@@ -837,12 +897,21 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       const Block& b = blocks[block_of[k]];  // (C's other rows are zero in column k)
       kernels.axpy(b.size, dv, b.c.col(k - b.offset).data(), cv_next.data() + b.offset);
     }
-    kernels.trapezoid(n, now.x.data(), now.v.data(), next.v.data(), 0.5 * h, next.x.data());
-    if (step > 0 && std::any_of(kink_theta.begin(), kink_theta.end(), [](double t) { return !std::isnan(t); }))
-      integrate_kinks(states, kink_theta, kink_jump, &next.x);
-    // The contact impulses' timing inside the step: the trapezoidal displacement takes each as
-    // spread over the step; A^-1 B_c' (h/2 I - J) makes the pair's penetration its own.
-    if (any_contact) next.x.noalias() += a_inv_bc * (0.5 * h * contact_impulse - contact_moment);
+    if (restart) {
+      next.x = now.x + h * next.v;
+    } else {
+      kernels.trapezoid(n, now.x.data(), now.v.data(), next.v.data(), 0.5 * h, next.x.data());
+      // (A backward-Euler step's own first-order error is larger than the kinks'.)
+      if (step > 0 && std::any_of(kink_theta.begin(), kink_theta.end(), [](double t) { return !std::isnan(t); }))
+        integrate_kinks(states, kink_theta, kink_jump, &next.x);
+    }
+    // The contact impulses' timing inside the step: the step's displacement takes each as
+    // spread over the step (h/2 of its velocity change for the trapezoidal rule, h for
+    // backward Euler); A^-1 B_c' ((1 - theta) h I - J) makes the pair's penetration its own.
+    if (any_contact) {
+      if (restart) next.x.noalias() -= sm->a_inv_bc * contact_moment;
+      else next.x.noalias() += sm->a_inv_bc * (0.5 * h * contact_impulse - contact_moment);
+    }
     k0.apply(next.x, p_next);
     for (std::size_t e = 0; e < zener.size(); ++e) {
       auto& el = zener[e];
@@ -860,6 +929,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       if (after == before || step == 0) continue;
       const double theta = before == Phase::stick ? onset[f] : crossing[f];
       next.link_switch[l] = now.t + (std::isnan(theta) ? 1.0 : theta) * h;
+      restart_left = restart_steps;  // the next step restarts (when the restart applies)
     }
     // The grid point's forces with the contacts' (kept apart from `internal`: the trapezoidal
     // rule must not see the contact forces, whose impulse the contact step gives).

@@ -10,7 +10,12 @@
 // stiffness, so the step matrix A = M + h/2 C + h^2/4 K_eff is constant and factorised once);
 // the friction dampers' step forces Q from the box-constrained QP of their Delassus matrix
 // S = h B A^-1 B' (solver/box_qp: exact stick, no regularisation). Second order where the
-// dampers do not switch.
+// dampers do not switch. As in the two-block implicit scheme, the step after a damper's switch
+// is taken with backward-Euler mechanics (A = M + h C + h^2 K_eff, also factorised once) when
+// the structure's stiffest mode is not resolved by the step, h omega_max > 1: trapezoidal
+// mechanics passes such a mode undamped, so what a switch excites rings on and drives the
+// dampers through spurious switches; one backward-Euler step damps it by
+// 1/sqrt(1 + (omega h)^2) and keeps the step second order (StructureSolverOptions::restart).
 //
 // Reported at each grid point: displacements, velocities, absolute accelerations, and per
 // link its force, stroke (s = x_A,i - x_B,j) and velocity; a friction link's force is its
@@ -23,10 +28,8 @@
 // only friction links join the buildings), O(n_b^2) since modal damping makes C dense (O(n_b^2)
 // also for Rayleigh or none: A^-1 is dense); everything else is O(n) (the stiffness is a band
 // plus the links' entries) or O(dampers^2); a step allocates nothing. Plus each Zener
-// element's history push.
-//
-// Not yet carried over from the two-block scheme: the backward-Euler restart after a switch
-// when the stiffest mode is unresolved (implicit-damped); the two-block scenes run on
+// element's history push. The products and the passes over the floors use AVX where the
+// processor has it, with the same results bit for bit. The two-block scenes run on
 // solver/simulate.hpp.
 #include <Eigen/Dense>
 #include <cstddef>
@@ -48,6 +51,11 @@ struct StructureSolverOptions {
   // initial displacement needs a structure without Zener elements and friction links (their
   // state at t = 0 is relaxed and stuck at zero deformation).
   Eigen::VectorXd x0, v0;
+  // The backward-Euler step after a damper's switch: `automatic` when the stiffest mode is not
+  // resolved (h omega_max > 1, the `implicit` scheme's rule), `always` after every switch (the
+  // `implicit-damped` rule), `never` (trapezoidal throughout: for comparisons).
+  enum class Restart { automatic, always, never };
+  Restart restart = Restart::automatic;
   std::size_t steps() const;
   bool IsValid(std::string* error) const;
 };
