@@ -38,6 +38,7 @@ BoxQpResult solve_box_qp(const Eigen::MatrixXd& s, const Eigen::VectorXd& w0, co
 // of sets again and again; at most 2^n).
 class SubsetInverses {
  public:
+  SubsetInverses() = default;
   explicit SubsetInverses(Eigen::MatrixXd s) : s_(std::move(s)) {}
   struct System {
     Eigen::MatrixXd inverse;  // S_ss^-1

@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <sstream>
+#include <tuple>
 
 #include "adjoin/errors.hpp"
 #include "adjoin/fractional/weights.hpp"
@@ -15,6 +16,7 @@
 #include "contact_step.hpp"
 #include "dense_product.hpp"
 #include "step_kernels.hpp"
+#include "time_loop.hpp"
 #include "onset.hpp"
 #include "rod_law.hpp"
 
@@ -64,6 +66,7 @@ Rod rod_of(const structure::Zener& z) { return Rod{z.order, z.tau_x, z.tau_f, fa
 // of it last), so the products equal the dense ones bit for bit.
 class Banded {
  public:
+  Banded() = default;
   explicit Banded(const Eigen::MatrixXd& k) : diag_(k.diagonal()) {
     const Eigen::Index n = k.rows();
     if (n > 1) {
@@ -152,483 +155,361 @@ bool StructureSolverOptions::IsValid(std::string* error) const {
   return true;
 }
 
-StructureRunSummary simulate_structure(const StructureSolverOptions& options, const structure::Structure& s,
-                                       const GroundMotion& ground, StructureObserver& observer) {
-  std::string error;
-  if (!options.IsValid(&error)) throw InputError(error);
-  if (!s.IsValid(&error)) throw InputError(error);
-  for (const Eigen::VectorXd* v : {&options.x0, &options.v0})
-    if (v->size() != 0 && (v->size() != s.dofs() || !v->allFinite()))
-      throw InputError("the initial displacements and velocities need one finite value per floor");
-  if (options.x0.size() != 0 && !options.x0.isZero()) {
-    bool zener = false;
-    for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
-      if (b)
-        for (const auto& d : b->devices) zener = zener || d.type == DeviceType::zener;
-    for (const auto& l : s.links) zener = zener || l.type == LinkType::zener || l.type == LinkType::friction;
-    if (zener) throw InputError("initial displacements need a structure without Zener elements and friction links");
-  }
-  const auto start = std::chrono::steady_clock::now();
-  const double h = options.h;
-  const std::size_t n_steps = options.steps();
-  const int n = s.dofs();
+namespace {
 
-  // ---- assembly: M, C, elastic K0, Zener elements, friction links ----
-  Eigen::VectorXd mass(n);
-  Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n), k0_dense = Eigen::MatrixXd::Zero(n, n);
-  std::vector<ZenerElement> zener;
-  std::map<double, std::vector<double>> weights;  // per order
-  auto zener_law = [&](const structure::Zener& z) {
-    auto& w = weights[z.order];
-    if (w.empty()) w = bdf2_weights(z.order, n_steps + 2);
-    return std::make_unique<detail::RodLaw>(rod_of(z), z.k, h, options.history, w);
-  };
-  auto add_building = [&](const structure::Building& b, int offset) {
-    const int nb = b.floors();
-    mass.segment(offset, nb) = b.masses;
-    c.block(offset, offset, nb, nb) = structure::inherent_damping_matrix(b) + structure::dashpot_matrix(b);
-    for (int st = 0; st < nb; ++st) Pair{offset + st, st > 0 ? offset + st - 1 : -1}.add(k0_dense, b.springs[st]);
-    for (const auto& d : b.devices)
-      for (int st : d.storeys) {
-        const Pair p{offset + st - 1, st > 1 ? offset + st - 2 : -1};
-        if (d.type == DeviceType::spring) p.add(k0_dense, d.k);
-        if (d.type == DeviceType::zener) zener.push_back({p, offset + st - 1, zener_law(d.zener), 0.0});
-      }
-  };
-  add_building(s.a, 0);
-  if (s.b) add_building(*s.b, s.a.floors());
-  std::vector<Pair> link_pair;
-  std::vector<int> friction;  // link indices
-  bool coupled = false;       // a link other than friction enters A = M + h/2 C + h^2/4 K
-  for (std::size_t l = 0; l < s.links.size(); ++l) {
-    const auto& link = s.links[l];
-    const Pair p{s.dof('A', link.floor_a), s.dof('B', link.floor_b)};
-    link_pair.push_back(p);
-    if (link.type == LinkType::spring) p.add(k0_dense, link.k);
-    if (link.type == LinkType::dashpot) p.add(c, link.c);
-    if (link.type == LinkType::zener) zener.push_back({p, -1, zener_law(link.zener), 0.0});
-    if (link.type == LinkType::friction) friction.push_back(static_cast<int>(l));
-    else coupled = true;
-  }
-  // Zener links come after the storey devices in `zener`; remember where each link's is.
-  std::vector<int> link_zener(s.links.size(), -1);
-  {
-    int z = static_cast<int>(zener.size());
-    for (int l = static_cast<int>(s.links.size()) - 1; l >= 0; --l)
-      if (s.links[l].type == LinkType::zener) link_zener[l] = --z;
-  }
-  Eigen::MatrixXd k_eff_dense = k0_dense;
-  for (const auto& e : zener) e.pair.add(k_eff_dense, e.law->stiffness());
-  // A shear building's stiffness is tridiagonal and a link adds four entries: O(n) products.
-  const Banded k0(k0_dense), k_eff(k_eff_dense);
+struct Block {
+  int offset = 0, size = 0;
+  Eigen::LDLT<Eigen::MatrixXd> a;  // A's diagonal block, factorised
+  Eigen::MatrixXd c;               // C's diagonal block
+  detail::DenseProduct step;       // [A^-1; C A^-1] of the block (2 size x size)
+};
+struct StepMatrices {
+  double theta = 0.5;
+  std::vector<Block> blocks;
+  // A^-1 B' (the floors' velocity response to the dampers' step forces) and C A^-1 B' (the
+  // damping forces of that response): per step the velocities are v = v_free - h A^-1 B' Q
+  // and their damping forces C v = C v_free - h C A^-1 B' Q, O(n nf) for any Q tried.
+  Eigen::MatrixXd a_inv_bt, c_a_inv_bt;
+  detail::DenseProduct damper_response;  // [A^-1 B'; C A^-1 B']: one product per step
+  Eigen::MatrixXd delassus;              // S = h B A^-1 B'
+  std::unique_ptr<detail::BoxQp> box_qp;
+  Eigen::MatrixXd a_inv_bc, c_a_inv_bc, contact_friction;  // A^-1 B_c', C A^-1 B_c', B_c A^-1 B_f'
+  Eigen::VectorXd kappa;                                   // B_c A^-1 B_c' per pair
+  Eigen::MatrixXd trial_rows;  // the trial's rows of A^-1 B' and C A^-1 B' (below)
+};
 
-  const int nf = static_cast<int>(friction.size());
-  Eigen::MatrixXd bf = Eigen::MatrixXd::Zero(nf, n);
-  Eigen::VectorXd limit(nf);
-  for (int f = 0; f < nf; ++f) {
-    const Pair& p = link_pair[friction[f]];
-    bf(f, p.i) = 1.0;
-    bf(f, p.j) = -1.0;
-    limit[f] = s.links[friction[f]].slip_force;
-  }
-  // Contact pairs (SPEC §6). Each with a law is a step force like a damper's, its impulse found
-  // by integrating the pair's own relative motion through the step (solver/contact_step.hpp);
-  // it needs A^-1 B_c' (and C A^-1 B_c'), its inverse effective mass kappa = B_c A^-1 B_c' and
-  // B_c A^-1 B_f' (how the dampers' step forces move it).
-  std::vector<int> active;  // contacts with a law
-  for (std::size_t k = 0; k < s.contacts.size(); ++k)
-    if (s.contacts[k].law.model != structure::ContactModel::none) active.push_back(static_cast<int>(k));
-  const int nc = static_cast<int>(active.size());
-  std::vector<Pair> contact_pair;
-  for (const auto& ct : s.contacts) contact_pair.push_back({s.dof('A', ct.floor_a), s.dof('B', ct.floor_b)});
-  std::vector<detail::ContactStepper> contact_stepper;
-  std::vector<detail::ContactMemory> contact_memory(static_cast<std::size_t>(nc));
-  Eigen::MatrixXd bc = Eigen::MatrixXd::Zero(nc, n);
-  for (int ci = 0; ci < nc; ++ci) {
-    const Pair& p = contact_pair[active[ci]];
-    bc(ci, p.i) = 1.0;
-    bc(ci, p.j) = -1.0;
-    const double m_eff = mass[p.i] * mass[p.j] / (mass[p.i] + mass[p.j]);
-    contact_stepper.emplace_back(s.contacts[active[ci]].law, m_eff, active[ci]);
-  }
-
-  // The step's matrices for the mechanics' weight theta of the step's end (x_n+1 = x_n +
-  // h ((1 - theta) v_n + theta v_n+1), and the same for v): 1/2 the trapezoidal rule of every
-  // step, 1 the backward-Euler restart after a switch (below). Each is formed and factorised
-  // once (constant for a fixed h): A = M + theta h C + theta^2 h^2 K_eff.
-  //
-  // Inherent damping is per building and a friction link enters the step through the dampers'
-  // forces only, so without spring, dashpot or Zener links A and C are block diagonal, one
-  // block per building: each is handled on its own (half the dense work of the whole for two
-  // equal buildings). Per step a block needs v_free = A^-1 rhs and its damping forces C v_free:
-  // both from one matrix-vector product with [A^-1; C A^-1], formed once. (A triangular solve
-  // pair costs as many multiplications but runs at a fraction of a product's speed at these
-  // sizes; A is M + O(h) and well conditioned, so its explicit inverse is as accurate as the
-  // solve.)
-  struct Block {
-    int offset = 0, size = 0;
-    Eigen::LDLT<Eigen::MatrixXd> a;  // A's diagonal block, factorised
-    Eigen::MatrixXd c;               // C's diagonal block
-    detail::DenseProduct step;       // [A^-1; C A^-1] of the block (2 size x size)
-  };
-  struct StepMatrices {
-    double theta = 0.5;
-    std::vector<Block> blocks;
-    // A^-1 B' (the floors' velocity response to the dampers' step forces) and C A^-1 B' (the
-    // damping forces of that response): per step the velocities are v = v_free - h A^-1 B' Q
-    // and their damping forces C v = C v_free - h C A^-1 B' Q, O(n nf) for any Q tried.
-    Eigen::MatrixXd a_inv_bt, c_a_inv_bt;
-    detail::DenseProduct damper_response;  // [A^-1 B'; C A^-1 B']: one product per step
-    Eigen::MatrixXd delassus;              // S = h B A^-1 B'
-    std::unique_ptr<detail::BoxQp> box_qp;
-    Eigen::MatrixXd a_inv_bc, c_a_inv_bc, contact_friction;  // A^-1 B_c', C A^-1 B_c', B_c A^-1 B_f'
-    Eigen::VectorXd kappa;                                   // B_c A^-1 B_c' per pair
-    Eigen::MatrixXd trial_rows;  // the trial's rows of A^-1 B' and C A^-1 B' (below)
-  };
-  std::vector<std::pair<int, int>> ranges;
-  if (s.b && !coupled) ranges = {{0, s.a.floors()}, {s.a.floors(), s.b->floors()}};
-  else ranges = {{0, n}};
-  auto step_matrices = [&](double theta) {
-    auto m = std::make_unique<StepMatrices>();
-    m->theta = theta;
-    const Eigen::MatrixXd a_step = Eigen::MatrixXd(mass.asDiagonal()) + theta * h * c + theta * theta * h * h * k_eff_dense;
-    for (const auto& [offset, size] : ranges) {
-      Block b;
-      b.offset = offset;
-      b.size = size;
-      b.a.compute(a_step.block(offset, offset, size, size));
-      if (b.a.info() != Eigen::Success)
-        throw NumericalError("the step matrix M + theta h C + theta^2 h^2 K is not positive definite", 0.0);
-      b.c = c.block(offset, offset, size, size);
-      Eigen::MatrixXd step(2 * size, size);
-      step.topRows(size) = b.a.solve(Eigen::MatrixXd::Identity(size, size));
-      step.bottomRows(size) = b.c * step.topRows(size);
-      b.step = detail::DenseProduct(std::move(step));
-      m->blocks.push_back(std::move(b));
+// The structure step as a stepper of the one time loop (solver/time_loop.hpp): the set-up
+// (assembly, the step's matrices, the checks) in the constructor, one grid step in advance().
+class StructureStepper {
+ public:
+  StructureStepper(const StructureSolverOptions& options_, const structure::Structure& s_, const GroundMotion& ground_)
+      : options(options_), s(s_), ground(ground_), kernels(detail::step_kernels()) {
+    std::string error;
+    if (!options.IsValid(&error)) throw InputError(error);
+    if (!s.IsValid(&error)) throw InputError(error);
+    for (const Eigen::VectorXd* v : {&options.x0, &options.v0})
+      if (v->size() != 0 && (v->size() != s.dofs() || !v->allFinite()))
+        throw InputError("the initial displacements and velocities need one finite value per floor");
+    if (options.x0.size() != 0 && !options.x0.isZero()) {
+      bool relaxed = false;  // an element whose state at t = 0 is relaxed (or stuck)
+      for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
+        if (b)
+          for (const auto& d : b->devices) relaxed = relaxed || d.type == DeviceType::zener;
+      for (const auto& l : s.links) relaxed = relaxed || l.type == LinkType::zener || l.type == LinkType::friction;
+      if (relaxed) throw InputError("initial displacements need a structure without Zener elements and friction links");
     }
-    // No friction link (a building alone): nothing to solve, and Eigen's triangular solve must
-    // not see a matrix with no columns (it binds a reference to its null data).
-    m->a_inv_bt = Eigen::MatrixXd::Zero(n, nf);
-    if (nf > 0)
-      for (const Block& b : m->blocks)
-        m->a_inv_bt.middleRows(b.offset, b.size) = b.a.solve(bf.transpose().middleRows(b.offset, b.size));
-    m->c_a_inv_bt = nf > 0 ? Eigen::MatrixXd(c * m->a_inv_bt) : Eigen::MatrixXd(n, 0);
-    Eigen::MatrixXd stacked(2 * n, nf);
-    stacked << m->a_inv_bt, m->c_a_inv_bt;
-    m->damper_response = detail::DenseProduct(std::move(stacked));
-    m->delassus = nf > 0 ? Eigen::MatrixXd(h * bf * m->a_inv_bt) : Eigen::MatrixXd(0, 0);
-    m->box_qp = std::make_unique<detail::BoxQp>(m->delassus);
-    m->a_inv_bc = Eigen::MatrixXd::Zero(n, nc);
-    m->kappa.resize(nc);
-    if (nc > 0) {
-      for (const Block& b : m->blocks)
-        m->a_inv_bc.middleRows(b.offset, b.size) = b.a.solve(bc.transpose().middleRows(b.offset, b.size));
-      for (int ci = 0; ci < nc; ++ci) m->kappa[ci] = bc.row(ci).dot(m->a_inv_bc.col(ci));
-    }
-    m->c_a_inv_bc = nc > 0 ? Eigen::MatrixXd(c * m->a_inv_bc) : Eigen::MatrixXd(n, 0);
-    m->contact_friction = Eigen::MatrixXd::Zero(nc, nf);
-    for (int ci = 0; ci < nc; ++ci)
-      for (int f = 0; f < nf; ++f) {
-        const Pair& p = contact_pair[active[ci]];
-        m->contact_friction(ci, f) = m->a_inv_bt(p.i, f) - m->a_inv_bt(p.j, f);
-      }
-    return m;
-  };
-  const std::unique_ptr<StepMatrices> trapezoidal = step_matrices(0.5);
-  // The backward-Euler restart (as the two-block implicit schemes have it: see
-  // solver/implicit_scheme.cpp). Trapezoidal mechanics does not damp the modes the step does
-  // not resolve (its amplification tends to -1 as omega h grows): a damper's switch (a jump of
-  // its force) excites the stiffest mode, which rings on and can drive a damper's relative
-  // velocity through zero again and again (spurious switches). The step after a switch is
-  // therefore taken with backward-Euler mechanics, which damps a mode by
-  // 1/sqrt(1 + (omega h)^2): automatically when the stiffest mode of the structure (with the
-  // Zener elements at their effective stiffness, the dampers free: locking them only lowers
-  // it) is unresolved, h omega_max > 1; after every switch with Restart::always (the
-  // implicit-damped rule). One first-order step per switch keeps the step second order.
-  double omega_max = 0.0;
-  if (nf > 0 && options.restart == StructureSolverOptions::Restart::automatic) {
-    const Eigen::VectorXd inv_sqrt_m = mass.cwiseSqrt().cwiseInverse();
-    const Eigen::MatrixXd scaled = inv_sqrt_m.asDiagonal() * k_eff_dense * inv_sqrt_m.asDiagonal();
-    omega_max = std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(scaled, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff()));
-  }
-  const int restart_steps =
-      nf > 0 && (options.restart == StructureSolverOptions::Restart::always ||
-                 (options.restart == StructureSolverOptions::Restart::automatic && h * omega_max > kResolvedOmegaH))
-          ? 1
-          : 0;
-  const std::unique_ptr<StepMatrices> backward = restart_steps > 0 ? step_matrices(1.0) : nullptr;
-  StepMatrices* sm = trapezoidal.get();  // this step's
-  int restart_left = 0;                  // backward-Euler steps still to take
-  // The blocks' offsets, sizes and damping matrices, which do not depend on theta.
-  const std::vector<Block>& blocks = trapezoidal->blocks;
-  std::vector<int> block_of(n);  // each dof's block
-  for (std::size_t bi = 0; bi < blocks.size(); ++bi)
-    std::fill_n(block_of.begin() + blocks[bi].offset, blocks[bi].size, static_cast<int>(bi));
-  Eigen::VectorXd contact_impulse = Eigen::VectorXd::Zero(nc), contact_moment = Eigen::VectorXd::Zero(nc);
-  Eigen::VectorXd contact_end_force = Eigen::VectorXd::Zero(nc);
-  Eigen::VectorXd contact_bt_now = Eigen::VectorXd::Zero(n), contact_bt = Eigen::VectorXd::Zero(n);  // B_c' p at t_n, t_n+1
-  Eigen::VectorXd total_now = Eigen::VectorXd::Zero(n), total_next(n);  // storey, link and contact forces
-  std::vector<double> contact_work(static_cast<std::size_t>(nc), 0.0), step_work(static_cast<std::size_t>(nc), 0.0);
-  std::vector<detail::ContactMemory> memory_before;
-  Eigen::VectorXd v_free0(n), cv_free0(n);
-  std::vector<Impact> impacts;
-  impacts.reserve(16);
-  const Eigen::VectorXd inv_mass = mass.cwiseInverse();
-  // B M^-1 B': for the grid-point forces of stuck dampers and the kinks of ended slips.
-  Eigen::MatrixXd g_all(nf, nf);
-  for (int i = 0; i < nf; ++i)
-    for (int j = 0; j < nf; ++j) g_all(i, j) = (bf.row(i).cwiseProduct(inv_mass.transpose())).dot(bf.row(j));
-  std::vector<int> fi(nf), fj(nf);  // each damper's two floors
-  for (int f = 0; f < nf; ++f) {
-    fi[f] = link_pair[friction[f]].i;
-    fj[f] = link_pair[friction[f]].j;
-  }
-  // The trial step (the dampers' decisions) is read at the dampers' floors only: there its
-  // velocities, damping forces and P, for which x at those floors' stiffness columns and at
-  // the other ends of their Zener elements.
-  std::vector<int> damper_dofs, trial_dofs;
-  std::vector<std::vector<std::pair<int, double>>> damper_zener;  // per damper dof: (element, sign), in order
-  for (int f = 0; f < nf; ++f) damper_dofs.insert(damper_dofs.end(), {fi[f], fj[f]});
-  std::sort(damper_dofs.begin(), damper_dofs.end());
-  damper_dofs.erase(std::unique(damper_dofs.begin(), damper_dofs.end()), damper_dofs.end());
-  for (int k : damper_dofs) {
-    const std::vector<int> cols = k0.columns(k);
-    trial_dofs.insert(trial_dofs.end(), cols.begin(), cols.end());
-    std::vector<std::pair<int, double>> touching;
-    for (std::size_t e = 0; e < zener.size(); ++e) {
-      const Pair& pr = zener[e].pair;
-      if (pr.i != k && pr.j != k) continue;
-      touching.emplace_back(static_cast<int>(e), pr.i == k ? 1.0 : -1.0);
-      for (int d : {pr.i, pr.j})
-        if (d >= 0) trial_dofs.push_back(d);
-    }
-    damper_zener.push_back(std::move(touching));
-  }
-  std::sort(trial_dofs.begin(), trial_dofs.end());
-  trial_dofs.erase(std::unique(trial_dofs.begin(), trial_dofs.end()), trial_dofs.end());
-  // The rows of A^-1 B' at the trial's floors and below them those of C A^-1 B' at the dampers'.
-  // Their products with q are summed column after column (vectorised across the rows), so each
-  // row's sum is formed in the order of its columns, as Eigen sums a row of the full matrices.
-  const auto nt = static_cast<Eigen::Index>(trial_dofs.size()), nd = static_cast<Eigen::Index>(damper_dofs.size());
-  for (StepMatrices* m : {trapezoidal.get(), backward.get()}) {
-    if (m == nullptr) continue;
-    m->trial_rows.resize(nt + nd, nf);
-    for (Eigen::Index t = 0; t < nt; ++t) m->trial_rows.row(t) = m->a_inv_bt.row(trial_dofs[t]);
-    for (Eigen::Index d = 0; d < nd; ++d) m->trial_rows.row(nt + d) = m->c_a_inv_bt.row(damper_dofs[d]);
-  }
-  Eigen::VectorXd trial_change(nt + nd);  // A^-1 B' q at trial_dofs, then C A^-1 B' q at damper_dofs
-  auto trial_product = [&](const Eigen::VectorXd& q) {
-    detail::step_kernels().columns(nt + nd, nf, sm->trial_rows.data(), q.data(), trial_change.data());
-  };
-  // B' q, where each damper acts -q on A's floor and +q on B's (as bf' q, without the zeros).
-  auto add_bt = [&](const Eigen::VectorXd& q, Eigen::VectorXd* out) {
-    out->setZero();
-    for (int f = 0; f < nf; ++f) {
-      (*out)[fi[f]] += q[f];
-      (*out)[fj[f]] -= q[f];
-    }
-  };
+    h = options.h;
+    n_steps = options.steps();
+    n = s.dofs();
 
-  observer.begin(s, options);
-  const double g = kStandardGravity;
-  // The grid points t_n (`now`) and t_n+1 (`next`): two states whose vectors every step reuses,
-  // their roles swapped after each step.
-  StructureState first;
-  first.t = 0.0;
-  first.x = options.x0.size() == n ? options.x0 : Eigen::VectorXd::Zero(n);
-  first.v = options.v0.size() == n ? options.v0 : Eigen::VectorXd::Zero(n);
-  first.ag = g * ground.ag(0.0);
-  first.link_force = first.link_stroke = first.link_velocity = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.links.size()));
-  first.link_phase.assign(s.links.size(), Phase::stick);
-  const auto n_contacts = static_cast<Eigen::Index>(s.contacts.size());
-  first.contact_force = first.contact_work = first.contact_dissipated = Eigen::VectorXd::Zero(n_contacts);
-  first.contact_gap.resize(n_contacts);
-  for (std::size_t k = 0; k < s.contacts.size(); ++k) first.contact_gap[static_cast<Eigen::Index>(k)] = s.contacts[k].gap;
-  first.link_switch.assign(s.links.size(), kNaN);
-  for (auto& e : zener) e.law->commit(0.0, 0.0);
-
-  std::vector<detail::DamperState> states(nf, detail::DamperState::stick);
-  Eigen::VectorXd internal = Eigen::VectorXd::Zero(n);  // storey and link forces (not friction) at t_n
-  Eigen::VectorXd cv_now = c * first.v;                 // C v at t_n
-  Eigen::VectorXd friction_now = Eigen::VectorXd::Zero(nf);
-  Eigen::VectorXd stick_force_now = Eigen::VectorXd::Zero(nf);  // the force that keeps each damper stuck
-  Eigen::VectorXd stick_force_prev = Eigen::VectorXd::Zero(nf);
-  std::vector<char> prev_stuck(nf, false);            // the grid point before `now` was stuck
-  std::vector<char> prev_same_slip(nf, false);        // ... slipped as `now` does, with velocity:
-  std::vector<double> w_prev(nf, 0.0);
-  std::vector<double> stick_start_t(nf, -INFINITY), stick_start_q(nf, 0.0);  // the last stick's start
-
-  // The step's work vectors, sized once: a step allocates nothing (but the box QP's small
-  // systems).
-  Eigen::VectorXd offsets(static_cast<Eigen::Index>(zener.size()));  // each Zener element's f - k_eff d
-  Eigen::VectorXd response_q(2 * n), off_dof = Eigen::VectorXd::Zero(n), rhs(n), v_free(n), cv_free(n), v1(n), x1(n), p1(n), cv1(n), p_next(n), cv_next(n), v_pre(n);
-  Eigen::VectorXd bq(n), w_free(nf), w_end(nf), q_step(nf), q_trial(nf), q1(nf), stick1(nf), w1(nf);
-  Eigen::VectorXd fixed(nf), fixed2(nf), q_grid(nf), stick_grid(nf), others(nf);
-  std::vector<double> onset(nf), crossing(nf), kink_theta(nf), kink_jump(nf);
-  std::vector<detail::DamperState> decided(nf);
-  std::vector<char> hold(nf), hold2(nf);  // (char, not the bit-packed vector<bool>: read in every step)
-  std::vector<int> touched;
-  touched.reserve(2 * static_cast<std::size_t>(nf));
-
-  // The stuck dampers' systems (B_s M^-1 B_s'), inverted per stuck set (a product with the
-  // inverse of this small, well conditioned matrix is as accurate as a solve and much faster
-  // than a dynamic-size LDLT solve).
-  detail::SubsetInverses stuck_systems(g_all);
-  std::vector<int> stuck;
-  // B' q at the dampers' floors (damper_dofs), in btq_dampers: only there is it read by the
-  // dampers' forces (each damper acts -q on A's floor and +q on B's).
-  Eigen::VectorXd btq_dampers(static_cast<Eigen::Index>(damper_dofs.size()));
-  std::vector<int> pi(nf), pj(nf);  // each damper's floors' places in damper_dofs
-  for (int f = 0; f < nf; ++f) {
-    pi[f] = static_cast<int>(std::lower_bound(damper_dofs.begin(), damper_dofs.end(), fi[f]) - damper_dofs.begin());
-    pj[f] = static_cast<int>(std::lower_bound(damper_dofs.begin(), damper_dofs.end(), fj[f]) - damper_dofs.begin());
-  }
-  auto damper_bt = [&](const Eigen::VectorXd& q) {
-    double* out = btq_dampers.data();
-    std::fill_n(out, btq_dampers.size(), 0.0);
-    for (int f = 0; f < nf; ++f) {
-      out[pi[f]] += q[f];
-      out[pj[f]] -= q[f];
-    }
-  };
-  // Damper f's relative acceleration without the ground, b_f M^-1 (-C v - P - B' q), B' q from
-  // damper_bt.
-  auto relative_accel = [&](const Eigen::VectorXd& cv, const Eigen::VectorXd& p, int f) {
-    const int i = fi[f], j = fj[f];
-    return (-cv[i] - p[i] - btq_dampers[pi[f]]) * inv_mass[i] - (-cv[j] - p[j] - btq_dampers[pj[f]]) * inv_mass[j];
-  };
-  // Grid-point forces: slipping dampers at +-F; the stuck ones carry what keeps their relative
-  // acceleration zero, (B_s M^-1 B_s') q_s = B_s M^-1 (M 1 a_g - C v - P - B_l' q_l) (the ground
-  // term cancels: B 1 = 0). Also returns each damper's stick force (unclamped) for onsets.
-  // `cv` is C v. Only the dampers' floors are needed: O(nf^2).
-  auto grid_forces = [&](const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const std::vector<Phase>& phase,
-                         Eigen::VectorXd* q, Eigen::VectorXd* stick) {
-    stuck.clear();
-    for (int f = 0; f < nf; ++f) {
-      const Phase ph = phase[friction[f]];
-      (*stick)[f] = 0.0;
-      if (ph == Phase::stick) {
-        stuck.push_back(f);
-        (*q)[f] = 0.0;
-      } else {
-        (*q)[f] = ph == Phase::slip_right ? limit[f] : -limit[f];
-      }
-    }
-    if (stuck.empty()) return;
-    damper_bt(*q);
-    const int m = static_cast<int>(stuck.size());
-    detail::SubsetInverses::System& sys = stuck_systems.of(stuck);
-    for (int i = 0; i < m; ++i) sys.b[i] = relative_accel(cv, p, stuck[i]);
-    sys.solve();
-    for (int i = 0; i < m; ++i) {
-      const int f = stuck[i];
-      (*stick)[f] = sys.x[i];
-      (*q)[f] = std::clamp(sys.x[i], -limit[f], limit[f]);
-    }
-  };
-  // The force that would keep slipping damper f stuck at this instant, the others at their
-  // forces q: b_f M^-1 (-C v - P - sum_{g != f} b_g q_g) / (b_f M^-1 b_f').
-  auto would_stick = [&](const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const Eigen::VectorXd& q, int f) {
-    others = q;
-    others[f] = 0.0;
-    damper_bt(others);
-    return relative_accel(cv, p, f) / g_all(f, f);
-  };
-
-  // Storey forces: the storey springs, spring and dashpot devices, Zener devices.
-  std::vector<double> storey_spring(n, 0.0), storey_dashpot(n, 0.0);
-  auto storeys_of = [&](const structure::Building& b, int offset) {
-    for (int st = 0; st < b.floors(); ++st) storey_spring[offset + st] += b.springs[st];
-    for (const auto& d : b.devices)
-      for (int st : d.storeys) {
-        if (d.type == DeviceType::spring) storey_spring[offset + st - 1] += d.k;
-        if (d.type == DeviceType::dashpot) storey_dashpot[offset + st - 1] += d.c;
-      }
-  };
-  storeys_of(s.a, 0);
-  if (s.b) storeys_of(*s.b, s.a.floors());
-  const Eigen::Map<const Eigen::VectorXd> spring_of(storey_spring.data(), n), dashpot_of(storey_dashpot.data(), n);
-  const detail::StepKernels& kernels = detail::step_kernels();
-  const bool dashpots_a = !dashpot_of.head(s.a.floors()).isZero(0.0), dashpots_b = !dashpot_of.tail(n - s.a.floors()).isZero(0.0);
-  auto fill_storeys = [&](StructureState& st) {
-    st.storey_force.resize(n);
-    // Storey i's drift is x_i - x_(i-1), the first storey's x_1 (the ground is at rest).
-    auto building = [&](const structure::Building& b, int offset) {
-      const int nb = b.floors();
-      const bool dashpots = offset == 0 ? dashpots_a : dashpots_b;
-      st.storey_force[offset] = spring_of[offset] * st.x[offset] + (dashpots ? dashpot_of[offset] * st.v[offset] : 0.0);
-      if (nb < 2) return;
-      kernels.drifts(nb, spring_of.data() + offset, dashpots ? dashpot_of.data() + offset : nullptr, st.x.data() + offset,
-                     st.v.data() + offset, st.storey_force.data() + offset);
+    // ---- assembly: M, C, elastic K0, Zener elements, friction links ----
+    mass.resize(n);
+    c = Eigen::MatrixXd::Zero(n, n);
+    Eigen::MatrixXd k0_dense = Eigen::MatrixXd::Zero(n, n);
+    std::map<double, std::vector<double>> weights;  // per order
+    auto zener_law = [&](const structure::Zener& z) {
+      auto& w = weights[z.order];
+      if (w.empty()) w = bdf2_weights(z.order, n_steps + 2);
+      return std::make_unique<detail::RodLaw>(rod_of(z), z.k, h, options.history, w);
     };
-    building(s.a, 0);
-    if (s.b) building(*s.b, s.a.floors());
-    for (const auto& e : zener)
-      if (e.storey >= 0) st.storey_force[e.storey] += e.force;
-  };
-  auto fill_links = [&](StructureState& st, const Eigen::VectorXd& q_friction) {
-    fill_storeys(st);
+    auto add_building = [&](const structure::Building& b, int offset) {
+      const int nb = b.floors();
+      mass.segment(offset, nb) = b.masses;
+      c.block(offset, offset, nb, nb) = structure::inherent_damping_matrix(b) + structure::dashpot_matrix(b);
+      for (int st = 0; st < nb; ++st) Pair{offset + st, st > 0 ? offset + st - 1 : -1}.add(k0_dense, b.springs[st]);
+      for (const auto& d : b.devices)
+        for (int st : d.storeys) {
+          const Pair p{offset + st - 1, st > 1 ? offset + st - 2 : -1};
+          if (d.type == DeviceType::spring) p.add(k0_dense, d.k);
+          if (d.type == DeviceType::zener) zener.push_back({p, offset + st - 1, zener_law(d.zener), 0.0});
+        }
+    };
+    add_building(s.a, 0);
+    if (s.b) add_building(*s.b, s.a.floors());
+    bool coupled = false;       // a link other than friction enters A = M + h/2 C + h^2/4 K
     for (std::size_t l = 0; l < s.links.size(); ++l) {
-      const Pair& p = link_pair[l];
-      st.link_stroke[l] = p.of(st.x);
-      st.link_velocity[l] = p.of(st.v);
       const auto& link = s.links[l];
-      if (link.type == LinkType::spring) st.link_force[l] = link.k * st.link_stroke[l];
-      if (link.type == LinkType::dashpot) st.link_force[l] = link.c * st.link_velocity[l];
-      if (link.type == LinkType::zener) st.link_force[l] = zener[link_zener[l]].force;
+      const Pair p{s.dof('A', link.floor_a), s.dof('B', link.floor_b)};
+      link_pair.push_back(p);
+      if (link.type == LinkType::spring) p.add(k0_dense, link.k);
+      if (link.type == LinkType::dashpot) p.add(c, link.c);
+      if (link.type == LinkType::zener) zener.push_back({p, -1, zener_law(link.zener), 0.0});
+      if (link.type == LinkType::friction) friction.push_back(static_cast<int>(l));
+      else coupled = true;
     }
-    for (int f = 0; f < nf; ++f) st.link_force[friction[f]] = q_friction[f];
-  };
-  first.a_abs = Eigen::VectorXd::Zero(n);
-  k0.apply(first.x, internal);
-  fill_links(first, friction_now);
-  if (first.x.isZero() && first.v.isZero()) first.a_abs.setConstant(-first.ag);  // at rest: the floors move with the ground
-  else first.a_abs = (mass * first.ag - cv_now - internal).cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, first.ag);
-  observer.observe(first);
-  StructureState second = first;
-  StructureState* now_p = &first;
-  StructureState* next_p = &second;
+    // Zener links come after the storey devices in `zener`; remember where each link's is.
+    link_zener.assign(s.links.size(), -1);
+    {
+      int z = static_cast<int>(zener.size());
+      for (int l = static_cast<int>(s.links.size()) - 1; l >= 0; --l)
+        if (s.links[l].type == LinkType::zener) link_zener[l] = --z;
+    }
+    Eigen::MatrixXd k_eff_dense = k0_dense;
+    for (const auto& e : zener) e.pair.add(k_eff_dense, e.law->stiffness());
+    // A shear building's stiffness is tridiagonal and a link adds four entries: O(n) products.
+    k0 = Banded(k0_dense);
+    k_eff = Banded(k_eff_dense);
 
-  // Where a damper's slip ends inside a step (it sticks, or turns), its force jumps by dq at
-  // the located fraction theta, so the floors' velocities have a kink there, which the
-  // trapezoidal rule integrates as if they were smooth: an O(h^2) local error,
-  // -(jump of x'') h^2 theta (1 - theta) / 2, whose size depends on where in the step the
-  // slip ended. Into a stick the stroke is then frozen and the stuck force that decides the
-  // next onset carries the error on (near a grazing onset, amplified): the instants' errors
-  // were irregular in h, which defeats an error estimate from two steps. The kink's part is
-  // integrated exactly: x'' jumps by -M^-1 B' dQ, where dQ holds dq and the jumps of the
-  // dampers that stay stuck (which keep their relative accelerations: their stuck forces
-  // jump too). One damper: exactly the two-block scheme's correction. Onsets need nothing:
-  // the stuck force reaches the limit continuously, no kink. (Rare: it may allocate.)
-  const auto integrate_kinks = [&](const std::vector<detail::DamperState>& after, const std::vector<double>& kink_theta_,
-                                   const std::vector<double>& kink_jump_, Eigen::VectorXd* x) {
-    std::vector<int> held;
-    for (int f = 0; f < nf; ++f)
-      if (after[f] == detail::DamperState::stick && std::isnan(kink_theta_[f])) held.push_back(f);
-    const int m = static_cast<int>(held.size());
-    Eigen::MatrixXd g_held(m, m);
-    for (int a = 0; a < m; ++a)
-      for (int b = 0; b < m; ++b) g_held(a, b) = g_all(held[a], held[b]);
-    Eigen::LDLT<Eigen::MatrixXd> held_solver;
-    if (m > 0) held_solver.compute(g_held);  // (never on an empty matrix: see a_inv_bt in step_matrices)
-    Eigen::VectorXd dq(nf);
+    nf = static_cast<int>(friction.size());
+    Eigen::MatrixXd bf = Eigen::MatrixXd::Zero(nf, n);
+    limit.resize(nf);
     for (int f = 0; f < nf; ++f) {
-      if (std::isnan(kink_theta_[f])) continue;
-      dq.setZero();
-      dq[f] = kink_jump_[f];
-      if (m > 0) {
-        Eigen::VectorXd r(m);
-        for (int a = 0; a < m; ++a) r[a] = -g_all(held[a], f) * kink_jump_[f];
-        const Eigen::VectorXd response = held_solver.solve(r);
-        for (int a = 0; a < m; ++a) dq[held[a]] = response[a];
-      }
-      const double theta = kink_theta_[f];
-      add_bt(dq, &bq);
-      *x += (0.5 * h * h * theta * (1.0 - theta)) * inv_mass.cwiseProduct(bq);
+      const Pair& p = link_pair[friction[f]];
+      bf(f, p.i) = 1.0;
+      bf(f, p.j) = -1.0;
+      limit[f] = s.links[friction[f]].slip_force;
     }
-  };
+    // Contact pairs (SPEC §6). Each with a law is a step force like a damper's, its impulse found
+    // by integrating the pair's own relative motion through the step (solver/contact_step.hpp);
+    // it needs A^-1 B_c' (and C A^-1 B_c'), its inverse effective mass kappa = B_c A^-1 B_c' and
+    // B_c A^-1 B_f' (how the dampers' step forces move it).
+    for (std::size_t k = 0; k < s.contacts.size(); ++k)
+      if (s.contacts[k].law.model != structure::ContactModel::none) active.push_back(static_cast<int>(k));
+    nc = static_cast<int>(active.size());
+    for (const auto& ct : s.contacts) contact_pair.push_back({s.dof('A', ct.floor_a), s.dof('B', ct.floor_b)});
+    contact_memory.resize(static_cast<std::size_t>(nc));
+    Eigen::MatrixXd bc = Eigen::MatrixXd::Zero(nc, n);
+    for (int ci = 0; ci < nc; ++ci) {
+      const Pair& p = contact_pair[active[ci]];
+      bc(ci, p.i) = 1.0;
+      bc(ci, p.j) = -1.0;
+      const double m_eff = mass[p.i] * mass[p.j] / (mass[p.i] + mass[p.j]);
+      contact_stepper.emplace_back(s.contacts[active[ci]].law, m_eff, active[ci]);
+    }
 
-  for (std::size_t step = 0; step < n_steps; ++step) {
+    // The step's matrices for the mechanics' weight theta of the step's end (x_n+1 = x_n +
+    // h ((1 - theta) v_n + theta v_n+1), and the same for v): 1/2 the trapezoidal rule of every
+    // step, 1 the backward-Euler restart after a switch (below). Each is formed and factorised
+    // once (constant for a fixed h): A = M + theta h C + theta^2 h^2 K_eff.
+    //
+    // Inherent damping is per building and a friction link enters the step through the dampers'
+    // forces only, so without spring, dashpot or Zener links A and C are block diagonal, one
+    // block per building: each is handled on its own (half the dense work of the whole for two
+    // equal buildings). Per step a block needs v_free = A^-1 rhs and its damping forces C v_free:
+    // both from one matrix-vector product with [A^-1; C A^-1], formed once. (A triangular solve
+    // pair costs as many multiplications but runs at a fraction of a product's speed at these
+    // sizes; A is M + O(h) and well conditioned, so its explicit inverse is as accurate as the
+    // solve.)
+    std::vector<std::pair<int, int>> ranges;
+    if (s.b && !coupled) ranges = {{0, s.a.floors()}, {s.a.floors(), s.b->floors()}};
+    else ranges = {{0, n}};
+    auto step_matrices = [&](double theta) {
+      auto m = std::make_unique<StepMatrices>();
+      m->theta = theta;
+      const Eigen::MatrixXd a_step = Eigen::MatrixXd(mass.asDiagonal()) + theta * h * c + theta * theta * h * h * k_eff_dense;
+      for (const auto& [offset, size] : ranges) {
+        Block b;
+        b.offset = offset;
+        b.size = size;
+        b.a.compute(a_step.block(offset, offset, size, size));
+        if (b.a.info() != Eigen::Success)
+          throw NumericalError("the step matrix M + theta h C + theta^2 h^2 K is not positive definite", 0.0);
+        b.c = c.block(offset, offset, size, size);
+        Eigen::MatrixXd step(2 * size, size);
+        step.topRows(size) = b.a.solve(Eigen::MatrixXd::Identity(size, size));
+        step.bottomRows(size) = b.c * step.topRows(size);
+        b.step = detail::DenseProduct(std::move(step));
+        m->blocks.push_back(std::move(b));
+      }
+      // No friction link (a building alone): nothing to solve, and Eigen's triangular solve must
+      // not see a matrix with no columns (it binds a reference to its null data).
+      m->a_inv_bt = Eigen::MatrixXd::Zero(n, nf);
+      if (nf > 0)
+        for (const Block& b : m->blocks)
+          m->a_inv_bt.middleRows(b.offset, b.size) = b.a.solve(bf.transpose().middleRows(b.offset, b.size));
+      m->c_a_inv_bt = nf > 0 ? Eigen::MatrixXd(c * m->a_inv_bt) : Eigen::MatrixXd(n, 0);
+      Eigen::MatrixXd stacked(2 * n, nf);
+      stacked << m->a_inv_bt, m->c_a_inv_bt;
+      m->damper_response = detail::DenseProduct(std::move(stacked));
+      m->delassus = nf > 0 ? Eigen::MatrixXd(h * bf * m->a_inv_bt) : Eigen::MatrixXd(0, 0);
+      m->box_qp = std::make_unique<detail::BoxQp>(m->delassus);
+      m->a_inv_bc = Eigen::MatrixXd::Zero(n, nc);
+      m->kappa.resize(nc);
+      if (nc > 0) {
+        for (const Block& b : m->blocks)
+          m->a_inv_bc.middleRows(b.offset, b.size) = b.a.solve(bc.transpose().middleRows(b.offset, b.size));
+        for (int ci = 0; ci < nc; ++ci) m->kappa[ci] = bc.row(ci).dot(m->a_inv_bc.col(ci));
+      }
+      m->c_a_inv_bc = nc > 0 ? Eigen::MatrixXd(c * m->a_inv_bc) : Eigen::MatrixXd(n, 0);
+      m->contact_friction = Eigen::MatrixXd::Zero(nc, nf);
+      for (int ci = 0; ci < nc; ++ci)
+        for (int f = 0; f < nf; ++f) {
+          const Pair& p = contact_pair[active[ci]];
+          m->contact_friction(ci, f) = m->a_inv_bt(p.i, f) - m->a_inv_bt(p.j, f);
+        }
+      return m;
+    };
+    trapezoidal = step_matrices(0.5);
+    // The backward-Euler restart (as the two-block implicit schemes have it: see
+    // solver/implicit_scheme.cpp). Trapezoidal mechanics does not damp the modes the step does
+    // not resolve (its amplification tends to -1 as omega h grows): a damper's switch (a jump of
+    // its force) excites the stiffest mode, which rings on and can drive a damper's relative
+    // velocity through zero again and again (spurious switches). The step after a switch is
+    // therefore taken with backward-Euler mechanics, which damps a mode by
+    // 1/sqrt(1 + (omega h)^2): automatically when the stiffest mode of the structure (with the
+    // Zener elements at their effective stiffness, the dampers free: locking them only lowers
+    // it) is unresolved, h omega_max > 1; after every switch with Restart::always (the
+    // implicit-damped rule). One first-order step per switch keeps the step second order.
+    double omega_max = 0.0;
+    if (nf > 0 && options.restart == StructureSolverOptions::Restart::automatic) {
+      const Eigen::VectorXd inv_sqrt_m = mass.cwiseSqrt().cwiseInverse();
+      const Eigen::MatrixXd scaled = inv_sqrt_m.asDiagonal() * k_eff_dense * inv_sqrt_m.asDiagonal();
+      omega_max = std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(scaled, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff()));
+    }
+    restart_steps =
+        nf > 0 && (options.restart == StructureSolverOptions::Restart::always ||
+                   (options.restart == StructureSolverOptions::Restart::automatic && h * omega_max > kResolvedOmegaH))
+            ? 1
+            : 0;
+    if (restart_steps > 0) backward = step_matrices(1.0);
+    sm = trapezoidal.get();
+    const std::vector<Block>& blocks = trapezoidal->blocks;
+    block_of.resize(n);
+    for (std::size_t bi = 0; bi < blocks.size(); ++bi)
+      std::fill_n(block_of.begin() + blocks[bi].offset, blocks[bi].size, static_cast<int>(bi));
+    contact_impulse = contact_moment = contact_end_force = Eigen::VectorXd::Zero(nc);
+    contact_bt_now = contact_bt = total_now = Eigen::VectorXd::Zero(n);
+    total_next.resize(n);
+    contact_work.assign(static_cast<std::size_t>(nc), 0.0);
+    step_work.assign(static_cast<std::size_t>(nc), 0.0);
+    v_free0.resize(n);
+    cv_free0.resize(n);
+    step_impacts.reserve(16);
+    inv_mass = mass.cwiseInverse();
+    // B M^-1 B': for the grid-point forces of stuck dampers and the kinks of ended slips.
+    g_all.resize(nf, nf);
+    for (int i = 0; i < nf; ++i)
+      for (int j = 0; j < nf; ++j) g_all(i, j) = (bf.row(i).cwiseProduct(inv_mass.transpose())).dot(bf.row(j));
+    fi.resize(nf);
+    fj.resize(nf);
+    for (int f = 0; f < nf; ++f) {
+      fi[f] = link_pair[friction[f]].i;
+      fj[f] = link_pair[friction[f]].j;
+    }
+    // The trial step (the dampers' decisions) is read at the dampers' floors only: there its
+    // velocities, damping forces and P, for which x at those floors' stiffness columns and at
+    // the other ends of their Zener elements.
+    for (int f = 0; f < nf; ++f) damper_dofs.insert(damper_dofs.end(), {fi[f], fj[f]});
+    std::sort(damper_dofs.begin(), damper_dofs.end());
+    damper_dofs.erase(std::unique(damper_dofs.begin(), damper_dofs.end()), damper_dofs.end());
+    for (int k : damper_dofs) {
+      const std::vector<int> cols = k0.columns(k);
+      trial_dofs.insert(trial_dofs.end(), cols.begin(), cols.end());
+      std::vector<std::pair<int, double>> touching;
+      for (std::size_t e = 0; e < zener.size(); ++e) {
+        const Pair& pr = zener[e].pair;
+        if (pr.i != k && pr.j != k) continue;
+        touching.emplace_back(static_cast<int>(e), pr.i == k ? 1.0 : -1.0);
+        for (int d : {pr.i, pr.j})
+          if (d >= 0) trial_dofs.push_back(d);
+      }
+      damper_zener.push_back(std::move(touching));
+    }
+    std::sort(trial_dofs.begin(), trial_dofs.end());
+    trial_dofs.erase(std::unique(trial_dofs.begin(), trial_dofs.end()), trial_dofs.end());
+    // The rows of A^-1 B' at the trial's floors and below them those of C A^-1 B' at the dampers'.
+    // Their products with q are summed column after column (vectorised across the rows), so each
+    // row's sum is formed in the order of its columns, as Eigen sums a row of the full matrices.
+    nt = static_cast<Eigen::Index>(trial_dofs.size());
+    nd = static_cast<Eigen::Index>(damper_dofs.size());
+    for (StepMatrices* m : {trapezoidal.get(), backward.get()}) {
+      if (m == nullptr) continue;
+      m->trial_rows.resize(nt + nd, nf);
+      for (Eigen::Index t = 0; t < nt; ++t) m->trial_rows.row(t) = m->a_inv_bt.row(trial_dofs[t]);
+      for (Eigen::Index d = 0; d < nd; ++d) m->trial_rows.row(nt + d) = m->c_a_inv_bt.row(damper_dofs[d]);
+    }
+    trial_change.resize(nt + nd);
+
+    // The step's work vectors and the state carried from step to step.
+    offsets.resize(static_cast<Eigen::Index>(zener.size()));
+    response_q.resize(2 * n);
+    off_dof = Eigen::VectorXd::Zero(n);
+    for (Eigen::VectorXd* v : {&rhs, &v_free, &cv_free, &v1, &x1, &p1, &cv1, &p_next, &cv_next, &v_pre, &bq}) v->resize(n);
+    for (Eigen::VectorXd* v : {&w_free, &w_end, &q_step, &q_trial, &q1, &stick1, &w1, &fixed, &fixed2, &q_grid, &stick_grid, &others})
+      v->resize(nf);
+    for (std::vector<double>* v : {&onset, &crossing, &kink_theta, &kink_jump}) v->resize(nf);
+    decided.resize(nf);
+    hold.resize(nf);
+    hold2.resize(nf);
+    touched.reserve(2 * static_cast<std::size_t>(nf));
+    states.assign(nf, detail::DamperState::stick);
+    internal = Eigen::VectorXd::Zero(n);
+    friction_now = stick_force_now = stick_force_prev = Eigen::VectorXd::Zero(nf);
+    prev_stuck.assign(nf, false);
+    prev_same_slip.assign(nf, false);
+    w_prev.assign(nf, 0.0);
+    stick_start_t.assign(nf, -INFINITY);
+    stick_start_q.assign(nf, 0.0);
+
+    // The stuck dampers' systems (B_s M^-1 B_s'), inverted per stuck set (a product with the
+    // inverse of this small, well conditioned matrix is as accurate as a solve and much faster
+    // than a dynamic-size LDLT solve).
+    stuck_systems = detail::SubsetInverses(g_all);
+    btq_dampers.resize(static_cast<Eigen::Index>(damper_dofs.size()));
+    pi.resize(nf);
+    pj.resize(nf);
+    for (int f = 0; f < nf; ++f) {
+      pi[f] = static_cast<int>(std::lower_bound(damper_dofs.begin(), damper_dofs.end(), fi[f]) - damper_dofs.begin());
+      pj[f] = static_cast<int>(std::lower_bound(damper_dofs.begin(), damper_dofs.end(), fj[f]) - damper_dofs.begin());
+    }
+    // Storey forces: the storey springs, spring and dashpot devices, Zener devices.
+    storey_spring.assign(n, 0.0);
+    storey_dashpot.assign(n, 0.0);
+    auto storeys_of = [&](const structure::Building& b, int offset) {
+      for (int st = 0; st < b.floors(); ++st) storey_spring[offset + st] += b.springs[st];
+      for (const auto& d : b.devices)
+        for (int st : d.storeys) {
+          if (d.type == DeviceType::spring) storey_spring[offset + st - 1] += d.k;
+          if (d.type == DeviceType::dashpot) storey_dashpot[offset + st - 1] += d.c;
+        }
+    };
+    storeys_of(s.a, 0);
+    if (s.b) storeys_of(*s.b, s.a.floors());
+    const Eigen::Map<const Eigen::VectorXd> dashpot_of(storey_dashpot.data(), n);
+    dashpots_a = !dashpot_of.head(s.a.floors()).isZero(0.0);
+    dashpots_b = !dashpot_of.tail(n - s.a.floors()).isZero(0.0);
+  }
+
+  std::tuple<const structure::Structure&, const StructureSolverOptions&> info() const { return {s, options}; }
+  std::size_t steps() const { return n_steps; }
+  std::size_t history_bytes() const {
+    std::size_t bytes = 0;
+    for (const auto& e : zener) bytes += e.law->bytes();
+    return bytes;
+  }
+  // The impacts to report before the state advance() returned (time_loop.hpp's impacts()).
+  const std::vector<Impact>& impacts() const { return step_impacts; }
+
+  // The state at t = 0.
+  const StructureState& start() {
+    first.t = 0.0;
+    first.x = options.x0.size() == n ? options.x0 : Eigen::VectorXd::Zero(n);
+    first.v = options.v0.size() == n ? options.v0 : Eigen::VectorXd::Zero(n);
+    first.ag = g * ground.ag(0.0);
+    first.link_force = first.link_stroke = first.link_velocity = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(s.links.size()));
+    first.link_phase.assign(s.links.size(), Phase::stick);
+    const auto n_contacts = static_cast<Eigen::Index>(s.contacts.size());
+    first.contact_force = first.contact_work = first.contact_dissipated = Eigen::VectorXd::Zero(n_contacts);
+    first.contact_gap.resize(n_contacts);
+    for (std::size_t k = 0; k < s.contacts.size(); ++k) first.contact_gap[static_cast<Eigen::Index>(k)] = s.contacts[k].gap;
+    first.link_switch.assign(s.links.size(), kNaN);
+    for (auto& e : zener) e.law->commit(0.0, 0.0);
+    cv_now = c * first.v;  // C v at t_n
+
+    first.a_abs = Eigen::VectorXd::Zero(n);
+    k0.apply(first.x, internal);
+    fill_links(first, friction_now);
+    if (first.x.isZero() && first.v.isZero()) first.a_abs.setConstant(-first.ag);  // at rest: the floors move with the ground
+    else first.a_abs = (mass * first.ag - cv_now - internal).cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, first.ag);
+    second = first;
+    now_p = &first;
+    next_p = &second;
+    return first;
+
+  }
+
+  // The step from t_n to t_n+1 (n = step): the state at t_n+1.
+  const StructureState& advance(std::size_t step) {
     StructureState& now = *now_p;
     StructureState& next = *next_p;
     // (next's phases and switches are set below for the friction links; the other links' stay
@@ -729,7 +610,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     auto contact_pass = [&](const Eigen::VectorXd& q_f) {
       any_contact = false;
       contact_bt.setZero();
-      impacts.clear();
+      step_impacts.clear();
       for (int ci = 0; ci < nc; ++ci) {
         const Pair& p = contact_pair[active[ci]];
         detail::ContactStepIn in;
@@ -742,7 +623,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
         contact_impulse[ci] = contact_moment[ci] = contact_end_force[ci] = 0.0;
         contact_memory[ci] = memory_before[ci];
         if (contact_stepper[ci].quiet(contact_memory[ci], in)) continue;
-        const detail::ContactStepOut out = contact_stepper[ci].step(contact_memory[ci], in, impacts);
+        const detail::ContactStepOut out = contact_stepper[ci].step(contact_memory[ci], in, step_impacts);
         contact_impulse[ci] = out.impulse;
         contact_moment[ci] = out.moment;
         contact_end_force[ci] = out.force;
@@ -894,7 +775,7 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
     for (int k : touched) {
       const double dv = next.v[k] - v_pre[k];
       if (dv == 0.0) continue;
-      const Block& b = blocks[block_of[k]];  // (C's other rows are zero in column k)
+      const Block& b = trapezoidal->blocks[block_of[k]];  // (C's other rows are zero in column k; theta plays no part)
       kernels.axpy(b.size, dv, b.c.col(k - b.offset).data(), cv_next.data() + b.offset);
     }
     if (restart) {
@@ -963,16 +844,17 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       next.contact_dissipated[k] =
           contact_work[ci] - (contact_memory[ci].engaged ? contact_stepper[ci].stored(-next.contact_gap[k]) : 0.0);
     }
-    for (const Impact& i : impacts) observer.impact(i);
+    // The impacts that ended in the step (impacts(), reported before the state) and, after the
+    // last step, those still going on.
     if (step + 1 == n_steps)
       for (int ci = 0; ci < nc; ++ci)
         if (contact_memory[ci].engaged) {
           Impact i = contact_memory[ci].current;
           i.duration = next.t - i.start;
           i.complete = false;
-          observer.impact(i);
+          step_impacts.push_back(i);
         }
-    observer.observe(next);
+    // Ready for the next step (nothing below changes the state returned).
     internal.swap(p_next);
     if (nc > 0) {
       total_now.swap(total_next);
@@ -990,12 +872,232 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
       w_prev[f] = now.link_velocity[friction[f]];
     }
     std::swap(now_p, next_p);
+    return *now_p;
+    }
+
+ private:
+  void trial_product(const Eigen::VectorXd& q) {
+    detail::step_kernels().columns(nt + nd, nf, sm->trial_rows.data(), q.data(), trial_change.data());
   }
-  observer.end();
+  // B' q, where each damper acts -q on A's floor and +q on B's (as bf' q, without the zeros).
+  void add_bt(const Eigen::VectorXd& q, Eigen::VectorXd* out) const {
+    out->setZero();
+    for (int f = 0; f < nf; ++f) {
+      (*out)[fi[f]] += q[f];
+      (*out)[fj[f]] -= q[f];
+    }
+  }
+  void damper_bt(const Eigen::VectorXd& q) {
+    double* out = btq_dampers.data();
+    std::fill_n(out, btq_dampers.size(), 0.0);
+    for (int f = 0; f < nf; ++f) {
+      out[pi[f]] += q[f];
+      out[pj[f]] -= q[f];
+    }
+  }
+  // Damper f's relative acceleration without the ground, b_f M^-1 (-C v - P - B' q), B' q from
+  // damper_bt.
+  double relative_accel(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, int f) const {
+    const int i = fi[f], j = fj[f];
+    return (-cv[i] - p[i] - btq_dampers[pi[f]]) * inv_mass[i] - (-cv[j] - p[j] - btq_dampers[pj[f]]) * inv_mass[j];
+  }
+  // Grid-point forces: slipping dampers at +-F; the stuck ones carry what keeps their relative
+  // acceleration zero, (B_s M^-1 B_s') q_s = B_s M^-1 (M 1 a_g - C v - P - B_l' q_l) (the ground
+  // term cancels: B 1 = 0). Also returns each damper's stick force (unclamped) for onsets.
+  // `cv` is C v. Only the dampers' floors are needed: O(nf^2).
+  void grid_forces(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const std::vector<Phase>& phase, Eigen::VectorXd* q,
+                   Eigen::VectorXd* stick) {
+    stuck.clear();
+    for (int f = 0; f < nf; ++f) {
+      const Phase ph = phase[friction[f]];
+      (*stick)[f] = 0.0;
+      if (ph == Phase::stick) {
+        stuck.push_back(f);
+        (*q)[f] = 0.0;
+      } else {
+        (*q)[f] = ph == Phase::slip_right ? limit[f] : -limit[f];
+      }
+    }
+    if (stuck.empty()) return;
+    damper_bt(*q);
+    const int m = static_cast<int>(stuck.size());
+    detail::SubsetInverses::System& sys = stuck_systems.of(stuck);
+    for (int i = 0; i < m; ++i) sys.b[i] = relative_accel(cv, p, stuck[i]);
+    sys.solve();
+    for (int i = 0; i < m; ++i) {
+      const int f = stuck[i];
+      (*stick)[f] = sys.x[i];
+      (*q)[f] = std::clamp(sys.x[i], -limit[f], limit[f]);
+    }
+  }
+  // The force that would keep slipping damper f stuck at this instant, the others at their
+  // forces q: b_f M^-1 (-C v - P - sum_{g != f} b_g q_g) / (b_f M^-1 b_f').
+  double would_stick(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const Eigen::VectorXd& q, int f) {
+    others = q;
+    others[f] = 0.0;
+    damper_bt(others);
+    return relative_accel(cv, p, f) / g_all(f, f);
+  }
+
+  void fill_storeys(StructureState& st) const {
+    st.storey_force.resize(n);
+    // Storey i's drift is x_i - x_(i-1), the first storey's x_1 (the ground is at rest).
+    auto building = [&](const structure::Building& b, int offset) {
+      const int nb = b.floors();
+      const bool dashpots = offset == 0 ? dashpots_a : dashpots_b;
+      st.storey_force[offset] = storey_spring[offset] * st.x[offset] + (dashpots ? storey_dashpot[offset] * st.v[offset] : 0.0);
+      if (nb < 2) return;
+      kernels.drifts(nb, storey_spring.data() + offset, dashpots ? storey_dashpot.data() + offset : nullptr, st.x.data() + offset,
+                     st.v.data() + offset, st.storey_force.data() + offset);
+    };
+    building(s.a, 0);
+    if (s.b) building(*s.b, s.a.floors());
+    for (const auto& e : zener)
+      if (e.storey >= 0) st.storey_force[e.storey] += e.force;
+  }
+  void fill_links(StructureState& st, const Eigen::VectorXd& q_friction) const {
+    fill_storeys(st);
+    for (std::size_t l = 0; l < s.links.size(); ++l) {
+      const Pair& p = link_pair[l];
+      st.link_stroke[l] = p.of(st.x);
+      st.link_velocity[l] = p.of(st.v);
+      const auto& link = s.links[l];
+      if (link.type == LinkType::spring) st.link_force[l] = link.k * st.link_stroke[l];
+      if (link.type == LinkType::dashpot) st.link_force[l] = link.c * st.link_velocity[l];
+      if (link.type == LinkType::zener) st.link_force[l] = zener[link_zener[l]].force;
+    }
+    for (int f = 0; f < nf; ++f) st.link_force[friction[f]] = q_friction[f];
+  }
+  // Where a damper's slip ends inside a step (it sticks, or turns), its force jumps by dq at
+  // the located fraction theta, so the floors' velocities have a kink there, which the
+  // trapezoidal rule integrates as if they were smooth: an O(h^2) local error,
+  // -(jump of x'') h^2 theta (1 - theta) / 2, whose size depends on where in the step the
+  // slip ended. Into a stick the stroke is then frozen and the stuck force that decides the
+  // next onset carries the error on (near a grazing onset, amplified): the instants' errors
+  // were irregular in h, which defeats an error estimate from two steps. The kink's part is
+  // integrated exactly: x'' jumps by -M^-1 B' dQ, where dQ holds dq and the jumps of the
+  // dampers that stay stuck (which keep their relative accelerations: their stuck forces
+  // jump too). One damper: exactly the two-block scheme's correction. Onsets need nothing:
+  // the stuck force reaches the limit continuously, no kink. (Rare: it may allocate.)
+  void integrate_kinks(const std::vector<detail::DamperState>& after, const std::vector<double>& kink_theta_,
+                       const std::vector<double>& kink_jump_, Eigen::VectorXd* x) {
+    std::vector<int> held;
+    for (int f = 0; f < nf; ++f)
+      if (after[f] == detail::DamperState::stick && std::isnan(kink_theta_[f])) held.push_back(f);
+    const int m = static_cast<int>(held.size());
+    Eigen::MatrixXd g_held(m, m);
+    for (int a = 0; a < m; ++a)
+      for (int b = 0; b < m; ++b) g_held(a, b) = g_all(held[a], held[b]);
+    Eigen::LDLT<Eigen::MatrixXd> held_solver;
+    if (m > 0) held_solver.compute(g_held);  // (never on an empty matrix: see a_inv_bt in step_matrices)
+    Eigen::VectorXd dq(nf);
+    for (int f = 0; f < nf; ++f) {
+      if (std::isnan(kink_theta_[f])) continue;
+      dq.setZero();
+      dq[f] = kink_jump_[f];
+      if (m > 0) {
+        Eigen::VectorXd r(m);
+        for (int a = 0; a < m; ++a) r[a] = -g_all(held[a], f) * kink_jump_[f];
+        const Eigen::VectorXd response = held_solver.solve(r);
+        for (int a = 0; a < m; ++a) dq[held[a]] = response[a];
+      }
+      const double theta = kink_theta_[f];
+      add_bt(dq, &bq);
+      *x += (0.5 * h * h * theta * (1.0 - theta)) * inv_mass.cwiseProduct(bq);
+    }
+  }
+
+  // ---- the run's inputs (the caller's, alive through the run) ----
+  const StructureSolverOptions& options;
+  const structure::Structure& s;
+  const GroundMotion& ground;
+  const detail::StepKernels& kernels;
+  static constexpr double g = kStandardGravity;
+  double h = 0.0;
+  std::size_t n_steps = 0;
+  int n = 0;
+
+  // ---- the structure, assembled ----
+  Eigen::VectorXd mass, inv_mass;
+  Eigen::MatrixXd c;  // C, the inherent damping and the dashpots
+  std::vector<ZenerElement> zener;
+  std::vector<Pair> link_pair;
+  std::vector<int> friction;    // link indices
+  std::vector<int> link_zener;  // per link, its Zener element (or -1)
+  Banded k0, k_eff;             // K0 and K_eff (with the Zener elements' effective stiffness)
+  int nf = 0;                   // friction dampers
+  Eigen::VectorXd limit;        // their slip forces
+  std::vector<int> active;      // contacts with a law
+  int nc = 0;
+  std::vector<Pair> contact_pair;
+  std::vector<detail::ContactStepper> contact_stepper;
+  std::vector<detail::ContactMemory> contact_memory;
+  std::unique_ptr<StepMatrices> trapezoidal, backward;  // theta = 1/2, and 1 for the restart
+  StepMatrices* sm = nullptr;                           // this step's
+  int restart_steps = 0;                                // backward-Euler steps after a switch
+  int restart_left = 0;                                 // ... still to take
+  std::vector<int> block_of;                            // each dof's block
+  Eigen::VectorXd contact_impulse, contact_moment, contact_end_force;
+  Eigen::VectorXd contact_bt_now, contact_bt;  // B_c' p at t_n, t_n+1
+  Eigen::VectorXd total_now, total_next;       // storey, link and contact forces
+  std::vector<double> contact_work, step_work;
+  std::vector<detail::ContactMemory> memory_before;
+  Eigen::VectorXd v_free0, cv_free0;
+  std::vector<Impact> step_impacts;
+  Eigen::MatrixXd g_all;  // B M^-1 B'
+  std::vector<int> fi, fj;  // each damper's two floors
+  std::vector<int> damper_dofs, trial_dofs;
+  std::vector<std::vector<std::pair<int, double>>> damper_zener;  // per damper dof: (element, sign), in order
+  Eigen::Index nt = 0, nd = 0;
+  Eigen::VectorXd trial_change;  // A^-1 B' q at trial_dofs, then C A^-1 B' q at damper_dofs
+  detail::SubsetInverses stuck_systems;  // B_s M^-1 B_s' per stuck set
+  std::vector<int> stuck;
+  // B' q at the dampers' floors (damper_dofs), in btq_dampers: only there is it read by the
+  // dampers' forces (each damper acts -q on A's floor and +q on B's).
+  Eigen::VectorXd btq_dampers;
+  std::vector<int> pi, pj;  // each damper's floors' places in damper_dofs
+  std::vector<double> storey_spring, storey_dashpot;  // per storey: springs and spring devices; dashpots
+  bool dashpots_a = false, dashpots_b = false;        // a building has dashpot devices
+
+  // ---- the state carried from step to step ----
+  std::vector<detail::DamperState> states;
+  Eigen::VectorXd internal;  // storey and link forces (not friction) at t_n
+  Eigen::VectorXd cv_now;    // C v at t_n
+  Eigen::VectorXd friction_now;
+  Eigen::VectorXd stick_force_now;  // the force that keeps each damper stuck
+  Eigen::VectorXd stick_force_prev;
+  std::vector<char> prev_stuck;      // the grid point before `now` was stuck
+  std::vector<char> prev_same_slip;  // ... slipped as `now` does, with velocity:
+  std::vector<double> w_prev;
+  std::vector<double> stick_start_t, stick_start_q;  // the last stick's start
+
+  // The step's work vectors, sized once: a step allocates nothing (but the box QP's small
+  // systems). (char, not the bit-packed vector<bool>: read in every step.)
+  Eigen::VectorXd offsets;  // each Zener element's f - k_eff d
+  Eigen::VectorXd response_q, off_dof, rhs, v_free, cv_free, v1, x1, p1, cv1, p_next, cv_next, v_pre;
+  Eigen::VectorXd bq, w_free, w_end, q_step, q_trial, q1, stick1, w1;
+  Eigen::VectorXd fixed, fixed2, q_grid, stick_grid, others;
+  std::vector<double> onset, crossing, kink_theta, kink_jump;
+  std::vector<detail::DamperState> decided;
+  std::vector<char> hold, hold2;
+  std::vector<int> touched;
+
+  // The grid points t_n (`now`) and t_n+1 (`next`): two states whose vectors every step reuses,
+  // their roles swapped after each step.
+  StructureState first, second;
+  StructureState* now_p = nullptr;
+  StructureState* next_p = nullptr;
+};
+
+}  // namespace
+
+StructureRunSummary simulate_structure(const StructureSolverOptions& options, const structure::Structure& s,
+                                       const GroundMotion& ground, StructureObserver& observer) {
+  const detail::LoopResult r = detail::integrate<StructureStepper>(observer, options, s, ground);
   StructureRunSummary summary;
-  summary.steps = n_steps;
-  for (const auto& e : zener) summary.history_bytes += e.law->bytes();
-  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.steps = r.steps;
+  summary.wall_seconds = r.wall_seconds;
+  summary.history_bytes = r.history_bytes;
   return summary;
 }
 
