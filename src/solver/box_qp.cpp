@@ -16,9 +16,7 @@ BoxQpResult solve_box_qp(const Eigen::MatrixXd& s, const Eigen::VectorXd& w0, co
   return qp.solve(w0, limit, hint);
 }
 
-SubsetInverses::System& SubsetInverses::of(const std::vector<int>& set) {
-  // Consecutive calls mostly meet the same set: check it before the map.
-  if (last_ != nullptr && *last_key_ == set) return *last_;
+SubsetInverses::System& SubsetInverses::find(const std::vector<int>& set) {
   auto it = cache_.find(set);
   if (it == cache_.end()) {
     const int m = static_cast<int>(set.size());
@@ -44,18 +42,21 @@ void BoxQp::solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held,
   held_.clear();
   for (int k = 0; k < n; ++k)
     if (held[k]) held_.push_back(k);
-  *q = fixed;
+  double* qd = q->data();
+  const double* fd = fixed.data();
+  std::copy_n(fd, n, qd);
   if (held_.empty()) return;
   SubsetInverses::System& sys = inverses_.of(held_);
+  const Eigen::MatrixXd& s = inverses_.matrix();
   for (std::size_t i = 0; i < held_.size(); ++i) {
     const int h = held_[i];
     double b = w0[h];
     for (int k = 0; k < n; ++k)
-      if (!held[k]) b -= inverses_.matrix()(h, k) * fixed[k];
+      if (!held[k]) b -= s(h, k) * fd[k];
     sys.b[static_cast<Eigen::Index>(i)] = b;
   }
   sys.solve();
-  for (std::size_t i = 0; i < held_.size(); ++i) (*q)[held_[i]] = sys.x[static_cast<Eigen::Index>(i)];
+  for (std::size_t i = 0; i < held_.size(); ++i) qd[held_[i]] = sys.x[static_cast<Eigen::Index>(i)];
 }
 
 const BoxQpResult& BoxQp::solve(const Eigen::VectorXd& w0, const Eigen::VectorXd& limit,

@@ -48,15 +48,27 @@ class SubsetInverses {
     void solve() {
       const Eigen::Index m = b.size();
       const double* a = inverse.data();
-      for (Eigen::Index i = 0; i < m; ++i) x[i] = a[i] * b[0];
+      const double* bd = b.data();
+      double* xd = x.data();
+      for (Eigen::Index i = 0; i < m; ++i) xd[i] = a[i] * bd[0];
       for (Eigen::Index j = 1; j < m; ++j)
-        for (Eigen::Index i = 0; i < m; ++i) x[i] += a[j * m + i] * b[j];
+        for (Eigen::Index i = 0; i < m; ++i) xd[i] += a[j * m + i] * bd[j];
     }
   };
-  System& of(const std::vector<int>& set);
+  System& of(const std::vector<int>& set) {
+    // Consecutive calls mostly meet the same set: check it (inline, element by element)
+    // before the map.
+    if (last_ != nullptr && last_key_->size() == set.size()) {
+      bool same = true;
+      for (std::size_t i = 0; i < set.size(); ++i) same = same && (*last_key_)[i] == set[i];
+      if (same) return *last_;
+    }
+    return find(set);
+  }
   const Eigen::MatrixXd& matrix() const { return s_; }
 
  private:
+  System& find(const std::vector<int>& set);
   Eigen::MatrixXd s_;
   std::map<std::vector<int>, System> cache_;
   const std::vector<int>* last_key_ = nullptr;  // the last set's key in cache_

@@ -432,6 +432,7 @@ class StructureStepper {
     hold.resize(nf);
     hold2.resize(nf);
     touched.reserve(2 * static_cast<std::size_t>(nf));
+    touched_flag.assign(damper_dofs.size(), 0);
     states.assign(nf, detail::DamperState::stick);
     internal = Eigen::VectorXd::Zero(n);
     friction_now = stick_force_now = stick_force_prev = Eigen::VectorXd::Zero(nf);
@@ -562,12 +563,13 @@ class StructureStepper {
     //    the cone, and reverses if not (the impulse split at the crossing).
     // The dampers held stuck then take the forces that keep them stuck (a linear solve: the
     // box QP with infinite limits for them and the others' forces fixed).
-    q_step.setZero();
-    std::fill(onset.begin(), onset.end(), kNaN);
-    std::fill(crossing.begin(), crossing.end(), kNaN);
-    std::fill(kink_theta.begin(), kink_theta.end(), kNaN);  // slips ended in the step
-    std::fill(kink_jump.begin(), kink_jump.end(), 0.0);
-    for (int f = 0; f < nf; ++f) w_free[f] = v_free[fi[f]] - v_free[fj[f]];
+    for (int f = 0; f < nf; ++f) {
+      q_step[f] = 0.0;
+      onset[f] = crossing[f] = kink_theta[f] = kNaN;  // (kink_theta: slips ended in the step)
+      kink_jump[f] = 0.0;
+      decided[f] = detail::DamperState::stick;
+      w_free[f] = v_free[fi[f]] - v_free[fj[f]];
+    }
     // The end of the trial step for step forces q, at the dampers' floors: v and x (there and
     // where P there needs them), C v and P (Zener forces at their offsets), as the step's end
     // below computes them everywhere.
@@ -651,7 +653,6 @@ class StructureStepper {
       }
       contact_pass(q_trial);
     }
-    std::fill(decided.begin(), decided.end(), detail::DamperState::stick);
     if (nf > 0 && step == 0) {  // from rest: the closed-form relay of the box QP
       const detail::BoxQpResult& r = sm->box_qp->solve(w_free, limit, states);
       q_step = r.q;
@@ -755,12 +756,13 @@ class StructureStepper {
     }
     // Stick exact: a stuck damper's two floors get one velocity, bit for bit (their
     // mass-weighted mean, which moves them by rounding only).
-    touched.clear();
+    // (touched: the stuck dampers' floors, ascending, from damper_dofs: sorted and unique.)
+    std::fill(touched_flag.begin(), touched_flag.end(), 0);
     for (int f = 0; f < nf; ++f)
-      if (states[f] == detail::DamperState::stick) {
-        touched.push_back(fi[f]);
-        touched.push_back(fj[f]);
-      }
+      if (states[f] == detail::DamperState::stick) touched_flag[pi[f]] = touched_flag[pj[f]] = 1;
+    touched.clear();
+    for (std::size_t d = 0; d < damper_dofs.size(); ++d)
+      if (touched_flag[d]) touched.push_back(damper_dofs[d]);
     for (int k : touched) v_pre[k] = next.v[k];
     for (int pass = 0; pass < 2; ++pass)
       for (int f = 0; f < nf; ++f)
@@ -770,8 +772,6 @@ class StructureStepper {
           next.v[i] = next.v[j] = v;
         }
     // ... and C v follows those moves column by column (O(n) each), not by a product with C.
-    std::sort(touched.begin(), touched.end());
-    touched.erase(std::unique(touched.begin(), touched.end()), touched.end());
     for (int k : touched) {
       const double dv = next.v[k] - v_pre[k];
       if (dv == 0.0) continue;
@@ -907,27 +907,31 @@ class StructureStepper {
   // `cv` is C v. Only the dampers' floors are needed: O(nf^2).
   void grid_forces(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const std::vector<Phase>& phase, Eigen::VectorXd* q,
                    Eigen::VectorXd* stick) {
+    double* qd = q->data();
+    double* sd = stick->data();
     stuck.clear();
     for (int f = 0; f < nf; ++f) {
       const Phase ph = phase[friction[f]];
-      (*stick)[f] = 0.0;
+      sd[f] = 0.0;
       if (ph == Phase::stick) {
         stuck.push_back(f);
-        (*q)[f] = 0.0;
+        qd[f] = 0.0;
       } else {
-        (*q)[f] = ph == Phase::slip_right ? limit[f] : -limit[f];
+        qd[f] = ph == Phase::slip_right ? limit[f] : -limit[f];
       }
     }
     if (stuck.empty()) return;
     damper_bt(*q);
     const int m = static_cast<int>(stuck.size());
     detail::SubsetInverses::System& sys = stuck_systems.of(stuck);
-    for (int i = 0; i < m; ++i) sys.b[i] = relative_accel(cv, p, stuck[i]);
+    double* b = sys.b.data();
+    for (int i = 0; i < m; ++i) b[i] = relative_accel(cv, p, stuck[i]);
     sys.solve();
+    const double* x = sys.x.data();
     for (int i = 0; i < m; ++i) {
       const int f = stuck[i];
-      (*stick)[f] = sys.x[i];
-      (*q)[f] = std::clamp(sys.x[i], -limit[f], limit[f]);
+      sd[f] = x[i];
+      qd[f] = std::clamp(x[i], -limit[f], limit[f]);
     }
   }
   // The force that would keep slipping damper f stuck at this instant, the others at their
@@ -1081,6 +1085,7 @@ class StructureStepper {
   std::vector<detail::DamperState> decided;
   std::vector<char> hold, hold2;
   std::vector<int> touched;
+  std::vector<char> touched_flag;  // per damper_dofs entry
 
   // The grid points t_n (`now`) and t_n+1 (`next`): two states whose vectors every step reuses,
   // their roles swapped after each step.
