@@ -352,9 +352,20 @@ class StructureStepper {
     // implicit-damped rule). One first-order step per switch keeps the step second order.
     double omega_max = 0.0;
     if (nf > 0 && options.restart == StructureSolverOptions::Restart::automatic) {
-      const Eigen::VectorXd inv_sqrt_m = mass.cwiseSqrt().cwiseInverse();
-      const Eigen::MatrixXd scaled = inv_sqrt_m.asDiagonal() * k_eff_dense * inv_sqrt_m.asDiagonal();
-      omega_max = std::sqrt(std::max(0.0, Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(scaled, Eigen::EigenvaluesOnly).eigenvalues().maxCoeff()));
+      // Per block (K_eff is block diagonal with the blocks of A), and from the tridiagonal
+      // matrix directly where a block is one (a shear building: O(n^2), not the dense O(n^3)).
+      for (const auto& [offset, size] : ranges) {
+        const Eigen::VectorXd inv_sqrt_m = mass.segment(offset, size).cwiseSqrt().cwiseInverse();
+        const Eigen::MatrixXd scaled = inv_sqrt_m.asDiagonal() * k_eff_dense.block(offset, offset, size, size) * inv_sqrt_m.asDiagonal();
+        bool tridiagonal = size > 1;
+        for (int j = 0; j < size && tridiagonal; ++j)
+          for (int i = 0; i < size; ++i)
+            if (std::abs(i - j) > 1 && scaled(i, j) != 0.0) tridiagonal = false;
+        Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> modes;
+        if (tridiagonal) modes.computeFromTridiagonal(scaled.diagonal(), scaled.diagonal(-1), Eigen::EigenvaluesOnly);
+        else modes.compute(scaled, Eigen::EigenvaluesOnly);
+        omega_max = std::max(omega_max, std::sqrt(std::max(0.0, modes.eigenvalues().maxCoeff())));
+      }
     }
     restart_steps =
         nf > 0 && (options.restart == StructureSolverOptions::Restart::always ||
@@ -473,6 +484,7 @@ class StructureStepper {
 
   std::tuple<const structure::Structure&, const StructureSolverOptions&> info() const { return {s, options}; }
   std::size_t steps() const { return n_steps; }
+  bool restarts() const { return restart_steps > 0; }
   std::size_t history_bytes() const {
     std::size_t bytes = 0;
     for (const auto& e : zener) bytes += e.law->bytes();
@@ -1095,6 +1107,12 @@ class StructureStepper {
 };
 
 }  // namespace
+
+bool takes_restarts(const StructureSolverOptions& options, const structure::Structure& s, const GroundMotion& ground) {
+  if (options.restart == StructureSolverOptions::Restart::never) return false;
+  // The stepper's set-up decides (the stiffest mode of the step's own stiffness).
+  return StructureStepper(options, s, ground).restarts();
+}
 
 StructureRunSummary simulate_structure(const StructureSolverOptions& options, const structure::Structure& s,
                                        const GroundMotion& ground, StructureObserver& observer) {

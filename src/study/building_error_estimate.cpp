@@ -117,6 +117,13 @@ BuildingErrorEstimate estimate_error(const BuildingRunSpec& spec, const Building
   coarse.solver.h = static_cast<double>(n) * spec.solver.h / static_cast<double>(n_coarse);
   coarse.solver.t_end = static_cast<double>(n) * spec.solver.h;
   coarse.base.output.spectra.reset();  // not estimated; not needed
+  // The companion integrates with the run's own scheme: at 2h the automatic rule could switch
+  // the backward-Euler restart on (h omega_max > 1) where the run had it off, and Richardson
+  // would then compare two methods of different order.
+  if (spec.solver.restart == StructureSolverOptions::Restart::automatic)
+    coarse.solver.restart = takes_restarts(spec.solver, spec.structure, *spec.base.ground)
+                                ? StructureSolverOptions::Restart::always
+                                : StructureSolverOptions::Restart::never;
   BuildingReport c;
   try {
     c = run_building(coarse);

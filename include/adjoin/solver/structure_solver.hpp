@@ -99,4 +99,11 @@ struct StructureRunSummary {
 StructureRunSummary simulate_structure(const StructureSolverOptions& options, const structure::Structure& s,
                                        const GroundMotion& ground, StructureObserver& observer);
 
+// Whether a run with these options takes the backward-Euler step after a damper's switch
+// (Restart::automatic resolved as the run resolves it, h omega_max > 1; always: if the
+// structure has a friction link). A run at another step can then be told to take the same
+// scheme (Restart::always or never): the error estimate's companion at 2h must integrate
+// with the method of the run it estimates, or Richardson compares two different schemes.
+bool takes_restarts(const StructureSolverOptions& options, const structure::Structure& s, const GroundMotion& ground);
+
 }  // namespace adjoin
