@@ -1,7 +1,8 @@
 // structure/ and the modal analysis: closed-form frequencies of a uniform shear building, the
 // stiffness found for a period, damping ratios against the complex eigenvalues of the damped
 // system (an independent computation), the Zener storeys' equivalent ratio, the coupled
-// system's periods with links free and locked, and building scenes read with their errors.
+// system's periods with links free and locked, building scenes read with their errors, and
+// participation factors and effective masses (closed form; `adjoin modes` prints them).
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
@@ -13,6 +14,7 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/structure/modal.hpp"
+#include "cli_helpers.hpp"
 #include "scene_helpers.hpp"
 
 using namespace adjoin;
@@ -183,4 +185,93 @@ TEST_CASE("a period given with storey devices is the building's period with them
   CHECK(building_modes(s.a).periods[0] == Approx(0.8).epsilon(1e-10));
   CHECK(s.a.static_stiffness()[0] == Approx(s.a.springs[0] + 2.0e7));
   CHECK(s.a.static_stiffness()[5] == Approx(s.a.springs[5]));
+}
+
+TEST_CASE("participation factors and effective masses of a 2-storey shear building are the closed form", "[modal]") {
+  // m1 = m2 = m, k1 = k2 = k: omega^2 = (3 -+ sqrt 5)/2 k/m, shapes scaled to 1 at the roof
+  // psi_1 = [(sqrt5 - 1)/2, 1], psi_2 = [-(sqrt5 + 1)/2, 1]. Gamma = psi' M 1 / psi' M psi,
+  // effective mass (psi' M 1)^2 / psi' M psi: by hand 1.1708 and -0.1708, 94.72 % and 5.28 %.
+  const double m = 2.0e5, k = 3.0e8, r5 = std::sqrt(5.0);
+  const Modes modes = building_modes(uniform(2, m, k));
+  const double psi1 = (r5 - 1.0) / 2.0, psi2 = -(r5 + 1.0) / 2.0;
+  CHECK(modes.omega[0] == Approx(std::sqrt((3.0 - r5) / 2.0 * k / m)).epsilon(1e-12));
+  CHECK(modes.omega[1] == Approx(std::sqrt((3.0 + r5) / 2.0 * k / m)).epsilon(1e-12));
+  const double gamma1 = (psi1 + 1.0) / (psi1 * psi1 + 1.0), gamma2 = (psi2 + 1.0) / (psi2 * psi2 + 1.0);
+  CHECK(gamma1 == Approx(1.1708).epsilon(1e-4));  // the hand values
+  CHECK(gamma2 == Approx(-0.1708).epsilon(1e-3));
+  CHECK(modes.participation[0] == Approx(gamma1).epsilon(1e-12));
+  CHECK(modes.participation[1] == Approx(gamma2).epsilon(1e-12));
+  const double mass1 = m * (psi1 + 1.0) * (psi1 + 1.0) / (psi1 * psi1 + 1.0);
+  const double mass2 = m * (psi2 + 1.0) * (psi2 + 1.0) / (psi2 * psi2 + 1.0);
+  CHECK(mass1 / (2.0 * m) == Approx(0.9472).epsilon(1e-4));
+  CHECK(modes.effective_mass[0] == Approx(mass1).epsilon(1e-12));
+  CHECK(modes.effective_mass[1] == Approx(mass2).epsilon(1e-12));
+  CHECK(modes.effective_mass.sum() == Approx(2.0 * m).epsilon(1e-12));
+}
+
+TEST_CASE("effective masses of any shear building sum to its total mass", "[modal]") {
+  Building b;
+  b.name = "A";
+  b.masses = (Eigen::VectorXd(8) << 9e4, 8e4, 8e4, 7e4, 7e4, 6e4, 5e4, 3e4).finished();
+  b.springs = (Eigen::VectorXd(8) << 2e8, 1.8e8, 1.6e8, 1.4e8, 1.2e8, 1e8, 8e7, 5e7).finished();
+  const Modes modes = building_modes(b);
+  CHECK(modes.effective_mass.sum() == Approx(b.masses.sum()).epsilon(1e-12));
+  for (int j = 0; j < 8; ++j) {
+    CHECK(modes.effective_mass[j] > 0.0);
+    // Gamma^2 psi' M psi is the effective mass too (psi the roof-scaled shape).
+    const Eigen::VectorXd psi = modes.shapes.col(j) / modes.shapes(7, j);
+    CHECK(modes.participation[j] * modes.participation[j] * psi.dot(b.masses.cwiseProduct(psi)) ==
+          Approx(modes.effective_mass[j]).epsilon(1e-10));
+  }
+  CHECK(modes.effective_mass[0] > 0.5 * b.masses.sum());  // the fundamental mode dominates
+}
+
+TEST_CASE("adjoin modes prints every mode's shape, participation and effective mass, with units", "[modal][cli]") {
+  // An 8-storey frame (more modes than the 6 shapes once printed) and a 2-storey one with the
+  // closed form above.
+  const auto scene = test::write_temp("modes-eight.toml", R"(name = "eight"
+[model]
+units = "SI"
+[building.A]
+storeys = 8
+mass = 5.0e5
+period = 1.0
+[building.B]
+storeys = 2
+mass = 2.0e5
+stiffness = 3.0e8
+)");
+  const test::CliResult r = test::run_cli("modes " + scene.string());
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("total mass 4e+06 kg") != std::string::npos);
+  CHECK(r.out.find("total mass 400000 kg") != std::string::npos);
+  CHECK(r.out.find("period [s]") != std::string::npos);
+  CHECK(r.out.find("eff. mass [kg]") != std::string::npos);
+  CHECK(r.out.find("mode shapes [-]") != std::string::npos);
+  // Building B's rows: Gamma 1.1708 / -0.1708, 94.72 % / 5.28 %, cumulated to 100 %.
+  const std::size_t b = r.out.find("building B");
+  REQUIRE(b != std::string::npos);
+  const std::string tail = r.out.substr(b);
+  CHECK(tail.find("1.1708") != std::string::npos);
+  CHECK(tail.find("-0.1708") != std::string::npos);
+  CHECK(tail.find("94.72") != std::string::npos);
+  CHECK(tail.find("5.28") != std::string::npos);
+  CHECK(tail.find("100.00") != std::string::npos);
+  CHECK(tail.find("  2     -1.618          1") != std::string::npos);  // mode 2's shape
+  // Building A: eight shape rows, the last mode's included.
+  const std::string a = r.out.substr(0, b);
+  const std::size_t shapes = a.find("mode shapes");
+  REQUIRE(shapes != std::string::npos);
+  int rows = 0;
+  for (std::size_t at = a.find('\n', shapes); at != std::string::npos && at + 1 < a.size(); at = a.find('\n', at + 1)) ++rows;
+  CHECK(rows == 8);
+  CHECK(a.find("100.00") != std::string::npos);
+  // --modes limits the table and the shapes; a count below 1 is refused.
+  const test::CliResult two = test::run_cli("modes " + scene.string() + " --modes 2");
+  CHECK(two.status == 0);
+  CHECK(two.out.find("2 of 8 modes shown") != std::string::npos);
+  const test::CliResult zero = test::run_cli("modes " + scene.string() + " --modes 0");
+  CHECK(zero.status == 2);
+  CHECK(zero.err.find("--modes") != std::string::npos);
 }

@@ -210,6 +210,59 @@ TEST_CASE("K-NET and KiK-net: counts times the scale factor, offset removed", "[
   CHECK_THAT(error_of(with(text, "Sampling Freq(Hz) 100Hz\n", ""), "k.EW", kind(Kind::knet)), Contains("Sampling Freq"));
 }
 
+TEST_CASE("K-NET: a scale factor with a negative, zero or non-finite part is refused naming its line", "[record_readers]") {
+  // '/-1' was read as a factor of -7845 gal a count (a PGA of 40 g for this file's counts).
+  const std::string text = slurp(data + "knet-tiny.EW");
+  struct Case {
+    const char* scale;
+    const char* says;
+  };
+  for (const Case& c : {Case{"7845(gal)/-1", "the denominator is negative"}, Case{"-7845(gal)/8223790", "the numerator is negative"},
+                        Case{"7845(gal)/-0", "the denominator is zero"}, Case{"0(gal)/8223790", "the numerator is zero"},
+                        Case{"7845(gal)/1e999", "the denominator is not finite"}, Case{"inf(gal)/8223790", "the numerator is not finite"},
+                        Case{"nan(gal)/8223790", "the numerator is"}}) {
+    INFO(c.scale);
+    CHECK_THAT(error_of(with(text, "7845(gal)/8223790", c.scale), "k.EW", kind(Kind::knet)),
+               Contains(at("k.EW", 14)) && Contains(c.says) && Contains("expected a finite number > 0"));
+  }
+  CHECK_NOTHROW(parse_record(with(text, "7845(gal)/8223790", "7845(gal)/1"), "k.EW", kind(Kind::knet)));
+}
+
+TEST_CASE("CSMIP/DMG: a file cut inside a later channel is refused at the line where it stops", "[record_readers]") {
+  // Cut anywhere in channel 2, the file was read as a one-channel file (its header) or its
+  // cut went unseen when channel 1 was asked; COSMOS refuses the same cuts.
+  std::string text = slurp(data + "dmg-v2-two-channels.V2");
+  const std::string second = "Corrected accelerogram   99999-T0001-20001.01       Chan  2";
+  const std::size_t start = line_of(text, second);
+  auto cut_after = [&](std::size_t lines) {  // the first `lines` lines
+    std::size_t at = 0;
+    for (std::size_t i = 0; i < lines; ++i) at = text.find('\n', at) + 1;
+    return text.substr(0, at);
+  };
+  // In the text header: no acceleration block.
+  CHECK_THAT(error_of(cut_after(start + 9), "d.V2"),
+             Contains(at("d.V2", start + 9)) && Contains("the file ends inside channel 2 (from line " + std::to_string(start) + ")") &&
+                 Contains("points of accel data"));
+  // In the acceleration values, whichever channel is asked.
+  const std::size_t block = line_of(text.substr(text.find(second)), "points of accel data") + start - 1;
+  for (int c : {0, 1, 2})
+    CHECK_THAT(error_of(cut_after(block + 1), "d.V2", channel(c)), Contains(at("d.V2", block + 1)) && Contains("the file ends inside channel 2"));
+  // A damaged value in the channel not asked for is found too.
+  CHECK_THAT(error_of(with(text, "6.000000", "6.0x0000"), "d.V2", channel(1)), Contains("not a number"));
+  // In the velocity block: no "/&" end line, where channel 1 has one.
+  const std::size_t veloc = line_of(text.substr(text.find(second)), "points of veloc data") + start - 1;
+  CHECK_THAT(error_of(cut_after(veloc + 1), "d.V2", channel(1)),
+             Contains(at("d.V2", veloc + 1)) && Contains("the file ends inside channel 2") && Contains("'/&'"));
+  // Text after the last channel that starts none.
+  CHECK_THAT(error_of(text + "some trailing text\r\n", "d.V2", channel(1)), Contains("channel 3") && Contains("without an acceleration block"));
+  // The whole file still reads, and so does a one-channel file that ends without "/&".
+  CHECK(parse_record(text, "d.V2", channel(2)).accel.size() == 6);
+  const std::string one = slurp(data + "dmg-v2-upper-case.V2");
+  const std::size_t end = one.rfind("/&");
+  REQUIRE(end != std::string::npos);
+  CHECK(parse_record(one.substr(0, end), "u.V2").accel.size() == 10);
+}
+
 TEST_CASE("ESM ASCII: NDATA values at SAMPLING_INTERVAL_S, in the header's UNITS", "[record_readers]") {
   const Record e = read_record(data + "esm-tiny.HNE.ACC.ASC");
   REQUIRE(e.accel.size() == 10);

@@ -1,11 +1,15 @@
-// adjoin modes SCENE [--set K=V]...
+// adjoin modes SCENE [--set K=V]... [--modes N]
 //
 // The modal analysis a run starts from (SPEC §5), alone: each building's natural periods,
 // frequencies, modal damping ratios (inherent, from devices, total; Zener storeys by their
-// complex stiffness at the mode's frequency) and mass-normalised mode shapes; the coupled
-// system's periods with the friction links free and locked. A two-block scene (SPEC §3) is
-// the structure of one floor per building, a Zener storey each, one friction link.
+// complex stiffness at the mode's frequency), participation factors, effective modal masses
+// (and their share of the total mass, cumulated) and mode shapes scaled to 1 at the roof, for
+// every mode or the first N; the coupled system's periods with the friction links free and
+// locked. Every number has its unit. A two-block scene (SPEC §3) is the structure of one floor
+// per building, a Zener storey each, one friction link (dimensionless: time in T0, mass in m1).
+#include <algorithm>
 #include <cstdio>
+#include <string>
 #include <memory>
 
 #include "adjoin/io/scene.hpp"
@@ -20,27 +24,48 @@ namespace {
 struct ModesArgs {
   std::string scene;
   std::vector<std::string> overrides, unsets;
+  int modes = 0;  // how many modes to show per building (0: all)
 };
 
-void print_building(const structure::Building& b, const char* time_unit) {
+// The units the numbers are printed in: SI, or the two-block scene's dimensionless units
+// (time in T0, mass in m1, block A's mass).
+struct Units {
+  std::string time = "s", frequency = "Hz", mass = "kg";
+};
+
+std::string bracketed(const std::string& what, const std::string& unit) { return what + " [" + unit + "]"; }
+
+void print_building(const structure::Building& b, const Units& u, int shown) {
   const structure::Modes m = structure::building_modes(b);
-  std::printf("building %s: %d storeys, total mass %.6g\n", b.name.c_str(), b.floors(), b.masses.sum());
-  std::printf("  %4s %12s %12s %10s %10s %10s %10s\n", "mode", (std::string("period [") + time_unit + "]").c_str(),
-              (std::string("freq [") + (time_unit[0] == 's' ? "Hz" : "1/T0") + "]").c_str(), "inherent", "devices", "total", "zener K'");
-  for (int j = 0; j < m.omega.size(); ++j)
-    std::printf("  %4d %12.6g %12.6g %10.4f %10.4f %10.4f %10.4f\n", j + 1, m.periods[j], 1.0 / m.periods[j],
-                m.inherent_ratio[j], m.device_ratio[j], m.total_ratio[j], m.zener_stiffening[j]);
-  std::printf("  mode shapes (mass-normalised; floor 1 first):\n");
-  for (int j = 0; j < m.omega.size() && j < 6; ++j) {
+  const int n = static_cast<int>(m.omega.size());
+  const int count = shown > 0 ? std::min(shown, n) : n;
+  const double total = b.masses.sum();
+  std::printf("building %s: %d storeys, total mass %.6g %s; %d of %d modes shown\n", b.name.c_str(), b.floors(), total,
+              u.mass.c_str(), count, n);
+  std::printf("  %4s %12s %12s %12s %12s %12s %12s %14s %16s %12s %12s\n", "mode", bracketed("period", u.time).c_str(),
+              bracketed("freq", u.frequency).c_str(), "inherent [-]", "devices [-]", "total [-]", "zener K' [-]",
+              "Gamma_roof [-]", bracketed("eff. mass", u.mass).c_str(), "eff. [%]", "cumul. [%]");
+  double cumulative = 0.0;
+  for (int j = 0; j < count; ++j) {
+    const double share = 100.0 * m.effective_mass[j] / total;
+    cumulative += share;
+    std::printf("  %4d %12.6g %12.6g %12.4f %12.4f %12.4f %12.4f %14.4f %16.6g %12.2f %12.2f\n", j + 1, m.periods[j],
+                1.0 / m.periods[j], m.inherent_ratio[j], m.device_ratio[j], m.total_ratio[j], m.zener_stiffening[j],
+                m.participation[j], m.effective_mass[j], share, cumulative);
+  }
+  std::printf("  damping ratios [-] (0.05 is 5 %%); Gamma_roof: the participation factor of the shape scaled to 1 at the roof\n");
+  std::printf("  mode shapes [-] (scaled to 1 at the roof; floor 1 first):\n");
+  for (int j = 0; j < count; ++j) {
     std::printf("  %4d", j + 1);
-    for (int i = 0; i < m.shapes.rows(); ++i) std::printf(" %10.4g", m.shapes(i, j));
+    const double roof = m.shapes(m.shapes.rows() - 1, j);
+    for (int i = 0; i < m.shapes.rows(); ++i) std::printf(" %10.4g", m.shapes(i, j) / roof);
     std::printf("\n");
   }
 }
 
 int modes_command(const ModesArgs& args) {
   structure::Structure s;
-  const char* time_unit = "s";
+  Units units;
   if (is_building_scene(args.scene)) {
     for (const auto& o : args.overrides)
       if (!is_structure_key(o.substr(0, o.find('='))))
@@ -49,13 +74,13 @@ int modes_command(const ModesArgs& args) {
   } else {
     const Scene scene = load_scene(args.scene, args.overrides, args.unsets);
     s = structure_of(scene);
-    if (!scene.scales.si) time_unit = "T0";
+    if (!scene.scales.si) units = Units{"T0", "1/T0", "m1"};
   }
-  print_building(s.a, time_unit);
-  if (s.b) print_building(*s.b, time_unit);
+  print_building(s.a, units, args.modes);
+  if (s.b) print_building(*s.b, units, args.modes);
   if (s.b) {
     const structure::CoupledModes c = structure::coupled_modes(s);
-    std::printf("coupled system: periods [%s] with the friction links free | locked\n", time_unit);
+    std::printf("coupled system: periods [%s] with the friction links free | locked\n", units.time.c_str());
     for (int j = 0; j < c.periods_free.size() || j < c.periods_locked.size(); ++j) {
       std::printf("  %4d", j + 1);
       if (j < c.periods_free.size()) std::printf(" %12.6g", c.periods_free[j]); else std::printf(" %12s", "");
@@ -72,6 +97,8 @@ const Registration registration(15, [](CLI::App& app) -> Runner {
   sub->add_option("scene", args->scene, "Scene file (TOML)")->required();
   sub->add_option("--set", args->overrides, "Override a scene key by dotted path, e.g. --set building.B.period=0.6")
       ->allow_extra_args(false);
+  sub->add_option("--modes", args->modes, "How many modes to show for each building (default: all)")
+      ->check(CLI::Range(1, 1000000));
   sub->add_option("--unset", args->unsets, "Remove a scene key or section first, e.g. --unset link.1")->allow_extra_args(false);
   return [args]() { return modes_command(*args); };
 });

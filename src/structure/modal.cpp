@@ -117,6 +117,16 @@ Modes building_modes(const Building& b) {
     out.device_ratio[j] = phi.dot(c_devices * phi) / (2.0 * w) + modal_k.imag() / (2.0 * static_k);
   }
   out.total_ratio = out.inherent_ratio + out.device_ratio;
+  // Participation: phi' M phi = 1 (mass-normalised), so phi' M 1 alone gives the effective
+  // mass; the roof scaling divides Gamma by the roof component (never 0 in a shear building).
+  out.participation.resize(n);
+  out.effective_mass.resize(n);
+  for (int j = 0; j < n; ++j) {
+    const Eigen::VectorXd phi = out.shapes.col(j);
+    const double l = phi.dot(b.masses), mass = phi.dot(m * phi);
+    out.effective_mass[j] = l * l / mass;
+    out.participation[j] = l / mass * phi[n - 1];
+  }
   return out;
 }
 

@@ -21,10 +21,13 @@
 //
 // Ductility mu = max|u| / u_y. Constant ductility: with the elastic strength demand
 // f_e/m = omega^2 SD (SD the elastic peak), the strength ratio eta = f_y / f_e is scanned down
-// from 1 on a geometric grid (ratio 0.9) until mu(eta) reaches the target; in the first
-// bracket where it does, an Illinois (regula falsi) iteration on log mu against log eta finds
-// mu = target to the tolerance. So when several strengths give the target, the largest is
-// reported (common practice). If no eta down to 1e-4 reaches the target, the smallest is
+// from 1 until mu(eta) reaches the target, each step sized by how far mu is below the target
+// (ln(target / mu) / 10 in log eta, from 0.5 % to 10 % in strength); in the first bracket where
+// it does, an Illinois (regula falsi) iteration on log mu against log eta finds mu = target to
+// the tolerance. So when several strengths give the target, the largest is reported (common
+// practice); it can be missed only where mu varies faster than |d log mu / d log eta| = 10 or
+// exceeds the target over a band of strengths narrower than 0.5 % (src/post/inelastic.cpp).
+// If no eta down to 1e-4 reaches the target, the smallest is
 // reported with its ductility: ductility_reached says what was reached in every case.
 // Reported: cy = f_y / (m g), u_y [m], R = f_e / f_y = 1 / eta.
 #include <cstddef>

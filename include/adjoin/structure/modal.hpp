@@ -13,6 +13,11 @@
 //    phi_n' Re K*(w_n) phi_n / phi_n' K phi_n reported beside it (modes are not recomputed
 //    with it: the periods are those of the static stiffness, as engineers quote them);
 //  - total: their sum.
+//
+// Participation under a uniform ground motion (influence vector 1): with the shape scaled to 1
+// at the roof, Gamma_n = phi_n' M 1 / phi_n' M phi_n (the roof's share of the ground
+// displacement in mode n); the effective modal mass (phi_n' M 1)^2 / phi_n' M phi_n does not
+// depend on the scaling, and the modes' effective masses sum to the total mass.
 #include <Eigen/Dense>
 #include <complex>
 
@@ -26,6 +31,8 @@ struct Modes {
   Eigen::MatrixXd shapes;    // columns, mass-normalised (phi' M phi = 1), roof component > 0
   Eigen::VectorXd inherent_ratio, device_ratio, total_ratio;
   Eigen::VectorXd zener_stiffening;  // phi' Re K*(w_n) phi / phi' K phi (1 without Zener devices)
+  Eigen::VectorXd participation;     // Gamma_n of the shape scaled to 1 at the roof (dimensionless)
+  Eigen::VectorXd effective_mass;    // kg (the building's mass unit), sums to the total mass
 };
 
 // Shear-building matrices of one building: M (diagonal), K (tridiagonal, static stiffness),

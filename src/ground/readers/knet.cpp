@@ -14,6 +14,7 @@
 // NIED's own "Max. Acc." is computed.
 #include <cmath>
 #include <numeric>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -85,9 +86,16 @@ Record parse_knet(std::string_view text, const std::string& name, const RecordFo
   const std::optional<double> bottom = slash == std::string_view::npos ? std::nullopt : number_at(s, slash + 1);
   if (!top || !bottom || open == std::string_view::npos || close == std::string_view::npos || close < open)
     fail(name, scale->number, "scale factor " + quote_token(s) + " (expected e.g. '7845(gal)/8223790')");
+  // Both parts are magnitudes (full scale in gal over full scale in counts): a negative or zero
+  // one would flip or kill the record, an infinite one inflate it, so neither is guessed at.
   const double numerator = top.value_or(0.0), denominator = bottom.value_or(0.0);
-  if (denominator == 0.0 || !std::isfinite(numerator / denominator) || numerator == 0.0)
-    fail(name, scale->number, "scale factor " + quote_token(s) + " is zero or not finite (expected e.g. '7845(gal)/8223790')");
+  for (const auto& [part, value] : {std::pair{"numerator", numerator}, std::pair{"denominator", denominator}})
+    if (!(value > 0.0) || !std::isfinite(value))
+      fail(name, scale->number, "scale factor " + quote_token(s) + ": the " + part + " is " +
+                                    (value == 0.0 ? "zero" : value < 0.0 ? "negative" : "not finite") +
+                                    " (expected a finite number > 0 on each side, e.g. '7845(gal)/8223790')");
+  if (!std::isfinite(numerator / denominator) || !(numerator / denominator > 0.0))
+    fail(name, scale->number, "scale factor " + quote_token(s) + " is not a finite number > 0 (expected e.g. '7845(gal)/8223790')");
   AccelUnit unit;
   const std::string unit_word(trim(s.substr(open + 1, close - open - 1)));
   if (!parse_accel_unit(unit_word, &unit))
