@@ -219,8 +219,8 @@ TEST_CASE("K-NET: a scale factor with a negative, zero or non-finite part is ref
   };
   for (const Case& c : {Case{"7845(gal)/-1", "the denominator is negative"}, Case{"-7845(gal)/8223790", "the numerator is negative"},
                         Case{"7845(gal)/-0", "the denominator is zero"}, Case{"0(gal)/8223790", "the numerator is zero"},
-                        Case{"7845(gal)/1e999", "the denominator is not finite"}, Case{"inf(gal)/8223790", "the numerator is not finite"},
-                        Case{"nan(gal)/8223790", "the numerator is"}}) {
+                        Case{"7845(gal)/1e999", "the denominator is not a finite number"}, Case{"inf(gal)/8223790", "the numerator is not a finite number"},
+                        Case{"nan(gal)/8223790", "the numerator is not a finite number"}}) {
     INFO(c.scale);
     CHECK_THAT(error_of(with(text, "7845(gal)/8223790", c.scale), "k.EW", kind(Kind::knet)),
                Contains(at("k.EW", 14)) && Contains(c.says) && Contains("expected a finite number > 0"));

@@ -84,15 +84,16 @@ Record parse_knet(std::string_view text, const std::string& name, const RecordFo
   const std::size_t open = s.find('('), close = s.find(')'), slash = s.find('/', close == std::string_view::npos ? 0 : close);
   const std::optional<double> top = number_at(s, 0);
   const std::optional<double> bottom = slash == std::string_view::npos ? std::nullopt : number_at(s, slash + 1);
-  if (!top || !bottom || open == std::string_view::npos || close == std::string_view::npos || close < open)
+  if (slash == std::string_view::npos || open == std::string_view::npos || close == std::string_view::npos || close < open)
     fail(name, scale->number, "scale factor " + quote_token(s) + " (expected e.g. '7845(gal)/8223790')");
   // Both parts are magnitudes (full scale in gal over full scale in counts): a negative or zero
   // one would flip or kill the record, an infinite one inflate it, so neither is guessed at.
-  const double numerator = top.value_or(0.0), denominator = bottom.value_or(0.0);
+  // (number_at reads no inf, nan or overflowing value: those are "not a finite number".)
+  const double numerator = top.value_or(NAN), denominator = bottom.value_or(NAN);
   for (const auto& [part, value] : {std::pair{"numerator", numerator}, std::pair{"denominator", denominator}})
     if (!(value > 0.0) || !std::isfinite(value))
       fail(name, scale->number, "scale factor " + quote_token(s) + ": the " + part + " is " +
-                                    (value == 0.0 ? "zero" : value < 0.0 ? "negative" : "not finite") +
+                                    (value == 0.0 ? "zero" : value < 0.0 ? "negative" : "not a finite number") +
                                     " (expected a finite number > 0 on each side, e.g. '7845(gal)/8223790')");
   if (!std::isfinite(numerator / denominator) || !(numerator / denominator > 0.0))
     fail(name, scale->number, "scale factor " + quote_token(s) + " is not a finite number > 0 (expected e.g. '7845(gal)/8223790')");
