@@ -40,8 +40,8 @@ void print_building(const structure::Building& b, const Units& u, int shown) {
   const int n = static_cast<int>(m.omega.size());
   const int count = shown > 0 ? std::min(shown, n) : n;
   const double total = b.masses.sum();
-  std::printf("building %s: %d storeys, total mass %.6g %s; %d of %d modes shown\n", b.name.c_str(), b.floors(), total,
-              u.mass.c_str(), count, n);
+  std::printf("building %s: %d storey%s, total mass %.6g %s; %d of %d mode%s shown\n", b.name.c_str(), b.floors(),
+              b.floors() == 1 ? "" : "s", total, u.mass.c_str(), count, n, n == 1 ? "" : "s");
   std::printf("  %4s %12s %12s %12s %12s %12s %12s %14s %16s %12s %12s\n", "mode", bracketed("period", u.time).c_str(),
               bracketed("freq", u.frequency).c_str(), "inherent [-]", "devices [-]", "total [-]", "zener K' [-]",
               "Gamma_roof [-]", bracketed("eff. mass", u.mass).c_str(), "eff. [%]", "cumul. [%]");
