@@ -17,7 +17,8 @@
 // in full to its temporary first; only when every one of them has been written without error
 // are they renamed into place, and members of the set that this run did not write (left by an
 // earlier run with other outputs) are removed, so a folder never holds a new summary beside an
-// old time series. A failure while writing (disk full) leaves the previous set as it was.
+// old time series (a device or pipe of a member's name is the user's and stays). A failure
+// while writing (disk full) leaves the previous set as it was.
 // The folder is created (with its missing parents) when the first member is opened, and
 // removed again if the set is not committed (io/output_place.hpp).
 #include <filesystem>
