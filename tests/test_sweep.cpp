@@ -1,13 +1,19 @@
 // Sweeps (study/sweep.hpp, adjoin sweep / sweep merge) and demand models (study/demand.hpp,
 // adjoin demand).
-#include <catch2/catch.hpp>
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
+#include <atomic>
+#include <catch2/catch.hpp>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <optional>
 #include <set>
 #include <sstream>
+#include <thread>
 
 #include "adjoin/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
@@ -788,6 +794,77 @@ values = [0.0, 0.3, 0.6, 0.9]
   r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir / "resume") + " -q");
   REQUIRE(r.status == 0);
   CHECK_THAT(r.err, Catch::Contains("a journal of another sweep"));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a journal row with both results and an error is dropped and run again", "[sweep][cli]") {
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / ("sweep_journal_error_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  const auto file = sweep_file("journal-error.toml", R"(
+set = {"solver.h" = 0.01, "solver.t_end" = 4.0}
+[[axis]]
+key = "model.mu"
+values = [0.0, 0.3]
+)");
+  auto r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir / "serial") + " -q");
+  REQUIRE(r.status == 0);
+  const auto serial = csv_rows(slurp(dir / "serial" / "sweep.csv"));
+  REQUIRE(serial.size() == 3);
+  const SweepSpec spec = load_sweep(file);
+  const auto error = column_of(spec, "error");
+  // A failed run's row has empty results; one with numbers and an error is no row of a sweep.
+  std::size_t index = 0;
+  auto both = serial[2];
+  both[error] = "numerical failure at t = 1";
+  CHECK_THAT(sweep_row_problem(spec, SweepShard{}, both, &index),
+             Catch::Contains("error = \"numerical failure at t = 1\", but x1 = ") && Catch::Contains("a failed run's results are empty"));
+  // Resumed from a journal holding that row and a good one: the row is run again, the table is
+  // the uninterrupted sweep's.
+  std::filesystem::create_directories(dir / "resume");
+  {
+    std::ofstream journal(dir / "resume" / "sweep.partial.csv", std::ios::binary);
+    journal << sweep_journal_preamble(spec, SweepShard{}) << csv_line(serial[1]) << "\n" << csv_line(both) << "\n";
+  }
+  r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir / "resume"));
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.err, Catch::Contains("sweep.partial.csv:4: error = ") && Catch::Contains("done again"));
+  CHECK_THAT(r.out, Catch::Contains("2 runs (1 from the journal"));
+  const auto resumed = csv_rows(slurp(dir / "resume" / "sweep.csv"));
+  CHECK(without_wall_time(resumed) == without_wall_time(serial));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("a sweep journal that is a FIFO is refused and never read (reading it blocked for ever)", "[sweep][cli]") {
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / ("sweep_journal_fifo_" + std::to_string(::getpid()));
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  const auto file = sweep_file("journal-fifo.toml", "set = {\"solver.h\" = 0.01, \"solver.t_end\" = 2.0}\n");
+  const auto fifo = dir / "sweep.partial.csv";
+  REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+  // Should a sweep open the FIFO (to read or to write it), this thread opens the other end
+  // after a second, so the sweep goes on instead of hanging the test; it is then wrong by its
+  // exit status.
+  std::atomic<bool> finished{false};
+  std::thread unblock([&] {
+    for (int i = 0; !finished; ++i) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+      if (i < 10) continue;
+      if (const int fd = ::open(fifo.c_str(), O_WRONLY | O_NONBLOCK); fd >= 0) ::close(fd);  // a reader waits
+      if (const int fd = ::open(fifo.c_str(), O_RDONLY | O_NONBLOCK); fd >= 0) {
+        char buffer[4096];
+        while (::read(fd, buffer, sizeof buffer) > 0) {
+        }
+        ::close(fd);
+      }
+    }
+  });
+  const auto r = run_cli("sweep " + qpath(file) + " --out " + qpath(dir) + " -q");
+  finished = true;
+  unblock.join();
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::Contains(fifo.string() + ": the sweep journal is a FIFO (named pipe), not a regular file"));
+  CHECK(std::filesystem::is_fifo(std::filesystem::symlink_status(fifo)));
+  CHECK(!std::filesystem::exists(dir / "sweep.csv"));
   std::filesystem::remove_all(dir);
 }
 

@@ -13,6 +13,7 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
+#include "adjoin/io/output_place.hpp"
 #include "adjoin/io/plots.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/scene.hpp"
@@ -39,25 +40,33 @@ std::string cell(double v, const char* format = "%.3e") {
 }
 
 // convergence-quantities.csv: every reported quantity's error and observed order on each rung
-// (instants in the scene's time unit). False (and nothing written) against an analytic
-// reference, which gives only the trajectory.
-bool write_quantities(const ConvergenceResult& result, double time_unit, const std::filesystem::path& path) {
+// (instants in the scene's time unit). False (and nothing written: the set then removes an
+// earlier run's file) against an analytic reference, which gives only the trajectory.
+bool write_quantities(const ConvergenceResult& result, double time_unit, FileSet& files) {
   bool any = false;
   for (const auto& r : result.rows) any = any || !r.quantities.empty();
-  std::error_code ignored;
-  if (!any) {
-    std::filesystem::remove(path, ignored);  // not a stale one from an earlier run beside the new table
-    return false;
-  }
-  AtomicFile csv(path);
-  csv.stream() << "scheme,history,h,quantity,kind,error,order\n";
+  if (!any) return false;
+  std::ostream& csv = files.open("convergence-quantities.csv");
+  csv << "scheme,history,h,quantity,kind,error,order\n";
   for (const auto& r : result.rows)
     for (const auto& q : r.quantities)
-      csv.stream() << r.scheme << "," << r.history << "," << cell(r.h * time_unit, "%.10g") << "," << q.name << ","
-                   << (q.instant ? "absolute" : "relative") << "," << cell(q.error * (q.instant ? time_unit : 1.0), "%.6e")
-                   << "," << (std::isnan(q.order) ? "" : cell(q.order, "%.4f")) << "\n";
-  csv.commit();
+      csv << r.scheme << "," << r.history << "," << cell(r.h * time_unit, "%.10g") << "," << q.name << ","
+          << (q.instant ? "absolute" : "relative") << "," << cell(q.error * (q.instant ? time_unit : 1.0), "%.6e") << ","
+          << (std::isnan(q.order) ? "" : cell(q.order, "%.4f")) << "\n";
   return true;
+}
+
+// convergence.csv: a row per rung (h in the scene's time unit).
+void write_table(const ConvergenceResult& result, double time_unit, std::ostream& csv) {
+  csv << "scheme,history,h,steps,wall_seconds,error,order,err_peak_x1,err_min_gap,err_friction\n";
+  for (const auto& r : result.rows) {
+    auto v = [](double x) { return std::isnan(x) ? std::string() : std::to_string(x); };
+    csv << r.scheme << "," << r.history << "," << cell(r.h * time_unit, "%.10g") << "," << r.steps << "," << v(r.wall_seconds)
+        << "," << (std::isnan(r.error) ? "" : cell(r.error, "%.6e")) << "," << v(r.order) << ","
+        << (std::isnan(r.peak_x1) ? "" : cell(r.peak_x1, "%.6e")) << ","
+        << (std::isnan(r.min_gap) ? "" : cell(r.min_gap, "%.6e")) << ","
+        << (std::isnan(r.friction) ? "" : cell(r.friction, "%.6e")) << "\n";
+  }
 }
 
 // One table per (scheme, history) ladder: a row per quantity, a column per step, "error
@@ -113,6 +122,8 @@ std::vector<HistoryEngine> engines_of(const ConvergeArgs& args, std::vector<Hist
 }
 
 int write_and_print(const ConvergeArgs& args, const ConvergenceResult& result, const std::string& name, double time_unit);
+std::filesystem::path output_folder(const ConvergeArgs& args, const std::string& name);
+void check_steps(const ConvergeArgs& args, double scene_h, double t_end, const std::string& unit);
 
 // A building scene (SPEC §5): the structure step's ladder; --schemes may only name implicit.
 int converge_building(const ConvergeArgs& args) {
@@ -127,6 +138,8 @@ int converge_building(const ConvergeArgs& args) {
   options.steps = args.steps;
   std::string error;
   if (!options.IsValid(&error)) throw InputError("--steps/--history: " + error);
+  check_steps(args, scene.solver.h, scene.solver.t_end, " s");
+  check_output_folder(output_folder(args, scene.name));  // before the ladder runs
   return write_and_print(args, run_building_convergence(scene, options), scene.name, 1.0);
 }
 
@@ -151,32 +164,48 @@ int converge_command(const ConvergeArgs& args) {
   for (double h : args.steps) options.steps.push_back(h / scene.scales.time);
   std::string error;
   if (!options.IsValid(&error)) throw InputError("--steps/--schemes/--history: " + error);
+  check_steps(args, scene.solver.h * scene.scales.time, scene.solver.t_end * scene.scales.time, scene.scales.si ? " s" : "");
+  check_output_folder(output_folder(args, scene.name));  // before the ladder runs
 
   return write_and_print(args, run_convergence(scene, options), scene.name, scene.scales.time);
 }
 
+// The output folder: --out, or out/<scene name>/.
+std::filesystem::path output_folder(const ConvergeArgs& args, const std::string& name) {
+  return args.out.empty() ? std::filesystem::path("out") / name : std::filesystem::path(args.out);
+}
+
+// Every step of the ladder (in the scene's time unit) must fit in the run: a step longer than
+// t_end is a run of less than one step.
+void check_steps(const ConvergeArgs& args, double scene_h, double t_end, const std::string& unit) {
+  const auto steps_of = [&](double h) { return cell(t_end / h, "%.3g"); };
+  for (double h : args.steps)
+    if (h > t_end)
+      throw InputError("--steps " + cell(h, "%g") + ": longer than the run: t_end = " + cell(t_end, "%g") + unit +
+                       " is " + steps_of(h) + " steps of it; every step must be at most t_end (several steps per run)");
+  if (args.steps.empty() && 4.0 * scene_h > t_end)
+    throw InputError("--steps (default: the scene's h times 4,2,1,1/2,1/4): the coarsest step, 4 h = " +
+                     cell(4.0 * scene_h, "%g") + unit + ", is longer than the run (t_end = " + cell(t_end, "%g") + unit +
+                     "); give --steps no longer than t_end");
+}
+
+// Whether the work-precision figure has a point: a rung with an error and a measured time
+// (the figure's log axes take positive values only), as convergence.csv spells them.
+bool has_figure_point(const ConvergenceResult& result) {
+  return std::any_of(result.rows.begin(), result.rows.end(), [](const ConvergenceRow& r) {
+    return r.error > 0.0 && std::isfinite(r.error) && std::stod(std::to_string(r.wall_seconds)) > 0.0;
+  });
+}
+
 // convergence.csv, convergence-quantities.csv and the work-precision figure in --out, and the
-// tables on stdout; h and instants in the scene's time unit (`time_unit` per solver unit).
+// tables on stdout; h and instants in the scene's time unit (`time_unit` per solver unit). The
+// CSVs are one set: committed only once the figure is drawn (from the finished table), so a
+// failure leaves the folder as it was.
 int write_and_print(const ConvergeArgs& args, const ConvergenceResult& result, const std::string& name, double time_unit) {
-  const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / name : std::filesystem::path(args.out);
-  std::filesystem::create_directories(dir);
-  const auto csv_path = dir / "convergence.csv";
-  {
-    AtomicFile csv(csv_path);
-    csv.stream() << "scheme,history,h,steps,wall_seconds,error,order,err_peak_x1,err_min_gap,err_friction\n";
-    csv.stream().precision(10);
-    for (const auto& r : result.rows) {
-      auto v = [](double x) { return std::isnan(x) ? std::string() : std::to_string(x); };
-      char h[32];
-      std::snprintf(h, sizeof h, "%.10g", r.h * time_unit);
-      csv.stream() << r.scheme << "," << r.history << "," << h << "," << r.steps << "," << v(r.wall_seconds) << ","
-                   << (std::isnan(r.error) ? "" : cell(r.error, "%.6e")) << "," << v(r.order) << ","
-                   << (std::isnan(r.peak_x1) ? "" : cell(r.peak_x1, "%.6e")) << ","
-                   << (std::isnan(r.min_gap) ? "" : cell(r.min_gap, "%.6e")) << ","
-                   << (std::isnan(r.friction) ? "" : cell(r.friction, "%.6e")) << "\n";
-    }
-    csv.commit();
-  }
+  const std::filesystem::path dir = output_folder(args, name);
+  const auto csv_path = dir / "convergence.csv", quantities_path = dir / "convergence-quantities.csv";
+  FileSet files(dir, {"convergence.csv", "convergence-quantities.csv"});
+  write_table(result, time_unit, files.open("convergence.csv"));
 
   std::printf("convergence of %s; errors against %s\n", name.c_str(), result.reference.c_str());
   std::printf("%-12s %-7s %10s %8s %10s %10s %6s %10s %10s %10s\n", "scheme", "history", "h", "steps", "wall [s]",
@@ -191,16 +220,21 @@ int write_and_print(const ConvergeArgs& args, const ConvergenceResult& result, c
                 r.h * time_unit, r.steps, r.wall_seconds, cell(r.error).c_str(), cell(r.order, "%.2f").c_str(),
                 cell(r.peak_x1).c_str(), cell(r.min_gap).c_str(), cell(r.friction).c_str());
   }
-  const auto quantities_path = dir / "convergence-quantities.csv";
-  if (write_quantities(result, time_unit, quantities_path)) print_quantities(result, time_unit);
-  std::printf("wrote %s", csv_path.string().c_str());
-  if (std::filesystem::exists(quantities_path)) std::printf(", %s", quantities_path.string().c_str());
+  const bool quantities = write_quantities(result, time_unit, files);
+  if (quantities) print_quantities(result, time_unit);
+  std::filesystem::path image;
   if (!args.no_plot) {
+    if (!has_figure_point(result))
+      throw InputError(csv_path.string() + ": no rung with an error > 0 and a measured run time: nothing to draw on the "
+                       "work-precision figure's log axes (see the table above); --no-plot writes the tables alone");
     PlotStyle style;
-    const std::filesystem::path image = plot_target(args.plot, dir / "work-precision.png", "", &style, "--plot");
-    plot_convergence_csv(csv_path, image, style, name + " (reference: " + result.reference + ")");
-    std::printf(", %s", image.string().c_str());
+    image = plot_target(args.plot, dir / "work-precision.png", "", &style, "--plot");
+    plot_convergence_csv(files.finish("convergence.csv"), image, style, name + " (reference: " + result.reference + ")");
   }
+  files.commit();
+  std::printf("wrote %s", csv_path.string().c_str());
+  if (quantities) std::printf(", %s", quantities_path.string().c_str());
+  if (!image.empty()) std::printf(", %s", image.string().c_str());
   std::printf("\n");
   return 0;
 }

@@ -91,6 +91,10 @@ void print(const SeismicJoint& j) {
   std::printf("  %.3g s for all runs\n", j.wall_seconds);
 }
 
+std::filesystem::path output_folder(const JointArgs& args, const std::string& scene_name) {
+  return args.out.empty() ? std::filesystem::path("out") / scene_name : std::filesystem::path(args.out);
+}
+
 int joint_command(const JointArgs& args) {
   SeismicJointOptions options;
   if (args.tol_given) {
@@ -116,6 +120,7 @@ int joint_command(const JointArgs& args) {
       throw InputError("--contact " + std::to_string(args.contact) + ": the scene has " + std::to_string(n) +
                        " contact pair" + (n == 1 ? "" : "s") + " (expected 1.." + std::to_string(n) + ")");
     name = scene.name;
+    check_output_folder(output_folder(args, name));  // before the runs, not after them
     j = seismic_joint(scene, options);
   } else {
     const Scene scene = load_scene(args.scene, args.overrides, args.unsets);
@@ -124,15 +129,13 @@ int joint_command(const JointArgs& args) {
       throw InputError("--contact " + std::to_string(args.contact) +
                        ": a two-block scene has one contact pair, the blocks' (its gap is model.gap0; expected 1)");
     name = scene.name;
+    check_output_folder(output_folder(args, name));
     j = seismic_joint(scene, options);
   }
 
-  const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / name : std::filesystem::path(args.out);
-  std::filesystem::create_directories(dir);
-  const auto path = dir / "joint.json";
-  AtomicFile file(path);
-  file.stream() << joint_json(j);
-  file.commit();
+  FileSet files(output_folder(args, name), {"joint.json"});
+  files.open("joint.json") << joint_json(j);
+  const auto path = files.commit().front();
   if (!args.quiet) {
     print(j);
     std::printf("wrote %s\n", path.string().c_str());

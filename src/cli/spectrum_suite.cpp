@@ -188,9 +188,7 @@ void plot_suite(const SuiteRequest& r, const std::vector<Member>& members, const
 int suite_command(const SuiteRequest& r) {
   if (r.out.empty())
     throw InputError("--out: a suite writes a folder (DIR/<record>.csv, DIR/suite.csv, DIR/factors.csv): give --out DIR");
-  std::error_code ec;
-  if (fs::exists(r.out, ec) && !fs::is_directory(r.out, ec))
-    throw InputError("--out " + r.out + ": is a file (a suite writes a folder)");
+  check_output_folder(r.out);  // a suite writes a folder
   std::vector<std::string> skipped;
   const std::vector<Member> members = collect(r, &skipped);
 
@@ -217,8 +215,6 @@ int suite_command(const SuiteRequest& r) {
     scaled = suite_statistics(spectra, names, scale->factors);
   }
 
-  fs::create_directories(r.out, ec);
-  if (ec) throw InputError("--out " + r.out + ": cannot create the folder: " + ec.message());
   std::vector<std::string> set_names{"suite.csv", "factors.csv"};
   for (const Member& m : members) set_names.push_back(m.output);
   FileSet files(r.out, set_names);

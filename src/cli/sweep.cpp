@@ -30,6 +30,7 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/folder_lock.hpp"
+#include "adjoin/io/output_place.hpp"
 #include "adjoin/io/sweep_file.hpp"
 #include "adjoin/io/sweep_files.hpp"
 #include "adjoin/io/text_file.hpp"
@@ -176,9 +177,8 @@ std::size_t count_failed(const SweepTable& table) {
 
 std::filesystem::path output_dir(const SweepArgs& args, const SweepSpec& spec) {
   const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / spec.name : std::filesystem::path(args.out);
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) throw InputError(dir.string() + ": cannot create the output folder: " + error.message());
+  OutputFolder folder(dir);  // kept: the journal and the lock live there while the sweep runs
+  folder.keep();
   return dir;
 }
 
@@ -382,7 +382,24 @@ int sweep_command(const SweepArgs& args) {
   return sweep_local(args);
 }
 
+// Where `sweep merge --out` writes: FILE.csv and FILE.json, or DIR/sweep.csv and DIR/sweep.json.
+std::pair<std::filesystem::path, std::filesystem::path> merged_files(const std::string& out) {
+  std::filesystem::path csv(out), json(out);
+  if (csv.extension() == ".csv" || csv.extension() == ".json") {
+    csv.replace_extension(".csv");
+    json.replace_extension(".json");
+  } else {
+    csv = csv / "sweep.csv";
+    json = json / "sweep.json";
+  }
+  return {csv, json};
+}
+
 int merge_command(const MergeArgs& args) {
+  const auto [csv, json] = merged_files(args.out);
+  const std::filesystem::path folder = csv.has_parent_path() ? csv.parent_path() : std::filesystem::path(".");
+  check_output_folder(folder, folder == std::filesystem::path(args.out) ? "--out" : "--out " + args.out + ", its folder");
+  // (before the tables are read)
   std::vector<std::filesystem::path> files;
   for (const auto& input : args.inputs) {
     const std::filesystem::path p(input);
@@ -405,16 +422,9 @@ int merge_command(const MergeArgs& args) {
   std::vector<SweepTableFile> parts;
   for (const auto& f : files) parts.push_back(read_sweep_json(f));
   const SweepTableFile merged = merge_sweep_tables(parts);
-  std::filesystem::path csv(args.out), json(args.out);
-  if (csv.extension() == ".csv" || csv.extension() == ".json") {
-    csv.replace_extension(".csv");
-    json.replace_extension(".json");
-  } else {
-    csv = csv / "sweep.csv";
-    json = json / "sweep.json";
-  }
-  if (csv.has_parent_path()) std::filesystem::create_directories(csv.parent_path());
+  OutputFolder made(folder);  // made for the pair, removed again if it fails
   write_sweep_table(merged, csv, json);
+  made.keep();
   std::printf("merged %zu tables: %zu runs of sweep %s\nwrote %s, %s\n", parts.size(), merged.table.rows.size(),
               merged.sweep.c_str(), csv.string().c_str(), json.string().c_str());
   return 0;

@@ -372,9 +372,7 @@ std::string building_impacts_csv(const BuildingReport& r) {
 }
 
 BuildingFiles run_building_to_folder(const BuildingScene& scene, const std::filesystem::path& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) throw InputError(dir.string() + ": cannot create the output folder: " + error.message());
+  check_output_folder(dir);  // before the run: the folder itself is made by the set's commit
   FileSet set(dir, {"summary.json", "timeseries.csv", "energy.csv", "spectra.csv", "impacts.csv"});
   std::unique_ptr<BuildingCsvWriter> writer;
   std::unique_ptr<RestartingWriter> restarting;

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -37,10 +38,18 @@ std::string holder(int fd) {
 
 FolderLock::FolderLock(const std::filesystem::path& dir, const std::string& name, const std::string& command)
     : path_(dir / name) {
-  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+  // O_NONBLOCK: a FIFO of that name must not block the command; it is refused below.
+  fd_ = ::open(path_.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NONBLOCK, 0644);
   if (fd_ < 0) {
     const int error = errno;
     throw InputError(path_.string() + ": cannot create the lock file of the output folder: " + std::strerror(error));
+  }
+  struct stat st {};
+  if (::fstat(fd_, &st) != 0 || !S_ISREG(st.st_mode)) {
+    ::close(fd_);
+    fd_ = -1;
+    throw InputError(path_.string() + ": the lock file of the output folder is not a regular file; remove it (the "
+                     "command makes its own) or give another --out");
   }
   if (::flock(fd_, LOCK_EX | LOCK_NB) != 0) {
     const int error = errno;

@@ -45,9 +45,7 @@ class RestartingStreams final : public Observer {
 }  // namespace
 
 RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) throw InputError(dir.string() + ": cannot create the output folder: " + error.message());
+  check_output_folder(dir);  // before the run: the folder itself is made by the set's commit
 
   FileSet set(dir, run_file_names());
   // Streamed outputs: each writer sees the grid points as they are computed.

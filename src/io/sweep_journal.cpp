@@ -10,6 +10,7 @@
 #include "../detail/parse_number.hpp"
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
+#include "adjoin/io/output_place.hpp"
 #include "adjoin/io/sweep_files.hpp"
 #include "adjoin/io/text_file.hpp"
 
@@ -54,8 +55,14 @@ std::string sweep_row_problem(const SweepSpec& spec, const SweepShard& shard, co
   if (cells[units] != "dimensionless" && cells[units] != "SI")
     return "units = " + escaped_excerpt(cells[units]) + "; expected dimensionless or SI";
   const bool failed = !cells.back().empty();
+  const std::size_t wall = cells.size() - 2;  // wall_seconds, then error
   for (std::size_t i = units + 1; i + 1 < cells.size(); ++i) {
     const std::string& cell = cells[i];
+    // A failed run has no results (its row is written with empty cells): numbers beside an
+    // error are not a row this sweep wrote.
+    if (failed && i < wall && !cell.empty())
+      return "error = " + escaped_excerpt(cells.back()) + ", but " + columns[i].name + " = " + escaped_excerpt(cell) +
+             "; a failed run's results are empty";
     const auto bad = [&](const char* expected) {
       return columns[i].name + " = " + escaped_excerpt(cell) + "; expected " + expected;
     };
@@ -82,8 +89,15 @@ std::string sweep_row_problem(const SweepSpec& spec, const SweepShard& shard, co
 
 std::vector<std::vector<std::string>> read_sweep_journal(const std::filesystem::path& file, const SweepSpec& spec,
                                                          const SweepShard& shard, std::vector<std::string>* dropped) {
+  std::error_code ec;
+  const auto status = std::filesystem::status(file, ec);
+  if (!std::filesystem::exists(status)) return {};
+  // Never opened otherwise: a FIFO would block the sweep for ever, a device has no rows.
+  if (!std::filesystem::is_regular_file(status))
+    throw InputError(file.string() + ": the sweep journal is " + file_kind(status) +
+                     ", not a regular file; remove it (the sweep makes its own) or give another --out");
   std::ifstream in(file, std::ios::binary);
-  if (!in) return {};
+  if (!in) throw InputError(file.string() + ": cannot read the sweep journal");
   std::stringstream buffer;
   buffer << in.rdbuf();
   const std::string text = buffer.str();

@@ -228,14 +228,14 @@ std::string sweep_file_stem(const SweepShard& shard) {
 }
 
 void write_sweep_table(const SweepTableFile& table, const std::filesystem::path& csv, const std::filesystem::path& json) {
-  {
-    AtomicFile file(csv);
-    file.stream() << sweep_csv(table.table);
-    file.commit();
-  }
-  AtomicFile file(json);
-  file.stream() << sweep_json(table);
-  file.commit();
+  // A pair: both written whole before either replaces its file.
+  AtomicFile csv_file(csv), json_file(json);
+  csv_file.stream() << sweep_csv(table.table);
+  json_file.stream() << sweep_json(table);
+  csv_file.finish();
+  json_file.finish();
+  csv_file.publish();
+  json_file.publish();
 }
 
 }  // namespace adjoin

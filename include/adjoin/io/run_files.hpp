@@ -35,7 +35,8 @@ struct RunFiles {
 // Every file name a run may write into its folder.
 const std::vector<std::string>& run_file_names();
 
-// Creates `dir` if needed, runs the scene and commits its files.
+// Checks `dir` (io/output_place.hpp), runs the scene and commits its files; `dir` is created
+// (if it is not there) for the files and removed again if the run fails.
 RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir);
 
 }  // namespace adjoin

@@ -36,7 +36,7 @@ struct SweepTableFile {
 SweepTableFile sweep_table_file(const SweepSpec& spec, SweepTable table, const SweepShard& shard);
 std::string sweep_json(const SweepTableFile& table);
 SweepTableFile read_sweep_json(const std::filesystem::path& file);
-// Writes the table as CSV and JSON, each replacing its file only when written whole.
+// Writes the table as CSV and JSON, a pair: neither file is replaced until both are written whole.
 void write_sweep_table(const SweepTableFile& table, const std::filesystem::path& csv, const std::filesystem::path& json);
 
 // Combines shard tables into the table of the whole sweep: same fingerprint and columns, every
