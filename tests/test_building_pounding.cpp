@@ -368,3 +368,34 @@ TEST_CASE("plot run on a building run with contacts draws contacts with the impa
   CHECK(text.find("contact1 peak forces") != std::string::npos);
   CHECK(text.find("outside the model") == std::string::npos);
 }
+
+TEST_CASE("the terminal line of a Newton-law pair gives its largest impulse, not a peak force of 0 N; counts agree in number",
+          "[building_run][pounding]") {
+  BuildingScene scene = pounding_scene({"output.timeseries=false"});
+  auto& law = scene.structure.contacts.at(0).law;
+  law.model = structure::ContactModel::impact;
+  law.restitution = 0.65;
+  const BuildingReport r = run_building(scene);
+  const ContactReport& c = r.contacts.at(0);
+  REQUIRE(c.impacts >= 2);
+  REQUIRE(c.impulse_max > 0.0);
+  const std::string brief = building_brief_report(scene, r);
+  INFO(brief);
+  CHECK(brief.find("contact1 (impact): " + std::to_string(c.impacts) + " impacts,") != std::string::npos);
+  CHECK(brief.find("peak force") == std::string::npos);
+  CHECK(brief.find("max penetration") == std::string::npos);
+  char impulse[64];
+  std::snprintf(impulse, sizeof impulse, "largest impulse %.4g N s", c.impulse_max);
+  CHECK(brief.find(impulse) != std::string::npos);
+  // One impact, one switch: singular (a report made up for the wording; the counts are the
+  // report's own).
+  BuildingReport one = r;
+  one.contacts.at(0).impacts = 1;
+  REQUIRE_FALSE(one.links.empty());
+  one.links.at(0).switches = 1;
+  const std::string single = building_brief_report(scene, one);
+  INFO(single);
+  CHECK(single.find("contact1 (impact): 1 impact,") != std::string::npos);
+  CHECK(single.find(", 1 switch\n") != std::string::npos);
+  CHECK(single.find("1 switches") == std::string::npos);
+}
