@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "adjoin/errors.hpp"
 #include "adjoin/model/units.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/contact.hpp"
@@ -367,4 +368,27 @@ TEST_CASE("resting contact with the elastic Hertz law: it oscillates between 0 a
   CHECK(hi < d * (1.0 + 1e-9));
   CHECK(hi > 0.95 * d);
   CHECK(std::abs(p.residual(r)) < 1e-6);
+}
+
+TEST_CASE("a two-block contact too stiff for its step stops when it gives back more energy than it took", "[contact]") {
+  // The strong scene with the blocks touching at rest (gap0 = 0) and its friction damper:
+  // Hertz k = 1e15 (units of k1/X0^(1/2)) at h = 0.05 splits badly from the damper in the step
+  // (the contact gave back 123 against an input of 0.64 at t = 0.6); at h = 0.002 it runs.
+  auto keys = [](double h) {
+    return std::vector<std::string>{"solver.scheme=implicit", "model.gap0=0", "model.contact.model=hertz",
+                                    "model.contact.stiffness=1e15", "solver.t_end=2", "solver.h=" + std::to_string(h)};
+  };
+  try {
+    run_scene(test::paper_scene("strong", keys(0.05)));
+    FAIL("the run did not stop");
+  } catch (const NumericalError& e) {
+    const std::string m = e.what();
+    INFO(m);
+    CHECK(m.find("the contact (model.contact) has given back") != std::string::npos);
+    CHECK(m.find("make solver.h smaller or lower model.contact.stiffness") != std::string::npos);
+    CHECK(e.time() > 0.0);
+  }
+  const RunReport fine = run_scene(test::paper_scene("strong", keys(0.002)));
+  REQUIRE(fine.pounding);
+  CHECK(fine.pounding->contact);
 }
