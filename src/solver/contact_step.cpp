@@ -213,8 +213,10 @@ ContactStepOut ContactStepper::compliant_step(ContactMemory& memory, const Conta
     // for a contact pressed at rest (no approach speed, a penetration that only creeps), the
     // static one of the load pressing the floors together (the step's a, or the force the
     // pair holds now): its penetration and the speed of the pair's oscillation about it.
-    const Scale load = static_scale(std::max(std::abs(in.a), in.kappa * std::abs(force(y.delta, y.w, memory.approach))), in.kappa);
-    const double w_ref = std::max({std::abs(memory.current.approach_speed), std::abs(y.w), std::abs(in.a) * h, load.speed, 1e-300});
+    const double held = in.kappa * std::abs(force(y.delta, y.w, memory.approach));
+    const Scale load = static_scale(std::max(std::abs(in.a), held), in.kappa);
+    const double w_ref =
+        std::max({std::abs(memory.current.approach_speed), std::abs(y.w), std::abs(in.a) * h, load.speed, 1e-300});
     // A first sub-step from the pair's contact frequency at its expected largest penetration.
     double omega = 0.0;
     if (law_.model == ContactModel::linear) {
@@ -230,7 +232,8 @@ ContactStepOut ContactStepper::compliant_step(ContactMemory& memory, const Conta
       if (++substeps > kMaxSubsteps)
         fail_bound(in.t0 + tau, y.delta, y.w, "needed more than " + std::to_string(kMaxSubsteps) + " sub-steps");
       dt = std::min(dt, h - tau);
-      const double delta_ref = std::max({memory.current.penetration_max, std::abs(y.delta), load.delta, w_ref * dt, 1e-300});
+      const double delta_ref =
+          std::max({memory.current.penetration_max, std::abs(y.delta), load.delta, w_ref * dt, 1e-300});
       double err = 0.0;
       const Y y1 = flow.step(tau, y, dt, delta_ref * kTol, w_ref * kTol, &err);
       if (!(err <= 1.0)) {
