@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <vector>
 
+#include "adjoin/errors.hpp"
 #include "adjoin/model/units.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/contact.hpp"
@@ -269,5 +270,156 @@ TEST_CASE("impact times, peak forces and peak displacements converge at order 2 
       CHECK(order(drift) > law.order_min);
     }
     if (force[0] > 0.0) CHECK(order(force) > law.order_min);
+  }
+}
+
+namespace {
+
+// A (10 t) pressed by a constant field (a_g = 1 g: its weight F = m g) against B, a wall
+// (1e9 kg on a storey of natural frequency 1e4 rad/s), the two touching at rest from t = 0
+// (gap 0, B at its static deflection, A moved with it): resting contact from the start.
+struct Pressed {
+  double m = 1e4, h = 0.01, t_end = 2.0;
+  double gap = 0.0;  // A starts this far from the wall, at rest
+  double force() const { return m * kStandardGravity; }
+  Recorder run(const ContactLaw& law) const {
+    const double g = kStandardGravity;
+    Structure s;
+    s.a = single("A", m, 1e-12);
+    s.b = single("B", 1e9, 1e9 * 1e8);
+    Contact c;
+    c.gap = gap;
+    c.law = law;
+    s.contacts.push_back(c);
+    StructureSolverOptions o;
+    o.h = h;
+    o.t_end = t_end;
+    o.x0 = Eigen::Vector2d(g / 1e8, g / 1e8);
+    Recorder r;
+    simulate_structure(o, s, ConstantGround(1.0), r);
+    return r;
+  }
+  // The energy balance from t = 0: the field's work on both floors against their kinetic
+  // energy, the storeys' strain energy and the contact's work (stored + dissipated).
+  double residual(const Recorder& r) const {
+    const double g = kStandardGravity, mb = 1e9, kb = 1e9 * 1e8;
+    const StructureState &first = r.states.front(), &last = r.states.back();
+    const double input = m * g * (last.x[0] - first.x[0]) + mb * g * (last.x[1] - first.x[1]);
+    const double kinetic = 0.5 * m * last.v[0] * last.v[0] + 0.5 * mb * last.v[1] * last.v[1];
+    const double strain = 0.5 * kb * (last.x[1] * last.x[1] - first.x[1] * first.x[1]) +
+                          0.5 * 1e-12 * (last.x[0] * last.x[0] - first.x[0] * first.x[0]);
+    return (input - kinetic - strain - last.contact_work[0]) / input;
+  }
+};
+
+}  // namespace
+
+TEST_CASE("resting contact (gap 0, at rest): each damped law settles to its static force and penetration", "[contact]") {
+  // Linear k = 1e8 N/m (delta = F/k = 0.98 mm), the Hertz laws k = 1e10 N/m^1.5 (delta =
+  // (F/k)^(2/3) = 0.46 mm); e = 0.65. Hertzdamp has no approach speed here (v0 = 0).
+  const Pressed p;
+  const double F = p.force();
+  struct Case {
+    ContactLaw law;
+    double delta;  // the law's static penetration under F
+  };
+  const std::vector<Case> cases{{law_of(ContactModel::linear, 1e8, 0.65), F / 1e8},
+                                {law_of(ContactModel::linear, 1e8, 0.65, true), F / 1e8},
+                                {law_of(ContactModel::hertzdamp, 1e10, 0.65), std::pow(F / 1e10, 2.0 / 3.0)},
+                                {law_of(ContactModel::jankowski, 1e10, 0.65), std::pow(F / 1e10, 2.0 / 3.0)}};
+  for (const Case& c : cases) {
+    INFO(to_string(c.law.model) << (c.law.tension_cut ? " (cut)" : ""));
+    const Recorder r = p.run(c.law);
+    REQUIRE(r.states.back().t == Approx(p.t_end));
+    const StructureState& last = r.states.back();
+    for (double v : {last.x[0], last.v[0], last.contact_force[0], last.contact_work[0]}) CHECK(std::isfinite(v));
+    CHECK(std::abs(last.contact_force[0] - F) < 1e-6 * F);
+    CHECK(std::abs(-last.contact_gap[0] - c.delta) < 1e-6 * c.delta);
+    CHECK(std::abs(last.v[0] - last.v[1]) < 1e-6 * std::sqrt(F * c.delta / p.m));
+    // One impact, still going on at the end: the floors never part.
+    REQUIRE(r.impacts.size() == 1);
+    CHECK_FALSE(r.impacts[0].complete);
+    CHECK(r.impacts[0].start == 0.0);
+    CHECK(std::abs(p.residual(r)) < 1e-6);
+  }
+}
+
+TEST_CASE("resting contact with the elastic Hertz law: it oscillates between 0 and (2.5 F/k)^(2/3), force 2.5 F", "[contact]") {
+  // Let go at rest at the touch, A swings into the wall and back to the touch, for ever: each
+  // swing an impact whose largest penetration and force follow from F delta = 2/5 k delta^(5/2).
+  const Pressed p;
+  const double F = p.force(), k = 1e10;
+  const Recorder r = p.run(law_of(ContactModel::hertz, k, 1.0));
+  REQUIRE(r.states.back().t == Approx(p.t_end));
+  const double d = std::pow(2.5 * F / k, 2.0 / 3.0);
+  // (One impact, or one per swing where the turn at the touch is seen as a separation.)
+  REQUIRE_FALSE(r.impacts.empty());
+  for (const Impact& i : r.impacts) {
+    CHECK(std::abs(i.penetration_max - d) < 1e-6 * d);
+    CHECK(std::abs(i.force_max - 2.5 * F) < 1e-6 * F);
+  }
+  // On the grid: every penetration between 0 and d, both ends reached (period about 0.04 s).
+  double lo = d, hi = 0.0;
+  for (const StructureState& st : r.states) {
+    lo = std::min(lo, -st.contact_gap[0]);
+    hi = std::max(hi, -st.contact_gap[0]);
+  }
+  CHECK(lo > -1e-9 * d);
+  CHECK(lo < 0.05 * d);
+  CHECK(hi < d * (1.0 + 1e-9));
+  CHECK(hi > 0.95 * d);
+  CHECK(std::abs(p.residual(r)) < 1e-6);
+}
+
+TEST_CASE("a two-block contact too stiff for its step stops when it gives back more energy than it took", "[contact]") {
+  // The strong scene with the blocks touching at rest (gap0 = 0) and its friction damper:
+  // Hertz k = 1e15 (units of k1/X0^(1/2)) at h = 0.05 splits badly from the damper in the step
+  // (the contact gave back 123 against an input of 0.64 at t = 0.6); at h = 0.002 it runs.
+  auto keys = [](double h) {
+    return std::vector<std::string>{"solver.scheme=implicit", "model.gap0=0", "model.contact.model=hertz",
+                                    "model.contact.stiffness=1e15", "solver.t_end=2", "solver.h=" + std::to_string(h)};
+  };
+  try {
+    run_scene(test::paper_scene("strong", keys(0.05)));
+    FAIL("the run did not stop");
+  } catch (const NumericalError& e) {
+    const std::string m = e.what();
+    INFO(m);
+    CHECK(m.find("the contact (model.contact) has given back") != std::string::npos);
+    CHECK(m.find("make solver.h smaller or lower model.contact.stiffness") != std::string::npos);
+    CHECK(e.time() > 0.0);
+  }
+  const RunReport fine = run_scene(test::paper_scene("strong", keys(0.002)));
+  REQUIRE(fine.pounding);
+  CHECK(fine.pounding->contact);
+}
+
+TEST_CASE("pounding that dies down: a floor dropped on the wall bounces, then rests at the static answer", "[contact]") {
+  // A dropped from 1 cm under 1 g (approach 0.44 m/s): hertzdamp's v0 shrinks bounce by bounce
+  // (an ever stiffer damping before v0 had a floor); every damped law ends pressed at rest.
+  Pressed p;
+  p.gap = 0.01;
+  p.t_end = 3.0;
+  const double F = p.force();
+  struct Case {
+    ContactLaw law;
+    double delta;
+  };
+  const std::vector<Case> cases{{law_of(ContactModel::linear, 1e8, 0.65), F / 1e8},
+                                {law_of(ContactModel::hertzdamp, 1e10, 0.65), std::pow(F / 1e10, 2.0 / 3.0)},
+                                {law_of(ContactModel::jankowski, 1e10, 0.65), std::pow(F / 1e10, 2.0 / 3.0)}};
+  for (const Case& c : cases) {
+    INFO(to_string(c.law.model));
+    const Recorder r = p.run(c.law);
+    REQUIRE(r.states.back().t == Approx(p.t_end));
+    const StructureState& last = r.states.back();
+    REQUIRE(r.impacts.size() >= 2);  // it bounced
+    CHECK_FALSE(r.impacts.back().complete);  // and rests
+    CHECK(std::abs(r.impacts.front().approach_speed - std::sqrt(2.0 * kStandardGravity * p.gap)) < 1e-9);
+    // (The wall, undamped at 1e4 rad/s, keeps ringing from the bounces' kicks, about 1e-9 m:
+    // the force about its static value by 0.2 N, 2e-6 F.)
+    CHECK(std::abs(last.contact_force[0] - F) < 1e-5 * F);
+    CHECK(std::abs(-last.contact_gap[0] - c.delta) < 1e-5 * c.delta);
+    CHECK(std::abs(p.residual(r)) < 1e-6);
   }
 }

@@ -236,3 +236,29 @@ TEST_CASE("the impact-force sweep example runs: no impact past the minimum joint
   CHECK(checked == 7);
   fs::remove_all(dir);
 }
+
+TEST_CASE("seismic joint: another pair that pounds once is noted as 1 impact, in the singular", "[joint]") {
+  // The frames of the examples with a second pair at floors 3 (a Hertzdamp law, gap 0.25 m):
+  // under the whole record it pounds once (examples/sweeps/impact-force.toml, slip ratio 0.05).
+  std::ifstream in(kFrames);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string scene = text.str();
+  const std::string relative = "../../records/";
+  scene.replace(scene.find(relative), relative.size(), (fs::path(ADJOIN_SOURCE_DIR) / "records").string() + "/");
+  scene += "\n[[contact]]\nfloors = [3, 3]\ngap = 0.25\nmodel = \"hertzdamp\"\nstiffness = 2e10\nrestitution = 0.65\n";
+  const fs::path file = fs::path(ADJOIN_TEST_TMP) / ("joint_one_impact_" + std::to_string(::getpid()) + ".toml");
+  std::ofstream(file) << scene;
+  const BuildingScene s = load_building_scene(file);
+  fs::remove(file);
+  const BuildingReport r = run_building(s);
+  REQUIRE(r.contacts.at(1).impacts == 1);
+  SeismicJointOptions o;
+  o.tol = 1e-2;
+  const SeismicJoint j = seismic_joint(s, o);
+  std::string notes;
+  for (const auto& n : j.notes) notes += n + "\n";
+  INFO(notes);
+  CHECK(notes.find("contact 2 (floors 3, 3) pounds (1 impact)") != std::string::npos);
+  CHECK(notes.find("1 impacts") == std::string::npos);
+}

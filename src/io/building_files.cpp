@@ -309,7 +309,8 @@ std::string building_brief_report(const BuildingScene& scene, const BuildingRepo
     std::snprintf(line, sizeof line, "link%zu (%s): force max %.4g N, stroke max %.4g m", l + 1, link_type(s.links[l].type),
                   r.links[l].force_max, r.links[l].stroke_max);
     o << line;
-    if (s.links[l].type == structure::LinkType::friction) o << ", " << r.links[l].switches << " switches";
+    if (s.links[l].type == structure::LinkType::friction)
+      o << ", " << r.links[l].switches << (r.links[l].switches == 1 ? " switch" : " switches");
     o << "\n";
   }
   for (std::size_t k = 0; k < s.contacts.size(); ++k) {
@@ -326,6 +327,13 @@ std::string building_brief_report(const BuildingScene& scene, const BuildingRepo
         o << line;
       }
       o << "\n";
+    } else if (c.contact && pair.law.model == structure::ContactModel::impact) {
+      // (Newton's law has impulses, no forces or penetrations.)
+      std::snprintf(line, sizeof line,
+                    "contact%zu (%s): %zu impact%s, first contact at t = %.4g s, largest impulse %.4g N s, dissipated %.4g J\n",
+                    k + 1, structure::to_string(pair.law.model), c.impacts, c.impacts == 1 ? "" : "s", c.t_first_contact,
+                    c.impulse_max, c.dissipated);
+      o << line;
     } else if (c.contact) {
       std::snprintf(line, sizeof line,
                     "contact%zu (%s): %zu impact%s, first contact at t = %.4g s, peak force %.4g N at t = %.4g s, max penetration "

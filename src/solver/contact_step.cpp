@@ -97,6 +97,7 @@ struct ContactStepper::Flow {
 ContactStepper::ContactStepper(const structure::ContactLaw& law, double m_eff, int index)
     : law_(law), m_eff_(m_eff), index_(index), damping_(law.damping_parameter()) {
   if (law.model == ContactModel::linear) c_linear_ = 2.0 * damping_ * std::sqrt(law.stiffness * m_eff);
+  inv_125_m_eff_ = 1.0 / (1.25 * m_eff);
 }
 
 double ContactStepper::force(double delta, double w, double v0) const {
@@ -110,7 +111,12 @@ double ContactStepper::force(double delta, double w, double v0) const {
     case ContactModel::hertz: return k * delta * std::sqrt(delta);
     case ContactModel::hertzdamp: {
       const double f = k * delta * std::sqrt(delta);
-      return v0 > 0.0 ? std::max(f * (1.0 + damping_ * w / v0), 0.0) : f;
+      // v0 is never taken below the approach speed a free impact needs to reach this
+      // penetration (1/2 m_eff v^2 = 2/5 k delta^(5/2)): a free impact never reaches that bound,
+      // and a contact that starts at rest (v0 = 0) or is pressed past its impact's peak keeps
+      // a finite damping, xi_bar sqrt(5/24) of critical at the tangent stiffness.
+      const double v = std::max(v0, std::sqrt(f * delta * inv_125_m_eff_));
+      return std::max(f * (1.0 + damping_ * w / v), 0.0);
     }
     case ContactModel::jankowski: {
       const double f = k * delta * std::sqrt(delta);
@@ -126,6 +132,30 @@ double ContactStepper::stored(double delta) const {
   if (law_.model == ContactModel::linear) return 0.5 * law_.stiffness * delta * delta;
   if (law_.compliant()) return 0.4 * law_.stiffness * delta * delta * std::sqrt(delta);
   return 0.0;
+}
+
+ContactStepper::Scale ContactStepper::static_scale(double acceleration, double kappa) const {
+  Scale s;
+  const double k = law_.stiffness, force = acceleration / kappa;  // the load in force units
+  if (!(force > 0.0)) return s;
+  if (law_.model == ContactModel::linear) {
+    s.delta = force / k;
+    s.omega = std::sqrt(kappa * k);
+  } else {
+    s.delta = std::cbrt(force * force / (k * k));  // (F/k)^(2/3)
+    s.omega = std::sqrt(1.5 * kappa * k * std::sqrt(s.delta));
+  }
+  s.speed = s.omega * s.delta;
+  return s;
+}
+
+void ContactStepper::fail_bound(double t, double delta, double w, const std::string& what) const {
+  std::ostringstream m;
+  m << "contact pair " << index_ + 1 << " (" << structure::to_string(law_.model) << "): its motion in contact " << what
+    << " in one step at t = " << t << " (penetration " << delta << ", rate " << w << "); the contact's sub-steps grow "
+    << "with its stiffness (about k^(1/3) for a pressed Hertz contact): lower the pair's stiffness to the values of "
+    << "README's contact stiffness guidance, or make solver.h smaller";
+  throw NumericalError(m.str(), t);
 }
 
 bool ContactStepper::quiet(const ContactMemory& memory, const ContactStepIn& in) const {
@@ -147,8 +177,9 @@ ContactStepOut ContactStepper::compliant_step(ContactMemory& memory, const Conta
   double tau = 0.0;
   double impulse_mark = 0.0;  // the step's impulse when the impact under way was (re)entered
   constexpr double kTol = 1e-11;
-  int guard = 0;
-  while (tau < h && ++guard < 1000) {
+  long substeps = 0;  // Runge-Kutta steps tried in the step (bounded: kMaxSubsteps)
+  for (int entries = 0; tau < h; ++entries) {
+    if (entries == kMaxEntries) fail_bound(in.t0 + tau, y.delta, y.w, "touched and separated more than 1000 times");
     const double r = h - tau;
     if (!memory.engaged) {
       // Free flight: a parabola (a small overlap left by rounding while the floors move apart
@@ -178,21 +209,31 @@ ContactStepOut ContactStepper::compliant_step(ContactMemory& memory, const Conta
     out.touched = true;
     // In contact: embedded Runge-Kutta to the separation or the end of the step.
     const Flow flow{*this, in.a, in.kappa, h, memory.approach};
-    const double w_ref = std::max({std::abs(memory.current.approach_speed), std::abs(y.w), std::abs(in.a) * h, 1e-300});
+    // The error's scales: the impact's own (its approach speed and largest penetration), and,
+    // for a contact pressed at rest (no approach speed, a penetration that only creeps), the
+    // static one of the load pressing the floors together (the step's a, or the force the
+    // pair holds now): its penetration and the speed of the pair's oscillation about it.
+    const double held = in.kappa * std::abs(force(y.delta, y.w, memory.approach));
+    const Scale load = static_scale(std::max(std::abs(in.a), held), in.kappa);
+    const double w_ref =
+        std::max({std::abs(memory.current.approach_speed), std::abs(y.w), std::abs(in.a) * h, load.speed, 1e-300});
     // A first sub-step from the pair's contact frequency at its expected largest penetration.
     double omega = 0.0;
     if (law_.model == ContactModel::linear) {
       omega = std::sqrt(in.kappa * law_.stiffness) + in.kappa * c_linear_;
     } else {
       const double v = std::max(std::abs(y.w), 1e-300);
-      const double d_est = std::max(y.delta, std::pow(1.25 * v * v / (in.kappa * law_.stiffness), 0.4));
+      const double d_est = std::max({y.delta, load.delta, std::pow(1.25 * v * v / (in.kappa * law_.stiffness), 0.4)});
       omega = std::sqrt(1.5 * in.kappa * law_.stiffness * std::sqrt(d_est));
     }
     double dt = std::min(r, 0.02 / std::max(omega, 1e-300));
     bool separated = false;
     while (tau < h && !separated) {
+      if (++substeps > kMaxSubsteps)
+        fail_bound(in.t0 + tau, y.delta, y.w, "needed more than " + std::to_string(kMaxSubsteps) + " sub-steps");
       dt = std::min(dt, h - tau);
-      const double delta_ref = std::max({memory.current.penetration_max, std::abs(y.delta), w_ref * dt, 1e-300});
+      const double delta_ref =
+          std::max({memory.current.penetration_max, std::abs(y.delta), load.delta, w_ref * dt, 1e-300});
       double err = 0.0;
       const Y y1 = flow.step(tau, y, dt, delta_ref * kTol, w_ref * kTol, &err);
       if (!(err <= 1.0)) {
@@ -307,7 +348,8 @@ ContactStepOut ContactStepper::newton_step(ContactMemory& memory, const ContactS
     d = 0.0;
     w = std::min(w, 0.0);
   }
-  for (int guard = 0; guard < 100000 && tau < h; ++guard) {
+  for (int bounces = 0; tau < h; ++bounces) {
+    if (bounces == 100000) fail_bound(in.t0 + tau, d, w, "bounced more than 100000 times");
     const double r = h - tau;
     const double s = first_touch(d, w, a, r);
     if (s > r) {

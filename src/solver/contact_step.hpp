@@ -24,6 +24,7 @@
 // touch, the velocity reversed to -e times itself, again; a sequence of bounces that would
 // accumulate inside the step (e < 1 under a pushing a) ends at rest in a held contact (w = 0,
 // force a / kappa), released when a pulls the floors apart.
+#include <string>
 #include <vector>
 
 #include "adjoin/observe/state.hpp"
@@ -70,6 +71,16 @@ class ContactStepper {
 
  private:
   struct Flow;
+  // The static scale of a load pressing the pair (a free relative acceleration): the law's
+  // static penetration under it, the pair's frequency there and the speed omega delta.
+  struct Scale {
+    double delta = 0.0, omega = 0.0, speed = 0.0;
+  };
+  Scale static_scale(double acceleration, double kappa) const;
+  // Exit 3 when a step's contact motion exceeds its bounds (kMaxSubsteps, kMaxEntries).
+  [[noreturn]] void fail_bound(double t, double delta, double w, const std::string& what) const;
+  static constexpr long kMaxSubsteps = 200000;  // Runge-Kutta steps in one structure step
+  static constexpr int kMaxEntries = 1000;      // touches (and separations) in one structure step
   ContactStepOut compliant_step(ContactMemory& memory, const ContactStepIn& in, std::vector<Impact>& ended) const;
   ContactStepOut newton_step(ContactMemory& memory, const ContactStepIn& in, std::vector<Impact>& ended) const;
 
@@ -78,6 +89,7 @@ class ContactStepper {
   int index_ = 0;
   double c_linear_ = 0.0;  // linear: 2 zeta sqrt(k m_eff)
   double damping_ = 0.0;   // zeta, xi_bar or xi
+  double inv_125_m_eff_ = 0.0;  // 1 / (1.25 m_eff): hertzdamp's least v0 (force())
 };
 
 }  // namespace adjoin::detail

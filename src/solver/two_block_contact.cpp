@@ -3,7 +3,9 @@
 // contact pair at gap0), so it runs on the structure solver, whose step is the implicit
 // scheme's for vectors (the two agree to rounding without contact: test_structure_solver), in
 // the model's dimensionless units, and its states are reported as the two-block State.
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "adjoin/errors.hpp"
 #include "adjoin/model/units.hpp"
@@ -16,8 +18,9 @@ namespace {
 
 class AsTwoBlock final : public StructureObserver {
  public:
-  AsTwoBlock(Observer& inner, bool damper) : inner_(inner), damper_(damper) {}
+  AsTwoBlock(Observer& inner, bool damper, double m1, double m2) : inner_(inner), damper_(damper), m1_(m1), m2_(m2) {}
   void observe(const StructureState& s) override {
+    check_contact_energy(s);
     State out;
     out.t = s.t;
     out.x1 = s.x[0];
@@ -44,8 +47,29 @@ class AsTwoBlock final : public StructureObserver {
   void impact(const Impact& i) override { inner_.impact(i); }
 
  private:
+  // The contact law stores or dissipates the work done on it, never gives back more: a pair
+  // that has given back more than 1 % of the input energy so far had a step too long for its
+  // stiffness (as for building runs, study/building_run.cpp).
+  void check_contact_energy(const StructureState& s) {
+    const double power = s.ag * (m1_ * s.v[0] + m2_ * s.v[1]);
+    if (started_) input_ += 0.5 * (s.t - t_) * (power + power_);
+    started_ = true;
+    t_ = s.t;
+    power_ = power;
+    input_scale_ = std::max(input_scale_, std::abs(input_));
+    if (s.contact_dissipated.size() == 0 || !(-s.contact_dissipated[0] > 1e-2 * input_scale_)) return;
+    std::ostringstream m;
+    m << "the contact (model.contact) has given back " << -s.contact_dissipated[0] << " more than the work done on it "
+      << "at t = " << s.t << " (the input so far " << input_scale_ << "): the step is too long for the contact's "
+      << "stiffness; make solver.h smaller or lower model.contact.stiffness";
+    throw NumericalError(m.str(), s.t);
+  }
+
   Observer& inner_;
   bool damper_;
+  double m1_, m2_;
+  bool started_ = false;
+  double t_ = 0.0, power_ = 0.0, input_ = 0.0, input_scale_ = 0.0;
 };
 
 }  // namespace
@@ -67,7 +91,7 @@ LoopResult run_two_block_contact(const SolverOptions& options, const Model& mode
   info.h = options.h;
   info.steps = options.steps();
   observer.begin(info);
-  AsTwoBlock adapter(observer, model.mu > 0.0);
+  AsTwoBlock adapter(observer, model.mu > 0.0, s.a.masses[0], s.b->masses[0]);
   const ScaledGround g(ground, 1.0 / kStandardGravity);
   const StructureRunSummary summary = simulate_structure(o, s, g, adapter);
   observer.end();

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
+#include <sstream>
 
 #include "adjoin/errors.hpp"
 #include "adjoin/observe/channel_values.hpp"
@@ -39,6 +40,7 @@ class BuildingObserver final : public StructureObserver {
     c_.clear();
     c_.push_back(structure::inherent_damping_matrix(s.a));
     if (s.b) c_.push_back(structure::inherent_damping_matrix(*s.b));
+    input_scale_ = 0.0;
     first_ = true;
   }
 
@@ -75,6 +77,7 @@ class BuildingObserver final : public StructureObserver {
       if (st.contact_dissipated.size() == n_contacts) r.dissipated = st.contact_dissipated[i];
     }
     energy_step(st);
+    check_contact_energy(st.t);
     last_phase_ = st.link_phase;
     last_power_.resize(s_.links.size());
     for (std::size_t l = 0; l < s_.links.size(); ++l) last_power_[l] = st.link_force[l] * st.link_velocity[l];
@@ -135,6 +138,24 @@ class BuildingObserver final : public StructureObserver {
   }
   const BuildingEnergy& energy() const { return energy_; }
 
+  // Every contact law stores or dissipates the work done on it, never gives back more: a pair
+  // whose dissipated energy falls below -1 % of the input so far has a step too long for its
+  // stiffness (with a friction damper on the same floors the two are split within the step,
+  // and a very stiff contact breaks that split). A wrong answer would follow: exit 3.
+  void check_contact_energy(double t) {
+    input_scale_ = std::max(input_scale_, std::abs(energy_.input));
+    for (std::size_t k = 0; k < contacts_.size(); ++k) {
+      const double created = -contacts_[k].dissipated;
+      if (!(created > 1e-2 * input_scale_)) continue;
+      std::ostringstream m;
+      m << "contact pair " << k + 1 << " (" << structure::to_string(s_.contacts[k].law.model) << "): at t = " << t
+        << " s it has given back " << created << " J more than the work done on it (the input so far " << input_scale_
+        << " J): the step is too long for the contact's stiffness; make solver.h smaller or lower contact["
+        << k + 1 << "].stiffness (README, Choosing the contact stiffness)";
+      throw NumericalError(m.str(), t);
+    }
+  }
+
   std::vector<ChannelPeak> peaks() const {
     std::vector<ChannelPeak> out;
     for (std::size_t i = 0; i < values_.size(); ++i)
@@ -181,6 +202,7 @@ class BuildingObserver final : public StructureObserver {
   BuildingEnergy energy_;
   std::vector<double> last_power_;
   double last_t_ = 0.0;
+  double input_scale_ = 0.0;  // the largest |input energy| so far [J]
   bool first_ = true;
 };
 

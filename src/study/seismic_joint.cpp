@@ -168,8 +168,8 @@ class JointObserver final : public StructureObserver {
         t.notes.push_back(name + " has no contact law and its floors touch from t = " + number(touch_[k]) +
                           " s: the response from then on, and this joint, are outside the model");
       else if (impacts_[k] > 0)
-        t.notes.push_back(name + " pounds (" + std::to_string(impacts_[k]) +
-                          " impacts): the joint is that of the response with its collisions");
+        t.notes.push_back(name + " pounds (" + std::to_string(impacts_[k]) + (impacts_[k] == 1 ? " impact" : " impacts") +
+                          "): the joint is that of the response with its collisions");
     }
     return t;
   }

@@ -8,7 +8,8 @@
 //   hertz      k delta^(3/2), no damping (elastic: rebound ratio 1)
 //   hertzdamp  k delta^(3/2) (1 + xi_bar delta' / v0), v0 the approach speed at first touch,
 //              xi_bar = 8 (1 - e) / (5 e) (Muthukumar and DesRoches; approximate); the force is
-//              never taken below 0
+//              never taken below 0, and v0 never below sqrt(k delta^(5/2) / (1.25 m_eff)), the
+//              speed a free impact needs to reach delta (a contact at rest keeps a finite damping)
 //   jankowski  k delta^(3/2) + c delta' while approaching (delta' > 0), k delta^(3/2) while
 //              separating; c = 2 xi sqrt(k sqrt(delta) m_eff),
 //              xi = 9 sqrt(5) (1 - e^2) / (2 e (e (9 pi - 16) + 16))
