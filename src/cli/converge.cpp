@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/text_file.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/plots.hpp"
 #include "adjoin/io/building_scene.hpp"
@@ -106,7 +107,7 @@ std::vector<HistoryEngine> engines_of(const ConvergeArgs& args, std::vector<Hist
   std::vector<HistoryEngine> engines;
   for (const auto& name : args.engines) {
     HistoryEngine e;
-    if (!parse_history_engine(name, &e)) throw InputError("--history: \"" + name + "\" must be direct or fft");
+    if (!parse_history_engine(name, &e)) throw InputError("--history: " + escaped_excerpt(name) + " must be direct or fft");
     engines.push_back(e);
   }
   return engines;
@@ -120,7 +121,7 @@ int converge_building(const ConvergeArgs& args) {
   for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
   for (const auto& name : args.schemes)
     if (name != "implicit")
-      throw InputError("--schemes: \"" + name + "\": building scenes run the structure step (implicit) only; the other "
+      throw InputError("--schemes: " + escaped_excerpt(name) + ": building scenes run the structure step (implicit) only; the other "
                        "schemes are the two-block system's");
   BuildingConvergenceOptions options;
   options.engines = engines_of(args, options.engines);
@@ -143,7 +144,7 @@ int converge_command(const ConvergeArgs& args) {
     options.schemes.clear();
     for (const auto& name : args.schemes) {
       Scheme s;
-      if (!parse_scheme(name, &s)) throw InputError("--schemes: \"" + name + "\" is not a scheme; expected " + scheme_names());
+      if (!parse_scheme(name, &s)) throw InputError("--schemes: " + escaped_excerpt(name) + " is not a scheme; expected " + scheme_names());
       options.schemes.push_back(s);
     }
   }

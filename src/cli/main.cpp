@@ -21,6 +21,45 @@ Registration::Registration(int order, Setup setup) {
   registry().push_back(RegisteredCommand{order, std::move(setup)});
 }
 
+namespace {
+
+// An option given an empty value (--ductility '', --delimiter '') would read as one not given,
+// as the commands take "" for "absent": refused, naming the option. (--title '' asks for no
+// title.)
+void refuse_empty_values(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands()) {
+    for (const CLI::Option* o : sub->get_options()) {
+      if (o->get_type_size() == 0 || o->get_name() == "--title") continue;  // flags take no value
+      const std::string name = o->get_name().empty() ? o->get_name(true) : o->get_name();  // --option, or a positional's name
+      for (const std::string& value : o->results())
+        if (value.empty()) throw InputError(name + ": an empty value; give one, or leave the option out");
+    }
+    refuse_empty_values(*sub);
+  }
+}
+
+// CLI11's own messages quote the offending argument whole: a word longer than 80 characters
+// is cut to an excerpt.
+std::string shortened(const std::string& message) {
+  std::string out, word;
+  const auto flush = [&] {
+    out += word.size() > 80 ? word.substr(0, 60) + "..." : word;
+    word.clear();
+  };
+  for (char c : message) {
+    if (c == ' ') {
+      flush();
+      out += c;
+    } else {
+      word += c;
+    }
+  }
+  flush();
+  return out;
+}
+
+}  // namespace
+
 }  // namespace adjoin::cli
 
 int main(int argc, char** argv) {
@@ -50,11 +89,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "error: " << printable_message(e.what()) << " (see adjoin --help)\n";
+    std::cerr << "error: " << printable_message(cli::shortened(e.what())) << " (see adjoin --help)\n";
     return kExitInputError;
   }
 
   try {
+    cli::refuse_empty_values(app);
     for (auto& [sub, runner] : runners)
       if (sub->parsed()) return runner();
     return 0;
