@@ -115,14 +115,18 @@ std::vector<HistoryEngine> engines_of(const ConvergeArgs& args, std::vector<Hist
 
 int write_and_print(const ConvergeArgs& args, const ConvergenceResult& result, const std::string& name, double time_unit);
 
-// A building scene (SPEC §5): the structure step's ladder; --schemes may only name implicit.
+// A building scene (SPEC §5): the structure step's ladder; --schemes may name one of the two
+// restart rules the structure step takes (as solver.scheme does), instead of the scene's.
 int converge_building(const ConvergeArgs& args) {
-  const BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
+  BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
   for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
-  for (const auto& name : args.schemes)
-    if (name != "implicit")
-      throw InputError("--schemes: " + escaped_excerpt(name) + ": building scenes run the structure step (implicit) only; the other "
-                       "schemes are the two-block system's");
+  if (args.schemes.size() > 1) throw InputError("--schemes: building scenes take one scheme, implicit or implicit-damped");
+  for (const auto& name : args.schemes) {
+    if (name != "implicit" && name != "implicit-damped")
+      throw InputError("--schemes: " + escaped_excerpt(name) + ": building scenes run the structure step, implicit or "
+                       "implicit-damped; the other schemes are the two-block system's");
+    scene.solver.restart = name == "implicit" ? StructureSolverOptions::Restart::automatic : StructureSolverOptions::Restart::always;
+  }
   BuildingConvergenceOptions options;
   options.engines = engines_of(args, options.engines);
   options.steps = args.steps;
