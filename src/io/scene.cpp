@@ -443,6 +443,9 @@ std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, con
   }
   processing.pad_before = r.number("ground.pad_before", 0.0);
   processing.pad_after = r.number("ground.pad_after", 0.0);
+  for (const char* key : {"ground.f_low", "ground.f_high", "ground.filter_order"})
+    if (r.has(key) && !r.has("ground.filter"))
+      r.fail(key, std::string(key) + " belongs to ground.filter (\"bandpass\", \"highpass\" or \"lowpass\"); without it no filter runs");
   if (r.has("ground.filter")) {
     ButterworthFilter filter;
     const std::string type = r.string("ground.filter", "");
@@ -450,6 +453,9 @@ std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, con
     else if (type == "highpass") filter.type = ButterworthFilter::Type::highpass;
     else if (type == "lowpass") filter.type = ButterworthFilter::Type::lowpass;
     else r.fail("ground.filter", "ground.filter = " + escaped_excerpt(type) + " must be \"bandpass\", \"highpass\" or \"lowpass\"");
+    // A low-pass filter has no lower corner, a high-pass one no upper corner.
+    if (type == "lowpass" && r.has("ground.f_low")) r.fail("ground.f_low", "ground.f_low does not apply to a low-pass filter (its corner is ground.f_high)");
+    if (type == "highpass" && r.has("ground.f_high")) r.fail("ground.f_high", "ground.f_high does not apply to a high-pass filter (its corner is ground.f_low)");
     filter.f_low = r.number("ground.f_low", 0.0);
     filter.f_high = r.number("ground.f_high", 0.0);
     const auto order = r.integer("ground.filter_order", 4);
@@ -504,6 +510,17 @@ std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, cons
     if (!parse_envelope_kind(name, &o.envelope.kind))
       r.fail("ground.envelope", "ground.envelope = " + escaped_excerpt(name) + " must be \"none\", \"jennings-housner-tsai\" or \"saragoni-hart\"");
   }
+  // Keys of another spectrum or envelope than the one chosen would be ignored.
+  if (o.spectrum != SpectrumModel::clough_penzien)
+    for (const char* key : {"ground.omega_f", "ground.zeta_f"})
+      if (r.has(key)) r.fail(key, std::string(key) + " belongs to ground.spectrum = \"clough-penzien\" (its high-pass filter)");
+  const auto envelope_keys = [&](EnvelopeKind kind, std::initializer_list<const char*> keys, const char* name) {
+    if (o.envelope.kind == kind) return;
+    for (const char* key : keys)
+      if (r.has(key)) r.fail(key, std::string(key) + " belongs to ground.envelope = \"" + name + "\"");
+  };
+  envelope_keys(EnvelopeKind::jennings_housner_tsai, {"ground.t1", "ground.t2", "ground.decay"}, "jennings-housner-tsai");
+  envelope_keys(EnvelopeKind::saragoni_hart, {"ground.eps", "ground.eta", "ground.t_n"}, "saragoni-hart");
   for (auto [key, field] : {std::pair{"ground.t1", &o.envelope.t1}, {"ground.t2", &o.envelope.t2}, {"ground.decay", &o.envelope.decay},
                             {"ground.eps", &o.envelope.eps}, {"ground.eta", &o.envelope.eta}, {"ground.t_n", &o.envelope.t_n}})
     if (r.has(key)) *field = r.number(key);
