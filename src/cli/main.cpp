@@ -38,12 +38,13 @@ void refuse_empty_values(const CLI::App& app) {
   }
 }
 
-// CLI11's own messages quote the offending argument whole: a word longer than 80 characters
-// is cut to an excerpt.
-std::string shortened(const std::string& message) {
+// CLI11's own messages quote the offending argument whole: a word longer than `longest`
+// characters is cut to an excerpt. (Our messages quote user text as excerpts where they build
+// it; a path or value longer than any real one (PATH_MAX is 4096) is cut here as well.)
+std::string shortened(const std::string& message, std::size_t longest = 80) {
   std::string out, word;
   const auto flush = [&] {
-    out += word.size() > 80 ? word.substr(0, 60) + "..." : word;
+    out += word.size() > longest ? word.substr(0, 60) + "..." : word;
     word.clear();
   };
   for (char c : message) {
@@ -99,10 +100,10 @@ int main(int argc, char** argv) {
       if (sub->parsed()) return runner();
     return 0;
   } catch (const InputError& e) {
-    std::cerr << "error: " << printable_message(e.what()) << "\n";
+    std::cerr << "error: " << printable_message(cli::shortened(e.what(), 4096)) << "\n";
     return kExitInputError;
   } catch (const NumericalError& e) {
-    std::cerr << "error: numerical failure: " << printable_message(e.what()) << "\n";
+    std::cerr << "error: numerical failure: " << printable_message(cli::shortened(e.what(), 4096)) << "\n";
     return kExitNumericalError;
   } catch (const std::bad_alloc&) {
     // Inputs are sized up front (records, runs, sweeps refuse what would not fit); reaching

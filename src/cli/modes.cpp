@@ -45,6 +45,9 @@ int modes_command(const ModesArgs& args) {
     for (const auto& o : args.overrides)
       if (!is_structure_key(o.substr(0, o.find('='))))
         throw InputError("--set " + text_excerpt(o) + ": adjoin modes reads only the structure (building.*, link.*, contact.*)");
+    for (const auto& u : args.unsets)
+      if (!is_structure_key(u))
+        throw InputError("--unset " + text_excerpt(u) + ": adjoin modes reads only the structure (building.*, link.*, contact.*)");
     s = parse_structure(read_text_file(args.scene, "scene"), args.scene, args.overrides, args.unsets);
   } else {
     const Scene scene = load_scene(args.scene, args.overrides, args.unsets);
