@@ -118,6 +118,11 @@ std::vector<double> parse_list(const std::string& option, const std::string& tex
     values.push_back(v);
   }
   if (values.empty()) throw InputError(option + ": empty list (expected " + expected + ")");
+  // A value listed twice would be computed and written twice.
+  for (auto v = values.begin(); v != values.end(); ++v)
+    if (std::find(values.begin(), v, *v) != v)
+      throw InputError(option + " " + text_excerpt(text) + ": " + (std::ostringstream() << *v).str() +
+                       " is listed twice; list each value once");
   return values;
 }
 

@@ -838,6 +838,13 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
       if (!(d >= 0.0 && d < 1.0))
         r.fail("output.spectra.damping", "output.spectra.damping: " + format_number(d) + " must be a damping ratio in [0, 1)");
     spectra.periods = r.numbers("output.spectra.periods");
+    // A period or damping listed twice would be computed and written twice.
+    for (const char* key : {"output.spectra.periods", "output.spectra.damping"}) {
+      const std::vector<double> list = r.numbers(key);
+      for (auto v = list.begin(); v != list.end(); ++v)
+        if (std::find(list.begin(), v, *v) != v)
+          r.fail(key, std::string(key) + ": " + format_number(*v) + " is listed twice; list each value once");
+    }
     // Periods far outside the range of structures (in the scene's time unit) only lose
     // digits: 1e-200 once gave NaN spectra.
     for (double t : spectra.periods)
