@@ -134,7 +134,7 @@ std::string building_message(const std::string& text, const std::vector<std::str
 
 }  // namespace
 
-TEST_CASE("building scenes: solver.scheme picks the structure step's restart rule; the two-block schemes are refused",
+TEST_CASE("building scenes: solver.scheme picks the structure step's restart rule, the two-block schemes are refused",
           "[structure_edits][building]") {
   using Restart = StructureSolverOptions::Restart;
   CHECK(parse_building_scene(building_run_scene(), "b.toml", {}, {}).solver.restart == Restart::automatic);
