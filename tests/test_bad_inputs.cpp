@@ -37,11 +37,13 @@
 //                                            # rely on one being refused)
 //
 // Placeholders: {tmp} the case's own empty folder, {records} records/real, {scenes}
-// records/scenes, {source} the source tree.
+// records/scenes, {source} the source tree, {long} 100,000 letters x (a key, value or line
+// that must not be quoted whole: no line of stderr may be longer than 1,000 bytes).
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 #include <filesystem>
@@ -155,6 +157,16 @@ void restore_permissions(const fs::path& dir) {
   }
 }
 
+std::size_t longest_line(const std::string& text) {
+  std::size_t longest = 0, start = 0;
+  for (std::size_t end = text.find('\n'); start < text.size(); end = text.find('\n', start)) {
+    if (end == std::string::npos) end = text.size();
+    longest = std::max(longest, end - start);
+    start = end + 1;
+  }
+  return longest;
+}
+
 struct Outcome {
   int status = -1;
   std::string err;
@@ -207,7 +219,8 @@ TEST_CASE("the catalogue of bad and extreme inputs keeps the contract", "[bad_in
       p.values = {{"{tmp}", tmp.string()},
                   {"{records}", (fs::path(ADJOIN_SOURCE_DIR) / "records" / "real").string()},
                   {"{scenes}", (fs::path(ADJOIN_SOURCE_DIR) / "records" / "scenes").string()},
-                  {"{source}", std::string(ADJOIN_SOURCE_DIR)}};
+                  {"{source}", std::string(ADJOIN_SOURCE_DIR)},
+                  {"{long}", std::string(100000, 'x')}};
       if (const auto* made = c["file"].as_array())
         for (const auto& f : *made) make_file(*f.as_table(), p);
       const fs::path cwd = p(c["cwd"].value_or(std::string("{tmp}")));
@@ -227,6 +240,7 @@ TEST_CASE("the catalogue of bad and extreme inputs keeps the contract", "[bad_in
       if (o.status != 0) CHECK(o.err.rfind("error:", 0) == 0);
       CHECK(o.err.find("internal:") == std::string::npos);
       CHECK(printable(o.err));
+      CHECK(longest_line(o.err) <= 1000);  // user input is quoted as short excerpts
       for (const auto& s : strings(c, "stderr", p)) CHECK_THAT(o.err, Catch::Contains(s));
       for (const auto& s : strings(c, "stderr_not", p)) CHECK_THAT(o.err, !Catch::Contains(s));
       for (const auto& path : strings(c, "absent", p)) {

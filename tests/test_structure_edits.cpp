@@ -3,10 +3,16 @@
 // is blamed on the edit.
 #include <catch2/catch.hpp>
 
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
 #include <string>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/structure_file.hpp"
+#include "adjoin/solver/structure_solver.hpp"
+#include "cli_helpers.hpp"
 #include "adjoin/model/units.hpp"
 #include "adjoin/structure/modal.hpp"
 
@@ -105,4 +111,114 @@ TEST_CASE("structure edits: mistakes are named by the edit or by the file line",
   CHECK(message({"building.A.storeys=2"}, {}).rfind("s.toml:", 0) == 0);
   CHECK(message({}, {"contact.2"}) == "--unset contact.2: the scene has 1 [[contact]] tables");
   CHECK(message({}, {"building.A.nothing"}) == "--unset building.A.nothing: the scene has no key or section building.A.nothing");
+}
+
+namespace {
+
+// Two frames under the paper's decaying sine (SI: u0 in m), with `solver` lines added.
+std::string building_run_scene(const std::string& solver = "") {
+  return "[model]\nunits = \"SI\"\n\n[building.A]\nstoreys = 3\nmass = 4e4\nstiffness = 5e6\n\n"
+         "[building.B]\nstoreys = 3\nmass = 5e4\nstiffness = 4e6\n\n"
+         "[ground]\nsource = \"decaying-sine\"\nu0 = 0.1\nomega = 6.0\nk = 0.3\n\n"
+         "[solver]\nh = 0.005\nt_end = 1.0\n" + solver;
+}
+
+std::string building_message(const std::string& text, const std::vector<std::string>& sets = {}) {
+  try {
+    parse_building_scene(text, "b.toml", sets, {});
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "no error";
+}
+
+}  // namespace
+
+TEST_CASE("building scenes: solver.scheme picks the structure step's restart rule, the two-block schemes are refused",
+          "[structure_edits][building]") {
+  using Restart = StructureSolverOptions::Restart;
+  CHECK(parse_building_scene(building_run_scene(), "b.toml", {}, {}).solver.restart == Restart::automatic);
+  CHECK(parse_building_scene(building_run_scene("scheme = \"implicit\"\n"), "b.toml", {}, {}).solver.restart == Restart::automatic);
+  const BuildingScene damped = parse_building_scene(building_run_scene("scheme = \"implicit-damped\"\n"), "b.toml", {}, {});
+  CHECK(damped.solver.restart == Restart::always);
+  CHECK(std::string(scheme_name(damped.solver)) == "implicit-damped");
+  CHECK_THAT(building_message(building_run_scene("scheme = \"paper\"\n")),
+             Catch::StartsWith("b.toml:23: solver.scheme = \"paper\": a building scene runs the structure step"));
+  CHECK_THAT(building_message(building_run_scene(), {"solver.scheme=implicit-gl"}),
+             Catch::StartsWith("--set solver.scheme=implicit-gl: solver.scheme = \"implicit-gl\""));
+}
+
+TEST_CASE("an SI building scene describes its ground in SI units, as written", "[structure_edits][building]") {
+  const BuildingScene b = parse_building_scene(building_run_scene(), "b.toml", {}, {});
+  CHECK(b.base.ground->describe() == "decaying-sine u0=0.1 m omega=6 rad/s k=0.3 1/s");
+  // and runs it as that motion: a_g = u0 omega^2 e^{-k t} sin(omega t) [m/s^2]
+  const double t = 0.2;
+  CHECK(b.base.ground->ag(t) * kStandardGravity == Approx(0.1 * 36.0 * std::exp(-0.3 * t) * std::sin(6.0 * t)).epsilon(1e-12));
+}
+
+TEST_CASE("a building run's summary says the scheme it ran and the ground in SI", "[structure_edits][building][cli]") {
+  const auto scene = adjoin::test::write_temp("scheme-summary.toml", building_run_scene("scheme = \"implicit-damped\"\n"));
+  const auto out = std::filesystem::path(ADJOIN_TEST_TMP) / "scheme-summary";
+  const auto r = adjoin::test::run_cli("run '" + scene.string() + "' --out '" + out.string() + "' --quiet");
+  REQUIRE(r.status == 0);
+  const std::string summary = adjoin::test::slurp(out / "summary.json");
+  CHECK_THAT(summary, Catch::Contains("\"scheme\": \"implicit-damped\""));
+  CHECK_THAT(summary, Catch::Contains("u0=0.1 m"));
+  std::filesystem::remove_all(out);
+}
+
+TEST_CASE("building values are range-checked up front, naming the key, the bound and the --set", "[structure_edits][building]") {
+  auto message = [](const std::vector<std::string>& sets) {
+    try {
+      parse_structure(scene(), "s.toml", sets, {});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(message({"building.A.mass=1e300"}) ==
+        "--set building.A.mass=1e300: building.A.mass: 1e+300 is outside the supported 0.001 to 1e+12 kg (bounds that keep "
+        "the step's matrices finite and well conditioned)");
+  CHECK(message({"building.A.mass=1e5", "building.A.mass=-1"}) == "--set building.A.mass=-1: building.A.mass: expected a positive number");
+  // The period's bound is the stiffness's, said as periods for these masses (k ~ 1 / T^2).
+  const std::string shortest = message({"building.B.period=1e-300"});
+  CHECK_THAT(shortest, Catch::StartsWith("--set building.B.period=1e-300: building.B.period: 1e-300 s is outside the supported "));
+  CHECK_THAT(shortest, Catch::Contains("s for these floor masses"));
+  CHECK_THAT(message({"building.B.period=1e300"}), Catch::Contains("s for these floor masses"));
+  // Periods at the bounds the message states are accepted: k(T) = k(1 s) / T^2.
+  const double k1 = structure::stiffness_for_period(Eigen::VectorXd::Constant(3, 5.0e4), 1.0);
+  const double longest = std::sqrt(k1 / 1e-3) * (1 - 1e-9), shortest_ok = std::sqrt(k1 / 1e15) * (1 + 1e-9);
+  CHECK(message({"building.B.period=" + std::to_string(longest)}) == "no error");
+  char text[64];
+  std::snprintf(text, sizeof text, "building.B.period=%.17g", shortest_ok);
+  CHECK(message({text}) == "no error");
+  CHECK_THAT(message({"building.A.device.1.c=1e300"}), Catch::StartsWith("--set building.A.device.1.c=1e300: building.A.device[1].c: 1e+300"));
+  CHECK_THAT(message({"link.2.c=1e16"}), Catch::Contains("outside the supported 0.001 to 1e+15 N s/m"));
+  CHECK(message({"link.2.c=1e15"}) == "no error");
+}
+
+TEST_CASE("keys that do not apply, repeated storeys and --set without = are refused", "[structure_edits]") {
+  auto message = [](const std::string& text, const std::vector<std::string>& sets) {
+    try {
+      parse_structure(text, "s.toml", sets, {});
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  CHECK(message(scene(), {"building.A.mass"}) == "--set building.A.mass: expected KEY=VALUE with a dotted key, e.g. building.A.mass=4.5e4");
+  CHECK(message(scene(), {"building.A.device.1.storeys=[2, 2]"}) ==
+        "--set building.A.device.1.storeys=[2, 2]: building.A.device[1].storeys: 2 is listed twice; list each storey once");
+  CHECK(message(scene(), {"building.A.device.1.storeys=[]"}).find("at least one storey") != std::string::npos);
+  CHECK_THAT(message(scene(), {"building.A.damping={ model = \"none\", ratio = 0.05 }"}),
+             Catch::Contains("building.A.damping.ratio: does not apply to the model \"none\""));
+  CHECK_THAT(message(scene(), {"building.A.damping.modes=[1, 2]"}),
+             Catch::Contains("building.A.damping.modes: does not apply to the model \"modal\""));
+  CHECK_THAT(message(scene("stiffness = 3.0e6", "slip_force = 1e4\nof = \"B\""), {}),
+             Catch::StartsWith("s.toml:28: link[1].of: of names the building"));
+  // Long keys are quoted as excerpts.
+  const std::string long_key = "building.A." + std::string(100000, 'x');
+  const std::string m = message(scene(), {long_key + "=1"});
+  CHECK(m.size() < 400);
+  CHECK_THAT(m, Catch::StartsWith("--set \"building.A.xxx"));
 }

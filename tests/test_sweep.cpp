@@ -972,3 +972,19 @@ TEST_CASE("the README's sweep file example is a valid sweep", "[sweep][docs]") {
   CHECK(spec.runs() == 21u * 2u * 2u * 1u);
   CHECK(spec.im_periods == std::vector<double>{0.5, 1.0});
 }
+
+TEST_CASE("adjoin demand: rows it skips for negative values are not called zero values", "[demand][cli]") {
+  // Four usable rows on ln d = -1 + 1.5 ln im, and one with a negative response.
+  std::string csv = "index,model.mu,motion,units,drift,pga_g,error\n";
+  std::size_t i = 0;
+  for (double im : {0.1, 0.2, 0.4, 0.8}) {
+    csv += std::to_string(i) + ",0.1,m" + std::to_string(i + 1) + ",dimensionless," +
+           std::to_string(std::exp(-1.0 + 1.5 * std::log(im))) + "," + std::to_string(im) + ",\n";
+    ++i;
+  }
+  csv += std::to_string(i) + ",0.1,m5,dimensionless,-0.5,0.3,\n";
+  const auto r = run_cli("demand " + qpath(write_temp("demand-negative.csv", csv)));
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("1 rows skipped: failed runs, or an IM or response that is not a positive number"));
+  CHECK_THAT(r.out, !Catch::Contains("zero values"));
+}

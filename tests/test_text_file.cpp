@@ -40,6 +40,16 @@ TEST_CASE("escaped_excerpt: control bytes, invalid UTF-8, quotes, length", "[tex
   CHECK(escaped_excerpt("abc", 3) == "\"abc\"");
 }
 
+TEST_CASE("text_excerpt: short printable text as written, anything else as a short escaped excerpt", "[text_file]") {
+  CHECK(adjoin::text_excerpt("solver.h=0.01") == "solver.h=0.01");
+  CHECK(adjoin::text_excerpt("name=\"a b\"") == "name=\"a b\"");  // quotes as written
+  CHECK(adjoin::text_excerpt(std::string(80, 'k')) == std::string(80, 'k'));
+  const std::string long_key = adjoin::text_excerpt(std::string(100000, 'k'));
+  CHECK(long_key == "\"" + std::string(60, 'k') + "...\"");
+  CHECK(adjoin::text_excerpt("a\nb") == "\"a\\nb\"");
+  CHECK(adjoin::text_excerpt(std::string("a\x01" "b", 3)) == "\"a\\x01b\"");
+}
+
 TEST_CASE("printable_message keeps text and newlines, escapes the rest", "[text_file]") {
   CHECK(printable_message("line 1\nline 2\tend") == "line 1\nline 2\tend");
   CHECK(printable_message(std::string("cut\0off", 7)) == "cut\\x00off");

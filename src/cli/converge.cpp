@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/text_file.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/output_place.hpp"
 #include "adjoin/io/plots.hpp"
@@ -115,7 +116,7 @@ std::vector<HistoryEngine> engines_of(const ConvergeArgs& args, std::vector<Hist
   std::vector<HistoryEngine> engines;
   for (const auto& name : args.engines) {
     HistoryEngine e;
-    if (!parse_history_engine(name, &e)) throw InputError("--history: \"" + name + "\" must be direct or fft");
+    if (!parse_history_engine(name, &e)) throw InputError("--history: " + escaped_excerpt(name) + " must be direct or fft");
     engines.push_back(e);
   }
   return engines;
@@ -125,14 +126,18 @@ int write_and_print(const ConvergeArgs& args, const ConvergenceResult& result, c
 std::filesystem::path output_folder(const ConvergeArgs& args, const std::string& name);
 void check_steps(const ConvergeArgs& args, double scene_h, double t_end, const std::string& unit);
 
-// A building scene (SPEC §5): the structure step's ladder; --schemes may only name implicit.
+// A building scene (SPEC §5): the structure step's ladder; --schemes may name one of the two
+// restart rules the structure step takes (as solver.scheme does), instead of the scene's.
 int converge_building(const ConvergeArgs& args) {
-  const BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
+  BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
   for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
-  for (const auto& name : args.schemes)
-    if (name != "implicit")
-      throw InputError("--schemes: \"" + name + "\": building scenes run the structure step (implicit) only; the other "
-                       "schemes are the two-block system's");
+  if (args.schemes.size() > 1) throw InputError("--schemes: building scenes take one scheme, implicit or implicit-damped");
+  for (const auto& name : args.schemes) {
+    if (name != "implicit" && name != "implicit-damped")
+      throw InputError("--schemes: " + escaped_excerpt(name) + ": building scenes run the structure step, implicit or "
+                       "implicit-damped; the other schemes are the two-block system's");
+    scene.solver.restart = name == "implicit" ? StructureSolverOptions::Restart::automatic : StructureSolverOptions::Restart::always;
+  }
   BuildingConvergenceOptions options;
   options.engines = engines_of(args, options.engines);
   options.steps = args.steps;
@@ -156,7 +161,7 @@ int converge_command(const ConvergeArgs& args) {
     options.schemes.clear();
     for (const auto& name : args.schemes) {
       Scheme s;
-      if (!parse_scheme(name, &s)) throw InputError("--schemes: \"" + name + "\" is not a scheme; expected " + scheme_names());
+      if (!parse_scheme(name, &s)) throw InputError("--schemes: " + escaped_excerpt(name) + " is not a scheme; expected " + scheme_names());
       options.schemes.push_back(s);
     }
   }

@@ -46,7 +46,7 @@ int demand_command(const DemandArgs& args) {
       std::printf("%5zu %12.5g %10.5g %10.5g %8.4f %12.5g", g.fit.n, g.fit.a, g.fit.b, g.fit.beta, g.fit.r2, std::exp(g.fit.a));
     else
       std::printf("%5zu %12s %10s %10s %8s %12s  not fitted", g.usable, "-", "-", "-", "-", "-");
-    if (g.skipped) std::printf("  (%zu rows skipped: failed runs or zero values)", g.skipped);
+    if (g.skipped) std::printf("  (%zu rows skipped: failed runs, or an IM or response that is not a positive number, which a log fit cannot take)", g.skipped);
     std::printf("\n");
     if (!g.problem.empty()) {
       ++unfitted;

@@ -21,6 +21,46 @@ Registration::Registration(int order, Setup setup) {
   registry().push_back(RegisteredCommand{order, std::move(setup)});
 }
 
+namespace {
+
+// An option given an empty value (--ductility '', --delimiter '') would read as one not given,
+// as the commands take "" for "absent": refused, naming the option. (--title '' asks for no
+// title.)
+void refuse_empty_values(const CLI::App& app) {
+  for (const CLI::App* sub : app.get_subcommands()) {
+    for (const CLI::Option* o : sub->get_options()) {
+      if (o->get_type_size() == 0 || o->get_name() == "--title") continue;  // flags take no value
+      const std::string name = o->get_name().empty() ? o->get_name(true) : o->get_name();  // --option, or a positional's name
+      for (const std::string& value : o->results())
+        if (value.empty()) throw InputError(name + ": an empty value; give one, or leave the option out");
+    }
+    refuse_empty_values(*sub);
+  }
+}
+
+// CLI11's own messages quote the offending argument whole: a word longer than `longest`
+// characters is cut to an excerpt. (Our messages quote user text as excerpts where they build
+// it; a path or value longer than any real one (PATH_MAX is 4096) is cut here as well.)
+std::string shortened(const std::string& message, std::size_t longest = 80) {
+  std::string out, word;
+  const auto flush = [&] {
+    out += word.size() > longest ? word.substr(0, 60) + "..." : word;
+    word.clear();
+  };
+  for (char c : message) {
+    if (c == ' ') {
+      flush();
+      out += c;
+    } else {
+      word += c;
+    }
+  }
+  flush();
+  return out;
+}
+
+}  // namespace
+
 }  // namespace adjoin::cli
 
 int main(int argc, char** argv) {
@@ -50,19 +90,20 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    std::cerr << "error: " << printable_message(e.what()) << " (see adjoin --help)\n";
+    std::cerr << "error: " << printable_message(cli::shortened(e.what())) << " (see adjoin --help)\n";
     return kExitInputError;
   }
 
   try {
+    cli::refuse_empty_values(app);
     for (auto& [sub, runner] : runners)
       if (sub->parsed()) return runner();
     return 0;
   } catch (const InputError& e) {
-    std::cerr << "error: " << printable_message(e.what()) << "\n";
+    std::cerr << "error: " << printable_message(cli::shortened(e.what(), 4096)) << "\n";
     return kExitInputError;
   } catch (const NumericalError& e) {
-    std::cerr << "error: numerical failure: " << printable_message(e.what()) << "\n";
+    std::cerr << "error: numerical failure: " << printable_message(cli::shortened(e.what(), 4096)) << "\n";
     return kExitNumericalError;
   } catch (const std::bad_alloc&) {
     // Inputs are sized up front (records, runs, sweeps refuse what would not fit); reaching

@@ -69,7 +69,10 @@ int modes_command(const ModesArgs& args) {
   if (is_building_scene(args.scene)) {
     for (const auto& o : args.overrides)
       if (!is_structure_key(o.substr(0, o.find('='))))
-        throw InputError("--set " + o + ": adjoin modes reads only the structure (building.*, link.*, contact.*)");
+        throw InputError("--set " + text_excerpt(o) + ": adjoin modes reads only the structure (building.*, link.*, contact.*)");
+    for (const auto& u : args.unsets)
+      if (!is_structure_key(u))
+        throw InputError("--unset " + text_excerpt(u) + ": adjoin modes reads only the structure (building.*, link.*, contact.*)");
     s = parse_structure(read_text_file(args.scene, "scene"), args.scene, args.overrides, args.unsets);
   } else {
     const Scene scene = load_scene(args.scene, args.overrides, args.unsets);

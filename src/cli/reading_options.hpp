@@ -7,6 +7,7 @@
 #include <string>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/text_file.hpp"
 #include "adjoin/ground/record_file.hpp"
 
 namespace adjoin::cli {
@@ -20,11 +21,11 @@ struct ReadingArgs {
 inline RecordFormat format_from(const ReadingArgs& args) {
   RecordFormat f;
   if (!args.format.empty() && !parse_record_kind(args.format, &f.kind))
-    throw InputError("--format " + args.format + ": unknown format (expected one of " + record_kind_names() + ")");
+    throw InputError("--format " + text_excerpt(args.format) + ": unknown format (expected one of " + record_kind_names() + ")");
   if (!args.units.empty()) {
     AccelUnit unit;
     if (!parse_accel_unit(args.units, &unit))
-      throw InputError("--units " + args.units + ": unknown unit (expected g, m/s2, cm/s2 (gal) or mm/s2)");
+      throw InputError("--units " + text_excerpt(args.units) + ": unknown unit (expected g, m/s2, cm/s2 (gal) or mm/s2)");
     f.units = unit;
   }
   if (args.dt != 0.0) {
@@ -49,7 +50,7 @@ inline RecordFormat format_from(const ReadingArgs& args) {
   else if (d.size() == 1)
     f.delimiter = d[0];
   else
-    throw InputError("--delimiter " + d + ": expected one character, or tab, comma, semicolon, space");
+    throw InputError("--delimiter " + text_excerpt(d) + ": expected one character, or tab, comma, semicolon, space");
   return f;
 }
 

@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/text_file.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/ground/integration.hpp"
 #include "adjoin/ground/processing.hpp"
@@ -133,7 +134,7 @@ std::pair<double, double> pair_of(const std::string& option, const std::string& 
     const double b = std::stod(text.substr(colon + 1));
     return {a, b};
   } catch (const std::exception&) {
-    throw InputError(option + " " + text + ": expected two numbers as A:B");
+    throw InputError(option + " " + text_excerpt(text) + ": expected two numbers as A:B");
   }
 }
 
@@ -245,7 +246,7 @@ std::vector<double> frequency_points(const std::string& text) {
   std::istringstream in(text);
   if (!(in >> f0 >> c1 >> f1 >> c2 >> n) || c1 != ':' || c2 != ':' || !(in >> std::ws).eof() || !(f0 > 0.0) ||
       !(f1 > f0) || !std::isfinite(f1) || n < 2.0 || n > 1e6 || n != std::floor(n))
-    throw InputError("--frequencies " + text + expected);
+    throw InputError("--frequencies " + text_excerpt(text) + expected);
   // period_range spaces any positive quantity; here frequencies.
   return period_range(f0, f1, static_cast<std::size_t>(n), PeriodSpacing::log);
 }

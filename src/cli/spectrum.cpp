@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/text_file.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/ground/spectrum_matching.hpp"
 #include "adjoin/io/atomic_file.hpp"
@@ -113,30 +114,35 @@ std::vector<double> parse_list(const std::string& option, const std::string& tex
   for (const std::string& token : split(text, ',')) {
     double v = 0.0;
     if (!parse_number(token, &v))
-      throw InputError(option + " " + text + ": '" + trim(token) + "' is not a number (expected " + expected + ")");
+      throw InputError(option + " " + text_excerpt(text) + ": " + escaped_excerpt(trim(token)) + " is not a number (expected " + expected + ")");
     values.push_back(v);
   }
   if (values.empty()) throw InputError(option + ": empty list (expected " + expected + ")");
+  // A value listed twice would be computed and written twice.
+  for (auto v = values.begin(); v != values.end(); ++v)
+    if (std::find(values.begin(), v, *v) != v)
+      throw InputError(option + " " + text_excerpt(text) + ": " + (std::ostringstream() << *v).str() +
+                       " is listed twice; list each value once");
   return values;
 }
 
 std::vector<double> parse_range(const std::string& text) {
   const std::string expected = "T0:T1:N[:log|lin], e.g. 0.02:5:100:log, with 0 <= T0 < T1 (T0 > 0 for log) and N >= 2";
   const std::vector<std::string> parts = split(text, ':');
-  if (parts.size() != 3 && parts.size() != 4) throw InputError("--range " + text + ": expected " + expected);
+  if (parts.size() != 3 && parts.size() != 4) throw InputError("--range " + text_excerpt(text) + ": expected " + expected);
   double first = 0.0, last = 0.0, count = 0.0;
   if (!parse_number(parts[0], &first) || !parse_number(parts[1], &last) || !parse_number(parts[2], &count))
-    throw InputError("--range " + text + ": not numbers (expected " + expected + ")");
+    throw InputError("--range " + text_excerpt(text) + ": not numbers (expected " + expected + ")");
   PeriodSpacing spacing = PeriodSpacing::log;
   if (parts.size() == 4) {
     const std::string s = trim(parts[3]);
     if (s == "log") spacing = PeriodSpacing::log;
     else if (s == "lin" || s == "linear") spacing = PeriodSpacing::linear;
-    else throw InputError("--range " + text + ": unknown spacing '" + s + "' (expected log or lin)");
+    else throw InputError("--range " + text_excerpt(text) + ": unknown spacing " + escaped_excerpt(s) + " (expected log or lin)");
   }
   if (!(first >= 0.0 && first < last) || count < 2.0 || count != std::floor(count) || count > 1e6 ||
       (spacing == PeriodSpacing::log && first <= 0.0))
-    throw InputError("--range " + text + ": expected " + expected);
+    throw InputError("--range " + text_excerpt(text) + ": expected " + expected);
   return period_range(first, last, static_cast<std::size_t>(count), spacing);
 }
 
@@ -188,11 +194,11 @@ int spectrum_command(const SpectrumArgs& args) {
   options.dampings = parse_list("--damping", args.damping, "damping ratios in [0, 1) separated by commas, e.g. 0.05,0.02");
   for (double z : options.dampings)
     if (!(z >= 0.0 && z < 1.0))
-      throw InputError("--damping " + args.damping + ": damping ratios must be in [0, 1) (0.05 is 5 %)");
+      throw InputError("--damping " + text_excerpt(args.damping) + ": damping ratios must be in [0, 1) (0.05 is 5 %)");
   if (!args.periods.empty()) {
     options.periods = parse_list("--periods", args.periods, "periods in s, >= 0, separated by commas");
     for (double t : options.periods)
-      if (!(t >= 0.0)) throw InputError("--periods " + args.periods + ": periods must be >= 0 s");
+      if (!(t >= 0.0)) throw InputError("--periods " + text_excerpt(args.periods) + ": periods must be >= 0 s");
   } else if (!args.range.empty()) {
     options.periods = parse_range(args.range);
   }
@@ -202,7 +208,7 @@ int spectrum_command(const SpectrumArgs& args) {
     options.refine_peaks = false;
     options.max_substeps = 1;
   } else if (args.peaks != "exact") {
-    throw InputError("--peaks " + args.peaks + ": expected exact or samples");
+    throw InputError("--peaks " + text_excerpt(args.peaks) + ": expected exact or samples");
   }
   options.free_vibration = args.free_vibration;
   options.threads = args.threads;
@@ -238,14 +244,14 @@ int spectrum_command(const SpectrumArgs& args) {
                      " records: give --suite for a suite (one record gives its spectrum, two with --rotd a pair)");
   if (args.records.size() == 2 || !args.rotd.empty()) {
     if (inelastic) throw InputError("--ductility/--strength-reduction/--yield-coefficient: give one record (two are for --rotd)");
-    if (target) throw InputError("--target " + args.target + ": compares one record's elastic spectrum (not --rotd)");
+    if (target) throw InputError("--target " + text_excerpt(args.target) + ": compares one record's elastic spectrum (not --rotd)");
     if (options.free_vibration) throw InputError("--free-vibration: not available with --rotd");
     return rotd_command(args, options, style);
   }
   if (inelastic) {
-    if (target) throw InputError("--target " + args.target + ": compares the elastic spectrum (not inelastic spectra)");
+    if (target) throw InputError("--target " + text_excerpt(args.target) + ": compares the elastic spectrum (not inelastic spectra)");
     if (options.free_vibration) throw InputError("--free-vibration: not available for inelastic spectra");
-    if (args.peaks != "exact") throw InputError("--peaks " + args.peaks + ": inelastic spectra always locate peaks exactly");
+    if (args.peaks != "exact") throw InputError("--peaks " + text_excerpt(args.peaks) + ": inelastic spectra always locate peaks exactly");
     return inelastic_command(args, options, style);
   }
   if (!args.hysteresis.empty() || !args.hardening.empty())
@@ -272,7 +278,7 @@ int spectrum_command(const SpectrumArgs& args) {
   if (!args.plot.empty()) {
     bool any_positive = false;
     for (double t : spectrum.periods) any_positive = any_positive || t > 0.0;
-    if (!any_positive) throw InputError("--plot " + args.plot + ": needs at least one period > 0 s");
+    if (!any_positive) throw InputError("--plot " + text_excerpt(args.plot) + ": needs at least one period > 0 s");
     return draw_figure(
         [&] { plot_spectrum(spectrum, args.plot, style, fs::path(record_file).filename().string(), references); },
         args.out.empty() ? "the spectrum was printed" : "the spectrum was written to " + args.out);
@@ -363,7 +369,7 @@ int rotd_command(const SpectrumArgs& args, const SpectrumOptions& elastic, const
   const std::string expected = "percentiles from 0 to 100 separated by commas, e.g. 50,100";
   if (!args.rotd.empty())
     for (double p : parse_list("--rotd", args.rotd, expected)) {
-      if (!(p >= 0.0 && p <= 100.0)) throw InputError("--rotd " + args.rotd + ": expected " + expected);
+      if (!(p >= 0.0 && p <= 100.0)) throw InputError("--rotd " + text_excerpt(args.rotd) + ": expected " + expected);
       if (p != 0.0 && p != 50.0 && p != 100.0 &&
           std::find(options.percentiles.begin(), options.percentiles.end(), p) == options.percentiles.end())
         options.percentiles.push_back(p);
@@ -431,18 +437,18 @@ int inelastic_command(const SpectrumArgs& args, const SpectrumOptions& elastic, 
   if (args.hysteresis.empty() || args.hysteresis == "epp") {
     options.hysteresis = Hysteresis::elastic_perfectly_plastic;
     if (!args.hardening.empty())
-      throw InputError("--hardening " + args.hardening + ": for --hysteresis bilinear (epp has no hardening)");
+      throw InputError("--hardening " + text_excerpt(args.hardening) + ": for --hysteresis bilinear (epp has no hardening)");
   } else if (args.hysteresis == "bilinear") {
     options.hysteresis = Hysteresis::bilinear;
     options.hardening = 0.05;
     if (!args.hardening.empty()) {
       double alpha = 0.0;
       if (!parse_number(args.hardening, &alpha) || !(alpha >= 0.0 && alpha < 1.0))
-        throw InputError("--hardening " + args.hardening + ": expected the post-yield stiffness ratio in [0, 1), e.g. 0.05");
+        throw InputError("--hardening " + text_excerpt(args.hardening) + ": expected the post-yield stiffness ratio in [0, 1), e.g. 0.05");
       options.hardening = alpha;
     }
   } else {
-    throw InputError("--hysteresis " + args.hysteresis + ": expected epp or bilinear");
+    throw InputError("--hysteresis " + text_excerpt(args.hysteresis) + ": expected epp or bilinear");
   }
   std::vector<double> strengths;
   StrengthMeasure measure = StrengthMeasure::reduction_factor;
@@ -450,7 +456,7 @@ int inelastic_command(const SpectrumArgs& args, const SpectrumOptions& elastic, 
     const std::string expected = "target ductilities from 1 to 100 separated by commas, e.g. 1,2,4,6";
     options.ductilities = parse_list("--ductility", args.ductility, expected);
     for (double mu : options.ductilities)
-      if (!(mu >= 1.0 && mu <= 100.0)) throw InputError("--ductility " + args.ductility + ": expected " + expected);
+      if (!(mu >= 1.0 && mu <= 100.0)) throw InputError("--ductility " + text_excerpt(args.ductility) + ": expected " + expected);
   } else {
     const bool r = !args.strength_reduction.empty();
     const std::string option = r ? "--strength-reduction" : "--yield-coefficient";
@@ -459,7 +465,7 @@ int inelastic_command(const SpectrumArgs& args, const SpectrumOptions& elastic, 
                                    : "yield strength coefficients cy = fy/(m g) > 0, e.g. 0.1,0.2";
     strengths = parse_list(option, text, expected);
     for (double x : strengths)
-      if (!(x > 0.0 && x <= 1e6)) throw InputError(option + " " + text + ": expected " + expected + " (at most 1e6)");
+      if (!(x > 0.0 && x <= 1e6)) throw InputError(option + " " + text_excerpt(text) + ": expected " + expected + " (at most 1e6)");
     measure = r ? StrengthMeasure::reduction_factor : StrengthMeasure::yield_coefficient;
   }
   std::string error;
@@ -520,14 +526,14 @@ int suite_spectra(const SpectrumArgs& args, const SpectrumOptions& elastic, Plot
   if (!args.t1.empty()) {
     SuiteScalingOptions scaling;
     if (!parse_number(args.t1, &scaling.t1) || !(scaling.t1 > 0.0 && scaling.t1 <= 1e4))
-      throw InputError("--t1 " + args.t1 + ": expected the fundamental period T1 in s, 0 < T1 <= 1e4");
-    if (!target) throw InputError("--t1 " + args.t1 + ": scales the suite to a target: give --target too");
+      throw InputError("--t1 " + text_excerpt(args.t1) + ": expected the fundamental period T1 in s, 0 < T1 <= 1e4");
+    if (!target) throw InputError("--t1 " + text_excerpt(args.t1) + ": scales the suite to a target: give --target too");
     if (args.scaling == "uniform") scaling.rule = SuiteScaling::uniform;
     else if (!args.scaling.empty() && args.scaling != "fit")
-      throw InputError("--scaling " + args.scaling + ": expected fit or uniform");
+      throw InputError("--scaling " + text_excerpt(args.scaling) + ": expected fit or uniform");
     request.scaling = scaling;
   } else if (!args.scaling.empty()) {
-    throw InputError("--scaling " + args.scaling + ": chooses how --t1 scales the suite (give --t1 and --target)");
+    throw InputError("--scaling " + text_excerpt(args.scaling) + ": chooses how --t1 scales the suite (give --t1 and --target)");
   }
   request.target = std::move(target);
   return suite_command(request);

@@ -70,7 +70,7 @@ SweepShard parse_shard(const std::string& text) {
     shard.index = static_cast<std::size_t>(i);
     shard.count = static_cast<std::size_t>(n);
   } catch (const std::exception&) {
-    throw InputError("--shard " + text + ": expected I/N with 0 <= I < N (0-based: --shard 0/2 and --shard 1/2 make a whole)");
+    throw InputError("--shard " + text_excerpt(text) + ": expected I/N with 0 <= I < N (0-based: --shard 0/2 and --shard 1/2 make a whole)");
   }
   return shard;
 }
@@ -277,7 +277,7 @@ int sweep_mpi(const SweepArgs& args, const MpiSession& mpi) {
   std::size_t from_journal = 0;
   std::unique_ptr<FolderLock> shard_lock, table_lock;  // held to the end, as in sweep_local
   try {
-    if (!args.shard.empty()) throw InputError("--shard " + args.shard + ": not with mpirun (each rank runs shard RANK/SIZE)");
+    if (!args.shard.empty()) throw InputError("--shard " + text_excerpt(args.shard) + ": not with mpirun (each rank runs shard RANK/SIZE)");
     spec = load_sweep(args.sweep);
     check_sweep_memory(spec, mpi.rank == 0 ? spec.runs() : shard_runs(spec, shard));  // rank 0 gathers every row
     dir = output_dir(args, spec);

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/text_file.hpp"
 #include "adjoin/ground/spectrum_matching.hpp"
 #include "adjoin/ground/synthesis.hpp"
 #include "adjoin/model/units.hpp"
@@ -73,13 +74,13 @@ void parse_band(const std::string& text, MatchOptions* m) {
   };
   if (colon == std::string::npos || !number(text.substr(0, colon), &m->period_min) ||
       !number(text.substr(colon + 1), &m->period_max))
-    throw InputError("--band " + text + ": expected T0:T1, two periods in s (e.g. 0.1:3)");
+    throw InputError("--band " + text_excerpt(text) + ": expected T0:T1, two periods in s (e.g. 0.1:3)");
 }
 
 int synth_command(SynthArgs& a) {
   SynthesisOptions o;
   if (!parse_spectrum_model(a.spectrum, &o.spectrum))
-    throw InputError("--spectrum " + a.spectrum + ": expected kt (Kanai-Tajimi) or cp (Clough-Penzien)");
+    throw InputError("--spectrum " + text_excerpt(a.spectrum) + ": expected kt (Kanai-Tajimi) or cp (Clough-Penzien)");
   o.omega_g = a.omega_g;
   o.zeta_g = a.zeta_g;
   o.omega_f = a.omega_f;
@@ -87,7 +88,7 @@ int synth_command(SynthArgs& a) {
   o.s0 = a.s0;
   o.target_pga = a.pga;
   if (!parse_envelope_kind(a.envelope, &o.envelope.kind))
-    throw InputError("--envelope " + a.envelope + ": expected jht (Jennings-Housner-Tsai), sh (Saragoni-Hart) or none");
+    throw InputError("--envelope " + text_excerpt(a.envelope) + ": expected jht (Jennings-Housner-Tsai), sh (Saragoni-Hart) or none");
   const bool jht = o.envelope.kind == EnvelopeKind::jennings_housner_tsai;
   const bool sh = o.envelope.kind == EnvelopeKind::saragoni_hart;
   if (!jht && (a.t1 || a.t2 || a.decay)) throw InputError("--t1/--t2/--decay: only with --envelope jht");
@@ -105,7 +106,7 @@ int synth_command(SynthArgs& a) {
     std::uint64_t v = 0;
     const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
     if (t.front() == '-' || t.front() == '+' || ec != std::errc() || end != t.data() + t.size())
-      throw InputError("--seed " + t + ": expected a whole number from 0 to 18446744073709551615");
+      throw InputError("--seed " + text_excerpt(t) + ": expected a whole number from 0 to 18446744073709551615");
     a.seed = v;
   }
   o.seed = a.seed;

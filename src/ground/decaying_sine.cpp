@@ -10,6 +10,7 @@ double DecayingSine::ag(double t) const {
 }
 
 std::string DecayingSine::describe() const {
+  if (!description_.empty()) return description_;
   std::ostringstream s;
   s << "decaying-sine u0=" << u0_ << " omega=" << omega_ << " k=" << k_;
   return s.str();

@@ -88,6 +88,15 @@ Record parse_record(std::string_view text, const std::string& name, const Record
   if (chosen && !chosen->multi_channel && format.channel > 1)
     fail(name, "channel " + std::to_string(format.channel) + " was asked, but a " + std::string(chosen->title) +
                    " file holds one channel");
+  // Column choices only apply to column text; a file with its own header layout would ignore them.
+  const bool columns = !chosen || chosen->kind == Kind::one_column || chosen->kind == Kind::two_column || chosen->kind == Kind::delimited;
+  if (!columns)
+    for (const auto& [given, what] : {std::pair{!format.time_column.empty(), "a time column (--time-column, ground.time_column)"},
+                                      {!format.accel_column.empty(), "an acceleration column (--accel-column, ground.accel_column)"},
+                                      {format.delimiter != 0, "a delimiter (--delimiter)"}})
+      if (given)
+        fail(name, std::string(what) + " was given, but a " + std::string(chosen->title) + " file has its own layout; it applies to "
+                                                                               "delimited text only");
   Record record = chosen ? chosen->parse(text, name, format) : readers::parse_columns_auto(text, name, format);
   check_ranges(record, name);
   return record;

@@ -191,7 +191,7 @@ std::string building_summary_json(const BuildingScene& scene, const BuildingRepo
   ordered_json j;
   j["scene"] = scene.name;
   j["units"] = "SI";
-  j["solver"] = {{"scheme", "implicit"},
+  j["solver"] = {{"scheme", scheme_name(scene.solver)},
                  {"history", to_string(scene.solver.history)},
                  {"h", tolerant ? tolerant->h : scene.solver.h},
                  {"steps", r.solver.steps},

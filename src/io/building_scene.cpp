@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
 #include <sstream>
 
 #include <toml++/toml.h>
@@ -37,7 +38,15 @@ std::string number(double v) {
 // The in-structure spectra's signals: "ground" or a floor's absolute acceleration X.aN_abs.
 void check_spectra_signals(const std::vector<std::string>& signals, const structure::Structure& s, const toml::table& parsed,
                            const std::string& file, const std::vector<std::string>& overrides) {
+  std::set<std::string> seen;
   for (const auto& signal : signals) {
+    if (!seen.insert(signal).second) {
+      // A floor listed twice would get its spectra twice.
+      const toml::node* n = parsed.at_path("output.spectra.signals").node();
+      const std::string where = overridden(overrides, "output.spectra.signals") ? "--set output.spectra.signals"
+                                : n ? file + ":" + std::to_string(n->source().begin.line) : file;
+      throw InputError(where + ": output.spectra.signals: " + escaped_excerpt(signal) + " is listed twice; list each signal once");
+    }
     if (signal == "ground") continue;
     const structure::Building* b = nullptr;
     if (signal.rfind("A.a", 0) == 0) b = &s.a;
@@ -57,8 +66,28 @@ void check_spectra_signals(const std::vector<std::string>& signals, const struct
     }
     std::string expected = "\"ground\" or a floor's absolute acceleration A.aN_abs (N = 1.." + std::to_string(s.a.floors()) + ")";
     if (s.b) expected += " or B.aN_abs (N = 1.." + std::to_string(s.b->floors()) + ")";
-    throw InputError(where + ": output.spectra.signals: \"" + signal + "\" is not a signal of this structure; expected " + expected);
+    throw InputError(where + ": output.spectra.signals: " + escaped_excerpt(signal) + " is not a signal of this structure; expected " + expected);
   }
+}
+
+// solver.scheme on a building scene: the structure step takes "implicit" (backward Euler after
+// a damper's switch when the stiffest mode is not resolved) and "implicit-damped" (after every
+// switch); the two-block system's other schemes would be silently ignored, so they are refused.
+StructureSolverOptions::Restart restart_for_scheme(Scheme scheme, const toml::table& parsed, const std::string& file,
+                                       const std::vector<std::string>& overrides) {
+  if (scheme == Scheme::implicit) return StructureSolverOptions::Restart::automatic;
+  if (scheme == Scheme::implicit_damped) return StructureSolverOptions::Restart::always;
+  std::string where = file;
+  if (overridden(overrides, "solver.scheme")) {
+    for (const auto& o : overrides)
+      if (overridden({o}, "solver.scheme")) where = "--set " + text_excerpt(o);  // the last one is in force
+  } else if (const toml::node* n = parsed.at_path("solver.scheme").node()) {
+    where += ":" + std::to_string(n->source().begin.line);
+  }
+  throw InputError(where + ": solver.scheme = \"" + to_string(scheme) +
+                   "\": a building scene runs the structure step, which takes \"implicit\" (the default) or "
+                   "\"implicit-damped\" (backward Euler after every damper switch); \"paper\" and \"implicit-gl\" are the "
+                   "two-block system's");
 }
 
 }  // namespace
@@ -100,7 +129,7 @@ BuildingScene detail::building_scene_from_tree(const toml::table& parsed, const 
   for (const auto& o : overrides) {
     const std::string key = o.substr(0, o.find('='));
     if (key.rfind("model", 0) == 0 && (key.size() == 5 || key[5] == '.' || key[5] == ' '))
-      throw InputError("--set " + o + ": a building scene's [model] holds only units = \"SI\"; the buildings, links "
+      throw InputError("--set " + text_excerpt(o) + ": a building scene's [model] holds only units = \"SI\"; the buildings, links "
                        "and contacts carry the rest (building.A.period, link.1.slip_ratio, ...)");
     if (!detail::is_structure_key(key)) base_overrides.push_back(o);
   }
@@ -159,6 +188,7 @@ BuildingScene detail::building_scene_from_tree(const toml::table& parsed, const 
     b.t_end_rule = "20 x the longest period (" + number(t_longest) + " s) = " + number(b.solver.t_end) + " s";
   }
   b.solver.history = b.base.solver.history;
+  b.solver.restart = restart_for_scheme(b.base.solver.scheme, parsed, file.string(), overrides);
   std::string error;
   if (!b.solver.IsValid(&error)) throw InputError(file.string() + ": " + error);
   if (dt > 0.0 && b.solver.h > dt * (1 + 1e-9))

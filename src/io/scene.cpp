@@ -226,7 +226,7 @@ void check_keys(const SceneReader& reader, const toml::table& table, const std::
       if (std::find(kTables.begin(), kTables.end(), path) == kTables.end()) {
         std::vector<std::string> candidates = kTables;
         for (const auto& k : schema()) candidates.emplace_back(k.path);
-        reader.fail(path, "unknown section [" + path + "]; did you mean " + nearest(path, candidates) + "?");
+        reader.fail(path, "unknown section [" + text_excerpt(path) + "]; did you mean " + nearest(path.substr(0, 200), candidates) + "?");
       }
       check_keys(reader, *node.as_table(), path);
       continue;
@@ -236,7 +236,7 @@ void check_keys(const SceneReader& reader, const toml::table& table, const std::
     if (spec == schema().end()) {
       if (std::find(kTables.begin(), kTables.end(), path) != kTables.end())
         reader.fail(path, path + " must be a table ([" + path + "])");
-      reader.fail(path, "unknown key " + path + "; did you mean " + nearest(path, all_known_keys()) + "?");
+      reader.fail(path, "unknown key " + text_excerpt(path) + "; did you mean " + nearest(path.substr(0, 200), all_known_keys()) + "?");
     }
     bool ok = false;
     switch (spec->kind) {
@@ -277,7 +277,7 @@ bool remove_key(toml::table& table, const std::string& key) {
 void apply_override(toml::table& table, const std::string& text, std::map<std::string, std::string>& origins,
                     const toml::table* typed = nullptr) {
   const auto eq = text.find('=');
-  const std::string origin = "--set " + text;
+  const std::string origin = "--set " + text_excerpt(text);
   if (eq == std::string::npos || eq == 0)
     throw InputError(origin + ": expected KEY=VALUE with a dotted key, e.g. solver.h=0.001");
   // "solver.h = 0.01" (spaces around '=', as in the scene file) means "solver.h=0.01".
@@ -289,7 +289,7 @@ void apply_override(toml::table& table, const std::string& text, std::map<std::s
   std::vector<std::string> parts;
   std::stringstream stream(key);
   for (std::string part; std::getline(stream, part, '.');) {
-    if (part.empty()) throw InputError(origin + ": empty component in key '" + key + "'");
+    if (part.empty()) throw InputError(origin + ": empty component in key " + escaped_excerpt(key));
     parts.push_back(part);
   }
   toml::table* current = &table;
@@ -303,7 +303,7 @@ void apply_override(toml::table& table, const std::string& text, std::map<std::s
       next = current->get(parts[i]);
       origins.emplace(path, origin);
     }
-    if (!next->is_table()) throw InputError(origin + ": " + parts[i] + " is not a table");
+    if (!next->is_table()) throw InputError(origin + ": " + text_excerpt(parts[i]) + " is not a table");
     current = next->as_table();
   }
   current->insert_or_assign(parts.back(), *valued.get("v"));
@@ -350,7 +350,7 @@ structure::ContactLaw read_contact(const SceneReader& r, const Scales& scales) {
   if (r.has("model.contact.model")) {
     const std::string word = r.string("model.contact.model", "");
     if (!structure::parse_contact_model(word, &model))
-      r.fail("model.contact.model", "model.contact.model = \"" + word + "\" must be one of \"none\", \"linear\", \"hertz\", "
+      r.fail("model.contact.model", "model.contact.model = " + escaped_excerpt(word) + " must be one of \"none\", \"linear\", \"hertz\", "
                                     "\"hertzdamp\", \"jankowski\" or \"impact\"");
   }
   const auto linear = [](structure::ContactModel m) { return m == structure::ContactModel::linear; };
@@ -416,12 +416,12 @@ std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, con
   RecordFormat format;
   const std::string kind = r.string("ground.format", "auto");
   if (!parse_record_kind(kind, &format.kind))
-    r.fail("ground.format", "ground.format = \"" + kind + "\" must be one of " + record_kind_names());
+    r.fail("ground.format", "ground.format = " + escaped_excerpt(kind) + " must be one of " + record_kind_names());
   if (r.has("ground.units")) {
     AccelUnit unit;
     const std::string units = r.string("ground.units", "");
     if (!parse_accel_unit(units, &unit))
-      r.fail("ground.units", "ground.units = \"" + units + "\" must be \"g\", \"m/s2\", \"cm/s2\" (or \"gal\") or \"mm/s2\"");
+      r.fail("ground.units", "ground.units = " + escaped_excerpt(units) + " must be \"g\", \"m/s2\", \"cm/s2\" (or \"gal\") or \"mm/s2\"");
     format.units = unit;
   }
   if (r.has("ground.dt")) format.dt = r.number("ground.dt");
@@ -443,13 +443,19 @@ std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, con
   }
   processing.pad_before = r.number("ground.pad_before", 0.0);
   processing.pad_after = r.number("ground.pad_after", 0.0);
+  for (const char* key : {"ground.f_low", "ground.f_high", "ground.filter_order"})
+    if (r.has(key) && !r.has("ground.filter"))
+      r.fail(key, std::string(key) + " belongs to ground.filter (\"bandpass\", \"highpass\" or \"lowpass\"); without it no filter runs");
   if (r.has("ground.filter")) {
     ButterworthFilter filter;
     const std::string type = r.string("ground.filter", "");
     if (type == "bandpass") filter.type = ButterworthFilter::Type::bandpass;
     else if (type == "highpass") filter.type = ButterworthFilter::Type::highpass;
     else if (type == "lowpass") filter.type = ButterworthFilter::Type::lowpass;
-    else r.fail("ground.filter", "ground.filter = \"" + type + "\" must be \"bandpass\", \"highpass\" or \"lowpass\"");
+    else r.fail("ground.filter", "ground.filter = " + escaped_excerpt(type) + " must be \"bandpass\", \"highpass\" or \"lowpass\"");
+    // A low-pass filter has no lower corner, a high-pass one no upper corner.
+    if (type == "lowpass" && r.has("ground.f_low")) r.fail("ground.f_low", "ground.f_low does not apply to a low-pass filter (its corner is ground.f_high)");
+    if (type == "highpass" && r.has("ground.f_high")) r.fail("ground.f_high", "ground.f_high does not apply to a high-pass filter (its corner is ground.f_low)");
     filter.f_low = r.number("ground.f_low", 0.0);
     filter.f_high = r.number("ground.f_high", 0.0);
     const auto order = r.integer("ground.filter_order", 4);
@@ -491,7 +497,7 @@ std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, cons
   if (r.has("ground.spectrum")) {
     const std::string name = r.string("ground.spectrum", "");
     if (!parse_spectrum_model(name, &o.spectrum))
-      r.fail("ground.spectrum", "ground.spectrum = \"" + name + "\" must be \"kanai-tajimi\" or \"clough-penzien\"");
+      r.fail("ground.spectrum", "ground.spectrum = " + escaped_excerpt(name) + " must be \"kanai-tajimi\" or \"clough-penzien\"");
   }
   o.omega_g = r.number("ground.omega_g", o.omega_g);
   o.zeta_g = r.number("ground.zeta_g", o.zeta_g);
@@ -502,8 +508,19 @@ std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, cons
   if (r.has("ground.envelope")) {
     const std::string name = r.string("ground.envelope", "");
     if (!parse_envelope_kind(name, &o.envelope.kind))
-      r.fail("ground.envelope", "ground.envelope = \"" + name + "\" must be \"none\", \"jennings-housner-tsai\" or \"saragoni-hart\"");
+      r.fail("ground.envelope", "ground.envelope = " + escaped_excerpt(name) + " must be \"none\", \"jennings-housner-tsai\" or \"saragoni-hart\"");
   }
+  // Keys of another spectrum or envelope than the one chosen would be ignored.
+  if (o.spectrum != SpectrumModel::clough_penzien)
+    for (const char* key : {"ground.omega_f", "ground.zeta_f"})
+      if (r.has(key)) r.fail(key, std::string(key) + " belongs to ground.spectrum = \"clough-penzien\" (its high-pass filter)");
+  const auto envelope_keys = [&](EnvelopeKind kind, std::initializer_list<const char*> keys, const char* name) {
+    if (o.envelope.kind == kind) return;
+    for (const char* key : keys)
+      if (r.has(key)) r.fail(key, std::string(key) + " belongs to ground.envelope = \"" + name + "\"");
+  };
+  envelope_keys(EnvelopeKind::jennings_housner_tsai, {"ground.t1", "ground.t2", "ground.decay"}, "jennings-housner-tsai");
+  envelope_keys(EnvelopeKind::saragoni_hart, {"ground.eps", "ground.eta", "ground.t_n"}, "saragoni-hart");
   for (auto [key, field] : {std::pair{"ground.t1", &o.envelope.t1}, {"ground.t2", &o.envelope.t2}, {"ground.decay", &o.envelope.decay},
                             {"ground.eps", &o.envelope.eps}, {"ground.eta", &o.envelope.eta}, {"ground.t_n", &o.envelope.t_n}})
     if (r.has(key)) *field = r.number(key);
@@ -533,7 +550,7 @@ std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, cons
   if (r.has("ground.match_ec8")) {
     const std::string type = r.string("ground.match_ec8", "");
     if (type.size() != 1 || std::string("ABCDE").find(type[0]) == std::string::npos)
-      r.fail("ground.match_ec8", "ground.match_ec8 = \"" + type + "\" must be an EC8 ground type, \"A\" to \"E\"");
+      r.fail("ground.match_ec8", "ground.match_ec8 = " + escaped_excerpt(type) + " must be an EC8 ground type, \"A\" to \"E\"");
     const double ag = r.number("ground.match_ag", 0.25);
     if (!(ag > 0.0 && ag <= 10.0))
       r.fail("ground.match_ag", "ground.match_ag must be the design ground acceleration in g, > 0 and at most 10");
@@ -727,7 +744,7 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
       r.fail("model.gap0", "model.gap0 = " + format_number(r.number("model.gap0")) + " m must lie within +-" +
                                format_number(kMaxRatio * scene.scales.length) + " m (1e6 X0, X0 = m1 g / k1)");
   } else {
-    r.fail("model.units", "model.units = \"" + units + "\" must be \"dimensionless\" or \"SI\"");
+    r.fail("model.units", "model.units = " + escaped_excerpt(units) + " must be \"dimensionless\" or \"SI\"");
   }
   for (const char* rod : {"model.rod1", "model.rod2"})
     if (!r.has(rod)) r.fail(rod, std::string("missing section [") + rod + "]");
@@ -760,13 +777,13 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
   if (allowed == ground_keys().end()) {
     std::vector<std::string> names;
     for (const auto& [n, keys] : ground_keys()) names.push_back(n);
-    r.fail("ground.source", "ground.source = \"" + source + "\" is not a known source; did you mean \"" +
+    r.fail("ground.source", "ground.source = " + escaped_excerpt(source) + " is not a known source; did you mean \"" +
                                 nearest(source, names) + "\"?");
   }
   for (const auto& [key, node] : *r.table()["ground"].as_table()) {
     const std::string k(key.str());
     if (k != "source" && std::find(allowed->second.begin(), allowed->second.end(), k) == allowed->second.end())
-      r.fail("ground." + k, "ground." + k + " is not a key of source \"" + source + "\"");
+      r.fail("ground." + k, text_excerpt("ground." + k) + " is not a key of source \"" + source + "\"");
   }
   if (source == "decaying-sine") {
     const double u0 = r.number("ground.u0"), omega = r.number("ground.omega"), k = r.number("ground.k");
@@ -774,7 +791,11 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
       if (!std::isfinite(value)) r.fail(key, std::string(key) + " must be a finite number");
     if (!(k >= 0.0)) r.fail("ground.k", "ground.k = " + format_number(k) + " must be zero or positive (decay rate)");
     const Scales& s = scene.scales;  // SI: u0 [m], omega [rad/s], k [1/s]
-    scene.ground = std::make_shared<DecayingSine>(u0 / s.length, omega * s.time, k * s.time);
+    // An SI scene's summary says the motion in the units the scene gave it.
+    const std::string si = s.si ? "decaying-sine u0=" + format_number(u0) + " m omega=" + format_number(omega) +
+                                      " rad/s k=" + format_number(k) + " 1/s"
+                                : std::string();
+    scene.ground = std::make_shared<DecayingSine>(u0 / s.length, omega * s.time, k * s.time, si);
   } else if (source == "record") {
     scene.ground = read_record_source(r, scene.scales);
   } else if (source == "filtered-noise") {
@@ -785,15 +806,15 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
   SolverOptions& o = scene.solver;
   const std::string scheme = r.string("solver.scheme", to_string(o.scheme));
   if (!parse_scheme(scheme, &o.scheme))
-    r.fail("solver.scheme", "solver.scheme = \"" + scheme + "\" is not a scheme; expected one of " + scheme_names());
+    r.fail("solver.scheme", "solver.scheme = " + escaped_excerpt(scheme) + " is not a scheme; expected one of " + scheme_names());
   const std::string history = r.string("solver.history", to_string(o.history));
   if (!parse_history_engine(history, &o.history))
-    r.fail("solver.history", "solver.history = \"" + history + "\" must be \"direct\" or \"fft\"");
+    r.fail("solver.history", "solver.history = " + escaped_excerpt(history) + " must be \"direct\" or \"fft\"");
   o.locate_switches = r.boolean("solver.locate_switches", o.locate_switches);
   read_step_and_horizon(r, scene);
   if (!o.IsValid(&error)) r.fail(error.substr(0, error.find(' ')), error);
   if (m.contact.model != structure::ContactModel::none && o.scheme == Scheme::paper)
-    r.fail("solver.scheme", "solver.scheme = \"" + scheme + "\": the contact laws need the implicit scheme (model.contact.model = \"" +
+    r.fail("solver.scheme", "solver.scheme = " + escaped_excerpt(scheme) + ": the contact laws need the implicit scheme (model.contact.model = \"" +
                                 to_string(m.contact.model) + "\"); remove solver.scheme (the default is \"implicit\") or choose an implicit one");
 
   // ---- output ----
@@ -806,14 +827,24 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
   if (r.has("output.spectra")) {
     SpectraOutput spectra;
     if (r.has("output.spectra.signals")) spectra.signals = r.strings("output.spectra.signals");
-    for (const auto& signal : spectra.signals)
-      if (signal != "ground" && signal != "block1" && signal != "block2")
-        r.fail("output.spectra.signals", "output.spectra.signals: \"" + signal + "\" must be \"ground\", \"block1\" or \"block2\"");
+    for (auto signal = spectra.signals.begin(); signal != spectra.signals.end(); ++signal) {
+      if (*signal != "ground" && *signal != "block1" && *signal != "block2")
+        r.fail("output.spectra.signals", "output.spectra.signals: " + escaped_excerpt(*signal) + " must be \"ground\", \"block1\" or \"block2\"");
+      if (std::find(spectra.signals.begin(), signal, *signal) != signal)
+        r.fail("output.spectra.signals", "output.spectra.signals: " + escaped_excerpt(*signal) + " is listed twice; list each signal once");
+    }
     if (r.has("output.spectra.damping")) spectra.damping = r.numbers("output.spectra.damping");
     for (double d : spectra.damping)
       if (!(d >= 0.0 && d < 1.0))
         r.fail("output.spectra.damping", "output.spectra.damping: " + format_number(d) + " must be a damping ratio in [0, 1)");
     spectra.periods = r.numbers("output.spectra.periods");
+    // A period or damping listed twice would be computed and written twice.
+    for (const char* key : {"output.spectra.periods", "output.spectra.damping"}) {
+      const std::vector<double> list = r.numbers(key);
+      for (auto v = list.begin(); v != list.end(); ++v)
+        if (std::find(list.begin(), v, *v) != v)
+          r.fail(key, std::string(key) + ": " + format_number(*v) + " is listed twice; list each value once");
+    }
     // Periods far outside the range of structures (in the scene's time unit) only lose
     // digits: 1e-200 once gave NaN spectra.
     for (double t : spectra.periods)
@@ -870,7 +901,7 @@ Scene parse_building_base(const std::string& text, const std::string& name, cons
 Scene detail::building_base_from_tree(toml::table table, const std::string& name, const std::vector<std::string>& overrides,
                                       const std::vector<std::string>& unsets, const toml::table* lines) {
   for (const auto& key : unsets)
-    if (!remove_key(table, key)) throw InputError("--unset " + key + ": the scene has no key or section " + key);
+    if (!remove_key(table, key)) throw InputError("--unset " + text_excerpt(key) + ": the scene has no key or section " + text_excerpt(key));
   // The structure is read elsewhere; what stays is [ground], [solver], [output] and the name,
   // read as a scene with a unit two-block model (m = 1 kg, k = 1 N/m: T0 = 1 s, forces of
   // 1 kg g), so that times are in seconds and the ground's a_g is in g.
@@ -941,8 +972,8 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
         std::vector<std::string> present;
         for (const auto& k : known_scene_keys())
           if (table.at_path(k)) present.push_back(k);
-        throw InputError("--unset " + key + ": the scene has no key or section " + key +
-                         (present.empty() ? std::string() : "; did you mean " + nearest(key, present) + "?"));
+        throw InputError("--unset " + text_excerpt(key) + ": the scene has no key or section " + text_excerpt(key) +
+                         (present.empty() ? std::string() : "; did you mean " + nearest(key.substr(0, 200), present) + "?"));
       }
       removed.push_back(key);
     }

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/text_file.hpp"
 #include "contact_keys.hpp"
 #include "toml_text.hpp"
 
@@ -20,7 +21,7 @@ std::vector<std::string> split_path(const std::string& key, const std::string& o
   std::vector<std::string> parts;
   std::stringstream stream(key);
   for (std::string part; std::getline(stream, part, '.');) {
-    if (part.empty()) throw InputError(origin + ": empty component in key '" + key + "'");
+    if (part.empty()) throw InputError(origin + ": empty component in key " + escaped_excerpt(key));
     parts.push_back(part);
   }
   if (parts.empty()) throw InputError(origin + ": expected a dotted key, e.g. link.1.slip_ratio");
@@ -53,12 +54,12 @@ Parent walk(toml::table& root, const std::vector<std::string>& parts, const std:
       const std::size_t n = std::stoul(part);
       if (n < 1 || n > array->size())
         throw InputError(origin + ": the scene has " + std::to_string(array->size()) + " [[" + path + "]] table" +
-                         (array->size() == 1 ? "" : "s") + ", not a number " + part);
+                         (array->size() == 1 ? "" : "s") + ", not a number " + text_excerpt(part));
       next = array->get(n - 1);
       path += "[" + part + "]";
     } else if (toml::table* table = current->as_table()) {
       next = table->get(part);
-      if (!next) throw InputError(origin + ": the scene has no " + (path.empty() ? part : path + "." + part));
+      if (!next) throw InputError(origin + ": the scene has no " + text_excerpt(path.empty() ? part : path + "." + part));
       path += (path.empty() ? "" : ".") + part;
     } else {
       throw InputError(origin + ": " + path + " is a value, not a table");
@@ -81,7 +82,7 @@ std::vector<std::string> alternatives(const std::string& key) {
 }
 
 void unset(toml::table& root, const std::string& key) {
-  const std::string origin = "--unset " + key;
+  const std::string origin = "--unset " + text_excerpt(key);
   const auto parts = split_path(key, origin);
   const Parent parent = walk(root, parts, origin);
   const std::string& leaf = parts.back();
@@ -93,7 +94,7 @@ void unset(toml::table& root, const std::string& key) {
     array->erase(array->begin() + static_cast<std::ptrdiff_t>(n - 1));
   } else if (toml::table* table = parent.node->as_table()) {
     if (!table->contains(leaf))
-      throw InputError(origin + ": the scene has no key or section " + key);
+      throw InputError(origin + ": the scene has no key or section " + text_excerpt(key));
     table->erase(leaf);
   } else {
     throw InputError(origin + ": " + parent.path + " is a value, not a table");
@@ -101,9 +102,11 @@ void unset(toml::table& root, const std::string& key) {
 }
 
 void set(toml::table& root, const std::string& text, std::map<std::string, std::string>& origins) {
-  const std::string origin = "--set " + text;
+  const std::string origin = "--set " + text_excerpt(text);
   const auto eq = text.find('=');
   const std::string key = trim(text.substr(0, eq)), value = trim(text.substr(eq + 1));
+  if (eq == std::string::npos || key.empty())
+    throw InputError(origin + ": expected KEY=VALUE with a dotted key, e.g. building.A.mass=4.5e4");
   const auto parts = split_path(key, origin);
   const Parent parent = walk(root, parts, origin);
   toml::table* table = parent.node->as_table();
@@ -145,11 +148,8 @@ void edit_structure(toml::table& root, const std::vector<std::string>& overrides
                     std::map<std::string, std::string>& origins) {
   for (const auto& key : unsets)
     if (is_structure_key(key)) unset(root, trim(key));
-  for (const auto& o : overrides) {
-    const auto eq = o.find('=');
-    if (eq == std::string::npos || !is_structure_key(o.substr(0, eq))) continue;
-    set(root, o, origins);
-  }
+  for (const auto& o : overrides)
+    if (is_structure_key(o.substr(0, o.find('=')))) set(root, o, origins);  // (one without '=' is refused there)
 }
 
 }  // namespace adjoin::detail

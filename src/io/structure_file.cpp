@@ -18,6 +18,7 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/structure/modal.hpp"
+#include "adjoin/model/parameters.hpp"
 #include "adjoin/model/units.hpp"
 
 namespace adjoin {
@@ -29,6 +30,36 @@ using structure::DeviceType;
 using structure::LinkType;
 
 using Origins = std::map<std::string, std::string>;
+
+std::string number_text(double v) {
+  std::ostringstream s;
+  s.precision(6);
+  s << v;
+  return s.str();
+}
+
+// The range a building quantity may take. The bounds are the two-block scenes' (masses
+// 1e-3..1e12 kg, stiffnesses 1e-3..1e15 N/m, relaxation times up to 1e12): inside them the
+// step's matrices M + h/2 C + h^2/4 K stay finite and every reported force and energy too
+// (1e15 N/m x a metre, 1e12 kg x (1e3 m/s)^2), where 1e300 overflowed only at the end of a run.
+struct Range {
+  double lo, hi;
+  const char* unit;
+  std::string problem(double v) const {
+    if (v >= lo && v <= hi) return "";
+    return number_text(v) + " is outside the supported " + number_text(lo) + " to " + number_text(hi) + " " + unit +
+           " (bounds that keep the step's matrices finite and well conditioned)";
+  }
+};
+constexpr Range kMassRange{1e-3, 1e12, "kg"};
+constexpr Range kStiffnessRange{1e-3, 1e15, "N/m"};
+constexpr Range kDashpotRange{1e-3, 1e15, "N s/m"};
+constexpr Range kForceRange{1e-3, 1e18, "N"};
+constexpr Range kSlipRatioRange{1e-9, 1e6, "(slip force / weight)"};
+constexpr Range kTauRange{1e-9, kMaxRelaxationTime, "s^order"};
+constexpr double kMaxContactStiffness = 1e20;  // N/m or N/m^1.5
+// tau_x / tau_f: the Zener element's unrelaxed stiffness over its relaxed one.
+constexpr double kMaxTauRatio = kMaxRatio;
 
 // Reads the keys of one table, each named by its dotted path in messages with the line.
 class TableReader {
@@ -46,14 +77,15 @@ class TableReader {
     const auto& source = source_of(node ? *node : table_);
     std::ostringstream m;
     // A value a --set put there is blamed on the --set; the others on their file line.
+    // (A --set of a key the file has keeps the file's node, and with it the file's line.)
     const std::string full = key.empty() ? path_ : path_ + "." + key;
-    if (origins_ && source.begin.line == 0 && origins_->count(full)) {
-      m << origins_->at(full) << ": " << full << ": " << message;
+    if (origins_ && origins_->count(full)) {
+      m << origins_->at(full) << ": " << text_excerpt(full) << ": " << message;
       throw InputError(m.str());
     }
     m << file_;
     if (source.begin.line > 0) m << ":" << source.begin.line;
-    m << ": " << (key.empty() ? path_ : path_ + "." + key) << ": " << message;
+    m << ": " << text_excerpt(full) << ": " << message;
     throw InputError(m.str());
   }
   bool has(const std::string& key) const { return table_.contains(key); }
@@ -66,6 +98,11 @@ class TableReader {
       fail(key, "unknown key; expected one of " + list);
     }
   }
+  // Refuses a key of the table's schema that does not apply here (`why`: what it is here).
+  void only_with(const std::set<std::string>& applies, const std::string& why) const {
+    for (const auto& [k, v] : table_)
+      if (!applies.count(std::string(k.str()))) fail(std::string(k.str()), "does not apply to " + why + "; remove it");
+  }
   double number(const std::string& key) const {
     const toml::node* n = table_.get(key);
     if (!n) fail("", "missing key " + key);
@@ -77,6 +114,12 @@ class TableReader {
   double positive(const std::string& key) const {
     const double v = number(key);
     if (!(v > 0.0)) fail(key, "expected a positive number");
+    return v;
+  }
+  // A positive value within `range` (kRanges below).
+  double bounded(const std::string& key, const Range& range) const {
+    const double v = positive(key);
+    if (const std::string problem = range.problem(v); !problem.empty()) fail(key, problem);
     return v;
   }
   int integer(const std::string& key, int lo, int hi) const {
@@ -118,6 +161,16 @@ class TableReader {
     }
     return out;
   }
+  // A list of storeys or floors, each at most once (a storey listed twice would get the
+  // device twice).
+  std::vector<int> distinct_integers(const std::string& key) const {
+    std::vector<int> out = integers(key, 0);
+    if (out.empty()) fail(key, "expected a list of at least one storey");
+    std::set<int> seen;
+    for (int v : out)
+      if (!seen.insert(v).second) fail(key, std::to_string(v) + " is listed twice; list each storey once");
+    return out;
+  }
   const toml::table& table() const { return table_; }
   const std::string& path() const { return path_; }
   const std::string& file() const { return file_; }
@@ -139,13 +192,32 @@ class TableReader {
 
 structure::Zener read_zener(const TableReader& r) {
   structure::Zener z;
-  z.k = r.positive("stiffness");
+  z.k = r.bounded("stiffness", kStiffnessRange);
   z.order = r.number("order");
   if (!(z.order > 0.0 && z.order < 1.0)) r.fail("order", "expected a fractional order in (0, 1)");
-  z.tau_f = r.positive("tau_f");
-  z.tau_x = r.positive("tau_x");
+  z.tau_f = r.bounded("tau_f", kTauRange);
+  z.tau_x = r.bounded("tau_x", kTauRange);
   if (!(z.tau_x > z.tau_f)) r.fail("tau_x", "must exceed tau_f (the second law; tau_x = tau_f is a spring)");
+  if (z.tau_x > kMaxTauRatio * z.tau_f)
+    r.fail("tau_x", "tau_x / tau_f = " + number_text(z.tau_x / z.tau_f) + " is beyond the supported " + number_text(kMaxTauRatio) +
+                        " (the unrelaxed stiffness, stiffness x tau_x / tau_f, would make the step ill conditioned)");
   return z;
+}
+
+// A uniform storey stiffness for `period` (s), which must give springs within kStiffnessRange;
+// the message says the periods that do for these masses (the stiffness goes as 1 / period^2).
+double stiffness_for_period(const TableReader& r, const Eigen::VectorXd& masses) {
+  const double period = r.positive("period");
+  const double k_at_1s = structure::stiffness_for_period(masses, 1.0);
+  const double k = k_at_1s / (period * period);
+  if (!(k >= kStiffnessRange.lo && k <= kStiffnessRange.hi)) {
+    const double shortest = std::sqrt(k_at_1s / kStiffnessRange.hi), longest = std::sqrt(k_at_1s / kStiffnessRange.lo);
+    r.fail("period", number_text(period) + " s is outside the supported " + number_text(shortest) + " to " + number_text(longest) +
+                         " s for these floor masses (the periods of storey springs from " + number_text(kStiffnessRange.lo) +
+                         " to " + number_text(kStiffnessRange.hi) + " N/m, bounds that keep the step's matrices finite and "
+                         "well conditioned)");
+  }
+  return k;
 }
 
 Building read_building(const toml::table& root, const std::string& name, const TableReader& top) {
@@ -156,20 +228,27 @@ Building read_building(const toml::table& root, const std::string& name, const T
   b.name = name;
   const int n = r.integer("storeys", 1, 200);
   if (r.has("mass") == r.has("masses")) r.fail("", "give the floor masses as mass (every floor) or masses (a list), one of them");
-  b.masses = r.has("mass") ? Eigen::VectorXd::Constant(n, r.positive("mass")) : Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(r.numbers("masses", n).data(), n));
-  for (int i = 0; i < n; ++i)
+  b.masses = r.has("mass") ? Eigen::VectorXd::Constant(n, r.bounded("mass", kMassRange)) : Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(r.numbers("masses", n).data(), n));
+  for (int i = 0; i < n; ++i) {
     if (!(b.masses[i] > 0.0)) r.fail("masses", "floor " + std::to_string(i + 1) + ": expected a positive mass (kg)");
+    if (const std::string problem = kMassRange.problem(b.masses[i]); !problem.empty())
+      r.fail("masses", "floor " + std::to_string(i + 1) + ": " + problem);
+  }
   const int given = r.has("stiffness") + r.has("stiffnesses") + r.has("period");
   if (given > 1) r.fail("", "give one of stiffness, stiffnesses or period");
   if (r.has("stiffness")) {
-    b.springs = Eigen::VectorXd::Constant(n, r.positive("stiffness"));
+    b.springs = Eigen::VectorXd::Constant(n, r.bounded("stiffness", kStiffnessRange));
   } else if (r.has("stiffnesses")) {
     const auto k = r.numbers("stiffnesses", n);
     b.springs = Eigen::Map<const Eigen::VectorXd>(k.data(), n);
-    for (int i = 0; i < n; ++i)
+    for (int i = 0; i < n; ++i) {
       if (!(b.springs[i] >= 0.0)) r.fail("stiffnesses", "storey " + std::to_string(i + 1) + ": expected a non-negative stiffness (N/m)");
+      // 0: a storey stiffened by its devices only.
+      if (const std::string problem = kStiffnessRange.problem(b.springs[i]); b.springs[i] > 0.0 && !problem.empty())
+        r.fail("stiffnesses", "storey " + std::to_string(i + 1) + ": " + problem + "; or 0 for a storey its devices stiffen");
+    }
   } else if (r.has("period")) {
-    b.springs = Eigen::VectorXd::Constant(n, structure::stiffness_for_period(b.masses, r.positive("period")));
+    b.springs = Eigen::VectorXd::Constant(n, stiffness_for_period(r, b.masses));
   } else {
     b.springs = Eigen::VectorXd::Zero(n);  // the storeys' devices give the stiffness (checked below)
   }
@@ -179,6 +258,9 @@ Building read_building(const toml::table& root, const std::string& name, const T
     const TableReader dr = r.inner(*d, r.path() + ".damping");
     dr.only({"model", "ratio", "modes"});
     const std::string model = dr.text("model", {"none", "modal", "rayleigh"});
+    // The keys each model takes: one it ignores would be a setting silently lost.
+    if (model == "none") dr.only_with({"model"}, "the model \"none\" (no inherent damping)");
+    if (model == "modal") dr.only_with({"model", "ratio"}, "the model \"modal\" (one ratio for every mode; modes is Rayleigh's)");
     b.damping.model = model == "none" ? DampingModel::none : (model == "modal" ? DampingModel::modal : DampingModel::rayleigh);
     if (b.damping.model != DampingModel::none) {
       b.damping.ratio = dr.number("ratio");
@@ -203,17 +285,17 @@ Building read_building(const toml::table& root, const std::string& name, const T
       const TableReader dr = r.inner(*dt, r.path() + ".device[" + std::to_string(index) + "]");
       structure::StoreyDevice dev;
       const std::string type = dr.text("type", {"zener", "dashpot", "spring"});
-      dev.storeys = dr.integers("storeys", 0);
+      dev.storeys = dr.distinct_integers("storeys");
       for (int s : dev.storeys)
         if (s > n) dr.fail("storeys", "storey " + std::to_string(s) + " is not in 1.." + std::to_string(n));
       if (type == "spring") {
         dr.only({"type", "storeys", "stiffness"});
         dev.type = DeviceType::spring;
-        dev.k = dr.positive("stiffness");
+        dev.k = dr.bounded("stiffness", kStiffnessRange);
       } else if (type == "dashpot") {
         dr.only({"type", "storeys", "c"});
         dev.type = DeviceType::dashpot;
-        dev.c = dr.positive("c");
+        dev.c = dr.bounded("c", kDashpotRange);
       } else {
         dr.only({"type", "storeys", "stiffness", "order", "tau_x", "tau_f"});
         dev.type = DeviceType::zener;
@@ -272,7 +354,12 @@ structure::ContactLaw read_contact_law(const TableReader& r) {
   };
   t.fail = [&](const std::string& key, const std::string& message) { r.fail(key, message); };
   t.stiffness_unit = [](structure::ContactModel m) { return m == structure::ContactModel::linear ? "N/m" : "N/m^1.5"; };
-  return detail::read_contact_law(t, model);
+  const structure::ContactLaw law = detail::read_contact_law(t, model);
+  // Stiff Hertz contacts of 1e15-1e16 are real (steel on concrete); 1e300 only overflows.
+  if (r.has("stiffness") && law.stiffness > kMaxContactStiffness)
+    r.fail("stiffness", number_text(law.stiffness) + " is beyond the supported " + number_text(kMaxContactStiffness) + " " +
+                            t.stiffness_unit(model) + " (the contact force would overflow)");
+  return law;
 }
 
 double building_weight(const Building& b) { return b.masses.sum() * kStandardGravity; }
@@ -348,20 +435,21 @@ structure::Structure detail::structure_from_tree(toml::table& root, const std::s
         l.type = LinkType::friction;
         if (r.has("slip_force") == r.has("slip_ratio")) r.fail("", "give slip_force [N] or slip_ratio with of = \"A\" or \"B\", one of them");
         if (r.has("slip_force")) {
-          l.slip_force = r.positive("slip_force");
+          if (r.has("of")) r.fail("of", "of names the building whose weight slip_ratio is a fraction of; slip_force is in N: remove of, or give slip_ratio");
+          l.slip_force = r.bounded("slip_force", kForceRange);
         } else {
-          const double ratio = r.positive("slip_ratio");
+          const double ratio = r.bounded("slip_ratio", kSlipRatioRange);
           const std::string of = r.text("of", {"A", "B"});
           l.slip_force = ratio * building_weight(of == "A" ? s.a : *s.b);
         }
       } else if (type == "dashpot") {
         r.only({"floors", "type", "c"});
         l.type = LinkType::dashpot;
-        l.c = r.positive("c");
+        l.c = r.bounded("c", kDashpotRange);
       } else if (type == "spring") {
         r.only({"floors", "type", "stiffness"});
         l.type = LinkType::spring;
-        l.k = r.positive("stiffness");
+        l.k = r.bounded("stiffness", kStiffnessRange);
       } else {
         r.only({"floors", "type", "stiffness", "order", "tau_x", "tau_f"});
         l.type = LinkType::zener;

@@ -95,13 +95,19 @@ void check_keys(const SweepReader& r, const toml::table& table, const std::vecto
   for (const auto& [key, node] : table) {
     const std::string k(key.str());
     if (std::find(known.begin(), known.end(), k) != known.end()) continue;
-    const std::string best = detail::nearest(k, known);
-    r.fail(&node, "unknown key " + k + " in " + where_name + "; did you mean " + best + "? (expected one of: " + [&] {
+    const std::string best = detail::nearest(k.substr(0, 200), known);
+    r.fail(&node, "unknown key " + text_excerpt(k) + " in " + where_name + "; did you mean " + best + "? (expected one of: " + [&] {
       std::string list;
       for (const auto& c : known) list += (list.empty() ? "" : ", ") + c;
       return list;
     }() + ")");
   }
+}
+
+// A scene key an axis, a `set` or an `unset` names: short enough to be quoted in messages whole
+// (the scene's longest key is under 40 characters).
+void check_key_length(const SweepReader& r, const toml::node* node, const std::string& key) {
+  if (key.size() > 200) r.fail(node, "scene key " + escaped_excerpt(key) + " is not a scene key (over 200 characters)");
 }
 
 // A value (typed, with its TOML text: what a --set of it would say) and its label; InputError
@@ -151,6 +157,7 @@ void read_edits(const SweepReader& r, const toml::table& table, const std::files
     std::vector<std::pair<std::string, const toml::node*>> flat;
     flatten(*t, "", flat);
     for (const auto& [key, value] : flat) {
+      check_key_length(r, value, key);
       std::optional<double> unused;
       auto [edit, label] = value_text(r, *value, key, &unused);
       if (key == "ground.file" && value->is_string())
@@ -163,6 +170,7 @@ void read_edits(const SweepReader& r, const toml::table& table, const std::files
     if (!a) r.fail(node, "unset must be an array of scene keys, e.g. unset = [\"model.rod1.order\"]");
     for (const auto& k : *a) {
       if (!k.is_string()) r.fail(&k, "unset: expected scene keys as strings");
+      check_key_length(r, &k, k.as_string()->get());
       s.unset.push_back(k.as_string()->get());
     }
   }
@@ -285,10 +293,12 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
       if (auto k = t.get("key")) {
         if (!k->is_string() || k->as_string()->get().empty()) r.fail(k, "axis key must be a dotted scene key (a string), e.g. \"model.mu\"");
         axis.key = k->as_string()->get();
+        check_key_length(r, k, axis.key);
       }
       if (auto n = t.get("name")) {
         if (!n->is_string() || n->as_string()->get().empty()) r.fail(n, "axis name must be a non-empty string");
         axis.name = n->as_string()->get();
+        if (axis.name.size() > 200) r.fail(n, "axis name " + escaped_excerpt(axis.name) + " is longer than 200 characters");
       }
       if (axis.name.empty()) axis.name = axis.key;
       if (axis.name.empty()) r.fail(&t, "[[axis]] needs key = \"dotted.scene.key\" or, when every value is a table of edits, name = \"column\"");

@@ -78,6 +78,12 @@ std::string escaped_excerpt(std::string_view text, std::size_t max_chars) {
   return "\"" + out + "\"";
 }
 
+std::string text_excerpt(std::string_view text) {
+  const bool plain = text.size() <= 80 && text.find_first_of("\n\t") == std::string_view::npos &&
+                     printable_message(text) == text;
+  return plain ? std::string(text) : escaped_excerpt(text, 60);
+}
+
 std::string printable_message(std::string_view message) {
   std::string out;
   out.reserve(message.size());

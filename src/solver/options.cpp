@@ -54,16 +54,22 @@ std::size_t SolverOptions::steps() const {
   return static_cast<std::size_t>(std::ceil(t_end / h * (1.0 - 1e-12)));
 }
 
+std::string step_count_problem(double t_end, double h) {
+  if (!(t_end / h > kMaxSteps)) return "";
+  std::ostringstream s;
+  s.precision(4);
+  s << "solver.t_end / solver.h = " << t_end / h << " steps is more than the " << kMaxSteps / 1e9
+    << "e9 supported; raise solver.h or shorten solver.t_end";
+  return s.str();
+}
+
 bool SolverOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& m) { if (error) *error = m; return false; };
   std::ostringstream s;
   s.precision(12);
   if (!(std::isfinite(h) && h > 0.0)) { s << "solver.h = " << h << " must be a positive number"; return fail(s.str()); }
   if (!(std::isfinite(t_end) && t_end > 0.0)) { s << "solver.t_end = " << t_end << " must be a positive number"; return fail(s.str()); }
-  if (t_end / h > 2.0e9) {
-    s << "solver.t_end / solver.h = " << t_end / h << " steps is more than the 2e9 supported; raise solver.h";
-    return fail(s.str());
-  }
+  if (const std::string problem = step_count_problem(t_end, h); !problem.empty()) return fail(problem);
   if (t_end / h < 1.0) { s << "solver.h = " << h << " must not exceed solver.t_end = " << t_end; return fail(s.str()); }
   return true;
 }

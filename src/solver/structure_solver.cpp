@@ -9,6 +9,7 @@
 #include <tuple>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/solver/options.hpp"
 #include "adjoin/fractional/weights.hpp"
 #include "adjoin/model/units.hpp"
 #include "adjoin/structure/modal.hpp"
@@ -151,7 +152,7 @@ bool StructureSolverOptions::IsValid(std::string* error) const {
   };
   if (!(std::isfinite(h) && h > 0.0)) return fail("solver.h must be a positive step (s)");
   if (!(std::isfinite(t_end) && t_end > 0.0)) return fail("solver.t_end must be a positive duration (s)");
-  if (t_end / h > 1e9) return fail("solver.t_end / solver.h exceeds 1e9 steps");
+  if (const std::string problem = step_count_problem(t_end, h); !problem.empty()) return fail(problem);
   return true;
 }
 

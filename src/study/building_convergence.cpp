@@ -128,13 +128,13 @@ ConvergenceResult run_building_convergence(const BuildingRunSpec& spec, const Bu
   const std::vector<QuantityError> theirs = reported_quantities(spec, ref);
 
   ConvergenceResult result;
-  result.reference = "a finer run: implicit/" + to_string(ref_engine) + " at h = " + number(h_ref) + " s";
+  result.reference = "a finer run: " + std::string(scheme_name(spec.solver)) + "/" + to_string(ref_engine) + " at h = " + number(h_ref) + " s";
   for (HistoryEngine engine : options.engines) {
     double previous = kNaN;
     std::vector<QuantityError> previous_quantities;
     for (double h : steps) {
       ConvergenceRow row;
-      row.scheme = "implicit";
+      row.scheme = scheme_name(spec.solver);
       row.history = to_string(engine);
       row.h = h;
       row.peak_x1 = row.min_gap = row.friction = kNaN;  // two-block summaries

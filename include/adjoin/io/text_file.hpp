@@ -24,6 +24,10 @@ std::string read_text_file(const std::filesystem::path& file, const std::string&
 // and backslashes escaped. For quoting user input in messages.
 std::string escaped_excerpt(std::string_view text, std::size_t max_chars = 40);
 
+// A key, option or --set as the user wrote it, for messages: the text itself when it is at
+// most 80 characters of printable text (solver.h=0.01), else its escaped_excerpt.
+std::string text_excerpt(std::string_view text);
+
 // A message made safe to print: valid UTF-8 sequences, newlines and tabs kept; other control
 // characters and invalid bytes written as \xNN.
 std::string printable_message(std::string_view message);

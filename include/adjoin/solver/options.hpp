@@ -54,4 +54,9 @@ struct SolverOptions {
   bool IsValid(std::string* error) const;
 };
 
+// The most steps a run takes (two-block and building runs alike), and the one message for a
+// run beyond it (empty when t_end / h is within it).
+inline constexpr double kMaxSteps = 2e9;  // (below 2^31)
+std::string step_count_problem(double t_end, double h);
+
 }  // namespace adjoin

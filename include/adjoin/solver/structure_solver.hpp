@@ -60,6 +60,13 @@ struct StructureSolverOptions {
   bool IsValid(std::string* error) const;
 };
 
+// The solver.scheme these options run, for summaries: "implicit-damped" restarts after every
+// switch, "implicit" by the automatic rule.
+inline const char* scheme_name(const StructureSolverOptions& o) {
+  return o.restart == StructureSolverOptions::Restart::always ? "implicit-damped"
+         : o.restart == StructureSolverOptions::Restart::never ? "implicit (no restart)" : "implicit";
+}
+
 struct StructureState {
   double t = 0.0;
   double ag = 0.0;                 // a_g = -(ground acceleration) [m/s^2]

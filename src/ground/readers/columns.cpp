@@ -170,9 +170,16 @@ std::optional<AccelUnit> unit_in_name(std::string_view name) {
   return std::nullopt;
 }
 
+// The header's column names for messages: each a short excerpt, the first 20 of them (a file
+// with CR-only line ends is one long "header" line).
 std::string list_names(const std::vector<std::string>& names) {
   std::string out;
-  for (std::size_t i = 0; i < names.size(); ++i) out += (i ? ", " : "") + std::to_string(i + 1) + ":" + names[i];
+  const auto plain = [](const std::string& n) {
+    return n.size() <= 40 && std::none_of(n.begin(), n.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == 0x7f; });
+  };
+  for (std::size_t i = 0; i < names.size() && i < 20; ++i)
+    out += (i ? ", " : "") + std::to_string(i + 1) + ":" + (plain(names[i]) ? names[i] : quote_token(names[i]));
+  if (names.size() > 20) out += ", ... (" + std::to_string(names.size()) + " columns)";
   return out;
 }
 
