@@ -61,6 +61,7 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
   const std::string scene = j.value("scene", dir.filename().string());
   const nlohmann::json& peaks = j["peaks"];
   RunPlots result;
+  FigureSet figures;  // all inputs read and every figure drawn before any file is written
   auto target = [&](const std::string& name) { return fs::path(prefix + name + ext); };
 
   // (1) Floor profiles: peak displacement by floor and peak drift by storey, floors upwards.
@@ -85,21 +86,21 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
       << "set ytics 1\nset yrange [0:*]\nset offsets 0, graph 0.08, 0.3, 0\nset key bottom right\n"
       << "set xlabel 'peak displacement relative to the base [m]'\nset ylabel 'floor'\nplot ";
     for (std::size_t k = 0; k < buildings.size(); ++k)
-      s << (k ? ", " : "") << "$x" << buildings[k] << " using 1:2 with linespoints lt " << k + 1 << " pt 7 title 'building "
-        << buildings[k] << "'";
+      s << (k ? ", " : "") << "$x" << buildings[k] << " using 1:2 with linespoints lt " << k + 1 << " pt 7 title "
+        << gnuplot_quote("building " + buildings[k]);
     s << "\nset xlabel 'peak storey drift [m]'\nset ylabel 'storey'\nset yrange [0.5:*]\nplot ";
     for (std::size_t k = 0; k < buildings.size(); ++k)
-      s << (k ? ", " : "") << "$d" << buildings[k] << " using 1:2 with linespoints lt " << k + 1 << " pt 7 title 'building "
-        << buildings[k] << "'";
+      s << (k ? ", " : "") << "$d" << buildings[k] << " using 1:2 with linespoints lt " << k + 1 << " pt 7 title "
+        << gnuplot_quote("building " + buildings[k]);
     s << "\nunset multiplot\n";
-    render_gnuplot(s.str(), target("profiles"), style);
-    result.images.push_back(target("profiles"));
+    figures.draw(s.str(), target("profiles"), style);
   }
 
   // (2) Roof displacements and link forces against time, from timeseries.csv.
   const fs::path csv = dir / "timeseries.csv";
   if (!fs::exists(csv)) {
     result.notes.push_back("no " + csv.string() + " (output.timeseries = true writes it): the roof histories are not drawn");
+    result.images = figures.commit();
     return result;
   }
   const CsvTable ts = read_csv_table(csv);
@@ -121,18 +122,17 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
     << "set xrange [" << gnuplot_number(t.front()) << ":" << gnuplot_number(t.back()) << "]\nset key top right\n"
     << "set xlabel 'time t [s]'\nset ylabel 'roof displacement [m]'\nplot ";
   for (std::size_t k = 0; k < roofs.size(); ++k)
-    s << (k ? ", " : "") << "$d using 1:" << k + 2 << " with lines lt " << k + 1 << " noenhanced title '" << roofs[k] << "'";
+    s << (k ? ", " : "") << "$d using 1:" << k + 2 << " with lines lt " << k + 1 << " noenhanced title " << gnuplot_quote(roofs[k]);
   s << "\n";
   if (!links.empty()) {
     s << "set ylabel 'link force [N]'\nplot ";
     for (std::size_t k = 0; k < links.size(); ++k)
-      s << (k ? ", " : "") << "$d using 1:" << roofs.size() + k + 2 << " with lines lt " << k + 3 << " noenhanced title '"
-        << links[k] << "'";
+      s << (k ? ", " : "") << "$d using 1:" << roofs.size() + k + 2 << " with lines lt " << k + 3 << " noenhanced title "
+        << gnuplot_quote(links[k]);
     s << "\n";
   }
   s << "unset multiplot\n";
-  render_gnuplot(s.str(), target("roofs"), style);
-  result.images.push_back(target("roofs"));
+  figures.draw(s.str(), target("roofs"), style);
 
   // (3) Contact pairs: gap and (with a contact law) contact force against time, each impact
   // marked at its start (gap 0) and at its peak force (impacts.csv); a pair without a contact
@@ -186,9 +186,9 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
       << "set xrange [" << gnuplot_number(t.front()) << ":" << gnuplot_number(t.back()) << "]\nset key top right\n"
       << "set xlabel 'time t [s]'\nset ylabel 'gap [m]'\nplot 0 with lines lc rgb '#888888' dt 3 notitle";
     for (std::size_t k = 0; k < pairs.size(); ++k) {
-      c << ", $c using 1:" << k + 2 << " with lines lt " << k + 1 << " noenhanced title '" << pairs[k] << ".gap'";
+      c << ", $c using 1:" << k + 2 << " with lines lt " << k + 1 << " noenhanced title " << gnuplot_quote(pairs[k] + ".gap");
       if (marked[k])
-        c << ", $i" << k + 1 << " using 1:2 with points lt " << k + 1 << " pt 6 title '" << pairs[k] << " impacts'";
+        c << ", $i" << k + 1 << " using 1:2 with points lt " << k + 1 << " pt 6 title " << gnuplot_quote(pairs[k] + " impacts");
     }
     c << "\n";
     if (forces) {
@@ -200,17 +200,17 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
       }
       c << "set ylabel 'contact force [N]'\nplot ";
       for (std::size_t k = 0; k < pairs.size(); ++k) {
-        c << (k ? ", " : "") << "$c using 1:" << pairs.size() + k + 2 << " with lines lt " << k + 1 << " noenhanced title '"
-          << pairs[k] << ".force'";
+        c << (k ? ", " : "") << "$c using 1:" << pairs.size() + k + 2 << " with lines lt " << k + 1 << " noenhanced title "
+          << gnuplot_quote(pairs[k] + ".force");
         if (marked[k])
-          c << ", $i" << k + 1 << " using 3:4 with points lt " << k + 1 << " pt 7 title '" << pairs[k] << " peak forces'";
+          c << ", $i" << k + 1 << " using 3:4 with points lt " << k + 1 << " pt 7 title " << gnuplot_quote(pairs[k] + " peak forces");
       }
       c << "\n";
     }
     c << "unset multiplot\n";
-    render_gnuplot(c.str(), target("contacts"), style);
-    result.images.push_back(target("contacts"));
+    figures.draw(c.str(), target("contacts"), style);
   }
+  result.images = figures.commit();
   return result;
 }
 

@@ -10,11 +10,13 @@
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/gnuplot.hpp"
 
 namespace adjoin {
@@ -209,52 +211,66 @@ fs::path plot_target(const std::string& out, const fs::path& fallback, const std
 
 // ---------------------------------------------------------------- gnuplot
 
-void render_gnuplot(const std::string& script, const fs::path& image, const PlotStyle& style) {
-  const std::string ext = image.extension().string();
-  std::string terminal;
-  const std::string size = std::to_string(style.width) + "," + std::to_string(style.height);
-  if (ext == ".png") terminal = "set terminal pngcairo size " + size + " enhanced font 'sans,11' linewidth 1\n";
-  else if (ext == ".svg") terminal = "set terminal svg size " + size + " dynamic enhanced font 'sans,11' linewidth 1\n";
-  else throw InputError(image.string() + ": a plot must be a .png or .svg file");
+namespace {
 
-  if (image.has_parent_path()) {
-    std::error_code error;
-    fs::create_directories(image.parent_path(), error);
-    if (error) throw InputError(image.parent_path().string() + ": cannot create the folder: " + error.message());
+// The terminal line for the image's format at the style's size.
+std::string terminal_line(const fs::path& image, const PlotStyle& style, std::string* format) {
+  const std::string ext = image.extension().string();
+  const std::string size = std::to_string(style.width) + "," + std::to_string(style.height);
+  if (ext == ".png") {
+    *format = "png";
+    return "set terminal pngcairo size " + size + " enhanced font 'sans,11' linewidth 1\n";
   }
-  const std::string tag = ".tmp." + std::to_string(::getpid());
-  fs::path temporary = image;
-  temporary += tag + ext;
-  const fs::path script_file = image.string() + tag + ".gp";
-  const fs::path errors = image.string() + tag + ".err";
-  {
-    std::ofstream out(script_file);
-    out << terminal << "set output " << gnuplot_quote(temporary.string()) << "\n" << script << "\nunset output\n";
-    if (!out) throw InputError(script_file.string() + ": cannot write the gnuplot script");
+  if (ext == ".svg") {
+    *format = "svg";
+    return "set terminal svg size " + size + " dynamic enhanced font 'sans,11' linewidth 1\n";
   }
-  const std::string command =
-      "gnuplot " + gnuplot_quote(script_file.string()) + " 2> " + gnuplot_quote(errors.string());
-  const int status = std::system(command.c_str());
-  std::ifstream err_in(errors);
-  std::stringstream err;
-  err << err_in.rdbuf();
-  std::error_code ignored;
-  if (std::getenv("ADJOIN_KEEP_GNUPLOT") == nullptr) fs::remove(script_file, ignored);
-  fs::remove(errors, ignored);
-  if (status != 0 || !fs::exists(temporary)) {
-    fs::remove(temporary, ignored);
-    std::string message = err.str();
-    if (message.size() > 2000) message = message.substr(0, 2000) + "...";
-    throw InputError(image.string() + ": gnuplot failed" +
-                     (status == 127 * 256 ? std::string(" (is gnuplot installed? scripts/setup.sh installs it)")
-                                          : ": " + message));
+  throw InputError(image.string() + ": a plot must be a .png or .svg file");
+}
+
+}  // namespace
+
+void FigureSet::draw(const std::string& script, const fs::path& image, const PlotStyle& style) {
+  std::string format;
+  const std::string terminal = terminal_line(image, style, &format);
+  images_.emplace_back(image, run_gnuplot(terminal + script + "\n", format, image.string()));
+}
+
+std::vector<fs::path> FigureSet::commit() {
+  // Folders that do not exist yet are made now, and removed again if the set fails.
+  std::vector<fs::path> made;
+  std::vector<std::unique_ptr<AtomicFile>> files;
+  try {
+    for (const auto& [image, bytes] : images_) {
+      const fs::path folder = image.parent_path();
+      std::error_code error;
+      if (!folder.empty() && !fs::exists(folder, error)) {
+        for (fs::path p = folder; !p.empty() && !fs::exists(p, error); p = p.parent_path()) made.push_back(p);
+        fs::create_directories(folder, error);
+        if (error) throw InputError(folder.string() + ": cannot create the folder: " + error.message());
+      }
+      files.push_back(std::make_unique<AtomicFile>(image));
+      files.back()->stream().write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    }
+    for (auto& file : files) file->finish();  // every byte written before anything moves
+  } catch (...) {
+    files.clear();  // temporaries removed
+    std::error_code ignored;
+    for (const fs::path& folder : made) fs::remove(folder, ignored);  // innermost first; only if empty
+    throw;
   }
-  std::error_code error;
-  fs::rename(temporary, image, error);
-  if (error) {
-    fs::remove(temporary, ignored);
-    throw InputError(image.string() + ": cannot write the image: " + error.message());
+  std::vector<fs::path> written;
+  for (auto& file : files) {
+    file->publish();
+    written.push_back(file->target());
   }
+  return written;
+}
+
+void render_gnuplot(const std::string& script, const fs::path& image, const PlotStyle& style) {
+  FigureSet figure;
+  figure.draw(script, image, style);
+  figure.commit();
 }
 
 // ---------------------------------------------------------------- run figures
@@ -416,6 +432,7 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
   const bool stick = has_stick(run.phases);
 
   RunPlots result;
+  FigureSet figures;  // all inputs read and every figure drawn before any file is written
   auto target = [&](const std::string& name) { return fs::path(prefix + name + ext); };
 
   // (1) displacements
@@ -428,8 +445,7 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
       << "set key " << key_corner(t, {x1, x2}) << "\n" << bands
       << "plot $d using 1:2 with lines lt 1 title 'x_1', $d using 1:3 with lines lt 2 dt 2 title 'x_2'"
       << (stick ? std::string(", ") + kStickKey : "") << "\n";
-    render_gnuplot(s.str(), target("displacements"), style);
-    result.images.push_back(target("displacements"));
+    figures.draw(s.str(), target("displacements"), style);
   }
 
   // (2) ground acceleration, damper force, relative velocity: three panels on one t axis
@@ -468,8 +484,7 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
       << "plot $d using 1:4 with lines lt 1 title 'relative velocity v_1 − v_2', 0 with lines lc rgb '#888888' "
          "lw 1 notitle\n"
       << "unset multiplot\n";
-    render_gnuplot(s.str(), target("excitation"), style);
-    result.images.push_back(target("excitation"));
+    figures.draw(s.str(), target("excitation"), style);
   }
 
   // (3) rod forces
@@ -482,8 +497,7 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
       << "set key " << key_corner(t, {f1, f2}) << "\n" << bands
       << "plot $d using 1:2 with lines lt 1 title 'f_1 (rod 1)', $d using 1:3 with lines lt 2 title 'f_2 (rod 2)'"
       << (stick ? std::string(", ") + kStickKey : "") << "\n";
-    render_gnuplot(s.str(), target("rod-forces"), style);
-    result.images.push_back(target("rod-forces"));
+    figures.draw(s.str(), target("rod-forces"), style);
   }
 
   // (4) gap with its minimum and the contact line
@@ -513,8 +527,7 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
     s << "plot $d using 1:2 with lines lt 1 title 'ξ = ξ_0 + x_2 − x_1', 0 with lines lc rgb '#b00000' lw 1.5 "
          "title 'contact (ξ = 0)'"
       << extra << "\n";
-    render_gnuplot(s.str(), target("gap"), style);
-    result.images.push_back(target("gap"));
+    figures.draw(s.str(), target("gap"), style);
   }
 
   // (5) pounding with a contact law (impacts.csv): the gap and the contact force on one t
@@ -558,8 +571,7 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
       << "plot $d using 1:3 with lines lt 2 title " << gnuplot_quote(force ? "contact force f_c" : "contact force (not in timeseries.csv)");
     if (!start.empty()) s << ", $p using 1:2 with points pt 7 ps 1.2 lc rgb '#d0451b' title 'peak of each impact'";
     s << "\nunset multiplot\n";
-    render_gnuplot(s.str(), target("contact"), style);
-    result.images.push_back(target("contact"));
+    figures.draw(s.str(), target("contact"), style);
   }
 
   // (6) energy shares, when an energy history is there
@@ -621,11 +633,11 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
       s << (names.empty() ? "" : ", ") << "$e using 1:" << names.size() + 2
         << " with lines lc rgb 'black' lw 2 title 'input'";
     s << "\n";
-    render_gnuplot(s.str(), target("energy"), style);
-    result.images.push_back(target("energy"));
+    figures.draw(s.str(), target("energy"), style);
   } else {
     result.notes.push_back("no energy figure: " + energy_file.string() + " does not exist");
   }
+  result.images = figures.commit();
   return result;
 }
 
@@ -837,21 +849,7 @@ void plot_convergence_csv(const fs::path& csv, const fs::path& image, const Plot
                                 ? csv.parent_path().filename().string()
                                 : csv.filename().string();
   // The title wraps rather than runs off the figure (long reference descriptions).
-  // A double-quoted gnuplot string, lines broken at spaces every ~70 characters by "\n".
-  const std::string title_text = "Work-precision: " + where;
-  std::string wrapped = "\"";
-  std::size_t line = 0;
-  for (char c : title_text) {
-    if (c == ' ' && line >= 70) {
-      wrapped += "\\n";
-      line = 0;
-      continue;
-    }
-    if (c == '"' || c == '\\') wrapped += '\\';
-    wrapped += c;
-    ++line;
-  }
-  wrapped += "\"";
+  const std::string wrapped = gnuplot_quote_wrapped("Work-precision: " + where, 70);
   s << "set title " << wrapped << " noenhanced font ',11'\n"
     << "set logscale xy\nset format y '10^{%L}'\nset format x '%g'\nset mxtics 10\n"
     << "set xlabel 'wall time of the run [s]'\nset ylabel 'error (relative max norm)'\n"

@@ -69,9 +69,23 @@ std::filesystem::path plot_target(const std::string& out, const std::filesystem:
                                   const std::string& option = "--out");
 
 // Runs a gnuplot script (which must not set terminal or output) to make `image` at the
-// style's size, through a temporary file renamed into place. UTF-8 text; enhanced text mode
-// (x_1 is a subscript; use `noenhanced` for verbatim labels).
+// style's size, written through a temporary file renamed into place (after gnuplot finished
+// and the image was checked complete). UTF-8 text; enhanced text mode (x_1 is a subscript;
+// use `noenhanced` for verbatim labels). Text in the script must come from gnuplot_quote.
 void render_gnuplot(const std::string& script, const std::filesystem::path& image, const PlotStyle& style);
+
+// Figures that belong together (the figures of one run folder): each is drawn in memory by
+// draw(); commit() writes them all or none (every one to its temporary first, then all
+// renamed into place; folders created only then). Destroyed without commit(), nothing is
+// written.
+class FigureSet {
+ public:
+  void draw(const std::string& script, const std::filesystem::path& image, const PlotStyle& style);
+  std::vector<std::filesystem::path> commit();
+
+ private:
+  std::vector<std::pair<std::filesystem::path, std::string>> images_;
+};
 
 struct RunPlots {
   std::vector<std::filesystem::path> images;  // in the order listed above
