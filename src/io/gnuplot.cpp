@@ -158,7 +158,7 @@ std::string run_gnuplot(const std::string& script, const std::string& format, co
   std::string bytes = image.contents();
   if (!complete_image(bytes, format))
     throw InputError(what + ": gnuplot wrote an incomplete " + format + " image (" + std::to_string(bytes.size()) +
-                     " bytes; is the temporary folder full?); nothing was written");
+                     " bytes: its write failed, on a full disk or over a file size limit); nothing was written");
   return bytes;
 }
 
