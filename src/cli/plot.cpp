@@ -93,7 +93,8 @@ int plot_sweep_command(const PlotArgs& a) {
   options.log_x = a.log_x;
   options.log_y = a.log_y;
   options.title = a.title;
-  plot_sweep_csv(a.input, options, image, style);
+  const std::vector<std::string> notes = plot_sweep_csv(a.input, options, image, style);
+  for (const auto& note : notes) std::cerr << note << "\n";
   std::cout << "wrote " << image.string() << "\n";
   return 0;
 }

@@ -137,7 +137,10 @@ struct SweepPlotOptions {
   bool log_x = false, log_y = false;
   std::string title;           // default: the CSV's file name
 };
-void plot_sweep_csv(const std::filesystem::path& csv, const SweepPlotOptions& options,
-                    const std::filesystem::path& image, const PlotStyle& style);
+// Returns notes for the terminal (rows a log axis cannot show). Axis labels name the
+// quantity and its unit for the columns adjoin's tables have; a text-valued --x column is a
+// categorical axis (one tick per value, in the table's order).
+std::vector<std::string> plot_sweep_csv(const std::filesystem::path& csv, const SweepPlotOptions& options,
+                                        const std::filesystem::path& image, const PlotStyle& style);
 
 }  // namespace adjoin
