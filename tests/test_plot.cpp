@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -199,9 +200,11 @@ TEST_CASE("plot spectrum, converge and sweep draw from their CSV tables", "[plot
   INFO(r.err);
   REQUIRE(r.status == 0);
   const std::string curves = slurp(dir / "sweep.svg");
-  CHECK(curves.find("model.mu") != std::string::npos);
-  CHECK(curves.find("peak_x1") != std::string::npos);
-  CHECK(curves.find("ground = sine, strong") != std::string::npos);
+  CHECK(curves.find("friction threshold μ") != std::string::npos);  // model.mu's label
+  CHECK(curves.find("peak_x1") != std::string::npos);                // a column with no label keeps its name
+  CHECK(curves.find(">sine, strong<") != std::string::npos);         // key entries: the group's values
+  CHECK(curves.find(">ground<") != std::string::npos);               // under the group column as the key's title
+  CHECK(curves.find("smallest gap [m]") != std::string::npos);
   r = run_cli("plot sweep '" + sweep.string() + "' --x model.mu --y peak_x1 --size 500x400");
   INFO(r.err);
   REQUIRE(r.status == 0);
@@ -291,9 +294,10 @@ TEST_CASE("plot run on a building run draws floor profiles of both buildings and
   CHECK(profiles.find("building A") != std::string::npos);
   CHECK(profiles.find("building B") != std::string::npos);
   const std::string roofs = slurp(svg / "roofs.svg");
-  CHECK(roofs.find("A.x5") != std::string::npos);
-  CHECK(roofs.find("B.x3") != std::string::npos);
-  CHECK(roofs.find("link1.force") != std::string::npos);
+  CHECK(roofs.find("A: roof, floor 5") != std::string::npos);
+  CHECK(roofs.find("B: roof, floor 3") != std::string::npos);
+  CHECK(roofs.find("link 1") != std::string::npos);
+  CHECK(roofs.find("link force [kN]") != std::string::npos);
   // Chosen channels only: one panel each, with the names on the axes.
   const fs::path chosen = scratch("building-channels") / "";
   auto picked = run_cli("plot run '" + dir.string() + "' --channels A.x5,B.a3_abs,link1.stroke --size 700x900 --out '" +
@@ -500,4 +504,105 @@ TEST_CASE("plot run reads and draws everything before writing: a damaged CSV lea
   CHECK(r.err.find("energy.csv:3") != std::string::npos);
   CHECK_FALSE(fs::exists(out));  // not even the folder
   CHECK(leftovers(dir.parent_path()).empty());
+}
+
+// ---------------------------------------------------------------- round 3: figures for a report
+
+namespace {
+
+// The distinct stroke colours of the curves in an SVG of gnuplot's.
+std::set<std::string> stroke_colours(const std::string& svg) {
+  std::set<std::string> colours;
+  for (std::size_t at = svg.find("stroke='rgb("); at != std::string::npos; at = svg.find("stroke='rgb(", at + 1))
+    colours.insert(svg.substr(at, svg.find(')', at) - at));
+  return colours;
+}
+
+}  // namespace
+
+TEST_CASE("plot sweep: 13 groups in 12 distinct colours, y from zero, text x, engineering ticks", "[plot][cli][r3]") {
+  require_gnuplot();
+  const fs::path dir = scratch("report-sweep");
+  std::string text = "motion,link.1.slip_ratio,link1.energy_share,link1.force_max,damper\n";
+  for (int g = 0; g < 13; ++g)
+    for (int i = 0; i < 3; ++i)
+      text += "m" + std::to_string(g) + "," + std::to_string(0.1 * i) + "," + std::to_string(0.05 * (g + i)) + "," +
+              std::to_string(1e7 * (1 + i)) + "," + (i % 2 ? "friction" : "none") + "\n";
+  std::ofstream(dir / "s.csv") << text;
+  const std::string csv = "'" + (dir / "s.csv").string() + "'";
+  auto r = run_cli("plot sweep " + csv + " --x link.1.slip_ratio --y link1.energy_share --group motion --out '" +
+                   (dir / "a.svg").string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string a = slurp(dir / "a.svg");
+  // 12 colours for the curves (the 13th repeats the first, dashed), besides the grey of the
+  // grid and the key's box; the palette cycled at 8 before.
+  std::set<std::string> colours = stroke_colours(a);
+  colours.erase("stroke='rgb(208, 208, 208"), colours.erase("stroke='rgb(176, 176, 176");
+  CHECK(colours.size() == 12);
+  CHECK(a.find("share of the input energy, link 1") != std::string::npos);
+  CHECK(a.find("slip force of link 1 / weight of building B") != std::string::npos);
+  CHECK(a.find("-0.1") == std::string::npos);  // the axis starts at 0, not below
+  // Forces of 1e7 N: ticks as 1.0e7, not 1x10^7.
+  r = run_cli("plot sweep " + csv + " --x link.1.slip_ratio --y link1.force_max --out '" + (dir / "b.svg").string() + "'");
+  REQUIRE(r.status == 0);
+  const std::string b = slurp(dir / "b.svg");
+  CHECK(b.find("e7") != std::string::npos);
+  CHECK(b.find("10^") == std::string::npos);
+  CHECK(b.find("×") == std::string::npos);
+  CHECK(b.find("peak force, link 1 [N]") != std::string::npos);
+  // A text-valued x column is a categorical axis (it was "expected a number", exit 2).
+  r = run_cli("plot sweep " + csv + " --x damper --y link1.energy_share --group motion --out '" + (dir / "c.svg").string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string c = slurp(dir / "c.svg");
+  CHECK(c.find(">none<") != std::string::npos);
+  CHECK(c.find(">friction<") != std::string::npos);
+  // --logx with zeros says how many rows it leaves out; with nothing left it is exit 2.
+  r = run_cli("plot sweep " + csv + " --x link.1.slip_ratio --y link1.energy_share --logx --out '" + (dir / "d.png").string() + "'");
+  CHECK(r.status == 0);
+  CHECK(r.err.find("--logx: 13 row(s) with link.1.slip_ratio <= 0 are not drawn") != std::string::npos);
+  std::ofstream(dir / "zeros.csv") << "a,b\n0,1\n-1,2\n";
+  r = run_cli("plot sweep '" + (dir / "zeros.csv").string() + "' --x a --y b --logx");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("--logx: every value of column 'a' is zero or negative") != std::string::npos);
+  r = run_cli("plot sweep " + csv + " --x damper --y link1.energy_share --logx");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("holds text") != std::string::npos);
+}
+
+TEST_CASE("plot run: overlays of several runs, a time window, a run without links titled so", "[plot][cli][r3]") {
+  require_gnuplot();
+  const fs::path linked = scratch("overlay-linked"), unlinked = scratch("overlay-unlinked");
+  const std::string scene = "'" + kSource + "/records/scenes/buildings/two-frames.toml' --quiet --set solver.t_end=6 ";
+  REQUIRE(run_cli("run " + scene + "--out '" + linked.string() + "'").status == 0);
+  REQUIRE(run_cli("run " + scene + "--unset link --out '" + unlinked.string() + "'").status == 0);
+  const fs::path out = scratch("overlay-out") / "";
+  auto r = run_cli("plot run '" + linked.string() + "' '" + unlinked.string() + "' --format svg --window 1:4 --out '" +
+                   out.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string svg = slurp(out / "overlay.svg");
+  CHECK(svg.find("(overlay-linked)") != std::string::npos);
+  CHECK(svg.find("(no links) (overlay-unlinked)") != std::string::npos);
+  CHECK(svg.find("displacement, floor 5, building") != std::string::npos);  // (wrapped before "A [m]")
+  // The window's ends are the axis' ends: ticks 1 to 4, none at 0 or 5.
+  CHECK(svg.find(">1<") != std::string::npos);
+  CHECK(svg.find(">4<") != std::string::npos);
+  CHECK(svg.find(">5<") == std::string::npos);
+  // One run without links: its figures say so.
+  r = run_cli("plot run '" + unlinked.string() + "' --format svg");
+  REQUIRE(r.status == 0);
+  CHECK(slurp(unlinked / "profiles.svg").find("(no links)") != std::string::npos);
+  // Windows: bad syntax, T0 >= T1 and a window outside the run are exit 2 naming --window.
+  for (const char* bad : {"5", "a:b", "3:3", "4:2", "100:200"}) {
+    r = run_cli("plot run '" + linked.string() + "' --window '" + bad + "' --out '" + out.string() + "'");
+    INFO(bad << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.err.find("--window") != std::string::npos);
+  }
+  // The help's example names real columns.
+  r = run_cli("plot run --help");
+  CHECK(r.out.find("A.drift1") == std::string::npos);
+  CHECK(r.out.find("--window") != std::string::npos);
 }

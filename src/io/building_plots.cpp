@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
+#include <tuple>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
@@ -11,6 +13,7 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/io/gnuplot.hpp"
 #include "adjoin/io/plots.hpp"
+#include "adjoin/structure/channels.hpp"
 
 namespace adjoin {
 // (plots.cpp) summary.json parsed; InputError naming the file if it is not JSON.
@@ -33,6 +36,13 @@ std::vector<double> profile(const nlohmann::json& peaks, const std::string& pref
     out.push_back(peaks[key]["max_abs"].get<double>());
   }
   return out;
+}
+
+// A force axis in N, kN or MN by the largest value: the divisor and the unit.
+std::pair<double, std::string> force_unit(double peak) {
+  if (peak >= 1e6) return {1e6, "MN"};
+  if (peak >= 1e3) return {1e3, "kN"};
+  return {1.0, "N"};
 }
 
 std::vector<double> counting(std::size_t n) {
@@ -58,7 +68,9 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
   const fs::path summary_file = dir / "summary.json";
   const nlohmann::json j = read_summary_json(summary_file);
   const std::string ext = plot_extension(style.format);
-  const std::string scene = j.value("scene", dir.filename().string());
+  // A run whose scene lost its links (--unset link, a sweep's "no damper" point) says so.
+  const bool unlinked = j.contains("links") && j["links"].is_array() && j["links"].empty();
+  const std::string scene = j.value("scene", dir.filename().string()) + (unlinked ? " (no links)" : "");
   const nlohmann::json& peaks = j["peaks"];
   RunPlots result;
   FigureSet figures;  // all inputs read and every figure drawn before any file is written
@@ -82,13 +94,14 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
     }
     if (buildings.empty()) throw InputError(summary_file.string() + ": no floor peaks (A.x1, ...) in \"peaks\"");
     s << "set multiplot layout 1,2 title " << gnuplot_quote(scene + ": peak floor displacements and storey drifts")
-      << " noenhanced font ',12'\n"
-      << "set ytics 1\nset yrange [0:*]\nset offsets 0, graph 0.08, 0.3, 0\nset key bottom right\n"
-      << "set xlabel 'peak displacement relative to the base [m]'\nset ylabel 'floor'\nplot ";
+      << " noenhanced font ',12' margins 0.08,0.97,0.2,0.92 spacing 0.09,0\n"
+      << "set ytics 1\nset yrange [0:*]\nset xrange [0:*]\nset offsets 0, graph 0.08, 0.3, 0\n"
+      << "set key at screen 0.5, screen 0.04 center horizontal\n"
+      << "set xlabel 'peak displacement relative to the ground [m]'\nset ylabel 'floor'\nplot ";
     for (std::size_t k = 0; k < buildings.size(); ++k)
       s << (k ? ", " : "") << "$x" << buildings[k] << " using 1:2 with linespoints lt " << k + 1 << " pt 7 title "
         << gnuplot_quote("building " + buildings[k]);
-    s << "\nset xlabel 'peak storey drift [m]'\nset ylabel 'storey'\nset yrange [0.5:*]\nplot ";
+    s << "\nset xlabel 'peak storey drift [m]'\nset ylabel 'storey'\nset yrange [0.5:*]\nset xrange [0:*]\nplot ";
     for (std::size_t k = 0; k < buildings.size(); ++k)
       s << (k ? ", " : "") << "$d" << buildings[k] << " using 1:2 with linespoints lt " << k + 1 << " pt 7 title "
         << gnuplot_quote("building " + buildings[k]);
@@ -103,7 +116,8 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
     result.images = figures.commit();
     return result;
   }
-  const CsvTable ts = read_csv_table(csv);
+  CsvTable ts = read_csv_table(csv);
+  keep_time_window(ts, style);
   const std::vector<double> t = ts.numbers("t");
   std::vector<std::string> roofs, links;
   for (const char* b : {"A", "B"}) {
@@ -118,17 +132,28 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
   for (const auto& l : links) columns.push_back(ts.numbers(l));
   gnuplot_datablock(s, "d", columns);
   s << "set multiplot layout " << (links.empty() ? 1 : 2) << ",1 title "
-    << gnuplot_quote(scene + ": roof displacements" + (links.empty() ? "" : " and link forces")) << " noenhanced font ',12'\n"
-    << "set xrange [" << gnuplot_number(t.front()) << ":" << gnuplot_number(t.back()) << "]\nset key top right\n"
+    << gnuplot_quote(scene + ": roof displacements" + (links.empty() ? "" : " and link forces")) << " noenhanced font ',12'"
+    << " margins 0.1,0.74,0.1,0.92 spacing 0,0.12\n"
+    << "set xrange [" << gnuplot_number(t.front()) << ":" << gnuplot_number(t.back()) << "]\n"
+    << "set key outside right top vertical Left reverse noenhanced\n"
     << "set xlabel 'time t [s]'\nset ylabel 'roof displacement [m]'\nplot ";
-  for (std::size_t k = 0; k < roofs.size(); ++k)
-    s << (k ? ", " : "") << "$d using 1:" << k + 2 << " with lines lt " << k + 1 << " noenhanced title " << gnuplot_quote(roofs[k]);
+  for (std::size_t k = 0; k < roofs.size(); ++k) {
+    const std::string building = roofs[k].substr(0, 1), floor = roofs[k].substr(3);
+    s << (k ? ", " : "") << "$d using 1:" << k + 2 << " with lines lt " << k + 1 << " title "
+      << gnuplot_quote(building + ": roof, floor " + floor);
+  }
   s << "\n";
   if (!links.empty()) {
-    s << "set ylabel 'link force [N]'\nplot ";
+    // Forces of buildings in kN or MN: tick labels that read at a glance.
+    double peak = 0.0;
+    for (std::size_t c = 1 + roofs.size(); c < columns.size(); ++c)
+      for (double v : columns[c])
+        if (std::isfinite(v)) peak = std::max(peak, std::abs(v));
+    const auto [scale, unit] = force_unit(peak);
+    s << "set ylabel " << gnuplot_quote("link force [" + unit + "]") << "\nplot ";
     for (std::size_t k = 0; k < links.size(); ++k)
-      s << (k ? ", " : "") << "$d using 1:" << roofs.size() + k + 2 << " with lines lt " << k + 3 << " noenhanced title "
-        << gnuplot_quote(links[k]);
+      s << (k ? ", " : "") << "$d using 1:($" << roofs.size() + k + 2 << "/" << gnuplot_number(scale) << ") with lines lt "
+        << k + 3 << " title " << gnuplot_quote("link " + links[k].substr(4, links[k].find('.') - 4));
     s << "\n";
   }
   s << "unset multiplot\n";
@@ -182,8 +207,9 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
     }
     c << "set multiplot layout " << (forces ? 2 : 1) << ",1 title "
       << gnuplot_quote(scene + ": contact gaps" + (forces ? " and forces" : "") +
-                     (std::find(marked.begin(), marked.end(), true) != marked.end() ? ", impacts marked" : "")) << " noenhanced font ',12'\n"
-      << "set xrange [" << gnuplot_number(t.front()) << ":" << gnuplot_number(t.back()) << "]\nset key top right\n"
+                     (std::find(marked.begin(), marked.end(), true) != marked.end() ? ", impacts marked" : "")) << " noenhanced font ',12' margins 0.1,0.74,0.1,0.92 spacing 0,0.12\n"
+      << "set xrange [" << gnuplot_number(t.front()) << ":" << gnuplot_number(t.back()) << "]\n"
+      << "set key outside right top vertical Left reverse noenhanced\n"
       << "set xlabel 'time t [s]'\nset ylabel 'gap [m]'\nplot 0 with lines lc rgb '#888888' dt 3 notitle";
     for (std::size_t k = 0; k < pairs.size(); ++k) {
       c << ", $c using 1:" << k + 2 << " with lines lt " << k + 1 << " noenhanced title " << gnuplot_quote(pairs[k] + ".gap");
@@ -214,42 +240,145 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
   return result;
 }
 
-void plot_run_channels(const fs::path& dir, const std::vector<std::string>& channels, const fs::path& image,
-                       const PlotStyle& style, const std::string& option) {
-  constexpr std::size_t kMostPanels = 8;
+namespace {
+
+// "m/s^2" as it reads on an axis.
+std::string pretty_unit(const std::string& unit) { return unit == "m/s^2" ? "m/s²" : unit; }
+
+// The label of a time-series column with its unit: a building's channels from the channel
+// table (structure/channels.hpp), a two-block run's from its own list; else the name.
+std::string channel_label(const std::string& name, bool si) {
+  using structure::ChannelScope;
+  using structure::Quantity;
+  auto with_unit = [&](const std::string& label, const std::string& unit) {
+    return label + (si ? " [" + pretty_unit(unit) + "]" : " (dimensionless)");
+  };
+  static const std::vector<std::tuple<const char*, const char*, const char*>> two_block{
+      {"x1", "displacement x_1", "m"}, {"x2", "displacement x_2", "m"},  {"v1", "velocity v_1", "m/s"},
+      {"v2", "velocity v_2", "m/s"},   {"f1", "rod force f_1", "N"},     {"f2", "rod force f_2", "N"},
+      {"q", "damper force q", "N"},    {"ag", "ground acceleration a_g", "m/s^2"}, {"gap", "gap ξ", "m"},
+      {"fc", "contact force f_c", "N"}};
+  for (const auto& [column, label, unit] : two_block)
+    if (name == column) return with_unit(label, unit);
+  const auto dot = name.find('.');
+  if (dot == std::string::npos) return name;
+  const std::string head = name.substr(0, dot), tail = name.substr(dot + 1);
+  auto number_after = [](const std::string& text, std::size_t from) -> int {
+    if (from >= text.size() || !std::all_of(text.begin() + static_cast<long>(from), text.end(), ::isdigit) ||
+        text.size() - from > 6)
+      return -1;
+    return std::stoi(text.substr(from));
+  };
+  for (const auto& q : structure::quantities()) {
+    const std::string stem = q.stem, suffix = q.suffix;
+    std::string element;
+    if ((q.scope == ChannelScope::floor || q.scope == ChannelScope::storey) && (head == "A" || head == "B") &&
+        tail.rfind(stem, 0) == 0 && tail.size() > stem.size() + suffix.size() &&
+        tail.compare(tail.size() - suffix.size(), suffix.size(), suffix) == 0) {
+      const int i = number_after(tail.substr(0, tail.size() - suffix.size()), stem.size());
+      if (i < 0) continue;
+      element = (q.scope == ChannelScope::floor ? "floor " : "storey ") + std::to_string(i) + ", building " + head;
+    } else if (q.scope == ChannelScope::building && (head == "A" || head == "B") && tail == stem) {
+      element = "building " + head;
+    } else if ((q.scope == ChannelScope::link || q.scope == ChannelScope::contact) && tail == stem) {
+      const std::string kind = q.scope == ChannelScope::link ? "link" : "contact";
+      const int k = head.rfind(kind, 0) == 0 ? number_after(head, kind.size()) : -1;
+      if (k < 0) continue;
+      element = (kind == "link" ? "link " : "contact pair ") + std::to_string(k);
+    } else {
+      continue;
+    }
+    static const std::map<Quantity, const char*> what{
+        {Quantity::displacement, "displacement"},       {Quantity::absolute_acceleration, "absolute acceleration"},
+        {Quantity::drift, "drift"},                     {Quantity::storey_shear, "shear"},
+        {Quantity::base_shear, "base shear"},           {Quantity::link_force, "force"},
+        {Quantity::link_stroke, "stroke"},              {Quantity::contact_gap, "gap"},
+        {Quantity::contact_force, "force"}};
+    return with_unit(std::string(what.at(q.quantity)) + ", " + element, q.unit);
+  }
+  return name;
+}
+
+struct ChannelRun {
+  fs::path dir;
+  std::string scene;
+  bool si = true;
+  CsvTable series;
+};
+
+ChannelRun load_channel_run(const fs::path& dir, const std::vector<std::string>& channels, const PlotStyle& style,
+                            const std::string& option) {
+  ChannelRun run{dir, dir.filename().string(), true, {}};
+  if (run.scene.empty()) run.scene = dir.parent_path().filename().string();
+  const fs::path csv = dir / "timeseries.csv";
+  if (!fs::exists(csv))
+    throw InputError(option + ": " + csv.string() + " does not exist (output.timeseries = true writes it)");
+  run.series = read_csv_table(csv);
+  // Every name is checked before anything is drawn, so a typo names itself and lists the rest.
+  for (const auto& name : channels) (void)run.series.column(name, option);
+  keep_time_window(run.series, style);
+  if (fs::exists(dir / "summary.json")) {
+    const nlohmann::json j = read_summary_json(dir / "summary.json");
+    if (j.is_object() && j.contains("scene") && j["scene"].is_string()) run.scene = j["scene"].get<std::string>();
+    if (j.is_object() && j.contains("units") && j["units"].is_string()) run.si = j["units"].get<std::string>() != "dimensionless";
+    if (j.is_object() && j.contains("structure") && j.contains("links") && j["links"].is_array() && j["links"].empty())
+      run.scene += " (no links)";
+  }
+  return run;
+}
+
+}  // namespace
+
+void plot_runs_channels(const std::vector<fs::path>& dirs, const std::vector<std::string>& channels,
+                        const fs::path& image, const PlotStyle& style, const std::string& option) {
+  constexpr std::size_t kMostPanels = 8, kMostRuns = 24;
   if (channels.empty()) throw InputError(option + ": expected one or more channel names, comma separated");
   if (channels.size() > kMostPanels)
     throw InputError(option + ": " + std::to_string(channels.size()) + " channels given; at most " +
                      std::to_string(kMostPanels) + " panels fit one figure");
-  const fs::path csv = dir / "timeseries.csv";
-  if (!fs::exists(csv))
-    throw InputError(option + ": " + csv.string() + " does not exist (output.timeseries = true writes it)");
-  const CsvTable ts = read_csv_table(csv);
-  // Every name is checked before anything is drawn, so a typo names itself and lists the rest.
-  for (const auto& name : channels) (void)ts.column(name, option);
-  const std::vector<double> t = ts.numbers("t");
-  if (t.empty()) throw InputError(csv.string() + ": no rows");
-  std::vector<std::vector<double>> data{t};
-  for (const auto& name : channels) data.push_back(ts.numbers(name));
-  std::string scene = dir.filename().string();
-  if (fs::exists(dir / "summary.json")) {
-    const nlohmann::json j = read_summary_json(dir / "summary.json");
-    if (j.is_object() && j.contains("scene") && j["scene"].is_string()) scene = j["scene"].get<std::string>();
-  }
+  if (dirs.size() > kMostRuns)
+    throw InputError(std::to_string(dirs.size()) + " run folders given; at most " + std::to_string(kMostRuns) +
+                     " curves per panel can be told apart");
+  std::vector<ChannelRun> runs;
+  for (const auto& dir : dirs) runs.push_back(load_channel_run(dir, channels, style, option));
   std::ostringstream s;
   s << kGnuplotPreamble;
-  gnuplot_datablock(s, "d", data);
-  s << "set multiplot layout " << channels.size() << ",1 title " << gnuplot_quote(scene + ": chosen channels")
-    << " noenhanced font ',12'\n"
-    << "set xrange [" << gnuplot_number(t.front()) << ":" << gnuplot_number(t.back()) << "]\nset key top right\n"
+  double t0 = INFINITY, t1 = -INFINITY;
+  for (std::size_t r = 0; r < runs.size(); ++r) {
+    std::vector<std::vector<double>> data{runs[r].series.numbers("t")};
+    for (const auto& name : channels) data.push_back(runs[r].series.numbers(name));
+    t0 = std::min(t0, data[0].front());
+    t1 = std::max(t1, data[0].back());
+    gnuplot_datablock(s, "r" + std::to_string(r), data);
+  }
+  const bool overlay = runs.size() > 1;
+  // Legend entries: the scene and its folder (two runs of one scene differ by folder).
+  auto run_label = [&](const ChannelRun& run) {
+    return overlay ? run.scene + " (" + run.dir.filename().string() + ")" : run.scene;
+  };
+  const std::string title = overlay ? "chosen channels of " + std::to_string(runs.size()) + " runs"
+                                    : runs[0].scene + ": chosen channels";
+  s << "set multiplot layout " << channels.size() << ",1 title " << gnuplot_quote(title) << " noenhanced font ',12'"
+    << (overlay ? " margins 0.12,0.70,0.09,0.92 spacing 0,0.03" : "") << "\n"
+    << "set xrange [" << gnuplot_number(t0) << ":" << gnuplot_number(t1) << "]\n"
+    << (overlay ? "set key outside right top vertical Left reverse noenhanced\n" : "set key top right\n")
     << "set format x ''\nunset xlabel\n";
   for (std::size_t k = 0; k < channels.size(); ++k) {
-    if (k + 1 == channels.size()) s << "set format x '%g'\nset xlabel 'time t [s]'\n";
-    s << "set ylabel " << gnuplot_quote(channels[k]) << " noenhanced\nplot $d using 1:" << k + 2 << " with lines lt "
-      << k + 1 << " noenhanced title " << gnuplot_quote(channels[k]) << "\n";
+    if (k + 1 == channels.size()) s << "set format x '%g'\nset xlabel 'time t" << (runs[0].si ? " [s]'" : " (dimensionless)'") << "\n";
+    if (overlay && k == 1) s << "unset key\n";
+    s << "set ylabel " << gnuplot_quote_wrapped(channel_label(channels[k], runs[0].si), 24) << " noenhanced\nplot ";
+    for (std::size_t r = 0; r < runs.size(); ++r)
+      s << (r ? ", " : "") << "$r" << r << " using 1:" << k + 2 << " with lines lt " << (overlay ? r : k) % 12 + 1
+        << " dt " << (overlay ? r / 12 + 1 : 1) << " noenhanced title " << gnuplot_quote(overlay ? run_label(runs[r]) : channels[k]);
+    s << "\n";
   }
   s << "unset multiplot\n";
   render_gnuplot(s.str(), image, style);
+}
+
+void plot_run_channels(const fs::path& dir, const std::vector<std::string>& channels, const fs::path& image,
+                       const PlotStyle& style, const std::string& option) {
+  plot_runs_channels({dir}, channels, image, style, option);
 }
 
 }  // namespace adjoin

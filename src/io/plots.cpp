@@ -211,6 +211,41 @@ fs::path plot_target(const std::string& out, const fs::path& fallback, const std
   return out;
 }
 
+void parse_time_window(const std::string& text, PlotStyle* style, const std::string& option) {
+  const auto colon = text.find(':');
+  double from = 0.0, to = 0.0;
+  std::string excerpt = text.substr(0, 40);
+  for (char& c : excerpt)
+    if (static_cast<unsigned char>(c) < 0x20) c = '?';
+  if (colon == std::string::npos || !parse_double(text.substr(0, colon), &from) ||
+      !parse_double(text.substr(colon + 1), &to) || !std::isfinite(from) || !std::isfinite(to))
+    throw InputError(option + " '" + excerpt + (text.size() > 40 ? "...'" : "'") +
+                     ": expected T0:T1, two times in seconds (e.g. 5:15)");
+  if (!(from < to))
+    throw InputError(option + " '" + excerpt + "': expected T0 < T1 (a window of some length)");
+  style->window = std::pair{from, to};
+}
+
+void keep_time_window(CsvTable& series, const PlotStyle& style) {
+  if (!style.window) return;
+  const auto [from, to] = *style.window;
+  const std::vector<double> t = series.numbers("t", "the time of a time history");
+  CsvTable kept = series;
+  kept.rows.clear();
+  kept.lines.clear();
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= from && t[i] <= to) {
+      kept.rows.push_back(series.rows[i]);
+      kept.lines.push_back(series.lines[i]);
+    }
+  if (kept.rows.size() < 2) {
+    const std::string span = t.empty() ? "no rows" : "t from " + num(t.front()) + " to " + num(t.back());
+    throw InputError("--window " + num(from) + ":" + num(to) + ": " + std::to_string(kept.rows.size()) + " row(s) of " +
+                     series.file.string() + " in the window (it has " + span + "); expected at least 2");
+  }
+  series = std::move(kept);
+}
+
 // ---------------------------------------------------------------- gnuplot
 
 namespace {
@@ -317,7 +352,7 @@ nlohmann::json read_summary_json(const fs::path& file) {
 
 namespace {
 
-RunData load_run(const fs::path& dir) {
+RunData load_run(const fs::path& dir, const PlotStyle& style) {
   if (!fs::is_directory(dir))
     throw InputError(dir.string() + ": not a folder (expected the output folder of `adjoin run`)");
   RunData run;
@@ -344,6 +379,7 @@ RunData load_run(const fs::path& dir) {
                          "the timeseries.csv of `adjoin run`; the scene needs output.timeseries = true");
   for (const char* c : {"t", "x1", "x2", "v1", "v2", "f1", "f2", "q", "ag", "gap"})
     run.series.column(c, "needed for the run figures");
+  keep_time_window(run.series, style);
   if (run.series.rows.size() < 2)
     throw InputError(run.series.file.string() + ": fewer than two rows (expected a time history)");
   // Phases from the CSV when the summary has none.
@@ -415,7 +451,7 @@ std::string title_line(const std::string& scene, const std::string& what) {
 
 RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyle& style) {
   if (fs::is_directory(dir) && is_building_run(dir)) return plot_building_run(dir, prefix, style);
-  const RunData run = load_run(dir);
+  const RunData run = load_run(dir, style);
   const std::string ext = plot_extension(style.format);
   const bool si = run.si;
   const CsvTable& ts = run.series;

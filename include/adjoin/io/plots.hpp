@@ -24,6 +24,8 @@
 // names the file, line or column and what was expected.
 #include <cstddef>
 #include <filesystem>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -55,7 +57,15 @@ CsvTable read_csv_table(const std::filesystem::path& file);
 struct PlotStyle {
   std::string format = "png";  // "png" or "svg"
   int width = 900, height = 600;
+  // Time histories drawn only for from <= t <= to (--window T0:T1); none: the whole run.
+  std::optional<std::pair<double, double>> window;
 };
+
+// Parses --window "T0:T1" (numbers, T0 < T1) into the style; InputError naming `option`.
+void parse_time_window(const std::string& text, PlotStyle* style, const std::string& option = "--window");
+// Keeps the rows of a time-series table (column t) inside the style's window; InputError if
+// fewer than two are left (naming the window and the span the table has).
+void keep_time_window(CsvTable& series, const PlotStyle& style);
 
 // Checks "png"/"svg" (InputError naming `option` otherwise) and returns the extension (".png").
 std::string plot_extension(const std::string& format, const std::string& option = "--format");
@@ -110,6 +120,11 @@ RunPlots plot_building_run(const std::filesystem::path& dir, const std::string& 
 void plot_run_channels(const std::filesystem::path& dir, const std::vector<std::string>& channels,
                        const std::filesystem::path& image, const PlotStyle& style,
                        const std::string& option = "--channels");
+// The same channels of several run folders in one figure: a panel per channel, a curve per
+// run (legend: scene and folder), each run on its own time grid. At most 24 runs.
+void plot_runs_channels(const std::vector<std::filesystem::path>& dirs, const std::vector<std::string>& channels,
+                        const std::filesystem::path& image, const PlotStyle& style,
+                        const std::string& option = "--channels");
 
 // PSA and SD against period (log axis), one curve per damping; title after "Elastic response
 // spectra: ". From memory, or from the CSV of `adjoin spectrum` (title: the file's name).
