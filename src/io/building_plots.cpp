@@ -99,11 +99,11 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
       << "set key at screen 0.5, screen 0.04 center horizontal\n"
       << "set xlabel 'peak displacement relative to the ground [m]'\nset ylabel 'floor'\nplot ";
     for (std::size_t k = 0; k < buildings.size(); ++k)
-      s << (k ? ", " : "") << "$x" << buildings[k] << " using 1:2 with linespoints lt " << k + 1 << " pt 7 title "
+      s << (k ? ", " : "") << "$x" << buildings[k] << " using 1:2 with linespoints lt " << k + 1 << " title "
         << gnuplot_quote("building " + buildings[k]);
     s << "\nset xlabel 'peak storey drift [m]'\nset ylabel 'storey'\nset yrange [0.5:*]\nset xrange [0:*]\nplot ";
     for (std::size_t k = 0; k < buildings.size(); ++k)
-      s << (k ? ", " : "") << "$d" << buildings[k] << " using 1:2 with linespoints lt " << k + 1 << " pt 7 title "
+      s << (k ? ", " : "") << "$d" << buildings[k] << " using 1:2 with linespoints lt " << k + 1 << " title "
         << gnuplot_quote("building " + buildings[k]);
     s << "\nunset multiplot\n";
     figures.draw(s.str(), target("profiles"), style);

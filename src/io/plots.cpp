@@ -872,7 +872,7 @@ void plot_convergence_csv(const fs::path& csv, const fs::path& image, const Plot
     const std::string name = "c" + std::to_string(plots.size());
     datablock(s, name, cols);
     plots.push_back("$" + name + " using 1:2 with linespoints lt " + std::to_string(plots.size() + 1) +
-                    " pt 7 ps 1.2 title " + gnuplot_quote(key.first + " / " + key.second) + " noenhanced");
+                    " ps 1.2 title " + gnuplot_quote(key.first + " / " + key.second) + " noenhanced");
   }
   if (plots.empty())
     throw InputError(csv.string() + ": no rows with wall_seconds > 0 and error > 0 to plot on log axes");
