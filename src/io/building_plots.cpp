@@ -224,12 +224,20 @@ RunPlots plot_building_run(const fs::path& dir, const std::string& prefix, const
         c << "set arrow from " << gnuplot_number(from) << ", graph 0 to " << gnuplot_number(from)
           << ", graph 1 nohead dt 2 lc rgb '#c0392b'\n";
       }
-      c << "set ylabel 'contact force [N]'\nplot ";
+      // Impact forces in kN or MN, as the link forces.
+      double peak = 0.0;
+      for (std::size_t col = 1 + pairs.size(); col < data.size(); ++col)
+        for (double v : data[col])
+          if (std::isfinite(v)) peak = std::max(peak, std::abs(v));
+      const auto [scale, unit] = force_unit(peak);
+      const std::string divisor = gnuplot_number(scale);
+      c << "set ylabel " << gnuplot_quote("contact force [" + unit + "]") << "\nplot ";
       for (std::size_t k = 0; k < pairs.size(); ++k) {
-        c << (k ? ", " : "") << "$c using 1:" << pairs.size() + k + 2 << " with lines lt " << k + 1 << " noenhanced title "
-          << gnuplot_quote(pairs[k] + ".force");
+        c << (k ? ", " : "") << "$c using 1:($" << pairs.size() + k + 2 << "/" << divisor << ") with lines lt " << k + 1
+          << " noenhanced title " << gnuplot_quote(pairs[k] + ".force");
         if (marked[k])
-          c << ", $i" << k + 1 << " using 3:4 with points lt " << k + 1 << " pt 7 title " << gnuplot_quote(pairs[k] + " peak forces");
+          c << ", $i" << k + 1 << " using 3:($4/" << divisor << ") with points lt " << k + 1 << " pt 7 title "
+            << gnuplot_quote(pairs[k] + " peak forces");
       }
       c << "\n";
     }
