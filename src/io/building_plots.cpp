@@ -253,14 +253,15 @@ namespace {
 // "m/s^2" as it reads on an axis.
 std::string pretty_unit(const std::string& unit) { return unit == "m/s^2" ? "m/s²" : unit; }
 
-// The label of a time-series column with its unit: a building's channels from the channel
-// table (structure/channels.hpp), a two-block run's from its own list; else the name.
-std::string channel_label(const std::string& name, bool si) {
+// What a time-series column is and its SI unit: a building's channels from the channel table
+// (structure/channels.hpp), a two-block run's from its own list; else the name, no unit.
+struct ChannelText {
+  std::string what, unit;
+};
+ChannelText channel_text(const std::string& name) {
   using structure::ChannelScope;
   using structure::Quantity;
-  auto with_unit = [&](const std::string& label, const std::string& unit) {
-    return label + (si ? " [" + pretty_unit(unit) + "]" : " (dimensionless)");
-  };
+  auto with_unit = [](const std::string& label, const std::string& unit) { return ChannelText{label, pretty_unit(unit)}; };
   static const std::vector<std::tuple<const char*, const char*, const char*>> two_block{
       {"x1", "displacement x_1", "m"}, {"x2", "displacement x_2", "m"},  {"v1", "velocity v_1", "m/s"},
       {"v2", "velocity v_2", "m/s"},   {"f1", "rod force f_1", "N"},     {"f2", "rod force f_2", "N"},
@@ -269,7 +270,7 @@ std::string channel_label(const std::string& name, bool si) {
   for (const auto& [column, label, unit] : two_block)
     if (name == column) return with_unit(label, unit);
   const auto dot = name.find('.');
-  if (dot == std::string::npos) return name;
+  if (dot == std::string::npos) return {name, ""};
   const std::string head = name.substr(0, dot), tail = name.substr(dot + 1);
   auto number_after = [](const std::string& text, std::size_t from) -> int {
     if (from >= text.size() || !std::all_of(text.begin() + static_cast<long>(from), text.end(), ::isdigit) ||
@@ -304,7 +305,7 @@ std::string channel_label(const std::string& name, bool si) {
         {Quantity::contact_force, "force"}};
     return with_unit(std::string(what.at(q.quantity)) + ", " + element, q.unit);
   }
-  return name;
+  return {name, ""};
 }
 
 struct ChannelRun {
@@ -369,15 +370,36 @@ void plot_runs_channels(const std::vector<fs::path>& dirs, const std::vector<std
   s << "set multiplot layout " << channels.size() << ",1 title " << gnuplot_quote(title) << " noenhanced font ',12'"
     << (overlay ? " margins 0.12,0.70,0.09,0.92 spacing 0,0.03" : "") << "\n"
     << "set xrange [" << gnuplot_number(t0) << ":" << gnuplot_number(t1) << "]\n"
-    << (overlay ? "set key outside right top vertical Left reverse noenhanced\n" : "set key top right\n")
+    << (overlay ? "set key outside right top vertical Left reverse noenhanced\n" : "unset key\n")
     << "set format x ''\nunset xlabel\n";
+  // Each panel: the column's name and unit on the axis, what it is in the panel's corner;
+  // forces in kN or MN when large.
+  s << "set style textbox opaque noborder\n";
   for (std::size_t k = 0; k < channels.size(); ++k) {
     if (k + 1 == channels.size()) s << "set format x '%g'\nset xlabel 'time t" << (runs[0].si ? " [s]'" : " (dimensionless)'") << "\n";
     if (overlay && k == 1) s << "unset key\n";
-    s << "set ylabel " << gnuplot_quote_wrapped(channel_label(channels[k], runs[0].si), 24) << " noenhanced\nplot ";
+    std::vector<double> all;
+    for (const auto& run : runs) {
+      const std::vector<double> v = run.series.numbers(channels[k]);
+      all.insert(all.end(), v.begin(), v.end());
+    }
+    ChannelText text = channel_text(channels[k]);
+    double scale = 1.0;
+    if (text.unit == "N" && runs[0].si) {
+      double peak = 0.0;
+      for (double v : all)
+        if (std::isfinite(v)) peak = std::max(peak, std::abs(v));
+      std::tie(scale, text.unit) = force_unit(peak);
+      for (double& v : all) v /= scale;
+    }
+    const std::string unit = text.unit.empty() ? "" : runs[0].si ? " [" + text.unit + "]" : " (dimensionless)";
+    s << gnuplot_tick_format("y", all) << gnuplot_tick_step("y", all) << "set ylabel " << gnuplot_quote(channels[k] + unit) << " noenhanced\n"
+      << "set label 1 " << gnuplot_quote(text.what + unit) << " at graph 0.01, graph 0.9 left front boxed noenhanced font ',9'\n"
+      << "plot ";
     for (std::size_t r = 0; r < runs.size(); ++r)
-      s << (r ? ", " : "") << "$r" << r << " using 1:" << k + 2 << " with lines lt " << (overlay ? r : k) % 12 + 1
-        << " dt " << (overlay ? r / 12 + 1 : 1) << " noenhanced title " << gnuplot_quote(overlay ? run_label(runs[r]) : channels[k]);
+      s << (r ? ", " : "") << "$r" << r << " using 1:($" << k + 2 << "/" << gnuplot_number(scale) << ") with lines lt "
+        << (overlay ? r : k) % 12 + 1 << " dt " << (overlay ? r / 12 + 1 : 1) << " title "
+        << gnuplot_quote(overlay ? run_label(runs[r]) : channels[k]) << " noenhanced";
     s << "\n";
   }
   s << "unset multiplot\n";

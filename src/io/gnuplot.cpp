@@ -4,6 +4,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -52,6 +53,26 @@ std::string gnuplot_number(double v) {
   char text[32];
   std::snprintf(text, sizeof text, "%.10g", v);
   return text;
+}
+
+std::string gnuplot_tick_format(const char* axis, const std::vector<double>& values, bool log) {
+  double big = 0.0, small = INFINITY;
+  for (double v : values)
+    if (std::isfinite(v) && v != 0.0) big = std::max(big, std::abs(v)), small = std::min(small, std::abs(v));
+  const bool scientific = big >= 1e5 || (big > 0.0 && big < 1e-3) || (log && small < 1e-3);
+  if (!scientific) return std::string("set format ") + axis + " '%g'\n";
+  return std::string("set format ") + axis + (log ? " '%.0te%T'\n" : " '%.1te%T'\n");
+}
+
+std::string gnuplot_tick_step(const char* axis, const std::vector<double>& values, double scale) {
+  double lo = 0.0, hi = 0.0;
+  for (double v : values)
+    if (std::isfinite(v)) lo = std::min(lo, v / scale), hi = std::max(hi, v / scale);
+  const double span = hi - lo;
+  if (!(span > 0.0)) return std::string("set ") + axis + "tics autofreq\n";
+  const double raw = span / 4.0, power = std::pow(10.0, std::floor(std::log10(raw))), m = raw / power;
+  const double step = (m < 1.5 ? 1.0 : m < 3.5 ? 2.0 : m < 7.5 ? 5.0 : 10.0) * power;
+  return std::string("set ") + axis + "tics " + gnuplot_number(step) + "\n";
 }
 
 // A gnuplot datablock named $name with whitespace-separated rows; NaN cells are written as

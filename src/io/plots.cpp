@@ -991,16 +991,6 @@ std::string column_label(const std::string& column, bool si, std::string* unit_o
   return column;
 }
 
-// Tick labels that read as numbers: 0.5, 20, 1e7 (not 1×10^7), chosen from the values' size.
-std::string tick_format(const char* axis, const std::vector<double>& values, bool log) {
-  double big = 0.0, small = INFINITY;
-  for (double v : values)
-    if (std::isfinite(v) && v != 0.0) big = std::max(big, std::abs(v)), small = std::min(small, std::abs(v));
-  const bool scientific = big >= 1e5 || (big > 0.0 && big < 1e-3) || (log && small < 1e-3);
-  if (!scientific) return std::string("set format ") + axis + " '%g'\n";
-  return std::string("set format ") + axis + (log ? " '%.0te%T'\n" : " '%.1te%T'\n");
-}
-
 // The x values of a sweep table's column: numbers, or, when a cell is text (`--x damper`:
 // none, friction), the position of its value among the distinct values in the order they
 // first appear (`categories` then holds those values).
@@ -1125,7 +1115,7 @@ std::vector<std::string> plot_sweep_csv(const fs::path& csv, const SweepPlotOpti
   if (categorical) {
     s << "set xrange [-0.5:" << num(static_cast<double>(categories.size()) - 0.5) << "]\n";
   } else {
-    s << tick_format("x", x, options.log_x) << "set autoscale xfix\n";
+    s << gnuplot_tick_format("x", x, options.log_x) << "set autoscale xfix\n";
   }
   // x spans the data plus a little; y gets headroom, but does not go below zero for a
   // quantity that is never negative in the table (peaks, shares, counts).
@@ -1137,12 +1127,12 @@ std::vector<std::string> plot_sweep_csv(const fs::path& csv, const SweepPlotOpti
     else s << "unset key\n";
     if (panels) s << (last ? "set format x '%g'\nset xlabel " + x_label + "\n" : std::string("set format x ''\nunset xlabel\n"));
     else s << "set xlabel " << x_label << "\n";
-    if (panels && last && !categorical) s << tick_format("x", x, options.log_x);
+    if (panels && last && !categorical) s << gnuplot_tick_format("x", x, options.log_x);
     if (categorical) s << category_tics(last);
     // Stacked panels are short: a long label takes two lines rather than run into the next.
     const std::string y_label = column_label(options.y[k], si);
     s << "set ylabel " << (panels ? gnuplot_quote_wrapped(y_label, 18) + " font ',9'" : gnuplot_quote(y_label))
-      << " noenhanced\n" << tick_format("y", ys[k], options.log_y);
+      << " noenhanced\n" << gnuplot_tick_format("y", ys[k], options.log_y);
     const bool non_negative = std::none_of(ys[k].begin(), ys[k].end(), [](double v) { return v < 0.0; });
     if (non_negative && !options.log_y) s << "set yrange [0:*]\n" << x_offsets << ", graph 0.06, 0\n";
     else s << "set yrange [*:*]\n" << x_offsets << ", graph 0.06, graph 0.06\n";

@@ -22,19 +22,6 @@ std::string num(double v, int digits = 10) {
   return text;
 }
 
-// About four labelled ticks on a panel of the values' range (1, 2 or 5 times a power of
-// ten): stacked panels are short, and gnuplot's own choice crowds their labels.
-std::string y_tics(const std::vector<double>& values, double scale = 1.0) {
-  double lo = 0.0, hi = 0.0;
-  for (double v : values)
-    if (std::isfinite(v)) lo = std::min(lo, v / scale), hi = std::max(hi, v / scale);
-  const double span = hi - lo;
-  if (!(span > 0.0)) return "set ytics autofreq\n";
-  const double raw = span / 4.0, power = std::pow(10.0, std::floor(std::log10(raw)));
-  const double step = raw / power < 1.5 ? power : raw / power < 3.5 ? 2 * power : raw / power < 7.5 ? 5 * power : 10 * power;
-  return "set ytics " + num(step) + "\n";
-}
-
 }  // namespace
 
 void plot_record(const Record& record, const std::filesystem::path& image, const PlotStyle& style,
@@ -67,9 +54,9 @@ void plot_record(const Record& record, const std::filesystem::path& image, const
     s << "set object 1 rect from " << num(d.t_start) << ", graph 0 to " << num(d.t_end)
       << ", graph 1 back fillstyle solid 1.0 noborder fillcolor rgb '#eef2f8'\n";
   }
-  s << "set ylabel 'a [g]'\n" << y_tics(h.accel, 9.80665) << "plot $r using 1:2 with lines lt 1 title 'acceleration'\n"
-    << "set ylabel 'v [m/s]'\n" << y_tics(h.velocity) << "plot $r using 1:3 with lines lt 2 title 'velocity (trapezoid, from rest)'\n"
-    << "set ylabel 'd [m]'\n" << y_tics(h.displacement) << "plot $r using 1:4 with lines lt 3 title 'displacement'\n"
+  s << "set ylabel 'a [g]'\n" << gnuplot_tick_step("y", h.accel, 9.80665) << "plot $r using 1:2 with lines lt 1 title 'acceleration'\n"
+    << "set ylabel 'v [m/s]'\n" << gnuplot_tick_step("y", h.velocity) << "plot $r using 1:3 with lines lt 2 title 'velocity (trapezoid, from rest)'\n"
+    << "set ylabel 'd [m]'\n" << gnuplot_tick_step("y", h.displacement) << "plot $r using 1:4 with lines lt 3 title 'displacement'\n"
     << "set format x '%g'\nset xlabel 't [s]'\nset ylabel 'Husid H(t)'\nset ytics 0.2\nset yrange [-0.02:1.05]\nset key bottom right\n";
   if (arias) {
     const std::string label = "D_{5-95} = " + num(d.duration, 4) + " s (" + num(d.t_start, 4) + " to " + num(d.t_end, 4) + " s)";

@@ -22,6 +22,14 @@ std::string gnuplot_quote(const std::string& text);
 std::string gnuplot_quote_wrapped(const std::string& text, std::size_t width);
 // A number as gnuplot reads it (%.10g; NaN for a non-finite value, where gnuplot breaks a line).
 std::string gnuplot_number(double v);
+// "set format <axis> ..." for tick labels that read as numbers: 0.5, 20, 1.5e7 (gnuplot's
+// default writes 1x10^7 in enhanced text, which overlaps on short axes); from the values'
+// size (and 1e7-style powers of ten on a log axis).
+std::string gnuplot_tick_format(const char* axis, const std::vector<double>& values, bool log = false);
+// "set <axis>tics STEP" for about four labelled ticks over the values' range (divided by
+// `scale`), 1, 2 or 5 times a power of ten: stacked panels are short, and gnuplot's own
+// choice crowds their labels.
+std::string gnuplot_tick_step(const char* axis, const std::vector<double>& values, double scale = 1.0);
 // A datablock $name of whitespace-separated rows, one column a vector.
 void gnuplot_datablock(std::ostringstream& script, const std::string& name, const std::vector<std::vector<double>>& columns);
 // The common look of adjoin's figures: light grid, readable fonts, one palette of 12 distinct
