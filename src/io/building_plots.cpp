@@ -361,6 +361,12 @@ void plot_runs_channels(const std::vector<fs::path>& dirs, const std::vector<std
     gnuplot_datablock(s, "r" + std::to_string(r), data);
   }
   const bool overlay = runs.size() > 1;
+  // Two runs a key row when two labels fit side by side (about 9 pixels a character at the
+  // figures' font, 60 for the sample line), else one a row.
+  std::size_t longest = 0;
+  for (const auto& run : runs) longest = std::max(longest, run.scene.size() + run.dir.filename().string().size() + 3);
+  const bool two_columns = 2.0 * (9.0 * static_cast<double>(longest) + 60.0) < 0.85 * style.width;
+  const std::size_t key_rows = two_columns ? (runs.size() + 1) / 2 : runs.size();
   // Legend entries: the scene and its folder (two runs of one scene differ by folder).
   auto run_label = [&](const ChannelRun& run) {
     return overlay ? run.scene + " (" + run.dir.filename().string() + ")" : run.scene;
@@ -368,9 +374,13 @@ void plot_runs_channels(const std::vector<fs::path>& dirs, const std::vector<std
   const std::string title = overlay ? "chosen channels of " + std::to_string(runs.size()) + " runs"
                                     : runs[0].scene + ": chosen channels";
   s << "set multiplot layout " << channels.size() << ",1 title " << gnuplot_quote(title) << " noenhanced font ',12'"
-    << (overlay ? " margins 0.12,0.70,0.09,0.92 spacing 0,0.03" : "") << "\n"
+    << (overlay ? " margins 0.12,0.97," + gnuplot_number(0.12 + 0.035 * static_cast<double>(key_rows)) + ",0.92 spacing 0,0.03" : "")
+    << "\n"
     << "set xrange [" << gnuplot_number(t0) << ":" << gnuplot_number(t1) << "]\n"
-    << (overlay ? "set key outside right top vertical Left reverse noenhanced\n" : "unset key\n")
+    // An overlay's key under the panels, two runs a row: long folder names need the width.
+    << (overlay ? "set key at screen 0.5, screen 0.005 center bottom horizontal maxcols 2 maxrows " +
+                      std::to_string(key_rows) + " Left reverse noenhanced\n"
+                : std::string("unset key\n"))
     << "set format x ''\nunset xlabel\n";
   // Each panel: the column's name and unit on the axis, what it is in the panel's corner;
   // forces in kN or MN when large.
