@@ -273,7 +273,8 @@ ChannelText channel_text(const std::string& name) {
   if (dot == std::string::npos) return {name, ""};
   const std::string head = name.substr(0, dot), tail = name.substr(dot + 1);
   auto number_after = [](const std::string& text, std::size_t from) -> int {
-    if (from >= text.size() || !std::all_of(text.begin() + static_cast<long>(from), text.end(), ::isdigit) ||
+    const auto digit = [](char c) { return c >= '0' && c <= '9'; };  // (isdigit on a UTF-8 byte is undefined)
+    if (from >= text.size() || !std::all_of(text.begin() + static_cast<long>(from), text.end(), digit) ||
         text.size() - from > 6)
       return -1;
     return std::stoi(text.substr(from));
