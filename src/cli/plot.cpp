@@ -1,4 +1,5 @@
-// adjoin plot run DIR [--channels NAME[,NAME...]] [--out PREFIX] [--format png|svg] [--size WxH]
+// adjoin plot run DIR [DIR...] [--channels NAME[,NAME...]] [--window T0:T1] [--out PREFIX] [--format png|svg]
+//                  [--size WxH]          (several DIRs: their channels overlaid, PREFIXoverlay.png)
 // adjoin plot spectrum CSV [--out FILE] [--format png|svg] [--size WxH]
 // adjoin plot converge CSV [--out FILE] [--format png|svg] [--size WxH]
 // adjoin plot sweep CSV --x COLUMN --y COLUMN[,COLUMN...] [--group COLUMN] [--logx] [--logy]
