@@ -3,11 +3,15 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <set>
 #include <string>
+#include <vector>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/gnuplot.hpp"
 #include "adjoin/io/plots.hpp"
 #include "cli_helpers.hpp"
 
@@ -196,9 +200,11 @@ TEST_CASE("plot spectrum, converge and sweep draw from their CSV tables", "[plot
   INFO(r.err);
   REQUIRE(r.status == 0);
   const std::string curves = slurp(dir / "sweep.svg");
-  CHECK(curves.find("model.mu") != std::string::npos);
-  CHECK(curves.find("peak_x1") != std::string::npos);
-  CHECK(curves.find("ground = sine, strong") != std::string::npos);
+  CHECK(curves.find("friction threshold μ") != std::string::npos);  // model.mu's label
+  CHECK(curves.find("peak_x1") != std::string::npos);                // a column with no label keeps its name
+  CHECK(curves.find(">sine, strong<") != std::string::npos);         // key entries: the group's values
+  CHECK(curves.find(">ground<") != std::string::npos);               // under the group column as the key's title
+  CHECK(curves.find("smallest gap [m]") != std::string::npos);
   r = run_cli("plot sweep '" + sweep.string() + "' --x model.mu --y peak_x1 --size 500x400");
   INFO(r.err);
   REQUIRE(r.status == 0);
@@ -288,9 +294,10 @@ TEST_CASE("plot run on a building run draws floor profiles of both buildings and
   CHECK(profiles.find("building A") != std::string::npos);
   CHECK(profiles.find("building B") != std::string::npos);
   const std::string roofs = slurp(svg / "roofs.svg");
-  CHECK(roofs.find("A.x5") != std::string::npos);
-  CHECK(roofs.find("B.x3") != std::string::npos);
-  CHECK(roofs.find("link1.force") != std::string::npos);
+  CHECK(roofs.find("A: roof, floor 5") != std::string::npos);
+  CHECK(roofs.find("B: roof, floor 3") != std::string::npos);
+  CHECK(roofs.find("link 1") != std::string::npos);
+  CHECK(roofs.find("link force [kN]") != std::string::npos);
   // Chosen channels only: one panel each, with the names on the axes.
   const fs::path chosen = scratch("building-channels") / "";
   auto picked = run_cli("plot run '" + dir.string() + "' --channels A.x5,B.a3_abs,link1.stroke --size 700x900 --out '" +
@@ -311,4 +318,291 @@ TEST_CASE("plot run on a building run draws floor profiles of both buildings and
   CHECK(picked.err.find("--channels") != std::string::npos);
   CHECK(picked.err.find("'A.x9'") != std::string::npos);
   CHECK(picked.err.find("A.x5") != std::string::npos);
+}
+
+// ---------------------------------------------------------------- round 3: text from data in scripts
+
+namespace {
+
+// gnuplot is a dependency (scripts/setup.sh); without it these tests fail saying so, they
+// never pass on a machine that cannot draw.
+void require_gnuplot() {
+  const bool present = std::system("command -v gnuplot >/dev/null 2>&1") == 0;
+  if (!present) FAIL("gnuplot is not on PATH: these tests need it (scripts/setup.sh installs it)");
+}
+
+std::string shell_quote(const std::string& s) {
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+// Files that gnuplot commands in the payloads below would create, in the folder adjoin runs
+// in (the test's working folder) and in `dir`.
+bool pwned(const fs::path& dir) {
+  return fs::exists("PWNED") || fs::exists("PWNED2") || fs::exists(dir / "PWNED") || fs::exists(dir / "PWNED2");
+}
+
+// Text that ends a gnuplot string and runs shell commands, in every way a script can: a
+// newline, a quote of either kind, backquotes, a macro.
+std::string payload(const fs::path& dir) {
+  const std::string touch = "touch " + (dir / "PWNED").string(), touch2 = "touch " + (dir / "PWNED2").string();
+  return "x'\nsystem \"" + touch + "\"\n\" `" + touch2 + "` @GPVAL_TERM \\";
+}
+
+// A run folder whose summary.json has `scene` set to `scene`.
+fs::path run_with_scene(const std::string& name, const std::string& scene) {
+  const fs::path dir = scratch(name);
+  fs::copy_file(strong_run() / "timeseries.csv", dir / "timeseries.csv");
+  std::string summary = slurp(strong_run() / "summary.json");
+  const std::string key = "\"scene\": \"";
+  const auto at = summary.find(key);
+  REQUIRE(at != std::string::npos);
+  const auto end = summary.find('"', at + key.size());
+  std::string escaped;
+  for (char c : scene) {
+    if (c == '"' || c == '\\') escaped += '\\';
+    escaped += c == '\n' ? std::string("\\n") : std::string(1, c);
+  }
+  summary.replace(at, end + 1 - at, key + escaped + "\"");
+  std::ofstream(dir / "summary.json") << summary;
+  return dir;
+}
+
+// A shell command line (for limits set with ulimit), its output captured as run_cli does.
+adjoin::test::CliResult run_shell(const std::string& command) {
+  const fs::path dir = scratch("shell");
+  const int raw = std::system(("sh -c " + shell_quote(command) + " >'" + (dir / "out").string() + "' 2>'" +
+                               (dir / "err").string() + "'").c_str());
+  adjoin::test::CliResult r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  r.out = slurp(dir / "out");
+  r.err = slurp(dir / "err");
+  return r;
+}
+
+std::vector<std::string> leftovers(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& e : fs::recursive_directory_iterator(dir)) {
+    const std::string n = e.path().filename().string();
+    if (n.find(".tmp.") != std::string::npos || n.find(".gp") != std::string::npos) names.push_back(n);
+  }
+  return names;
+}
+
+}  // namespace
+
+TEST_CASE("gnuplot_quote keeps any text inside one single-quoted string on one line", "[plot][r3]") {
+  CHECK(adjoin::gnuplot_quote("it's") == "'it''s'");
+  CHECK(adjoin::gnuplot_quote("a\nb\tc\rd") == "'a\\nb\\tc\\rd'");
+  std::string every;
+  for (int c = 1; c < 256; ++c) every += static_cast<char>(c);
+  const std::string q = adjoin::gnuplot_quote(every);
+  for (char c : q) CHECK_FALSE((static_cast<unsigned char>(c) < 0x20 || c == 0x7f));
+  // Inside, every quote is doubled: the string ends only at the last character.
+  std::size_t i = 1;
+  for (; i + 1 < q.size(); ++i)
+    if (q[i] == '\'') {
+      REQUIRE(q[i + 1] == '\'');
+      ++i;
+    }
+  CHECK(i == q.size() - 1);
+  CHECK(adjoin::gnuplot_quote_wrapped("a\n'b", 70) == "'a\\n''b'");
+  CHECK(adjoin::gnuplot_quote_wrapped("aaa bbb", 2) == "'aaa'.\"\\n\".'bbb'");
+}
+
+TEST_CASE("plot run: a scene name from summary.json runs no command", "[plot][cli][r3]") {
+  require_gnuplot();
+  const fs::path trap = scratch("pwned-scene-trap");
+  const fs::path dir = run_with_scene("pwned-scene", payload(trap));
+  // The issue's repro too: a bare newline and `system`, relative to the working folder.
+  const fs::path plain = run_with_scene("pwned-scene-plain", "x\nsystem \"touch PWNED\"");
+  for (const fs::path& run : {dir, plain}) {
+    const auto r = run_cli("plot run " + shell_quote(run.string()));
+    INFO(r.err);
+    CHECK(r.status == 0);
+    CHECK_FALSE(pwned(trap));
+    require_png(run / "displacements.png", 900, 600);
+  }
+  // The title shows the text, control characters written visibly.
+  REQUIRE(run_cli("plot run " + shell_quote(plain.string()) + " --format svg").status == 0);
+  CHECK(slurp(plain / "gap.svg").find("x\\nsystem") != std::string::npos);
+  // And the chosen-channels figure, which takes the scene name too.
+  const auto c = run_cli("plot run " + shell_quote(dir.string()) + " --channels x1,gap");
+  INFO(c.err);
+  CHECK(c.status == 0);
+  CHECK_FALSE(pwned(trap));
+}
+
+TEST_CASE("plot record and spectrum --plot: a record's file name runs no command", "[plot][cli][r3]") {
+  require_gnuplot();
+  const fs::path trap = scratch("pwned-record-trap");
+  const fs::path dir = scratch("pwned-record");
+  // The name holds a quote, backquotes and a newline (a file name cannot hold '/').
+  const std::string name = "x'\nsystem \"touch PWNED\"\n`touch PWNED2`.AT2";
+  fs::copy_file(kSource + "/records/real/peer/RSN175_IMPVALL.H_H-E12140.AT2", dir / name);
+  const std::string file = shell_quote((dir / name).string());
+  const fs::path cwd = fs::current_path();
+  auto r = run_cli("plot record " + file + " --out " + shell_quote((dir / "record.png").string()));
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK_FALSE(pwned(cwd));
+  require_png(dir / "record.png", 900, 600);
+  r = run_cli("spectrum " + file + " --out " + shell_quote((dir / "s.csv").string()) + " --plot " +
+              shell_quote((dir / "s.png").string()));
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK_FALSE(pwned(cwd));
+  require_png(dir / "s.png", 900, 900);
+  // --title, and column names of a sweep table (a CSV line holds no newline).
+  const fs::path csv = dir / "t.csv";
+  std::ofstream(csv) << "a,\"b' `touch PWNED` \"\"\"\n1,2\n2,3\n";
+  r = run_cli("plot sweep " + shell_quote(csv.string()) + " --x a --y " + shell_quote("b' `touch PWNED` \"") +
+              " --title " + shell_quote(payload(trap)));
+  INFO(r.err);
+  CHECK(r.status == 0);
+  CHECK_FALSE(pwned(cwd));
+  CHECK_FALSE(pwned(trap));
+}
+
+TEST_CASE("plot: a failed image write is exit 2 and leaves nothing (file size limit as a full disk)", "[plot][cli][r3]") {
+  require_gnuplot();
+  const fs::path dir = scratch("full-disk");
+  const fs::path csv = dir / "s.csv";
+  std::ofstream(csv) << "a,b\n1,2\n2,3\n3,1\n";
+  // A 3000x3000 PNG (~130 kB) from a 2 kB script: with a 16 kB limit gnuplot's own write
+  // fails (it says nothing and exits 0), and so would adjoin's. SIGXFSZ ignored: writes fail.
+  const std::string command = "trap '' XFSZ; ulimit -f 16; exec '" + std::string(ADJOIN_CLI) + "' plot sweep '" +
+                              csv.string() + "' --x a --y b --size 3000x3000";
+  const auto r = run_shell(command);
+  INFO(r.err);
+  CHECK(r.status == 2);
+  CHECK(r.err.rfind("error:", 0) == 0);
+  CHECK(r.err.find("s.png") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "s.png"));
+  CHECK(leftovers(dir).empty());
+
+  // A run folder under the same limit: none of its figures, no temporaries, no script files.
+  const fs::path out = scratch("full-disk-run");
+  const std::string run_command = "trap '' XFSZ; ulimit -f 20; exec '" + std::string(ADJOIN_CLI) + "' plot run '" +
+                                  strong_run().string() + "' --size 3000x3000 --out '" + out.string() + "/'";
+  const auto rr = run_shell(run_command);
+  INFO(rr.err);
+  CHECK(rr.status == 2);
+  CHECK(fs::is_empty(out));
+}
+
+TEST_CASE("plot run reads and draws everything before writing: a damaged CSV leaves no figure", "[plot][cli][r3]") {
+  require_gnuplot();
+  const fs::path dir = scratch("damaged");
+  fs::copy_file(strong_run() / "timeseries.csv", dir / "timeseries.csv");
+  fs::copy_file(strong_run() / "summary.json", dir / "summary.json");
+  std::ofstream(dir / "energy.csv") << "t,input,kinetic\n0,0,0\n1,zz,1\n";
+  const fs::path out = scratch("damaged-figs") / "sub";
+  const auto r = run_cli("plot run '" + dir.string() + "' --out '" + out.string() + "/'");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("energy.csv:3") != std::string::npos);
+  CHECK_FALSE(fs::exists(out));  // not even the folder
+  CHECK(leftovers(dir.parent_path()).empty());
+}
+
+// ---------------------------------------------------------------- round 3: figures for a report
+
+namespace {
+
+// The distinct stroke colours of the curves in an SVG of gnuplot's.
+std::set<std::string> stroke_colours(const std::string& svg) {
+  std::set<std::string> colours;
+  for (std::size_t at = svg.find("stroke='rgb("); at != std::string::npos; at = svg.find("stroke='rgb(", at + 1))
+    colours.insert(svg.substr(at, svg.find(')', at) - at));
+  return colours;
+}
+
+}  // namespace
+
+TEST_CASE("plot sweep: 13 groups in 12 distinct colours, y from zero, text x, engineering ticks", "[plot][cli][r3]") {
+  require_gnuplot();
+  const fs::path dir = scratch("report-sweep");
+  std::string text = "motion,link.1.slip_ratio,link1.energy_share,link1.force_max,damper\n";
+  for (int g = 0; g < 13; ++g)
+    for (int i = 0; i < 3; ++i)
+      text += "m" + std::to_string(g) + "," + std::to_string(0.1 * i) + "," + std::to_string(0.05 * (g + i)) + "," +
+              std::to_string(1e7 * (1 + i)) + "," + (i % 2 ? "friction" : "none") + "\n";
+  std::ofstream(dir / "s.csv") << text;
+  const std::string csv = "'" + (dir / "s.csv").string() + "'";
+  auto r = run_cli("plot sweep " + csv + " --x link.1.slip_ratio --y link1.energy_share --group motion --out '" +
+                   (dir / "a.svg").string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string a = slurp(dir / "a.svg");
+  // 12 colours for the curves (the 13th repeats the first, dashed), besides the grey of the
+  // grid and the key's box; the palette cycled at 8 before.
+  std::set<std::string> colours = stroke_colours(a);
+  colours.erase("stroke='rgb(208, 208, 208"), colours.erase("stroke='rgb(176, 176, 176");
+  CHECK(colours.size() == 12);
+  CHECK(a.find("share of the input energy, link 1") != std::string::npos);
+  CHECK(a.find("slip force of link 1 / weight of building B") != std::string::npos);
+  CHECK(a.find("-0.1") == std::string::npos);  // the axis starts at 0, not below
+  // Forces of 1e7 N: ticks as 1.0e7, not 1x10^7.
+  r = run_cli("plot sweep " + csv + " --x link.1.slip_ratio --y link1.force_max --out '" + (dir / "b.svg").string() + "'");
+  REQUIRE(r.status == 0);
+  const std::string b = slurp(dir / "b.svg");
+  CHECK(b.find("e7") != std::string::npos);
+  CHECK(b.find("10^") == std::string::npos);
+  CHECK(b.find("×") == std::string::npos);
+  CHECK(b.find("peak force, link 1 [N]") != std::string::npos);
+  // A text-valued x column is a categorical axis (it was "expected a number", exit 2).
+  r = run_cli("plot sweep " + csv + " --x damper --y link1.energy_share --group motion --out '" + (dir / "c.svg").string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string c = slurp(dir / "c.svg");
+  CHECK(c.find(">none<") != std::string::npos);
+  CHECK(c.find(">friction<") != std::string::npos);
+  // --logx with zeros says how many rows it leaves out; with nothing left it is exit 2.
+  r = run_cli("plot sweep " + csv + " --x link.1.slip_ratio --y link1.energy_share --logx --out '" + (dir / "d.png").string() + "'");
+  CHECK(r.status == 0);
+  CHECK(r.err.find("--logx: 13 row(s) with link.1.slip_ratio <= 0 are not drawn") != std::string::npos);
+  std::ofstream(dir / "zeros.csv") << "a,b\n0,1\n-1,2\n";
+  r = run_cli("plot sweep '" + (dir / "zeros.csv").string() + "' --x a --y b --logx");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("--logx: every value of column 'a' is zero or negative") != std::string::npos);
+  r = run_cli("plot sweep " + csv + " --x damper --y link1.energy_share --logx");
+  CHECK(r.status == 2);
+  CHECK(r.err.find("holds text") != std::string::npos);
+}
+
+TEST_CASE("plot run: overlays of several runs, a time window, a run without links titled so", "[plot][cli][r3]") {
+  require_gnuplot();
+  const fs::path linked = scratch("overlay-linked"), unlinked = scratch("overlay-unlinked");
+  const std::string scene = "'" + kSource + "/records/scenes/buildings/two-frames.toml' --quiet --set solver.t_end=6 ";
+  REQUIRE(run_cli("run " + scene + "--out '" + linked.string() + "'").status == 0);
+  REQUIRE(run_cli("run " + scene + "--unset link --out '" + unlinked.string() + "'").status == 0);
+  const fs::path out = scratch("overlay-out") / "";
+  auto r = run_cli("plot run '" + linked.string() + "' '" + unlinked.string() + "' --format svg --window 1:4 --out '" +
+                   out.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string svg = slurp(out / "overlay.svg");
+  CHECK(svg.find("(overlay-linked)") != std::string::npos);
+  CHECK(svg.find("(no links) (overlay-unlinked)") != std::string::npos);
+  CHECK(svg.find("displacement, floor 5, building") != std::string::npos);  // (wrapped before "A [m]")
+  // The window's ends are the axis' ends: ticks 1 to 4, none at 0 or 5.
+  CHECK(svg.find(">1<") != std::string::npos);
+  CHECK(svg.find(">4<") != std::string::npos);
+  CHECK(svg.find(">5<") == std::string::npos);
+  // One run without links: its figures say so.
+  r = run_cli("plot run '" + unlinked.string() + "' --format svg");
+  REQUIRE(r.status == 0);
+  CHECK(slurp(unlinked / "profiles.svg").find("(no links)") != std::string::npos);
+  // Windows: bad syntax, T0 >= T1 and a window outside the run are exit 2 naming --window.
+  for (const char* bad : {"5", "a:b", "3:3", "4:2", "100:200"}) {
+    r = run_cli("plot run '" + linked.string() + "' --window '" + bad + "' --out '" + out.string() + "'");
+    INFO(bad << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.err.find("--window") != std::string::npos);
+  }
+  // The help's example names real columns.
+  r = run_cli("plot run --help");
+  CHECK(r.out.find("A.drift1") == std::string::npos);
+  CHECK(r.out.find("--window") != std::string::npos);
 }

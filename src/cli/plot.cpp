@@ -1,4 +1,5 @@
-// adjoin plot run DIR [--channels NAME[,NAME...]] [--out PREFIX] [--format png|svg] [--size WxH]
+// adjoin plot run DIR [DIR...] [--channels NAME[,NAME...]] [--window T0:T1] [--out PREFIX] [--format png|svg]
+//                  [--size WxH]          (several DIRs: their channels overlaid, PREFIXoverlay.png)
 // adjoin plot spectrum CSV [--out FILE] [--format png|svg] [--size WxH]
 // adjoin plot converge CSV [--out FILE] [--format png|svg] [--size WxH]
 // adjoin plot sweep CSV --x COLUMN --y COLUMN[,COLUMN...] [--group COLUMN] [--logx] [--logy]
@@ -26,7 +27,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct PlotArgs {
-  std::string input, out, format, size = "900x600";
+  std::string input, out, format, size = "900x600", window;
+  std::vector<std::string> dirs;  // plot run: one run folder, or several to overlay
   std::string x, group, title;
   std::vector<std::string> y, channels;
   bool log_x = false, log_y = false;
@@ -35,6 +37,7 @@ struct PlotArgs {
 PlotStyle style_of(const PlotArgs& a) {
   PlotStyle style;
   parse_plot_size(a.size, &style);
+  if (!a.window.empty()) parse_time_window(a.window, &style);
   if (!a.format.empty()) {
     plot_extension(a.format);
     style.format = a.format;
@@ -49,19 +52,54 @@ fs::path beside(const fs::path& csv, const std::string& suffix) {
   return p;
 }
 
+// The channels overlaid by default: those of the first run's kind that every run has
+// (two-block: x1, x2, gap; buildings: the roofs' displacements and the first link's force).
+std::vector<std::string> default_overlay_channels(const std::vector<fs::path>& dirs) {
+  std::vector<std::string> wanted{"x1", "x2", "gap"};
+  if (is_building_run(dirs.front())) {
+    wanted = {"link1.force"};
+    const CsvTable ts = read_csv_table(dirs.front() / "timeseries.csv");
+    for (const char* b : {"B", "A"}) {
+      int top = 0;
+      while (ts.has(std::string(b) + ".x" + std::to_string(top + 1))) ++top;
+      if (top > 0) wanted.insert(wanted.begin(), std::string(b) + ".x" + std::to_string(top));
+    }
+  }
+  std::vector<std::string> common;
+  for (const auto& name : wanted) {
+    bool everywhere = true;
+    for (const auto& dir : dirs) {
+      const fs::path csv = dir / "timeseries.csv";
+      if (!fs::exists(csv))
+        throw InputError(csv.string() + ": not found (overlays draw time histories: output.timeseries = true writes it)");
+      everywhere = everywhere && read_csv_table(csv).has(name);
+    }
+    if (everywhere) common.push_back(name);
+  }
+  if (common.empty())
+    throw InputError("plot run: the runs share none of " + wanted.front() +
+                     "...; name the channels to overlay with --channels");
+  return common;
+}
+
 int plot_run_command(const PlotArgs& a) {
   const PlotStyle style = style_of(a);
   std::string prefix = a.out;
-  if (prefix.empty()) prefix = (fs::path(a.input) / "").string();
+  const bool overlay = a.dirs.size() > 1;
+  if (prefix.empty()) prefix = overlay ? std::string() : (fs::path(a.dirs.front()) / "").string();
   else if (fs::is_directory(prefix) && prefix.back() != '/') prefix += '/';
-  if (!a.channels.empty()) {
-    // Only the chosen channels: one figure, `channels` + extension after the prefix.
-    const fs::path image = prefix + "channels" + plot_extension(style.format);
-    plot_run_channels(a.input, a.channels, image, style);
+  if (overlay || !a.channels.empty()) {
+    // One figure: the chosen channels (overlays: of every run) after the prefix.
+    std::vector<fs::path> dirs(a.dirs.begin(), a.dirs.end());
+    for (const auto& dir : dirs)
+      if (!fs::is_directory(dir)) throw InputError(dir.string() + ": not a folder (expected the output folder of `adjoin run`)");
+    const std::vector<std::string> channels = a.channels.empty() ? default_overlay_channels(dirs) : a.channels;
+    const fs::path image = prefix + (overlay ? "overlay" : "channels") + plot_extension(style.format);
+    plot_runs_channels(dirs, channels, image, style);
     std::cout << "wrote " << image.string() << "\n";
     return 0;
   }
-  const RunPlots plots = plot_run(a.input, prefix, style);
+  const RunPlots plots = plot_run(a.dirs.front(), prefix, style);
   for (const auto& image : plots.images) std::cout << "wrote " << image.string() << "\n";
   for (const auto& note : plots.notes) std::cout << note << "\n";
   return 0;
@@ -93,7 +131,8 @@ int plot_sweep_command(const PlotArgs& a) {
   options.log_x = a.log_x;
   options.log_y = a.log_y;
   options.title = a.title;
-  plot_sweep_csv(a.input, options, image, style);
+  const std::vector<std::string> notes = plot_sweep_csv(a.input, options, image, style);
+  for (const auto& note : notes) std::cerr << note << "\n";
   std::cout << "wrote " << image.string() << "\n";
   return 0;
 }
@@ -125,11 +164,15 @@ const Registration registration(60, [](CLI::App& app) -> Runner {
   auto* run = plot->add_subcommand(
       "run", "The paper's figures for a run folder: displacements, excitation/damper force/relative velocity, "
              "rod forces, gap, energy (if DIR/energy.csv exists)");
-  run->add_option("dir", args->input, "Output folder of `adjoin run` (summary.json, timeseries.csv)")->required();
+  run->add_option("dir", args->dirs,
+                  "Output folder(s) of `adjoin run` (summary.json, timeseries.csv); several: their channels overlaid "
+                  "in one figure, a curve per run (PREFIXoverlay.png, default in the current folder)")
+      ->required();
   run->add_option("--channels", args->channels,
                   "Draw only these columns of DIR/timeseries.csv against time, one panel each (e.g. "
-                  "A.x5,A.drift1,link1.force): PREFIXchannels.png")
+                  "A.x5,B.a3_abs,link1.force, or x1,q,gap): PREFIXchannels.png")
       ->delimiter(',');
+  run->add_option("--window", args->window, "Only the time window T0:T1 in seconds of the histories, e.g. 5:15");
   common_options(run, args.get(), "Prefix of the image files (default DIR/; e.g. figs/strong- gives figs/strong-gap.png)");
 
   auto* spectrum = plot->add_subcommand("spectrum", "PSA and SD against period, one curve per damping");

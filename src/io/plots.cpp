@@ -3,18 +3,22 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <fstream>
 #include <limits>
 #include <map>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <sstream>
 
 #include "adjoin/errors.hpp"
+#include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/gnuplot.hpp"
 
 namespace adjoin {
@@ -207,54 +211,103 @@ fs::path plot_target(const std::string& out, const fs::path& fallback, const std
   return out;
 }
 
+void parse_time_window(const std::string& text, PlotStyle* style, const std::string& option) {
+  const auto colon = text.find(':');
+  double from = 0.0, to = 0.0;
+  std::string excerpt = text.substr(0, 40);
+  for (char& c : excerpt)
+    if (static_cast<unsigned char>(c) < 0x20) c = '?';
+  if (colon == std::string::npos || !parse_double(text.substr(0, colon), &from) ||
+      !parse_double(text.substr(colon + 1), &to) || !std::isfinite(from) || !std::isfinite(to))
+    throw InputError(option + " '" + excerpt + (text.size() > 40 ? "...'" : "'") +
+                     ": expected T0:T1, two times in seconds (e.g. 5:15)");
+  if (!(from < to))
+    throw InputError(option + " '" + excerpt + "': expected T0 < T1 (a window of some length)");
+  style->window = std::pair{from, to};
+}
+
+void keep_time_window(CsvTable& series, const PlotStyle& style) {
+  if (!style.window) return;
+  const auto [from, to] = *style.window;
+  const std::vector<double> t = series.numbers("t", "the time of a time history");
+  CsvTable kept = series;
+  kept.rows.clear();
+  kept.lines.clear();
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= from && t[i] <= to) {
+      kept.rows.push_back(series.rows[i]);
+      kept.lines.push_back(series.lines[i]);
+    }
+  if (kept.rows.size() < 2) {
+    const std::string span = t.empty() ? "no rows" : "t from " + num(t.front()) + " to " + num(t.back());
+    throw InputError("--window " + num(from) + ":" + num(to) + ": " + std::to_string(kept.rows.size()) + " row(s) of " +
+                     series.file.string() + " in the window (it has " + span + "); expected at least 2");
+  }
+  series = std::move(kept);
+}
+
 // ---------------------------------------------------------------- gnuplot
 
-void render_gnuplot(const std::string& script, const fs::path& image, const PlotStyle& style) {
-  const std::string ext = image.extension().string();
-  std::string terminal;
-  const std::string size = std::to_string(style.width) + "," + std::to_string(style.height);
-  if (ext == ".png") terminal = "set terminal pngcairo size " + size + " enhanced font 'sans,11' linewidth 1\n";
-  else if (ext == ".svg") terminal = "set terminal svg size " + size + " dynamic enhanced font 'sans,11' linewidth 1\n";
-  else throw InputError(image.string() + ": a plot must be a .png or .svg file");
+namespace {
 
-  if (image.has_parent_path()) {
-    std::error_code error;
-    fs::create_directories(image.parent_path(), error);
-    if (error) throw InputError(image.parent_path().string() + ": cannot create the folder: " + error.message());
+// The terminal line for the image's format at the style's size.
+std::string terminal_line(const fs::path& image, const PlotStyle& style, std::string* format) {
+  const std::string ext = image.extension().string();
+  const std::string size = std::to_string(style.width) + "," + std::to_string(style.height);
+  if (ext == ".png") {
+    *format = "png";
+    return "set terminal pngcairo size " + size + " enhanced font 'sans,11' linewidth 1\n";
   }
-  const std::string tag = ".tmp." + std::to_string(::getpid());
-  fs::path temporary = image;
-  temporary += tag + ext;
-  const fs::path script_file = image.string() + tag + ".gp";
-  const fs::path errors = image.string() + tag + ".err";
-  {
-    std::ofstream out(script_file);
-    out << terminal << "set output " << gnuplot_quote(temporary.string()) << "\n" << script << "\nunset output\n";
-    if (!out) throw InputError(script_file.string() + ": cannot write the gnuplot script");
+  if (ext == ".svg") {
+    *format = "svg";
+    return "set terminal svg size " + size + " dynamic enhanced font 'sans,11' linewidth 1\n";
   }
-  const std::string command =
-      "gnuplot " + gnuplot_quote(script_file.string()) + " 2> " + gnuplot_quote(errors.string());
-  const int status = std::system(command.c_str());
-  std::ifstream err_in(errors);
-  std::stringstream err;
-  err << err_in.rdbuf();
-  std::error_code ignored;
-  if (std::getenv("ADJOIN_KEEP_GNUPLOT") == nullptr) fs::remove(script_file, ignored);
-  fs::remove(errors, ignored);
-  if (status != 0 || !fs::exists(temporary)) {
-    fs::remove(temporary, ignored);
-    std::string message = err.str();
-    if (message.size() > 2000) message = message.substr(0, 2000) + "...";
-    throw InputError(image.string() + ": gnuplot failed" +
-                     (status == 127 * 256 ? std::string(" (is gnuplot installed? scripts/setup.sh installs it)")
-                                          : ": " + message));
+  throw InputError(image.string() + ": a plot must be a .png or .svg file");
+}
+
+}  // namespace
+
+void FigureSet::draw(const std::string& script, const fs::path& image, const PlotStyle& style) {
+  std::string format;
+  const std::string terminal = terminal_line(image, style, &format);
+  images_.emplace_back(image, run_gnuplot(terminal + script + "\n", format, image.string()));
+}
+
+std::vector<fs::path> FigureSet::commit() {
+  // Folders that do not exist yet are made now, and removed again if the set fails.
+  std::vector<fs::path> made;
+  std::vector<std::unique_ptr<AtomicFile>> files;
+  try {
+    for (const auto& [image, bytes] : images_) {
+      const fs::path folder = image.parent_path();
+      std::error_code error;
+      if (!folder.empty() && !fs::exists(folder, error)) {
+        for (fs::path p = folder; !p.empty() && !fs::exists(p, error); p = p.parent_path()) made.push_back(p);
+        fs::create_directories(folder, error);
+        if (error) throw InputError(folder.string() + ": cannot create the folder: " + error.message());
+      }
+      files.push_back(std::make_unique<AtomicFile>(image));
+      files.back()->stream().write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    }
+    for (auto& file : files) file->finish();  // every byte written before anything moves
+  } catch (...) {
+    files.clear();  // temporaries removed
+    std::error_code ignored;
+    for (const fs::path& folder : made) fs::remove(folder, ignored);  // innermost first; only if empty
+    throw;
   }
-  std::error_code error;
-  fs::rename(temporary, image, error);
-  if (error) {
-    fs::remove(temporary, ignored);
-    throw InputError(image.string() + ": cannot write the image: " + error.message());
+  std::vector<fs::path> written;
+  for (auto& file : files) {
+    file->publish();
+    written.push_back(file->target());
   }
+  return written;
+}
+
+void render_gnuplot(const std::string& script, const fs::path& image, const PlotStyle& style) {
+  FigureSet figure;
+  figure.draw(script, image, style);
+  figure.commit();
 }
 
 // ---------------------------------------------------------------- run figures
@@ -299,7 +352,7 @@ nlohmann::json read_summary_json(const fs::path& file) {
 
 namespace {
 
-RunData load_run(const fs::path& dir) {
+RunData load_run(const fs::path& dir, const PlotStyle& style) {
   if (!fs::is_directory(dir))
     throw InputError(dir.string() + ": not a folder (expected the output folder of `adjoin run`)");
   RunData run;
@@ -326,6 +379,7 @@ RunData load_run(const fs::path& dir) {
                          "the timeseries.csv of `adjoin run`; the scene needs output.timeseries = true");
   for (const char* c : {"t", "x1", "x2", "v1", "v2", "f1", "f2", "q", "ag", "gap"})
     run.series.column(c, "needed for the run figures");
+  keep_time_window(run.series, style);
   if (run.series.rows.size() < 2)
     throw InputError(run.series.file.string() + ": fewer than two rows (expected a time history)");
   // Phases from the CSV when the summary has none.
@@ -397,7 +451,7 @@ std::string title_line(const std::string& scene, const std::string& what) {
 
 RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyle& style) {
   if (fs::is_directory(dir) && is_building_run(dir)) return plot_building_run(dir, prefix, style);
-  const RunData run = load_run(dir);
+  const RunData run = load_run(dir, style);
   const std::string ext = plot_extension(style.format);
   const bool si = run.si;
   const CsvTable& ts = run.series;
@@ -416,6 +470,7 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
   const bool stick = has_stick(run.phases);
 
   RunPlots result;
+  FigureSet figures;  // all inputs read and every figure drawn before any file is written
   auto target = [&](const std::string& name) { return fs::path(prefix + name + ext); };
 
   // (1) displacements
@@ -428,8 +483,7 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
       << "set key " << key_corner(t, {x1, x2}) << "\n" << bands
       << "plot $d using 1:2 with lines lt 1 title 'x_1', $d using 1:3 with lines lt 2 dt 2 title 'x_2'"
       << (stick ? std::string(", ") + kStickKey : "") << "\n";
-    render_gnuplot(s.str(), target("displacements"), style);
-    result.images.push_back(target("displacements"));
+    figures.draw(s.str(), target("displacements"), style);
   }
 
   // (2) ground acceleration, damper force, relative velocity: three panels on one t axis
@@ -468,8 +522,7 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
       << "plot $d using 1:4 with lines lt 1 title 'relative velocity v_1 − v_2', 0 with lines lc rgb '#888888' "
          "lw 1 notitle\n"
       << "unset multiplot\n";
-    render_gnuplot(s.str(), target("excitation"), style);
-    result.images.push_back(target("excitation"));
+    figures.draw(s.str(), target("excitation"), style);
   }
 
   // (3) rod forces
@@ -482,8 +535,7 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
       << "set key " << key_corner(t, {f1, f2}) << "\n" << bands
       << "plot $d using 1:2 with lines lt 1 title 'f_1 (rod 1)', $d using 1:3 with lines lt 2 title 'f_2 (rod 2)'"
       << (stick ? std::string(", ") + kStickKey : "") << "\n";
-    render_gnuplot(s.str(), target("rod-forces"), style);
-    result.images.push_back(target("rod-forces"));
+    figures.draw(s.str(), target("rod-forces"), style);
   }
 
   // (4) gap with its minimum and the contact line
@@ -513,8 +565,7 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
     s << "plot $d using 1:2 with lines lt 1 title 'ξ = ξ_0 + x_2 − x_1', 0 with lines lc rgb '#b00000' lw 1.5 "
          "title 'contact (ξ = 0)'"
       << extra << "\n";
-    render_gnuplot(s.str(), target("gap"), style);
-    result.images.push_back(target("gap"));
+    figures.draw(s.str(), target("gap"), style);
   }
 
   // (5) pounding with a contact law (impacts.csv): the gap and the contact force on one t
@@ -558,8 +609,7 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
       << "plot $d using 1:3 with lines lt 2 title " << gnuplot_quote(force ? "contact force f_c" : "contact force (not in timeseries.csv)");
     if (!start.empty()) s << ", $p using 1:2 with points pt 7 ps 1.2 lc rgb '#d0451b' title 'peak of each impact'";
     s << "\nunset multiplot\n";
-    render_gnuplot(s.str(), target("contact"), style);
-    result.images.push_back(target("contact"));
+    figures.draw(s.str(), target("contact"), style);
   }
 
   // (6) energy shares, when an energy history is there
@@ -621,11 +671,11 @@ RunPlots plot_run(const fs::path& dir, const std::string& prefix, const PlotStyl
       s << (names.empty() ? "" : ", ") << "$e using 1:" << names.size() + 2
         << " with lines lc rgb 'black' lw 2 title 'input'";
     s << "\n";
-    render_gnuplot(s.str(), target("energy"), style);
-    result.images.push_back(target("energy"));
+    figures.draw(s.str(), target("energy"), style);
   } else {
     result.notes.push_back("no energy figure: " + energy_file.string() + " does not exist");
   }
+  result.images = figures.commit();
   return result;
 }
 
@@ -822,7 +872,7 @@ void plot_convergence_csv(const fs::path& csv, const fs::path& image, const Plot
     const std::string name = "c" + std::to_string(plots.size());
     datablock(s, name, cols);
     plots.push_back("$" + name + " using 1:2 with linespoints lt " + std::to_string(plots.size() + 1) +
-                    " pt 7 ps 1.2 title " + gnuplot_quote(key.first + " / " + key.second) + " noenhanced");
+                    " ps 1.2 title " + gnuplot_quote(key.first + " / " + key.second) + " noenhanced");
   }
   if (plots.empty())
     throw InputError(csv.string() + ": no rows with wall_seconds > 0 and error > 0 to plot on log axes");
@@ -837,21 +887,7 @@ void plot_convergence_csv(const fs::path& csv, const fs::path& image, const Plot
                                 ? csv.parent_path().filename().string()
                                 : csv.filename().string();
   // The title wraps rather than runs off the figure (long reference descriptions).
-  // A double-quoted gnuplot string, lines broken at spaces every ~70 characters by "\n".
-  const std::string title_text = "Work-precision: " + where;
-  std::string wrapped = "\"";
-  std::size_t line = 0;
-  for (char c : title_text) {
-    if (c == ' ' && line >= 70) {
-      wrapped += "\\n";
-      line = 0;
-      continue;
-    }
-    if (c == '"' || c == '\\') wrapped += '\\';
-    wrapped += c;
-    ++line;
-  }
-  wrapped += "\"";
+  const std::string wrapped = gnuplot_quote_wrapped("Work-precision: " + where, 70);
   s << "set title " << wrapped << " noenhanced font ',11'\n"
     << "set logscale xy\nset format y '10^{%L}'\nset format x '%g'\nset mxtics 10\n"
     << "set xlabel 'wall time of the run [s]'\nset ylabel 'error (relative max norm)'\n"
@@ -861,12 +897,131 @@ void plot_convergence_csv(const fs::path& csv, const fs::path& image, const Plot
 
 // ---------------------------------------------------------------- sweeps
 
-void plot_sweep_csv(const fs::path& csv, const SweepPlotOptions& options, const fs::path& image,
-                    const PlotStyle& style) {
+namespace {
+
+// Short axis labels with units for the columns adjoin's tables have (a sweep's sweep.csv, a
+// building sweep's channel columns; README "The table"): the quantity, the element, the unit.
+// A column not listed keeps its name.
+struct ColumnLabel {
+  const char* column;  // X stands for A or B, N for a link's or contact pair's number
+  const char* label;
+  const char* unit;    // SI unit, "" for ratios and counts
+};
+constexpr ColumnLabel kColumnLabels[] = {
+    {"X.T1", "fundamental period, building X", "s"},
+    {"X.roof_max", "peak roof displacement, building X", "m"},
+    {"X.drift_max", "peak storey drift, building X", "m"},
+    {"X.drift_storey", "storey of the peak drift, building X", ""},
+    {"X.accel_max", "peak floor acceleration, building X", "m/s²"},
+    {"X.base_shear_max", "peak base shear, building X", "N"},
+    {"X.share_inherent", "share of the input energy in inherent damping, building X", ""},
+    {"linkN.force_max", "peak force, link N", "N"},
+    {"linkN.stroke_max", "peak stroke, link N", "m"},
+    {"linkN.switches", "stick/slip changes, link N", ""},
+    {"linkN.energy_share", "share of the input energy, link N", ""},
+    {"contactN.min_gap", "smallest gap, contact pair N", "m"},
+    {"contactN.impacts", "impacts, contact pair N", ""},
+    {"contactN.force_max", "peak impact force, contact pair N", "N"},
+    {"contactN.penetration_max", "peak penetration, contact pair N", "m"},
+    {"contactN.energy_share", "share of the input energy in impacts, contact pair N", ""},
+    {"energy_input", "input energy", "J"},
+    {"share_residual", "energy balance residual / input", ""},
+    {"x1", "peak displacement of block 1", "m"},
+    {"x2", "peak displacement of block 2", "m"},
+    {"drift", "peak damper stroke |x_1 − x_2|", "m"},
+    {"f1", "peak rod force f_1", "N"},
+    {"f2", "peak rod force f_2", "N"},
+    {"a1_abs", "peak absolute acceleration of block 1", "m/s²"},
+    {"a2_abs", "peak absolute acceleration of block 2", "m/s²"},
+    {"min_gap", "smallest gap", "m"},
+    {"contact.impacts", "impacts", ""},
+    {"contact.force_max", "peak impact force", "N"},
+    {"contact.penetration_max", "peak penetration", "m"},
+    {"share_rod1", "share of the input energy, rod 1", ""},
+    {"share_rod2", "share of the input energy, rod 2", ""},
+    {"share_friction", "share of the input energy, friction damper", ""},
+    {"pga_g", "peak ground acceleration", "g"},
+    {"wall_seconds", "wall time", "s"},
+    {"link.N.slip_ratio", "slip force of link N / weight of building B", ""},
+    {"link.N.slip_force", "slip force of link N", "N"},
+    {"contact.N.gap", "gap of contact pair N", "m"},
+    {"model.mu", "friction threshold μ", ""},
+};
+
+// `name` against a pattern where X matches A or B and N a number; the matched element.
+bool matches(const std::string& pattern, const std::string& name, std::string* element) {
+  std::size_t i = 0, j = 0;
+  element->clear();
+  while (i < pattern.size() && j < name.size()) {
+    if (pattern[i] == 'X' && (name[j] == 'A' || name[j] == 'B')) {
+      *element = name[j];
+      ++i, ++j;
+    } else if (pattern[i] == 'N' && std::isdigit(static_cast<unsigned char>(name[j]))) {
+      const std::size_t start = j;
+      while (j < name.size() && std::isdigit(static_cast<unsigned char>(name[j]))) ++j;
+      *element = name.substr(start, j - start);
+      ++i;
+    } else if (pattern[i] == name[j]) {
+      ++i, ++j;
+    } else {
+      return false;
+    }
+  }
+  return i == pattern.size() && j == name.size();
+}
+
+// The axis label of a column: "peak storey drift, building A [m]"; units only in SI tables
+// (`si`), "(dimensionless)" otherwise when the quantity has a unit.
+std::string column_label(const std::string& column, bool si, std::string* unit_out = nullptr) {
+  std::string element;
+  for (const ColumnLabel& l : kColumnLabels)
+    if (matches(l.column, column, &element)) {
+      std::string label = l.label;
+      for (const char* placeholder : {"building X", "link N", "pair N"}) {
+        const auto at = label.find(placeholder);
+        if (at != std::string::npos) label.replace(at + std::strlen(placeholder) - 1, 1, element);
+      }
+      const std::string unit = l.unit;
+      if (unit_out) *unit_out = unit;
+      if (unit.empty()) return label;
+      if (unit == "g") return label + " [g]";
+      return label + (si ? " [" + unit + "]" : " (dimensionless)");
+    }
+  if (column.rfind("sa_", 0) == 0) return "spectral acceleration at T = " + column.substr(3) + (si ? " s [g]" : " [g]");
+  return column;
+}
+
+// The x values of a sweep table's column: numbers, or, when a cell is text (`--x damper`:
+// none, friction), the position of its value among the distinct values in the order they
+// first appear (`categories` then holds those values).
+std::vector<double> x_values(const CsvTable& table, const std::string& name, std::vector<std::string>* categories) {
+  try {
+    return table.numbers(name, "--x");
+  } catch (const InputError&) {
+    const std::size_t c = table.column(name, "--x");
+    std::vector<double> x;
+    for (const auto& row : table.rows) {
+      auto it = std::find(categories->begin(), categories->end(), row[c]);
+      if (it == categories->end()) it = categories->insert(categories->end(), row[c]);
+      x.push_back(static_cast<double>(it - categories->begin()));
+    }
+    return x;
+  }
+}
+
+}  // namespace
+
+std::vector<std::string> plot_sweep_csv(const fs::path& csv, const SweepPlotOptions& options, const fs::path& image,
+                                        const PlotStyle& style) {
   if (options.x.empty()) throw InputError("--x: expected a column name");
   if (options.y.empty()) throw InputError("--y: expected one or more column names separated by commas");
   const CsvTable table = must_read(csv, "a CSV file with a header line");
-  const std::vector<double> x = table.numbers(options.x, "--x");
+  std::vector<std::string> categories, notes;
+  const std::vector<double> x = x_values(table, options.x, &categories);
+  const bool categorical = !categories.empty();
+  if (categorical && options.log_x)
+    throw InputError("--logx: column '" + options.x + "' holds text ('" + categories.front() +
+                     "'), not numbers; a logarithmic axis needs numbers > 0");
   std::vector<std::vector<double>> ys;
   for (const std::string& name : options.y) {
     if (name.empty()) throw InputError("--y: empty column name (expected names separated by commas)");
@@ -884,6 +1039,28 @@ void plot_sweep_csv(const fs::path& csv, const SweepPlotOptions& options, const 
   if (groups.size() > 40)
     throw InputError("--group " + options.group + ": " + std::to_string(groups.size()) +
                      " distinct values (expected at most 40 curves; group by a coarser column)");
+  // A log axis has no place for zero or negative values: say which rows are left out.
+  if (options.log_x) {
+    const auto dropped = std::count_if(x.begin(), x.end(), [](double v) { return std::isfinite(v) && v <= 0.0; });
+    if (dropped == static_cast<long>(x.size()))
+      throw InputError("--logx: every value of column '" + options.x + "' is zero or negative; a logarithmic axis needs values > 0 (leave out --logx)");
+    if (dropped > 0)
+      notes.push_back("note: --logx: " + std::to_string(dropped) + " row(s) with " + options.x +
+                      " <= 0 are not drawn (a logarithmic axis has no zero)");
+  }
+  if (options.log_y)
+    for (std::size_t k = 0; k < ys.size(); ++k) {
+      const auto dropped = std::count_if(ys[k].begin(), ys[k].end(), [](double v) { return std::isfinite(v) && v <= 0.0; });
+      if (dropped > 0)
+        notes.push_back("note: --logy: " + std::to_string(dropped) + " value(s) of " + options.y[k] +
+                        " <= 0 are not drawn (a logarithmic axis has no zero)");
+    }
+  // SI unless the table says otherwise (its `units` column).
+  bool si = true;
+  if (table.has("units")) {
+    const std::size_t cu = table.column("units");
+    si = std::none_of(table.rows.begin(), table.rows.end(), [&](const auto& row) { return row[cu] == "dimensionless"; });
+  }
 
   std::ostringstream s;
   s << kPreamble;
@@ -916,35 +1093,63 @@ void plot_sweep_csv(const fs::path& csv, const SweepPlotOptions& options, const 
                                 : csv.filename().string();
   const std::string title = options.title.empty() ? "Sweep: " + where : options.title;
   const bool panels = ys.size() > 1;
+  // The key, when there is one (a curve per group), right of the panels, outside the data.
+  const bool key = !options.group.empty();
+  const std::string right = key ? "0.74" : "0.97";
   if (panels)
     s << "set multiplot layout " << ys.size() << ",1 title " << gnuplot_quote(title)
-      << " noenhanced font ',12' margins 0.12,0.97,0.09,0.92 spacing 0,0.03\n";
+      << " noenhanced font ',12' margins 0.12," << right << ",0.09,0.92 spacing 0,0.03\n";
   else
-    s << "set title " << gnuplot_quote(title) << " noenhanced font ',12'\n";
+    s << "set title " << gnuplot_quote(title) << " noenhanced font ',12'\n"
+      << "set lmargin at screen 0.12\nset rmargin at screen " << right << "\n";
   if (options.log_x) s << "set logscale x\n";
   if (options.log_y) s << "set logscale y\n";
-  // x spans the data plus a little (not rounded out to the next tics); y gets headroom.
-  s << "set key noenhanced\nset autoscale xfix\nset offsets graph 0.02, graph 0.02, graph 0.06, graph 0.06\n";
+  // Text values: one tick per value, in the order they first appear in the table (labelled
+  // on the bottom panel only).
+  auto category_tics = [&](bool labelled) {
+    std::string tics = "set xtics (";
+    for (std::size_t c = 0; c < categories.size(); ++c)
+      tics += (c ? ", " : "") + gnuplot_quote(labelled ? categories[c] : "") + " " + std::to_string(c);
+    return tics + ") noenhanced\n";
+  };
+  if (categorical) {
+    s << "set xrange [-0.5:" << num(static_cast<double>(categories.size()) - 0.5) << "]\n";
+  } else {
+    s << gnuplot_tick_format("x", x, options.log_x) << "set autoscale xfix\n";
+  }
+  // x spans the data plus a little; y gets headroom, but does not go below zero for a
+  // quantity that is never negative in the table (peaks, shares, counts).
+  const std::string x_offsets = categorical ? "set offsets graph 0, graph 0" : "set offsets graph 0.02, graph 0.02";
+  const std::string x_label = gnuplot_quote(column_label(options.x, si)) + " noenhanced";
   for (std::size_t k = 0; k < ys.size(); ++k) {
-    // One curve per panel needs no key: the y label names it.
-    if (options.group.empty()) s << "unset key\n";
-    else s << "set key " << key_corner(x, {ys[k]}) << "\n";
-    const bool last = k + 1 == ys.size();
-    if (panels) s << (last ? "set format x '%g'\nset xlabel " + gnuplot_quote(options.x) + " noenhanced\n"
-                           : std::string("set format x ''\nunset xlabel\n"));
-    else s << "set xlabel " << gnuplot_quote(options.x) << " noenhanced\n";
-    s << "set ylabel " << gnuplot_quote(options.y[k]) << " noenhanced\n";
-    if (k > 0 && !options.group.empty()) s << "unset key\n";
+    const bool first = k == 0, last = k + 1 == ys.size();
+    if (key && first) s << "set key outside right top vertical Left reverse noenhanced title " << gnuplot_quote(options.group) << "\n";
+    else s << "unset key\n";
+    if (panels) s << (last ? "set format x '%g'\nset xlabel " + x_label + "\n" : std::string("set format x ''\nunset xlabel\n"));
+    else s << "set xlabel " << x_label << "\n";
+    if (panels && last && !categorical) s << gnuplot_tick_format("x", x, options.log_x);
+    if (categorical) s << category_tics(last);
+    // Stacked panels are short: a long label takes two lines rather than run into the next.
+    const std::string y_label = column_label(options.y[k], si);
+    s << "set ylabel " << (panels ? gnuplot_quote_wrapped(y_label, 18) + " font ',9'" : gnuplot_quote(y_label))
+      << " noenhanced\n" << gnuplot_tick_format("y", ys[k], options.log_y);
+    const bool non_negative = std::none_of(ys[k].begin(), ys[k].end(), [](double v) { return v < 0.0; });
+    if (non_negative && !options.log_y) s << "set yrange [0:*]\n" << x_offsets << ", graph 0.06, 0\n";
+    else s << "set yrange [*:*]\n" << x_offsets << ", graph 0.06, graph 0.06\n";
     s << "plot ";
     for (std::size_t g = 0; g < groups.size(); ++g) {
-      const std::string label = options.group.empty() ? options.y[k] : options.group + " = " + groups[g];
-      s << (g ? ", " : "") << "$g" << g << " using 1:" << k + 2 << " with linespoints lt " << g % 8 + 1
-        << " pt 7 ps 0.8 title " << gnuplot_quote(label);
+      // 12 colours, each with its own marker; past 12 groups the dash pattern changes too.
+      const std::string label = options.group.empty() ? options.y[k] : groups[g];
+      // Text-valued x: points only (lines between categories mean nothing).
+      s << (g ? ", " : "") << "$g" << g << " using 1:" << k + 2 << (categorical ? " with points" : " with linespoints")
+        << " lt " << g % 12 + 1 << " dt " << g / 12 + 1 << " ps " << (categorical ? "1.4" : "0.9") << " title "
+        << gnuplot_quote(label);
     }
     s << "\n";
   }
   if (panels) s << "unset multiplot\n";
   render_gnuplot(s.str(), image, style);
+  return notes;
 }
 
 }  // namespace adjoin

@@ -2,6 +2,8 @@
 // with D5-95 marked (see record_plot.hpp).
 #include "adjoin/io/record_plot.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <sstream>
 #include <vector>
@@ -52,10 +54,10 @@ void plot_record(const Record& record, const std::filesystem::path& image, const
     s << "set object 1 rect from " << num(d.t_start) << ", graph 0 to " << num(d.t_end)
       << ", graph 1 back fillstyle solid 1.0 noborder fillcolor rgb '#eef2f8'\n";
   }
-  s << "set ylabel 'a [g]'\nplot $r using 1:2 with lines lt 1 title 'acceleration'\n"
-    << "set ylabel 'v [m/s]'\nplot $r using 1:3 with lines lt 2 title 'velocity (trapezoid, from rest)'\n"
-    << "set ylabel 'd [m]'\nplot $r using 1:4 with lines lt 3 title 'displacement'\n"
-    << "set format x '%g'\nset xlabel 't [s]'\nset ylabel 'Husid H(t)'\nset yrange [-0.02:1.05]\nset key bottom right\n";
+  s << "set ylabel 'a [g]'\n" << gnuplot_tick_step("y", h.accel, 9.80665) << "plot $r using 1:2 with lines lt 1 title 'acceleration'\n"
+    << "set ylabel 'v [m/s]'\n" << gnuplot_tick_step("y", h.velocity) << "plot $r using 1:3 with lines lt 2 title 'velocity (trapezoid, from rest)'\n"
+    << "set ylabel 'd [m]'\n" << gnuplot_tick_step("y", h.displacement) << "plot $r using 1:4 with lines lt 3 title 'displacement'\n"
+    << "set format x '%g'\nset xlabel 't [s]'\nset ylabel 'Husid H(t)'\nset ytics 0.2\nset yrange [-0.02:1.05]\nset key bottom right\n";
   if (arias) {
     const std::string label = "D_{5-95} = " + num(d.duration, 4) + " s (" + num(d.t_start, 4) + " to " + num(d.t_end, 4) + " s)";
     s << "set arrow 1 from " << num(d.t_start) << ", graph 0 to " << num(d.t_start)

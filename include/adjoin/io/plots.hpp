@@ -24,6 +24,8 @@
 // names the file, line or column and what was expected.
 #include <cstddef>
 #include <filesystem>
+#include <optional>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -55,7 +57,15 @@ CsvTable read_csv_table(const std::filesystem::path& file);
 struct PlotStyle {
   std::string format = "png";  // "png" or "svg"
   int width = 900, height = 600;
+  // Time histories drawn only for from <= t <= to (--window T0:T1); none: the whole run.
+  std::optional<std::pair<double, double>> window;
 };
+
+// Parses --window "T0:T1" (numbers, T0 < T1) into the style; InputError naming `option`.
+void parse_time_window(const std::string& text, PlotStyle* style, const std::string& option = "--window");
+// Keeps the rows of a time-series table (column t) inside the style's window; InputError if
+// fewer than two are left (naming the window and the span the table has).
+void keep_time_window(CsvTable& series, const PlotStyle& style);
 
 // Checks "png"/"svg" (InputError naming `option` otherwise) and returns the extension (".png").
 std::string plot_extension(const std::string& format, const std::string& option = "--format");
@@ -69,9 +79,23 @@ std::filesystem::path plot_target(const std::string& out, const std::filesystem:
                                   const std::string& option = "--out");
 
 // Runs a gnuplot script (which must not set terminal or output) to make `image` at the
-// style's size, through a temporary file renamed into place. UTF-8 text; enhanced text mode
-// (x_1 is a subscript; use `noenhanced` for verbatim labels).
+// style's size, written through a temporary file renamed into place (after gnuplot finished
+// and the image was checked complete). UTF-8 text; enhanced text mode (x_1 is a subscript;
+// use `noenhanced` for verbatim labels). Text in the script must come from gnuplot_quote.
 void render_gnuplot(const std::string& script, const std::filesystem::path& image, const PlotStyle& style);
+
+// Figures that belong together (the figures of one run folder): each is drawn in memory by
+// draw(); commit() writes them all or none (every one to its temporary first, then all
+// renamed into place; folders created only then). Destroyed without commit(), nothing is
+// written.
+class FigureSet {
+ public:
+  void draw(const std::string& script, const std::filesystem::path& image, const PlotStyle& style);
+  std::vector<std::filesystem::path> commit();
+
+ private:
+  std::vector<std::pair<std::filesystem::path, std::string>> images_;
+};
 
 struct RunPlots {
   std::vector<std::filesystem::path> images;  // in the order listed above
@@ -96,6 +120,11 @@ RunPlots plot_building_run(const std::filesystem::path& dir, const std::string& 
 void plot_run_channels(const std::filesystem::path& dir, const std::vector<std::string>& channels,
                        const std::filesystem::path& image, const PlotStyle& style,
                        const std::string& option = "--channels");
+// The same channels of several run folders in one figure: a panel per channel, a curve per
+// run (legend: scene and folder), each run on its own time grid. At most 24 runs.
+void plot_runs_channels(const std::vector<std::filesystem::path>& dirs, const std::vector<std::string>& channels,
+                        const std::filesystem::path& image, const PlotStyle& style,
+                        const std::string& option = "--channels");
 
 // PSA and SD against period (log axis), one curve per damping; title after "Elastic response
 // spectra: ". From memory, or from the CSV of `adjoin spectrum` (title: the file's name).
@@ -123,7 +152,10 @@ struct SweepPlotOptions {
   bool log_x = false, log_y = false;
   std::string title;           // default: the CSV's file name
 };
-void plot_sweep_csv(const std::filesystem::path& csv, const SweepPlotOptions& options,
-                    const std::filesystem::path& image, const PlotStyle& style);
+// Returns notes for the terminal (rows a log axis cannot show). Axis labels name the
+// quantity and its unit for the columns adjoin's tables have; a text-valued --x column is a
+// categorical axis (one tick per value, in the table's order).
+std::vector<std::string> plot_sweep_csv(const std::filesystem::path& csv, const SweepPlotOptions& options,
+                                        const std::filesystem::path& image, const PlotStyle& style);
 
 }  // namespace adjoin
