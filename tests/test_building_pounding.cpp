@@ -370,7 +370,7 @@ TEST_CASE("plot run on a building run with contacts draws contacts with the impa
   CHECK(text.find("outside the model") == std::string::npos);
 }
 
-TEST_CASE("the terminal line of a Newton-law pair gives its largest impulse, not a peak force of 0 N; counts agree in number",
+TEST_CASE("the terminal line of a Newton-law pair gives its largest impulse, not a peak force of 0 N, and counts agree in number",
           "[building_run][pounding]") {
   BuildingScene scene = pounding_scene({"output.timeseries=false"});
   auto& law = scene.structure.contacts.at(0).law;
