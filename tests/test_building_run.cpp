@@ -18,6 +18,7 @@
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/study/building_run.hpp"
 #include "adjoin/study/run.hpp"
+#include "cli_helpers.hpp"
 
 using namespace adjoin;
 
@@ -211,4 +212,133 @@ TEST_CASE("the energy balance of a building run closes at order 2 with several d
   CHECK(residuals[2] < 1e-5);
   CHECK(std::log2(residuals[0] / residuals[1]) > 1.7);
   CHECK(std::log2(residuals[1] / residuals[2]) > 1.7);
+}
+
+namespace {
+
+// two-frames.toml without its [solver] section and its output.every (the scene of issue 25: a
+// new user's building scene with output.timeseries = true and no step), plus `edits`.
+BuildingScene scene_without_solver(const std::string& name, const std::vector<std::string>& edits) {
+  std::ifstream in(kScene);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string scene = text.str();
+  const auto solver = scene.find("[solver]");
+  scene = scene.substr(0, solver) + "[output]\ntimeseries = true\n";
+  const auto file = std::filesystem::path(ADJOIN_SOURCE_DIR) / "records/scenes/buildings" / ("." + name + ".toml");
+  std::ofstream(file) << scene;
+  BuildingScene s = load_building_scene(file, edits);
+  std::filesystem::remove(file);
+  return s;
+}
+
+std::size_t lines_of(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::size_t n = 0;
+  for (std::string line; std::getline(in, line);) ++n;
+  return n;
+}
+
+}  // namespace
+
+TEST_CASE("r3 defaults: a building scene without [solver] takes an engineer's tolerance and writes a sampled time series",
+          "[building_run][defaults]") {
+  // Issue 25: the default tolerance 1e-6 chose h = 5e-5 s and wrote 504 MB (882,239 rows).
+  // With a contact law (impacts): rows every 1/1000 s, in whole steps.
+  const BuildingScene scene = scene_without_solver(
+      "r3-defaults", {"contact.1.model=hertzdamp", "contact.1.stiffness=2e9", "contact.1.restitution=0.65"});
+  REQUIRE(scene.base.accuracy.tolerance);
+  REQUIRE(*scene.base.accuracy.tolerance == 1e-3);  // before the run: 1e-6 would take minutes
+  CHECK(scene.h_rule.find("solver.tolerance = 0.001 (the default") != std::string::npos);
+  CHECK(building_output_interval(scene) == 1e-3);
+  CHECK(building_output_every(scene, 2.5e-4) == 4);
+  CHECK(building_output_every(scene, 3e-4) == 3);
+  CHECK(building_output_every(scene, 2.5e-3) == 1);
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "r3-defaults";
+  std::filesystem::remove_all(dir);
+  std::vector<std::string> warnings;
+  const BuildingFiles files = run_building_to_folder(scene, dir, [&](const std::string& w) { warnings.push_back(w); });
+  REQUIRE(files.tolerant);
+  CHECK(files.tolerant->met);
+  const double h = files.tolerant->h;
+  CHECK(h >= 1e-3);  // 5e-5 with the old default
+  CHECK(h == scene.solver.h);  // the first rung, T_B / 200 = 2.5e-3 s, meets 1e-3
+  const std::size_t every = building_output_every(scene, h);
+  CHECK(every == std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(1e-3 / h * (1 + 1e-9)))));
+  const std::size_t steps = files.report.solver.steps;
+  CHECK(lines_of(dir / "timeseries.csv") == 1 + steps / every + 1 + (steps % every ? 1 : 0));
+  CHECK(std::filesystem::file_size(dir / "timeseries.csv") < 10'000'000);  // 8.6 MB (504 MB before)
+  CHECK(warnings.empty());
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("r3 defaults: without a contact law rows every 1/200 s; a scene's own h or every is kept", "[building_run][defaults]") {
+  const BuildingScene chosen = scene_without_solver("r3-defaults-200", {});
+  CHECK(building_output_interval(chosen) == 5e-3);
+  CHECK(building_output_every(chosen, 1e-3) == 5);
+  CHECK(building_output_every(chosen, 0.0025) == 2);
+  CHECK(building_output_every(chosen, 0.004) == 1);
+  const BuildingScene given_h = scene_without_solver("r3-defaults-h", {"solver.h=0.001"});
+  CHECK(building_output_interval(given_h) == 0.0);
+  CHECK(building_output_every(given_h, 0.001) == 1);  // as before: every grid point
+  const BuildingScene given_every = scene_without_solver("r3-defaults-every", {"output.every=7"});
+  CHECK(building_output_every(given_every, 1e-4) == 7);
+  // A scene's own tolerance is kept.
+  const BuildingScene given_tol = scene_without_solver("r3-defaults-tol", {"solver.tolerance=1e-5"});
+  CHECK(*given_tol.base.accuracy.tolerance == 1e-5);
+}
+
+TEST_CASE("r3 defaults: a time series over 50 MB is announced with its size before it is written", "[building_run][defaults]") {
+  // two-frames at h = 3e-4 s for 45 s, every point: 150,001 rows of 22 columns (64 MB).
+  const BuildingScene scene = load_building_scene(kScene, {"output.every=1", "solver.h=3e-4", "solver.error_estimate=false"});
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "r3-defaults-large";
+  std::filesystem::remove_all(dir);
+  std::vector<std::string> warnings;
+  run_building_to_folder(scene, dir, [&](const std::string& w) { warnings.push_back(w); });
+  REQUIRE(warnings.size() == 1);
+  INFO(warnings[0]);
+  CHECK(warnings[0].find("timeseries.csv will be about") != std::string::npos);
+  CHECK(warnings[0].find("set output.every") != std::string::npos);
+  // The size said is the file's within 25 %.
+  const double said = std::stod(warnings[0].substr(warnings[0].find("about ") + 6)) * 1e6;
+  const double size = static_cast<double>(std::filesystem::file_size(dir / "timeseries.csv"));
+  CHECK(size > 50e6);
+  CHECK(said == Approx(size).epsilon(0.25));
+  std::filesystem::remove_all(dir);
+}
+
+TEST_CASE("r3 defaults: a long run shows its estimate and progress on a terminal, never in a pipe", "[building_run][progress]") {
+  // ADJOIN_PROGRESS_AFTER=0: every run timed (0.25 s) shows its progress, so that a test can
+  // be short; 900,000 steps of two-frames take about 1 s (more than the 0.25 s timed first).
+  if (std::system("command -v script >/dev/null 2>&1") != 0) {
+    WARN("script(1) is missing: the terminal case is not run");
+    return;
+  }
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "r3-progress";
+  std::filesystem::remove_all(dir);
+  const std::string run = std::string("'") + ADJOIN_CLI + "' run '" + kScene +
+                          "' --set solver.h=5e-5 --set output.timeseries=false --set solver.error_estimate=false --out '" +
+                          dir.string() + "'";
+  const auto terminal = dir.string() + ".tty";
+  // script(1) runs the command on a pseudo-terminal and copies what it shows to its stdout.
+  const std::string on_tty = "ADJOIN_PROGRESS_AFTER=0 script -qec \"" + run + "\" /dev/null > '" + terminal + "' 2>&1";
+  REQUIRE(std::system(on_tty.c_str()) == 0);
+  const std::string shown = adjoin::test::slurp(terminal);
+  CHECK(shown.find("run 1: 900000 steps of h = 5e-05 s, about") != std::string::npos);
+  CHECK(shown.find("/900000 steps") != std::string::npos);
+  CHECK(shown.find("ETA") != std::string::npos);
+  std::filesystem::remove(terminal);
+  // The same run with stderr to a file (a pipe, a log): nothing of it.
+  const auto piped = adjoin::test::run_cli("run '" + kScene +
+                                           "' --set solver.h=4e-4 --set output.timeseries=false "
+                                           "--set solver.error_estimate=false --out '" + dir.string() + "'");
+  CHECK(piped.status == 0);
+  CHECK(piped.err.find("steps") == std::string::npos);
+  CHECK(piped.err.find("ETA") == std::string::npos);
+  // --quiet on a terminal: nothing either.
+  const std::string quiet = "ADJOIN_PROGRESS_AFTER=0 script -qec \"" + run + " --quiet\" /dev/null > '" + terminal + "' 2>&1";
+  REQUIRE(std::system(quiet.c_str()) == 0);
+  CHECK(adjoin::test::slurp(terminal).find("ETA") == std::string::npos);
+  std::filesystem::remove(terminal);
+  std::filesystem::remove_all(dir);
 }

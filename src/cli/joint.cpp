@@ -18,7 +18,10 @@
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/study/seismic_joint.hpp"
+#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run_watch.hpp"
 #include "command.hpp"
+#include "progress.hpp"
 
 namespace adjoin::cli {
 namespace {
@@ -30,7 +33,7 @@ struct JointArgs {
   std::vector<std::string> overrides, unsets;
   int contact = 1;
   double tol = 0.0;
-  bool contact_given = false, tol_given = false, quiet = false;
+  bool contact_given = false, tol_given = false, quiet = false, allow_long = false;
 };
 
 std::string shortest(double v) {
@@ -110,8 +113,9 @@ int joint_command(const JointArgs& args) {
   SeismicJoint j;
   std::string name;
   if (is_building_scene(args.scene)) {
-    const BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
+    BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
     for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
+    check_building_memory(scene);
     const std::size_t n = scene.structure.contacts.size();
     if (n == 0)
       throw InputError(args.scene + ": no contact pair: adjoin joint needs a [[contact]] with floors = [i, j] (its gap "
@@ -121,6 +125,8 @@ int joint_command(const JointArgs& args) {
                        " contact pair" + (n == 1 ? "" : "s") + " (expected 1.." + std::to_string(n) + ")");
     name = scene.name;
     check_output_folder(output_folder(args, name));  // before the runs, not after them
+    RunWatch watch(watch_options(args.quiet, args.allow_long));
+    scene.watch = &watch;
     j = seismic_joint(scene, options);
   } else {
     const Scene scene = load_scene(args.scene, args.overrides, args.unsets);
@@ -158,6 +164,8 @@ const Registration registration(48, [](CLI::App& app) -> Runner {
                               "Bisection tolerance in the scene's length unit (m; default 1e-6 of s_max)");
   sub->add_option("--out", args->out, "Output folder for joint.json (default out/<scene name>/)");
   sub->add_flag("--quiet,-q", args->quiet, "Print nothing on success");
+  sub->add_flag("--allow-long", args->allow_long,
+                "Building scenes: run even when a run is estimated at more than 2 hours (refused otherwise)");
   return [args, contact, tol]() {
     args->contact_given = contact->count() > 0;
     args->tol_given = tol->count() > 0;

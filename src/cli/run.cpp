@@ -11,7 +11,10 @@
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/summary.hpp"
+#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run_watch.hpp"
 #include "command.hpp"
+#include "progress.hpp"
 
 namespace adjoin::cli {
 namespace {
@@ -22,13 +25,18 @@ struct RunArgs {
   std::vector<std::string> overrides;
   std::vector<std::string> unsets;
   bool quiet = false;
+  bool allow_long = false;
 };
 
 int run_building_command(const RunArgs& args) {
-  const BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
+  BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
   for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
+  check_building_memory(scene);  // before the output folder is touched
+  RunWatch watch(watch_options(args.quiet, args.allow_long));
+  scene.watch = &watch;
   const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args.out);
-  const BuildingFiles files = run_building_to_folder(scene, dir);
+  const BuildingFiles files =
+      run_building_to_folder(scene, dir, [](const std::string& warning) { std::cerr << "warning: " << warning << "\n"; });
   if (!args.quiet) {
     std::cout << building_brief_report(scene, files.report, files.estimate ? &*files.estimate : nullptr,
                                        files.tolerant ? &*files.tolerant : nullptr)
@@ -66,6 +74,8 @@ const Registration registration(10, [](CLI::App& app) -> Runner {
                   "Remove a scene key or section before the --set overrides, e.g. --unset ground.scale_pga")
       ->allow_extra_args(false);
   sub->add_flag("--quiet,-q", args->quiet, "Print nothing on success");
+  sub->add_flag("--allow-long", args->allow_long,
+                "Building scenes: run even when the run is estimated at more than 2 hours (refused otherwise)");
   return [args]() { return run_command(*args); };
 });
 

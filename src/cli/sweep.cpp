@@ -36,6 +36,7 @@
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "command.hpp"
+#include "progress.hpp"
 
 #ifdef ADJOIN_WITH_MPI
 #include <mpi.h>
@@ -74,48 +75,6 @@ SweepShard parse_shard(const std::string& text) {
   }
   return shard;
 }
-
-// A progress bar on stderr, only when stderr is a terminal.
-class Progress {
- public:
-  Progress(bool enabled, std::size_t done, std::size_t total)
-      : enabled_(enabled && isatty(STDERR_FILENO)), start_done_(done), done_(done), total_(total),
-        start_(std::chrono::steady_clock::now()) {
-    draw();
-  }
-  void tick() {
-    ++done_;
-    const auto now = std::chrono::steady_clock::now();
-    if (done_ == total_ || now - last_ > std::chrono::milliseconds(100)) {
-      last_ = now;
-      draw();
-    }
-  }
-  void finish() {
-    if (enabled_) std::fprintf(stderr, "\n");
-  }
-
- private:
-  void draw() {
-    if (!enabled_ || total_ == 0) return;
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    const double rate = seconds > 0 ? static_cast<double>(done_ - start_done_) / seconds : 0.0;
-    const int width = 30;
-    const int filled = static_cast<int>(static_cast<double>(width) * static_cast<double>(done_) / static_cast<double>(total_));
-    std::string bar(static_cast<std::size_t>(filled), '#');
-    bar += std::string(static_cast<std::size_t>(width - filled), '.');
-    char eta[32] = "--:--";
-    if (rate > 0) {
-      const long remaining = std::lround(static_cast<double>(total_ - done_) / rate);
-      std::snprintf(eta, sizeof eta, "%ld:%02ld", remaining / 60, remaining % 60);
-    }
-    std::fprintf(stderr, "\r[%s] %zu/%zu runs, %.1f runs/s, ETA %s   ", bar.c_str(), done_, total_, rate, eta);
-    std::fflush(stderr);
-  }
-  bool enabled_;
-  std::size_t start_done_, done_, total_;
-  std::chrono::steady_clock::time_point start_, last_{};
-};
 
 // The command as the lock file records it, for the message of a second sweep that finds it.
 std::string command_text(const SweepArgs& args, const SweepShard& shard) {

@@ -53,25 +53,34 @@ ordered_json modes_json(const structure::Modes& m) {
           {"mode_shapes", shapes}};
 }
 
-// Streams every `every`-th grid point of a building run: t, a_g, then every channel the
-// registry marks for the time series (structure/channels.hpp), in its order, and
-// `outside_model` when a contact pair has no law.
+// A CSV value as to_chars writes it (about 17 digits, sign, exponent) and its comma: the
+// size estimate of a time series before it is written.
+constexpr double kBytesPerCsvValue = 20.0;
+constexpr double kLargeCsvBytes = 50e6;  // warned before writing
+
+// Streams every `every`-th grid point of a building run (building_output_every, from each
+// run's own step): t, a_g, then every channel the registry marks for the time series
+// (structure/channels.hpp), in its order, and `outside_model` when a contact pair has no law.
+// Before a run whose file would exceed 50 MB it tells `warn` the size.
 class BuildingCsvWriter final : public StructureObserver {
  public:
-  BuildingCsvWriter(std::ostream& out, std::size_t every) : out_(out), every_(every == 0 ? 1 : every) {}
+  BuildingCsvWriter(std::ostream& out, const BuildingScene& scene, BuildingWarning warn)
+      : out_(out), scene_(scene), warn_(std::move(warn)) {}
   void begin(const structure::Structure& s, const StructureSolverOptions& o) override {
     s_ = &s;
     steps_ = o.steps();
+    every_ = building_output_every(scene_, o.h);
     count_ = 0;
     std::vector<structure::Channel> columns;
     for (auto& c : structure::channels(s))
       if (structure::info(c.quantity).timeseries) columns.push_back(std::move(c));
     columns_ = ChannelValues(s, std::move(columns));
-    out_ << "t,ag";
-    for (const auto& c : columns_.channels()) out_ << "," << c.name;
     unmodelled_ = false;
     flagged_ = std::any_of(s.contacts.begin(), s.contacts.end(),
                            [](const structure::Contact& c) { return c.law.model == structure::ContactModel::none; });
+    warn_if_large(o.h);
+    out_ << "t,ag";
+    for (const auto& c : columns_.channels()) out_ << "," << c.name;
     if (flagged_) out_ << ",outside_model";
     out_ << "\n";
     // The gap of each pair without a law, read at every grid point (not only the written
@@ -103,8 +112,26 @@ class BuildingCsvWriter final : public StructureObserver {
   void end() override { out_ << buffer_; buffer_.clear(); }
 
  private:
+  // Once per size: a run to a tolerance begins again with each rung.
+  void warn_if_large(double h) {
+    const double rows = static_cast<double>(steps_ / every_ + 2);
+    const double columns = static_cast<double>(2 + columns_.size() + (flagged_ ? 1 : 0));
+    const double bytes = rows * columns * kBytesPerCsvValue;
+    if (!warn_ || bytes <= kLargeCsvBytes || bytes <= 2.0 * warned_bytes_) return;
+    warned_bytes_ = bytes;
+    char text[400];
+    std::snprintf(text, sizeof text,
+                  "timeseries.csv will be about %.0f MB (%.0f rows of %.0f columns: a row every %zu steps of h = %.4g s); "
+                  "set output.every (a row every output.every steps) to write fewer rows",
+                  bytes / 1e6, rows, columns, every_, h);
+    warn_(text);
+  }
+
   std::ostream& out_;
-  std::size_t every_, steps_ = 0, count_ = 0;
+  const BuildingScene& scene_;
+  BuildingWarning warn_;
+  double warned_bytes_ = 0.0;
+  std::size_t every_ = 1, steps_ = 0, count_ = 0;
   const structure::Structure* s_ = nullptr;
   ChannelValues columns_;
   std::vector<structure::Channel> gaps_;
@@ -184,6 +211,21 @@ class RestartingWriter final : public StructureObserver {
 };
 
 }  // namespace
+
+double building_output_interval(const BuildingScene& scene) {
+  if (scene.base.output.every > 0 || scene.h_rule == "given") return 0.0;
+  const auto& contacts = scene.structure.contacts;
+  const bool impacts = std::any_of(contacts.begin(), contacts.end(),
+                                   [](const structure::Contact& c) { return c.law.model != structure::ContactModel::none; });
+  return impacts ? 1e-3 : 5e-3;
+}
+
+std::size_t building_output_every(const BuildingScene& scene, double h) {
+  if (scene.base.output.every > 0) return scene.base.output.every;
+  const double interval = building_output_interval(scene);
+  if (!(interval > 0.0 && h > 0.0)) return 1;
+  return std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(interval / h * (1.0 + 1e-9))));
+}
 
 std::string building_summary_json(const BuildingScene& scene, const BuildingReport& r, const BuildingErrorEstimate* estimate,
                                   const BuildingTolerantRun* tolerant) {
@@ -379,13 +421,14 @@ std::string building_impacts_csv(const BuildingReport& r) {
   return out;
 }
 
-BuildingFiles run_building_to_folder(const BuildingScene& scene, const std::filesystem::path& dir) {
+BuildingFiles run_building_to_folder(const BuildingScene& scene, const std::filesystem::path& dir,
+                                     const BuildingWarning& warn) {
   check_output_folder(dir);  // before the run: the folder itself is made by the set's commit
   FileSet set(dir, {"summary.json", "timeseries.csv", "energy.csv", "spectra.csv", "impacts.csv"});
   std::unique_ptr<BuildingCsvWriter> writer;
   std::unique_ptr<RestartingWriter> restarting;
   if (scene.base.output.timeseries) {
-    writer = std::make_unique<BuildingCsvWriter>(set.open("timeseries.csv"), scene.base.output.every);
+    writer = std::make_unique<BuildingCsvWriter>(set.open("timeseries.csv"), scene, warn);
     restarting = std::make_unique<RestartingWriter>(set, *writer);
   }
   BuildingFiles files;

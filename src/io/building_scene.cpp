@@ -168,9 +168,15 @@ BuildingScene detail::building_scene_from_tree(const toml::table& parsed, const 
     b.solver.h = b.base.solver.h;
     b.h_rule = "given";
   } else {
-    // Without solver.h the step is chosen for solver.tolerance (given, or the two-block
-    // scenes' default; base.accuracy holds it): this is the ladder's first rung, and the step
+    // Without solver.h the step is chosen for solver.tolerance (given, or 1e-3, the building
+    // scenes' default: three significant digits of every reported peak, what a structural
+    // engineer reads; base.accuracy holds it): this is the ladder's first rung, and the step
     // of a sweep's rows, which do not climb the ladder.
+    if (!b.base.accuracy.tolerance_given) {
+      b.base.accuracy.tolerance = kBuildingDefaultTolerance;
+      b.base.accuracy.h_rule = "chosen for solver.tolerance = " + number(kBuildingDefaultTolerance) +
+                               " (the default: 3 significant digits of the peaks)";
+    }
     b.solver.h = t_shortest_fundamental / 200.0;
     if (dt > 0.0) b.solver.h = std::min(b.solver.h, dt);
     b.h_rule = b.base.accuracy.h_rule + ", from h = the shortest fundamental period / 200" +

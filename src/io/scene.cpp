@@ -594,15 +594,13 @@ void check_memory(const SceneReader& r, const Scene& scene) {
   const double steps = static_cast<double>(scene.solver.steps());
   double need = estimated_history_bytes(scene.solver, scene.model);
   if (scene.output.spectra) need += 3.0 * 8.0 * (steps + 1.0);
-  const double have = physical_memory_bytes();
-  if (have <= 0.0 || need <= 0.8 * have) return;
+  const std::string problem = memory_problem(
+      need, "the " + to_string(scene.solver.history) + " history" +
+                (scene.output.spectra ? " and the accelerations kept for output.spectra" : ""));
+  if (problem.empty()) return;
   std::ostringstream s;
   s.precision(3);
-  s << "solver.t_end / solver.h = " << steps << " steps would need about " << need / 1e9
-    << " GB of memory (the " << to_string(scene.solver.history) << " history"
-    << (scene.output.spectra ? " and the accelerations kept for output.spectra" : "") << "), more than the "
-    << 0.8 * have / 1e9 << " GB this machine can give (80 % of " << have / 1e9
-    << " GB); raise solver.h or shorten solver.t_end";
+  s << "solver.t_end / solver.h = " << steps << " steps " << problem << "; raise solver.h or shorten solver.t_end";
   r.fail(r.has("solver.h") ? "solver.h" : "solver", s.str());
 }
 
@@ -644,6 +642,7 @@ void read_step_and_horizon(const SceneReader& r, Scene& scene) {
     r.fail("solver.tolerance", "solver.tolerance = " + format_number(tolerance) +
                                    " must lie in [1e-12, 0.1] (relative error of the reported peaks)");
   a.tolerance = tolerance;
+  a.tolerance_given = r.has("solver.tolerance");
   a.h_rule = "chosen for solver.tolerance = " + format_number(tolerance) + (r.has("solver.tolerance") ? "" : " (the default)");
   // A first guess for the checks below; run_to_tolerance picks the step.
   o.h = o.t_end / 4000.0;
@@ -854,8 +853,8 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
     out.spectra = spectra;
   }
   scene.output.timeseries = r.boolean("output.timeseries", false);
-  const std::int64_t every = r.integer("output.every", 1);
-  if (every < 1) r.fail("output.every", "output.every = " + std::to_string(every) + " must be 1 or more");
+  const std::int64_t every = r.integer("output.every", 0);  // 0: not given, the run's rule
+  if (r.has("output.every") && every < 1) r.fail("output.every", "output.every = " + std::to_string(every) + " must be 1 or more");
   scene.output.every = static_cast<std::size_t>(every);
   check_memory(r, scene);
   add_warnings(r, scene);

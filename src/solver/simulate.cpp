@@ -2,6 +2,9 @@
 
 #include <unistd.h>
 
+#include <cstdio>
+#include <string>
+
 #include "adjoin/errors.hpp"
 #include "schemes.hpp"
 
@@ -19,6 +22,17 @@ double estimated_history_bytes(const SolverOptions& options, const Model& model)
 double physical_memory_bytes() {
   const long pages = ::sysconf(_SC_PHYS_PAGES), size = ::sysconf(_SC_PAGESIZE);
   return pages > 0 && size > 0 ? static_cast<double>(pages) * static_cast<double>(size) : 0.0;
+}
+
+std::string memory_problem(double need_bytes, const std::string& what) {
+  const double have = physical_memory_bytes();
+  if (have <= 0.0 || need_bytes <= 0.8 * have) return "";
+  char text[160];
+  std::snprintf(text, sizeof text, "would need about %.3g GB of memory (", need_bytes / 1e9);
+  std::string out = text + what;
+  std::snprintf(text, sizeof text, "), more than the %.3g GB this machine can give (80 %% of %.3g GB)", 0.8 * have / 1e9,
+                have / 1e9);
+  return out + text;
 }
 
 SolverSummary simulate(const SolverOptions& options, const Model& model, const GroundMotion& ground,

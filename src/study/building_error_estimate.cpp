@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "adjoin/errors.hpp"
 #include "adjoin/solver/simulate.hpp"
@@ -74,11 +76,17 @@ class BuildingRungs final : public detail::StepLadder {
   void run(double h) override {
     BuildingRunSpec s = spec_;
     s.solver.h = h;
-    // The fractional histories grow with the number of steps: the last rung's, scaled.
-    if (h_ > 0.0 && memory_ > 0.0 && static_cast<double>(current.solver.history_bytes) * h_ / h > memory_)
-      throw NumericalError("solver.tolerance = " + std::to_string(tolerance_) + " would need solver.h = " + std::to_string(h) +
-                               " s, whose history does not fit in memory; loosen solver.tolerance or set solver.h",
-                           0.0);
+    // The fractional histories grow with the number of steps: a rung that would not fit is
+    // refused by every run's rule, saying that the tolerance chose its step.
+    try {
+      BuildingRunSpec rung = s;
+      rung.h_rule = "given";  // this rung's step is said below
+      check_building_memory(rung);
+    } catch (const InputError& e) {
+      char chose[96];
+      std::snprintf(chose, sizeof chose, "solver.tolerance = %.3g chose solver.h = %.4g s: ", tolerance_, h);
+      throw InputError(chose + std::string(e.what()) + " (or loosen solver.tolerance)");
+    }
     previous = std::move(current);
     // The extra observer (a streaming writer) sees every rung's run (not the companions);
     // each begin() starts a new one, and the last it sees is the run that is kept.
@@ -99,7 +107,6 @@ class BuildingRungs final : public detail::StepLadder {
   const BuildingRunSpec& spec_;
   double tolerance_;
   StructureObserver* extra_;
-  double memory_ = 0.8 * physical_memory_bytes();
   double h_ = 0.0;
 };
 

@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <sstream>
+#include <utility>
 
 #include "adjoin/errors.hpp"
 #include "adjoin/observe/channel_values.hpp"
 #include "adjoin/post/spectrum.hpp"
+#include "adjoin/solver/simulate.hpp"
 #include "adjoin/structure/channels.hpp"
 #include "adjoin/structure/modal.hpp"
 
@@ -254,6 +257,71 @@ double BuildingReport::unmodelled_from() const {
   return t;
 }
 
+namespace {
+
+// The structure's Zener elements (each storey of a Zener device, each Zener link) and their
+// distinct orders (the weights are computed once per order).
+std::pair<std::size_t, std::size_t> zener_elements(const structure::Structure& s) {
+  std::size_t elements = 0;
+  std::vector<double> orders;
+  for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr}) {
+    if (!b) continue;
+    for (const auto& d : b->devices)
+      if (d.type == structure::DeviceType::zener) {
+        elements += d.storeys.size();
+        orders.push_back(d.zener.order);
+      }
+  }
+  for (const auto& l : s.links)
+    if (l.type == LinkType::zener) {
+      ++elements;
+      orders.push_back(l.zener.order);
+    }
+  std::sort(orders.begin(), orders.end());
+  return {elements, static_cast<std::size_t>(std::unique(orders.begin(), orders.end()) - orders.begin())};
+}
+
+std::string shortest(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
+
+}  // namespace
+
+double estimated_building_run_bytes(const BuildingRunSpec& scene) {
+  const double steps = static_cast<double>(scene.solver.steps()) + 2.0;
+  const auto [elements, orders] = zener_elements(scene.structure);
+  const double per_element_step = scene.solver.history == HistoryEngine::fft ? 64.0 : 16.0;
+  const double signals = scene.base.output.spectra ? static_cast<double>(scene.base.output.spectra->signals.size()) : 0.0;
+  const double dofs = static_cast<double>(scene.structure.dofs());
+  return steps * (static_cast<double>(elements) * per_element_step + 8.0 * static_cast<double>(orders) + 8.0 * signals) +
+         16.0 * 8.0 * dofs * dofs + 65536.0;
+}
+
+void check_building_memory(const BuildingRunSpec& scene) {
+  const auto elements = zener_elements(scene.structure).first;
+  std::string what = "the " + to_string(scene.solver.history) + " history of " + std::to_string(elements) + " Zener element" +
+                     (elements == 1 ? "" : "s");
+  if (scene.base.output.spectra) what += " and the accelerations kept for output.spectra";
+  const std::string problem = memory_problem(estimated_building_run_bytes(scene), what);
+  if (problem.empty()) return;
+  const std::string where = scene.file.empty() ? std::string() : scene.file.string() + ": ";
+  const bool h_given = scene.h_rule.empty() || scene.h_rule == "given";
+  const bool t_end_given = scene.t_end_rule.empty() || scene.t_end_rule == "given";
+  throw InputError(where + "a run of " + shortest(static_cast<double>(scene.solver.steps())) + " steps (solver.h = " +
+                   shortest(scene.solver.h) + " s" + (h_given ? "" : ", " + scene.h_rule) + "; solver.t_end = " +
+                   shortest(scene.solver.t_end) + " s" + (t_end_given ? "" : ", " + scene.t_end_rule) + ") " + problem +
+                   (h_given ? "; raise solver.h or shorten solver.t_end"
+                            : "; set a coarser solver.h, loosen solver.tolerance or shorten solver.t_end"));
+}
+
+StructureRunSummary simulate_building(const BuildingRunSpec& scene, const structure::Structure& s, StructureObserver& observer) {
+  check_building_memory(scene);
+  Both watched(observer, scene.watch);
+  return simulate_structure(scene.solver, s, *scene.base.ground, watched);
+}
+
 BuildingReport run_building(const BuildingRunSpec& scene, StructureObserver* extra) {
   BuildingReport r;
   const structure::Structure& s = scene.structure;
@@ -268,7 +336,7 @@ BuildingReport run_building(const BuildingRunSpec& scene, StructureObserver* ext
   if (asked) recorder = std::make_unique<SignalRecorder>(s, asked->signals);
   Both recorded(observer, recorder.get());
   Both both(recorded, extra);
-  r.solver = simulate_structure(scene.solver, s, *scene.base.ground, both);
+  r.solver = simulate_building(scene, s, both);
   if (recorder) {
     SpectrumOptions options;
     options.dampings = asked->damping;

@@ -12,6 +12,7 @@
 #include "adjoin/observe/pounding.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/solver/structure_solver.hpp"
+#include "adjoin/study/building_run.hpp"
 
 namespace adjoin {
 namespace {
@@ -291,7 +292,7 @@ SeismicJoint seismic_joint(const BuildingRunSpec& scene, const SeismicJointOptio
   const RunAt run_at = [&](double gap) {
     s.contacts[index].gap = gap;
     JointObserver observer(s, index);
-    simulate_structure(scene.solver, s, *scene.base.ground, observer);
+    simulate_building(scene, s, observer);
     Trial t = observer.trial();
     t.notes.insert(t.notes.begin(), law_note.begin(), law_note.end());
     return t;

@@ -47,4 +47,10 @@ double estimated_history_bytes(const SolverOptions& options, const Model& model)
 // The machine's physical memory in bytes (0 if unknown).
 double physical_memory_bytes();
 
+// The rule every run is held to before it starts (two-block and building runs alike): what it
+// will hold must fit in 80 % of the machine's physical memory. Returns "" when it fits (or the
+// memory is unknown), else the reason, "would need about 12.3 GB of memory (WHAT), more than
+// the 6.4 GB this machine can give (80 % of 8 GB)", for the caller to put after what is refused.
+std::string memory_problem(double need_bytes, const std::string& what);
+
 }  // namespace adjoin

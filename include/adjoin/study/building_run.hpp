@@ -93,6 +93,22 @@ struct BuildingReport {
   std::vector<SignalSpectrum> spectra;
 };
 
+// Refuses (InputError, exit 2) before it starts a run that could hold the step and horizon it
+// needs only by using more memory than the machine can give: every run's rule
+// (solver/simulate.hpp memory_problem). run_building checks each run (and so `run`, `joint`,
+// `converge` and building sweeps); commands call it first to refuse before any work.
+void check_building_memory(const BuildingRunSpec& scene);
+// What a building run holds [bytes], known before it starts: each Zener element's history
+// (weights and past values, 16 bytes a step with the direct engine, 64 with fft: the two-block
+// rods' figures), the quadrature weights of each order (8 bytes a step), the histories kept
+// for in-run spectra (8 bytes a step each) and the step's dense matrices.
+double estimated_building_run_bytes(const BuildingRunSpec& scene);
+
 BuildingReport run_building(const BuildingRunSpec& scene, StructureObserver* extra = nullptr);
+
+// simulate_structure for a run of `scene` (with `s`, the scene's structure or an edit of it of
+// the same size): its memory checked first (check_building_memory) and its steps shown to the
+// scene's watch. Every building run goes through here.
+StructureRunSummary simulate_building(const BuildingRunSpec& scene, const structure::Structure& s, StructureObserver& observer);
 
 }  // namespace adjoin

@@ -37,7 +37,9 @@ struct OutputOptions {
   bool energy = true;           // output.energy: the final energy balance in summary.json
   bool timeseries = false;      // output.timeseries: write timeseries.csv (streamed)
   bool energy_history = false;  // output.energy_history: write energy.csv (streamed)
-  std::size_t every = 1;        // output.every: keep every n-th grid point in the CSV files
+  // output.every: keep every n-th grid point in the CSV files; 0: not given, the run's rule
+  // (1 for two-block runs; building runs with a chosen step: io/building_files.hpp).
+  std::size_t every = 0;
   std::optional<SpectraOutput> spectra;  // [output.spectra]: write spectra.csv
 };
 
@@ -50,6 +52,7 @@ struct AccuracyOptions {
   // solver.tolerance: the step is chosen to meet it (relative error of the peaks), instead of
   // solver.h. When neither is given the tolerance is 1e-6.
   std::optional<double> tolerance;
+  bool tolerance_given = false;  // solver.tolerance is the scene's (not a default)
   // How h and t_end were chosen, in words, when the scene did not give them ("" if it did).
   std::string h_rule, t_end_rule;
 };
@@ -79,6 +82,10 @@ struct BuildingRunSpec {
   StructureSolverOptions solver;
   std::string h_rule, t_end_rule;
   std::vector<std::string> warnings;
+  // Sees every run made from this spec, none if null (not owned): a command's RunWatch
+  // (study/run_watch.hpp) estimates each run's time, refuses the clearly unintended, shows
+  // progress.
+  StructureObserver* watch = nullptr;
 };
 
 }  // namespace adjoin
