@@ -272,7 +272,7 @@ TEST_CASE("r3 defaults: a building scene without [solver] takes an engineer's to
   std::filesystem::remove_all(dir);
 }
 
-TEST_CASE("r3 defaults: without a contact law rows every 1/200 s; a scene's own h or every is kept", "[building_run][defaults]") {
+TEST_CASE("r3 defaults: without a contact law rows every 1/200 s, and a scene's own h or every is kept", "[building_run][defaults]") {
   const BuildingScene chosen = scene_without_solver("r3-defaults-200", {});
   CHECK(building_output_interval(chosen) == 5e-3);
   CHECK(building_output_every(chosen, 1e-3) == 5);
