@@ -1,14 +1,13 @@
 #pragma once
-// Long building runs: each run's wall time estimated from its own first steps, the clearly
+// Long runs (building and two-block): each run's wall time estimated from its own first steps, the clearly
 // unintended ones refused with the estimate, and the progress of the long ones shown.
 //
 // A command puts a RunWatch into BuildingRunSpec::watch (RunSpec::watch for two-block runs);
-// every run made from that spec (the
-// run, its error estimate's companion at 2h, a tolerance's rungs, a joint's bisection, a
+// every run made from that spec (the run, its error estimate's companion at 2h, a tolerance's rungs, a joint's bisection, a
 // convergence ladder's runs) reports its steps to it. After a run's first steps (0.25 s of
 // wall time, or its end) the watch estimates the run's wall time: its N steps at the cost of a
 // step measured so far and, with the direct history engine, the sums that grow with the step
-// number (each Zener element's lag sum at step m costs m multiply-adds: the wall time after m
+// number (each Zener element's or fractional rod's lag sum at step m costs m multiply-adds: the wall time after m
 // steps is a m + b m^2 / 2, a and b fitted to the times of this run's steps at two step
 // counts). The fft engine's sums grow as log^2 m and are left to the measured cost. Then:
 //   - above `refuse_seconds` (default 2 hours: no building run a study needs is that long; a
