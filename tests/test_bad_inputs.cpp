@@ -25,6 +25,8 @@
 //   same_as_before = ["{tmp}/out/a.json"] # files the command must leave as they were
 //   cwd = "{tmp}/a/b"                     # working folder (default {tmp}; created)
 //   env = { NAME = "value" }              # extra environment
+//   seconds = 30                          # killed (and failed) if it runs longer: a case that
+//                                         # guards a refusal must not hang without it
 //   [[case.file]]                         # made before the command, in order
 //   path = "{tmp}/scene.toml"
 //   hex = "00ff.."      # content, in this order: hex bytes, a copied file, text, append
@@ -45,6 +47,7 @@
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -173,8 +176,10 @@ struct Outcome {
 };
 
 Outcome run_case(const std::vector<std::string>& args, const fs::path& cwd, const std::map<std::string, std::string>& env,
-                 const fs::path& scratch) {
-  std::string command = "cd " + shell_quote(cwd.string()) + " && env";
+                 const fs::path& scratch, std::int64_t seconds) {
+  std::string command = "cd " + shell_quote(cwd.string()) + " && ";
+  if (seconds > 0) command += "timeout -s KILL " + std::to_string(seconds) + " ";
+  command += "env";
   for (const auto& [k, v] : env) command += " " + shell_quote(k + "=" + v);
   command += " " + shell_quote(ADJOIN_CLI);
   for (const auto& a : args) command += " " + shell_quote(a);
@@ -232,7 +237,7 @@ TEST_CASE("the catalogue of bad and extreme inputs keeps the contract", "[bad_in
       std::map<std::string, std::string> before;  // same_as_before: contents to compare
       for (const auto& path : strings(c, "same_as_before", p)) before[path] = adjoin::test::slurp(path);
 
-      const Outcome o = run_case(strings(c, "args", p), cwd, env, scratch);
+      const Outcome o = run_case(strings(c, "args", p), cwd, env, scratch, c["seconds"].value_or(std::int64_t{0}));
       INFO("stderr: " << o.err);
       const int expected = static_cast<int>(c["exit"].value_or(std::int64_t{-1}));
       CHECK(o.status == expected);

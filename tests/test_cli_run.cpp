@@ -2,6 +2,8 @@
 // header and rows, and agreement with the library run it reports.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <cstdlib>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -96,4 +98,41 @@ TEST_CASE("output.every thins the time series and keeps the last point", "[cli]"
   while (std::getline(csv, line)) { ++rows; last = line; }
   CHECK(rows == 8000 / 3 + 2);  // m = 0, 3, ..., 7998, and 8000
   CHECK(std::stod(last.substr(0, last.find(','))) == Approx(16.0));
+}
+
+TEST_CASE("r3 watch: a long two-block run shows its estimate and progress on a terminal, never in a pipe", "[cli][progress]") {
+  // ADJOIN_PROGRESS_AFTER=0: every run timed (0.25 s) shows its progress, so that a test can
+  // be short. si-record's rods keep a direct history: 60,000 steps take about 1 s (more than
+  // the 0.25 s timed first).
+  if (std::system("command -v script >/dev/null 2>&1") != 0) {
+    WARN("script(1) is missing: the terminal case is not run");
+    return;
+  }
+  const std::string scene_file = std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/si-record.toml";
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "r3-two-block-progress";
+  std::filesystem::remove_all(dir);
+  const std::string settings =
+      " --set solver.h=5e-4 --set output.timeseries=false --set solver.error_estimate=false --out '" + dir.string() + "'";
+  const std::string run = std::string("'") + ADJOIN_CLI + "' run '" + scene_file + "'" + settings;
+  const auto terminal = dir.string() + ".tty";
+  // script(1) runs the command on a pseudo-terminal and copies what it shows to its stdout.
+  const std::string on_tty = "ADJOIN_PROGRESS_AFTER=0 script -qec \"" + run + "\" /dev/null > '" + terminal + "' 2>&1";
+  REQUIRE(std::system(on_tty.c_str()) == 0);
+  const std::string shown = test::slurp(terminal);
+  INFO(shown);
+  CHECK(shown.find("run 1: 60000 steps of h = 0.0005 s, about") != std::string::npos);
+  CHECK(shown.find("/60000 steps") != std::string::npos);
+  CHECK(shown.find("ETA") != std::string::npos);
+  std::filesystem::remove(terminal);
+  // The same run with stderr to a file (a pipe, a log): nothing of it.
+  const auto piped = test::run_cli("run '" + scene_file + "'" + settings);
+  CHECK(piped.status == 0);
+  CHECK(piped.err.find("steps") == std::string::npos);
+  CHECK(piped.err.find("ETA") == std::string::npos);
+  // --quiet on a terminal: nothing either.
+  const std::string quiet = "ADJOIN_PROGRESS_AFTER=0 script -qec \"" + run + " --quiet\" /dev/null > '" + terminal + "' 2>&1";
+  REQUIRE(std::system(quiet.c_str()) == 0);
+  CHECK(test::slurp(terminal).find("ETA") == std::string::npos);
+  std::filesystem::remove(terminal);
+  std::filesystem::remove_all(dir);
 }

@@ -21,7 +21,9 @@
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/study/building_convergence.hpp"
 #include "adjoin/study/convergence.hpp"
+#include "adjoin/study/run_watch.hpp"
 #include "command.hpp"
+#include "progress.hpp"
 
 namespace adjoin::cli {
 namespace {
@@ -31,6 +33,7 @@ struct ConvergeArgs {
   std::vector<std::string> overrides, unsets, schemes, engines;
   std::vector<double> steps;
   bool no_plot = false;
+  bool allow_long = false;
 };
 
 std::string cell(double v, const char* format = "%.3e") {
@@ -131,6 +134,8 @@ void check_steps(const ConvergeArgs& args, double scene_h, double t_end, const s
 int converge_building(const ConvergeArgs& args) {
   BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
   for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
+  RunWatch watch(watch_options(false, args.allow_long));  // each run of the ladder: estimated, shown
+  scene.watch = &watch;
   if (args.schemes.size() > 1) throw InputError("--schemes: building scenes take one scheme, implicit or implicit-damped");
   for (const auto& name : args.schemes) {
     if (name != "implicit" && name != "implicit-damped")
@@ -154,8 +159,13 @@ int converge_command(const ConvergeArgs& args) {
     plot_target(args.plot, {}, "", &style, "--plot");
   }
   if (is_building_scene(args.scene)) return converge_building(args);
-  const Scene scene = load_scene(args.scene, args.overrides, args.unsets);
+  Scene scene = load_scene(args.scene, args.overrides, args.unsets);
   for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
+  RunWatch::Options watching = watch_options(false, args.allow_long);  // each run of the ladder: estimated, shown
+  watching.time_scale = scene.scales.time;
+  watching.h_unit = scene.scales.si ? " s" : " (dimensionless)";
+  RunWatch watch(std::move(watching));
+  scene.watch = &watch;
   ConvergenceOptions options;
   if (!args.schemes.empty()) {
     options.schemes.clear();
@@ -258,6 +268,8 @@ const Registration registration(40, [](CLI::App& app) -> Runner {
   sub->add_option("--out", args->out, "Output folder (default out/<scene name>/)");
   sub->add_option("--plot", args->plot, "Work-precision plot file (.png or .svg; default DIR/work-precision.png)");
   sub->add_flag("--no-plot", args->no_plot, "Do not draw the plot");
+  sub->add_flag("--allow-long", args->allow_long,
+                "Run even when a run is estimated at more than 2 hours (refused otherwise)");
   return [args]() { return converge_command(*args); };
 });
 

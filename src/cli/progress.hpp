@@ -3,6 +3,7 @@
 // or pipes), for a sweep's runs and for a long run's steps (study/run_watch.hpp).
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -22,8 +23,11 @@ class Progress {
     draw();
   }
   void tick() { update(done_ + 1); }
-  void update(std::size_t done) {
+  // `remaining`: the time left [s] when the caller knows it better than the rate so far does
+  // (a run whose steps grow dearer: study/run_watch.hpp); negative: from the rate.
+  void update(std::size_t done, double remaining = -1.0) {
     done_ = done;
+    remaining_ = remaining;
     const auto now = std::chrono::steady_clock::now();
     if (done_ == total_ || now - last_ > std::chrono::milliseconds(100)) {
       last_ = now;
@@ -44,8 +48,9 @@ class Progress {
     std::string bar(static_cast<std::size_t>(filled), '#');
     bar += std::string(static_cast<std::size_t>(width - filled), '.');
     char eta[32] = "--:--";
-    if (rate > 0) {
-      const long remaining = std::lround(static_cast<double>(total_ - done_) / rate);
+    if (rate > 0 || remaining_ >= 0.0) {
+      const long remaining =
+          std::lround(remaining_ >= 0.0 ? remaining_ : static_cast<double>(total_ - done_) / rate);
       std::snprintf(eta, sizeof eta, "%ld:%02ld", remaining / 60, remaining % 60);
     }
     std::fprintf(stderr, "\r[%s] %zu/%zu %s, %.3g %s/s, ETA %s   ", bar.c_str(), done_, total_, unit_.c_str(), rate,
@@ -54,6 +59,7 @@ class Progress {
   }
   bool enabled_;
   std::size_t start_done_, done_, total_;
+  double remaining_ = -1.0;
   std::string unit_;
   std::chrono::steady_clock::time_point start_, last_{};
 };
@@ -70,11 +76,11 @@ inline RunWatch::Options watch_options(bool quiet, bool allow_long) {
   auto bar = std::make_shared<std::unique_ptr<Progress>>();
   o.show = [bar](const RunProgress& p) {
     if (p.first) {
-      std::fprintf(stderr, "run %zu: %zu steps of h = %.4g s, about %s\n", p.run, p.total, p.h,
+      std::fprintf(stderr, "run %zu: %zu steps of h = %.4g%s, about %s\n", p.run, p.total, p.h, p.h_unit.c_str(),
                    duration_text(p.estimate).c_str());
       *bar = std::make_unique<Progress>(true, p.done, p.total, "steps");
     } else if (*bar) {
-      (*bar)->update(p.done);
+      (*bar)->update(p.done, std::max(0.0, p.estimate - p.elapsed));
     }
   };
   o.finish = [bar]() {

@@ -49,8 +49,13 @@ int run_building_command(const RunArgs& args) {
 
 int run_command(const RunArgs& args) {
   if (is_building_scene(args.scene)) return run_building_command(args);
-  const Scene scene = load_scene(args.scene, args.overrides, args.unsets);
+  Scene scene = load_scene(args.scene, args.overrides, args.unsets);
   for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
+  RunWatch::Options watching = watch_options(args.quiet, args.allow_long);
+  watching.time_scale = scene.scales.time;
+  watching.h_unit = scene.scales.si ? " s" : " (dimensionless)";
+  RunWatch watch(std::move(watching));
+  scene.watch = &watch;
   const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args.out);
   const RunFiles files = run_to_folder(scene, dir);
   if (!args.quiet) {
@@ -75,7 +80,7 @@ const Registration registration(10, [](CLI::App& app) -> Runner {
       ->allow_extra_args(false);
   sub->add_flag("--quiet,-q", args->quiet, "Print nothing on success");
   sub->add_flag("--allow-long", args->allow_long,
-                "Building scenes: run even when the run is estimated at more than 2 hours (refused otherwise)");
+                "Run even when the run is estimated at more than 2 hours (refused otherwise)");
   return [args]() { return run_command(*args); };
 });
 

@@ -110,7 +110,7 @@ class ImplicitStepper {
         k1_(rod1_.stiffness()), k2_(rod2_.stiffness()),
         damped_steps_(damped_steps(options, h_, rho_, k1_, k2_)) {}
 
-  RunInfo info() const { return RunInfo{model_, h_, n_steps_}; }
+  RunInfo info() const { return RunInfo{model_, h_, n_steps_, options_.history}; }
   std::size_t steps() const { return n_steps_; }
   std::size_t history_bytes() const { return rod1_.bytes() + rod2_.bytes(); }
 

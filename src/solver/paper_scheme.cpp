@@ -79,7 +79,7 @@ class PaperStepper {
         rod2_(model.rod2, model.eps, h_, options.history,
               model.rod2.elastic ? std::vector<double>{} : grunwald_letnikov_weights(model.rod2.order, n_ + 2)) {}
 
-  RunInfo info() const { return RunInfo{model_, h_, n_}; }
+  RunInfo info() const { return RunInfo{model_, h_, n_, options_.history}; }
   std::size_t steps() const { return n_; }
   std::size_t history_bytes() const { return rod1_.bytes() + rod2_.bytes(); }
   const State& start() { return grid_point(0); }

@@ -90,6 +90,7 @@ LoopResult run_two_block_contact(const SolverOptions& options, const Model& mode
   info.model = model;
   info.h = options.h;
   info.steps = options.steps();
+  info.history = options.history;
   observer.begin(info);
   AsTwoBlock adapter(observer, model.mu > 0.0, s.a.masses[0], s.b->masses[0]);
   const ScaledGround g(ground, 1.0 / kStandardGravity);

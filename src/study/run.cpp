@@ -75,6 +75,7 @@ RunReport run_scene(const RunSpec& scene, Observer* extra) {
     observers.add(accelerations.get());
   }
   if (extra) observers.add(extra);
+  if (scene.watch) observers.add(scene.watch);  // (it may stop the run: a refusal)
 
   RunReport report;
   report.solver = simulate(scene.solver, scene.model, *scene.ground, observers);

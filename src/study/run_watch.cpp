@@ -43,12 +43,23 @@ std::string duration_text(double seconds) {
 RunWatch::RunWatch(Options options) : options_(std::move(options)) {}
 
 void RunWatch::begin(const structure::Structure& s, const StructureSolverOptions& o) {
+  start(o.steps(), o.h, o.history == HistoryEngine::direct && zener_elements(s) > 0);
+}
+
+void RunWatch::begin(const RunInfo& info) {
+  const bool rods = !info.model.rod1.elastic || !info.model.rod2.elastic;
+  start(info.steps, info.h * options_.time_scale, info.history == HistoryEngine::direct && rods);
+}
+
+void RunWatch::observe(const StructureState&) { step(); }
+void RunWatch::observe(const State&) { step(); }
+
+void RunWatch::start(std::size_t steps, double h_seconds, bool direct) {
   ++run_;
   done_ = 0;
-  total_ = o.steps();
-  h_ = o.h;
-  zener_ = zener_elements(s);
-  direct_ = o.history == HistoryEngine::direct && zener_ > 0;
+  total_ = steps;
+  h_ = h_seconds;
+  direct_ = direct;
   marks_.clear();
   estimated_ = shown_ = false;
   next_check_ = 1;
@@ -73,7 +84,7 @@ double RunWatch::estimate() const {
   return a * total + 0.5 * b * total * total;
 }
 
-void RunWatch::observe(const StructureState&) {
+void RunWatch::step() {
   // Called at t_0 too (done_ counts the steps taken after it).
   if (done_++ == 0) return;
   const std::size_t steps = done_ - 1;
@@ -90,7 +101,7 @@ void RunWatch::observe(const StructureState&) {
   const auto now = std::chrono::steady_clock::now();
   if (now - last_shown_ < std::chrono::milliseconds(100)) return;
   last_shown_ = now;
-  options_.show({run_, steps, total_, h_, elapsed, estimate(), false});
+  options_.show({run_, steps, total_, h_, options_.h_unit, elapsed, estimate(), false});
 }
 
 // The estimate is known: refuse the run, or show it.
@@ -100,10 +111,10 @@ void RunWatch::calibrated() {
   if (options_.refuse_seconds > 0.0 && total > options_.refuse_seconds) {
     char text[600];
     std::snprintf(text, sizeof text,
-                  "this run would take about %s (%zu steps of solver.h = %.4g s at %.3g ms a step%s, timed over its "
+                  "this run would take about %s (%zu steps of solver.h = %.4g%s at %.3g ms a step%s, timed over its "
                   "first %zu), more than %s: probably not what was meant; raise solver.h or shorten solver.t_end, or pass "
                   "--allow-long to run it",
-                  duration_text(total).c_str(), total_, h_, 1e3 * total / static_cast<double>(std::max<std::size_t>(total_, 1)),
+                  duration_text(total).c_str(), total_, h_, options_.h_unit.c_str(), 1e3 * total / static_cast<double>(std::max<std::size_t>(total_, 1)),
                   direct_ ? " on average: the direct history's sums grow with every step" : "", steps,
                   duration_text(options_.refuse_seconds).c_str());
     throw InputError(text);
@@ -111,7 +122,7 @@ void RunWatch::calibrated() {
   if (total > options_.show_seconds && options_.show) {
     shown_ = true;
     last_shown_ = std::chrono::steady_clock::now();
-    options_.show({run_, steps, total_, h_, seconds(), total, true});
+    options_.show({run_, steps, total_, h_, options_.h_unit, seconds(), total, true});
   }
 }
 

@@ -14,6 +14,7 @@
 #include "adjoin/ground/ground_motion.hpp"
 #include "adjoin/model/parameters.hpp"
 #include "adjoin/model/units.hpp"
+#include "adjoin/observe/observer.hpp"
 #include "adjoin/solver/options.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/building.hpp"
@@ -69,6 +70,9 @@ struct RunSpec {
   // Valid but probably unintended choices ("solver.h is coarser than the record's dt"): the
   // command line prints them on stderr as "warning: ..." and the run goes on.
   std::vector<std::string> warnings;
+  // Sees every run made from this spec, none if null (not owned): a command's RunWatch
+  // (study/run_watch.hpp).
+  Observer* watch = nullptr;
 };
 
 // A building scene's run (SPEC §5): its structure, and its ground, solver and output sections
