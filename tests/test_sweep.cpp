@@ -954,10 +954,10 @@ TEST_CASE("adjoin demand: a design point with too few motions is marked, the oth
   CHECK_THAT(r.err, Catch::StartsWith("error: ") && Catch::Contains("demand-none.csv: model.mu=0.3") && Catch::Contains("at least 3"));
 }
 
-TEST_CASE("the README's sweep file example is a valid sweep", "[sweep][docs]") {
+TEST_CASE("the sweep file reference's example is a valid sweep", "[sweep][docs]") {
   // It once varied model.mu on one axis and set it again in another (now an error).
-  const std::string readme = slurp(std::string(ADJOIN_SOURCE_DIR) + "/README.md");
-  const auto section = readme.find("### The sweep file");
+  const std::string readme = slurp(std::string(ADJOIN_SOURCE_DIR) + "/docs/reference/sweep-file.md");
+  const auto section = readme.find("# The sweep file");
   REQUIRE(section != std::string::npos);
   const auto begin = readme.find("```toml\n", section);
   REQUIRE(begin != std::string::npos);
