@@ -6,7 +6,7 @@
 //     build/bench/bench_sweep                                # everything (a few minutes)
 //     build/bench/bench_sweep --benchmark_filter=fft         # the fast history engine only
 //
-// Target: >= 200 runs/s (README "Sweeps" quotes the figures measured).
+// Target: >= 200 runs/s (docs/explanation/benchmarks.md quotes the figures measured).
 #include <benchmark/benchmark.h>
 
 #include <chrono>

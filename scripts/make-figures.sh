@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Remakes the README's figures, docs/figures/paper-strong-*.png, with the project itself:
+# Remakes the documentation's figures, docs/figures/paper-strong-*.png, with the project itself:
 # solves the seed paper's strong-excitation scene (with its energy history) and draws the
 # figures with `adjoin plot run`.
 #
