@@ -1,0 +1,182 @@
+// The two-block scenes' files (SPEC §3: summary.json, timeseries.csv, energy.csv, impacts.csv,
+// spectra.csv and the terminal report) against the ones recorded before the pipeline behind
+// them was rebuilt (issue 20): the same names, keys, columns and order, and the same values up
+// to rounding (1e-10 relative). The cases and the recording script are in
+// tests/data/two-block-outputs/ (cases.txt, make.sh); the CSV files keep every 10th row.
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "cli_helpers.hpp"
+
+namespace fs = std::filesystem;
+using adjoin::test::slurp;
+
+namespace {
+
+const fs::path kData = fs::path(ADJOIN_SOURCE_DIR) / "tests/data/two-block-outputs";
+
+struct Case {
+  std::string name, arguments;  // arguments: the scene's path and the options after it
+};
+
+std::vector<Case> cases() {
+  std::vector<Case> out;
+  std::istringstream in(slurp(kData / "cases.txt"));
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty() || line[0] == '#') continue;
+    const auto space = line.find(' ');
+    out.push_back({line.substr(0, space), line.substr(space + 1)});
+  }
+  return out;
+}
+
+bool close(double a, double b, double scale, double relative) {
+  return std::abs(a - b) <= relative * std::max({std::abs(a), std::abs(b), scale});
+}
+
+// The largest magnitude of the numbers in a JSON document (its scale for values near zero).
+double largest(const nlohmann::json& j) {
+  if (j.is_number()) return std::abs(j.get<double>());
+  double m = 0.0;
+  if (j.is_structured())
+    for (const auto& v : j) m = std::max(m, largest(v));
+  return m;
+}
+
+// Same keys in the same order, same strings and flags, numbers within `relative` of each other
+// (with the document's largest number as the floor of the scale, for residuals near zero).
+void compare_json(const nlohmann::ordered_json& want, const nlohmann::ordered_json& got, const std::string& path,
+                  double scale) {
+  INFO(path);
+  if (want.is_number() && got.is_number()) {
+    CHECK(close(want.get<double>(), got.get<double>(), 1e-6 * scale, 1e-10));
+    return;
+  }
+  REQUIRE(want.type() == got.type());
+  if (want.is_object()) {
+    std::vector<std::string> wk, gk;
+    for (auto it = want.begin(); it != want.end(); ++it) wk.push_back(it.key());
+    for (auto it = got.begin(); it != got.end(); ++it) gk.push_back(it.key());
+    REQUIRE(wk == gk);
+    for (const auto& k : wk)
+      if (k.find("wall_seconds") == std::string::npos) compare_json(want[k], got[k], path + "." + k, scale);
+  } else if (want.is_array()) {
+    REQUIRE(want.size() == got.size());
+    for (std::size_t i = 0; i < want.size(); ++i) compare_json(want[i], got[i], path + "[" + std::to_string(i) + "]", scale);
+  } else {
+    CHECK(want == got);
+  }
+}
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+std::vector<std::string> cells_of(const std::string& line) {
+  std::vector<std::string> out;
+  std::istringstream in(line);
+  for (std::string cell; std::getline(in, cell, ',');) out.push_back(cell);
+  return out;
+}
+
+bool number(const std::string& s, double* v) {
+  char* end = nullptr;
+  *v = std::strtod(s.c_str(), &end);
+  return !s.empty() && end == s.c_str() + s.size();
+}
+
+// The recorded CSV keeps the header and every 10th row: the new file's header must be the
+// same, its row count that of the full recording, and each kept row equal to rounding (numbers
+// against their column's largest magnitude, words exactly).
+void compare_csv(const std::string& want_text, const std::string& got_text) {
+  const auto want = lines_of(want_text), got = lines_of(got_text);
+  REQUIRE(!want.empty());
+  REQUIRE(!got.empty());
+  REQUIRE(want[0] == got[0]);
+  REQUIRE((got.size() - 2) / 10 + 2 == want.size());
+  const std::size_t columns = cells_of(want[0]).size();
+  std::vector<double> scale(columns, 0.0);
+  for (std::size_t r = 1; r < want.size(); ++r) {
+    const auto cells = cells_of(want[r]);
+    for (std::size_t c = 0; c < cells.size() && c < columns; ++c) {
+      double v = 0.0;
+      if (number(cells[c], &v)) scale[c] = std::max(scale[c], std::abs(v));
+    }
+  }
+  for (std::size_t r = 1; r < want.size(); ++r) {
+    const auto w = cells_of(want[r]), g = cells_of(got[1 + 10 * (r - 1)]);
+    INFO("row " << 1 + 10 * (r - 1) << ": " << want[r] << " / " << got[1 + 10 * (r - 1)]);
+    REQUIRE(w.size() == g.size());
+    for (std::size_t c = 0; c < w.size(); ++c) {
+      double a = 0.0, b = 0.0;
+      if (number(w[c], &a) && number(g[c], &b))
+        CHECK(close(a, b, 1e-6 * scale[c], 1e-10));
+      else
+        CHECK(w[c] == g[c]);
+    }
+  }
+}
+
+// The terminal report prints about six digits: its words must be the same and its numbers the
+// same to that precision (the wall time aside).
+void compare_report(const std::string& want, const std::string& got) {
+  static const std::regex wall("[0-9.e+-]+ s wall");
+  static const std::regex numbers("-?[0-9]+(\\.[0-9]+)?(e[+-]?[0-9]+)?");
+  const std::string w = std::regex_replace(want, wall, "T s wall"), g = std::regex_replace(got, wall, "T s wall");
+  CHECK(std::regex_replace(w, numbers, "#") == std::regex_replace(g, numbers, "#"));
+  std::vector<double> wn, gn;
+  for (auto [text, out] : {std::pair{&w, &wn}, std::pair{&g, &gn}})
+    for (std::sregex_iterator it(text->begin(), text->end(), numbers), end; it != end; ++it)
+      out->push_back(std::stod(it->str()));
+  REQUIRE(wn.size() == gn.size());
+  for (std::size_t i = 0; i < wn.size(); ++i) CHECK(close(wn[i], gn[i], 1e-12, 2e-5));
+}
+
+}  // namespace
+
+TEST_CASE("two-block scenes write the files recorded before the pipeline was rebuilt, to rounding", "[two_block_outputs]") {
+  const auto all = cases();
+  REQUIRE(all.size() >= 9);
+  for (const Case& c : all) {
+    INFO("case " << c.name << ": adjoin run " << c.arguments);
+    const fs::path out = fs::path(ADJOIN_TEST_TMP) / ("two-block-" + c.name);
+    fs::remove_all(out);
+    // From the source tree, as make.sh ran it: the ground's description names the record's path.
+    fs::current_path(ADJOIN_SOURCE_DIR);
+    const auto r = adjoin::test::run_cli("run " + c.arguments + " --out '" + out.string() + "'");
+    REQUIRE(r.status == 0);
+    std::vector<std::string> want_files, got_files;
+    for (const auto& e : fs::directory_iterator(kData / c.name)) want_files.push_back(e.path().filename());
+    for (const auto& e : fs::directory_iterator(out)) got_files.push_back(e.path().filename());
+    want_files.erase(std::remove(want_files.begin(), want_files.end(), "stdout.txt"), want_files.end());
+    std::sort(want_files.begin(), want_files.end());
+    std::sort(got_files.begin(), got_files.end());
+    REQUIRE(want_files == got_files);
+    for (const auto& f : want_files) {
+      INFO(f);
+      const std::string want = slurp(kData / c.name / f), got = slurp(out / f);
+      if (f == "summary.json") {
+        const auto w = nlohmann::ordered_json::parse(want), g = nlohmann::ordered_json::parse(got);
+        compare_json(w, g, "", largest(w));
+      } else {
+        compare_csv(want, got);
+      }
+    }
+    std::string report = r.out;
+    for (std::size_t at; (at = report.find(out.string())) != std::string::npos;) report.replace(at, out.string().size(), "OUT");
+    compare_report(slurp(kData / c.name / "stdout.txt"), report);
+    fs::remove_all(out);
+  }
+}
