@@ -79,31 +79,25 @@ TEST_CASE("linear frames: every estimated error is within a factor 3 of the true
     for (const auto& pe : e.peaks) names.push_back(pe.channel);
     CHECK(names == std::vector<std::string>{"A.x1", "A.x2", "A.x3", "A.drift1", "A.drift2", "A.drift3", "B.x1", "B.x2",
                                             "B.drift1", "B.drift2", "link1.stroke"});
-    std::vector<Compared> values, instants;
+    std::vector<Compared> all;
     double worst = 0.0;
     for (const auto& pe : e.peaks) {
       const Peak& p = peak_of(r, pe.channel);
       const Peak& q = peak_of(ref, pe.channel);
-      values.push_back({pe.channel, pe.error.max_abs, std::abs(p.max_abs - q.max_abs), q.max_abs});
-      instants.push_back({pe.channel + ".t", pe.error.t, std::abs(p.t - q.t)});
+      all.push_back({pe.channel, pe.error.max_abs, std::abs(p.max_abs - q.max_abs), q.max_abs});
+      all.push_back({pe.channel + ".t", pe.error.t, std::abs(p.t - q.t)});
       worst = std::max(worst, pe.error.max_abs / p.max_abs);
     }
     CHECK(e.max_relative_peak == worst);
     // The link's maxima are the largest samples: their errors are O(h^2) but not a power of h
-    // (where the peak falls between samples), so they are held to the instants' rule.
-    instants.push_back({"link1.force_max", e.links[0].force_max, std::abs(r.links[0].force_max - ref.links[0].force_max)});
-    instants.push_back({"link1.stroke_max", e.links[0].stroke_max, std::abs(r.links[0].stroke_max - ref.links[0].stroke_max)});
-    for (const auto& c : values) {
+    // (where the peak falls between samples); here they too are within a factor 3 (the
+    // farthest: force_max at h = 0.005, estimated 2.9 times the error).
+    all.push_back({"link1.force_max", e.links[0].force_max, std::abs(r.links[0].force_max - ref.links[0].force_max)});
+    all.push_back({"link1.stroke_max", e.links[0].stroke_max, std::abs(r.links[0].stroke_max - ref.links[0].stroke_max)});
+    for (const auto& c : all) {
       INFO(c.what << ": estimated " << c.estimated << ", actual " << c.actual);
       CHECK(within3(c, 1e-12));
     }
-    int agree = 0;
-    for (const auto& c : instants) {
-      INFO(c.what << ": estimated " << c.estimated << ", actual " << c.actual);
-      CHECK(c.estimated >= c.actual / 10.0);
-      agree += within3(c, 1e-12);
-    }
-    CHECK(agree >= 0.75 * static_cast<double>(instants.size()));
   }
 }
 

@@ -22,6 +22,8 @@
 #include "adjoin/study/building_sweep.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "cli_helpers.hpp"
+#include "needs_program.hpp"
+#include "png_check.hpp"
 
 using namespace adjoin;
 using adjoin::test::run_cli;
@@ -339,6 +341,7 @@ TEST_CASE("building sweeps: the pounding columns of a row are the single run's s
 }
 
 TEST_CASE("plot run on a building run with contacts draws contacts with the impacts marked", "[plot][cli][pounding]") {
+  adjoin::test::needs_program("gnuplot");
   const fs::path dir = scratch("plot-none");
   run_building_to_folder(pounding_scene(), dir);
   const fs::path out = scratch("plot-none-svg") / "";
@@ -360,7 +363,7 @@ TEST_CASE("plot run on a building run with contacts draws contacts with the impa
   const auto drawn = run_cli("plot run '" + law.string() + "' --size 800x500 --out '" + png.string() + "'");
   INFO(drawn.err);
   REQUIRE(drawn.status == 0);
-  CHECK(fs::exists(png / "contacts.png"));
+  adjoin::test::require_png(png / "contacts.png", 800, 500);
   const fs::path svg2 = scratch("plot-law-svg") / "";
   REQUIRE(run_cli("plot run '" + law.string() + "' --format svg --out '" + svg2.string() + "'").status == 0);
   const std::string text = slurp(svg2 / "contacts.svg");

@@ -19,6 +19,7 @@
 #include "adjoin/study/building_run.hpp"
 #include "adjoin/study/run.hpp"
 #include "cli_helpers.hpp"
+#include "needs_program.hpp"
 
 using namespace adjoin;
 
@@ -310,10 +311,7 @@ TEST_CASE("r3 defaults: a time series over 50 MB is announced with its size befo
 TEST_CASE("r3 defaults: a long run shows its estimate and progress on a terminal, never in a pipe", "[building_run][progress]") {
   // ADJOIN_PROGRESS_AFTER=0: every run timed (0.25 s) shows its progress, so that a test can
   // be short; 900,000 steps of two-frames take about 1 s (more than the 0.25 s timed first).
-  if (std::system("command -v script >/dev/null 2>&1") != 0) {
-    WARN("script(1) is missing: the terminal case is not run");
-    return;
-  }
+  test::needs_program("script");
   const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "r3-progress";
   std::filesystem::remove_all(dir);
   const std::string run = std::string("'") + ADJOIN_CLI + "' run '" + kScene +

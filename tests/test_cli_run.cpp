@@ -11,6 +11,7 @@
 #include "adjoin/observe/time_series.hpp"
 #include "adjoin/study/run.hpp"
 #include "cli_helpers.hpp"
+#include "needs_program.hpp"
 
 using namespace adjoin;
 
@@ -104,10 +105,7 @@ TEST_CASE("r3 watch: a long two-block run shows its estimate and progress on a t
   // ADJOIN_PROGRESS_AFTER=0: every run timed (0.25 s) shows its progress, so that a test can
   // be short. si-record's rods keep a direct history: 60,000 steps take about 1 s (more than
   // the 0.25 s timed first).
-  if (std::system("command -v script >/dev/null 2>&1") != 0) {
-    WARN("script(1) is missing: the terminal case is not run");
-    return;
-  }
+  test::needs_program("script");
   const std::string scene_file = std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/si-record.toml";
   const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "r3-two-block-progress";
   std::filesystem::remove_all(dir);

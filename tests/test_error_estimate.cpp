@@ -1,6 +1,6 @@
 // study/error_estimate: each run's estimate of its own error is honest (within a factor 3 of
-// the true error, measured against a much finer run, for every estimated quantity), and a run
-// to a tolerance meets it.
+// the true error, measured against a much finer run, for every estimated quantity but the
+// exceptions named with their reasons), and a run to a tolerance meets it.
 #include <catch2/catch.hpp>
 #include <algorithm>
 #include <cmath>
@@ -47,38 +47,60 @@ std::vector<Compared> compare(const RunReport& r, const ErrorEstimate& e, const 
   return out;
 }
 
-// Honest estimates. Richardson from two runs assumes the error is C h^p; it is for the peak
-// values, the minimum gap and the friction energy, but instants found by interpolation (peak
-// times, switching instants) carry an error that is not monotone in h at every step (the
-// phase of the grid against the event), and there two runs can be fooled. So:
-//  - every value (not an instant) is estimated within a factor 3 from below: never an
-//    underestimate by more than 3 (overestimates are safe, and happen where the true error
-//    crosses zero);
-//  - every quantity, instants included, is within a factor 10 from below;
-//  - at least 75 % of all quantities are within a factor 3 both ways.
+// A quantity a test allows outside a factor 3, with the reason and the weaker bound it meets:
+// the estimate is never below the true error divided by `max_under` (overestimates are safe).
+struct Exception {
+  std::string what;
+  double max_under;
+  std::string reason;
+};
+
+// Honest estimates: every estimated quantity within a factor 3 of its true error both ways,
+// but the exceptions the test names with their reasons. Richardson from two runs assumes the
+// error is C h^p; where it is not yet (an instant found by interpolation depends on where the
+// event falls between grid points; an error that changes sign between h and 2h), two runs can
+// be fooled, and the test must say where.
 // Both below `floor` (the reference's own accuracy; q's exact limit mu) counts as agreement,
 // and so, for a value, do both below 1e-7 of it (a tenth of the default tolerance): there a
 // value's error is the sum of contributions from several phases that cancel (the record
 // scene's minimum gap sits on a stick plateau whose stroke carries the errors of the slips
 // before it, 1e-8 m each, which nearly cancel), and no estimate from two runs resolves a
 // cancellation; nor does any tolerance the tool offers need it to.
-void check_honest(const std::vector<Compared>& all, double floor) {
-  int checked = 0, within3 = 0;
+void check_honest(const std::vector<Compared>& all, double floor, const std::vector<Exception>& exceptions = {}) {
+  int checked = 0;
   for (const auto& c : all) {
     INFO(c.what << ": estimated " << c.estimated << ", actual " << c.actual);
     const double below = std::max(floor, 1e-7 * std::abs(c.value));
     if (c.actual < below && c.estimated < below) continue;
     ++checked;
-    const bool instant = c.what.find(".t") != std::string::npos || c.what.find("switch") == 0 || c.what == "t_min_gap";
-    if (!instant) CHECK(c.estimated >= c.actual / 3.0);
-    CHECK(c.estimated >= c.actual / 10.0);
-    if (c.estimated <= 3.0 * c.actual && c.estimated >= c.actual / 3.0) ++within3;
-    else WARN(c.what << ": estimated " << c.estimated << ", actual " << c.actual << " (not within a factor 3)");
+    const auto exception =
+        std::find_if(exceptions.begin(), exceptions.end(), [&](const Exception& e) { return e.what == c.what; });
+    if (exception == exceptions.end()) {
+      CHECK(c.estimated >= c.actual / 3.0);
+      CHECK(c.estimated <= 3.0 * c.actual);
+    } else {
+      INFO("a named exception: " << exception->reason);
+      CHECK(c.estimated >= c.actual / exception->max_under);
+    }
   }
-  INFO(within3 << " of " << checked << " within a factor 3");
   CHECK(checked >= 15);
-  CHECK(within3 >= 0.75 * checked);
 }
+
+// The record scene's quantities outside a factor 3 at h = 0.0025 or 0.00125 (all of the strong
+// scene's are within it, at every step tried).
+const std::vector<Exception> kRecordExceptions = {
+    {"x1.t", 10.0,
+     "a peak instant, found by interpolation between steps: its error depends on where the peak falls between grid "
+     "points, not C h^2 (h = 0.00125: estimated 1.2e-6, actual 6.7e-6)"},
+    {"x2.t", 10.0, "the same instant as x1.t (their errors are equal)"},
+    {"f1.t", 3.0, "a peak instant as x1.t, here overestimated, the safe side (h = 0.00125: 1.6e-5 for 3.0e-6)"},
+    {"switch 4", 3.0,
+     "a switching instant whose error is not yet C h^2 at the companion's step 0.005: overestimated, the safe side "
+     "(h = 0.0025: 8.2e-4 for 7.6e-5)"},
+    {"friction", 3.0,
+     "its true error falls a hundredfold from h = 0.0025 to 0.00125 (4.9e-8, then 4.7e-10; C h^2 gives fourfold): "
+     "it passes near zero, and the estimate at 0.00125 is 35 times the error, the safe side"},
+};
 
 }  // namespace
 
@@ -98,12 +120,13 @@ TEST_CASE("strong scene: the estimated errors are within a factor 3 of the true 
     REQUIRE(e.available);
     CHECK(e.order == 2);
     CHECK(e.companion_h == Approx(2 * h).epsilon(1e-3));
-    CHECK(e.companion_wall_seconds <= r.solver.wall_seconds + 0.05);  // about half the run
+    CHECK(e.companion_wall_seconds > 0.0);  // measured (how fast it is belongs to bench/, not here)
     check_honest(compare(r, e, ref), 2e-9);
   }
 }
 
-TEST_CASE("record scene: the estimated errors are within a factor 3 of the true errors", "[error_estimate][record]") {
+TEST_CASE("record scene: the estimated errors are within a factor 3 of the true errors but for named exceptions",
+          "[error_estimate][record]") {
   const std::string file = std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/si-record.toml";
   auto with = [&](double h) {
     return load_scene(file, {"solver.history=fft", "solver.scheme=implicit", "solver.t_end=20", "solver.h=" + std::to_string(h)});
@@ -118,7 +141,7 @@ TEST_CASE("record scene: the estimated errors are within a factor 3 of the true 
     const RunReport r = run_scene(scene);
     const ErrorEstimate e = estimate_error(scene, r);
     REQUIRE(e.available);
-    check_honest(compare(r, e, ref), 1e-9);
+    check_honest(compare(r, e, ref), 1e-9, kRecordExceptions);
   }
 }
 

@@ -2,7 +2,6 @@
 // at the requested size; bad inputs exit 2 with a message naming what is wrong.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -14,8 +13,12 @@
 #include "adjoin/io/gnuplot.hpp"
 #include "adjoin/io/plots.hpp"
 #include "cli_helpers.hpp"
+#include "needs_program.hpp"
+#include "png_check.hpp"
 
 namespace fs = std::filesystem;
+using adjoin::test::needs_program;
+using adjoin::test::require_png;
 using adjoin::test::run_cli;
 using adjoin::test::slurp;
 using adjoin::test::write_temp;
@@ -29,25 +32,6 @@ fs::path scratch(const std::string& name) {
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;
-}
-
-std::uint32_t big_endian(const std::string& bytes, std::size_t at) {
-  std::uint32_t v = 0;
-  for (std::size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
-  return v;
-}
-
-// A PNG: the 8-byte signature, then the IHDR chunk with width and height.
-void require_png(const fs::path& file, std::uint32_t width, std::uint32_t height) {
-  INFO(file.string());
-  REQUIRE(fs::exists(file));
-  const std::string bytes = slurp(file);
-  REQUIRE(bytes.size() > 33);
-  CHECK(bytes.substr(0, 8) == std::string("\x89PNG\r\n\x1a\n", 8));
-  CHECK(bytes.substr(12, 4) == "IHDR");
-  CHECK(big_endian(bytes, 16) == width);
-  CHECK(big_endian(bytes, 20) == height);
-  CHECK(bytes.size() > 10000);  // a real drawing, not an empty canvas
 }
 
 // Solves the strong scene once for all the tests here.
@@ -65,6 +49,7 @@ const fs::path& strong_run() {
 }  // namespace
 
 TEST_CASE("plot run draws the paper's figures as PNG files of the requested size", "[plot][cli]") {
+  needs_program("gnuplot");
   const fs::path& dir = strong_run();
   const auto r = run_cli("plot run '" + dir.string() + "'");
   INFO(r.err);
@@ -86,6 +71,7 @@ TEST_CASE("plot run draws the paper's figures as PNG files of the requested size
 }
 
 TEST_CASE("plot run as SVG labels the axes with the quantities and the scene's units", "[plot][cli]") {
+  needs_program("gnuplot");
   const fs::path& dir = strong_run();
   const fs::path prefix = scratch("svg") / "";
   const auto r = run_cli("plot run '" + dir.string() + "' --format svg --out '" + prefix.string() + "'");
@@ -109,6 +95,7 @@ TEST_CASE("plot run as SVG labels the axes with the quantities and the scene's u
 }
 
 TEST_CASE("plot run labels SI scenes in SI units and draws an energy history when there is one", "[plot][cli]") {
+  needs_program("gnuplot");
   const fs::path dir = scratch("si");
   // A short SI-like run folder written by hand: the plots only read the files.
   std::ofstream(dir / "summary.json") << R"({"scene": "si-test", "units": "SI",
@@ -147,6 +134,7 @@ TEST_CASE("plot run labels SI scenes in SI units and draws an energy history whe
 }
 
 TEST_CASE("plot spectrum, converge and sweep draw from their CSV tables", "[plot][cli]") {
+  needs_program("gnuplot");
   const fs::path dir = scratch("tables");
   const fs::path spectrum = write_temp("spectrum.csv",
                                        "period,damping,sd,sv,sa,psv,psa\n"
@@ -276,6 +264,7 @@ TEST_CASE("read_csv_table understands quotes and reports ragged rows by line", "
 }
 
 TEST_CASE("plot run on a building run draws floor profiles of both buildings and the roofs' histories", "[plot][cli]") {
+  needs_program("gnuplot");
   const fs::path dir = scratch("building");
   const auto run = run_cli("run '" + kSource + "/records/scenes/buildings/two-frames.toml' --quiet --set solver.t_end=8 --out '" +
                            dir.string() + "'");
@@ -323,13 +312,6 @@ TEST_CASE("plot run on a building run draws floor profiles of both buildings and
 // ---------------------------------------------------------------- round 3: text from data in scripts
 
 namespace {
-
-// gnuplot is a dependency (scripts/setup.sh); without it these tests fail saying so, they
-// never pass on a machine that cannot draw.
-void require_gnuplot() {
-  const bool present = std::system("command -v gnuplot >/dev/null 2>&1") == 0;
-  if (!present) FAIL("gnuplot is not on PATH: these tests need it (scripts/setup.sh installs it)");
-}
 
 std::string shell_quote(const std::string& s) {
   std::string q = "'";
@@ -412,7 +394,7 @@ TEST_CASE("gnuplot_quote keeps any text inside one single-quoted string on one l
 }
 
 TEST_CASE("plot run: a scene name from summary.json runs no command", "[plot][cli][r3]") {
-  require_gnuplot();
+  needs_program("gnuplot");
   const fs::path trap = scratch("pwned-scene-trap");
   const fs::path dir = run_with_scene("pwned-scene", payload(trap));
   // The issue's repro too: a bare newline and `system`, relative to the working folder.
@@ -435,7 +417,7 @@ TEST_CASE("plot run: a scene name from summary.json runs no command", "[plot][cl
 }
 
 TEST_CASE("plot record and spectrum --plot: a record's file name runs no command", "[plot][cli][r3]") {
-  require_gnuplot();
+  needs_program("gnuplot");
   const fs::path trap = scratch("pwned-record-trap");
   const fs::path dir = scratch("pwned-record");
   // The name holds a quote, backquotes and a newline (a file name cannot hold '/').
@@ -466,7 +448,7 @@ TEST_CASE("plot record and spectrum --plot: a record's file name runs no command
 }
 
 TEST_CASE("plot: a failed image write is exit 2 and leaves nothing (file size limit as a full disk)", "[plot][cli][r3]") {
-  require_gnuplot();
+  needs_program("gnuplot");
   const fs::path dir = scratch("full-disk");
   const fs::path csv = dir / "s.csv";
   std::ofstream(csv) << "a,b\n1,2\n2,3\n3,1\n";
@@ -493,7 +475,7 @@ TEST_CASE("plot: a failed image write is exit 2 and leaves nothing (file size li
 }
 
 TEST_CASE("plot run reads and draws everything before writing: a damaged CSV leaves no figure", "[plot][cli][r3]") {
-  require_gnuplot();
+  needs_program("gnuplot");
   const fs::path dir = scratch("damaged");
   fs::copy_file(strong_run() / "timeseries.csv", dir / "timeseries.csv");
   fs::copy_file(strong_run() / "summary.json", dir / "summary.json");
@@ -521,7 +503,7 @@ std::set<std::string> stroke_colours(const std::string& svg) {
 }  // namespace
 
 TEST_CASE("plot sweep: 13 groups in 12 distinct colours, y from zero, text x, engineering ticks", "[plot][cli][r3]") {
-  require_gnuplot();
+  needs_program("gnuplot");
   const fs::path dir = scratch("report-sweep");
   std::string text = "motion,link.1.slip_ratio,link1.energy_share,link1.force_max,damper\n";
   for (int g = 0; g < 13; ++g)
@@ -572,7 +554,7 @@ TEST_CASE("plot sweep: 13 groups in 12 distinct colours, y from zero, text x, en
 }
 
 TEST_CASE("plot run: overlays of several runs, a time window, a run without links titled so", "[plot][cli][r3]") {
-  require_gnuplot();
+  needs_program("gnuplot");
   const fs::path linked = scratch("overlay-linked"), unlinked = scratch("overlay-unlinked");
   const std::string scene = "'" + kSource + "/records/scenes/buildings/two-frames.toml' --quiet --set solver.t_end=6 ";
   REQUIRE(run_cli("run " + scene + "--out '" + linked.string() + "'").status == 0);

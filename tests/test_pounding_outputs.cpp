@@ -24,6 +24,7 @@
 #include "adjoin/study/run.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "cli_helpers.hpp"
+#include "needs_program.hpp"
 
 using namespace adjoin;
 using adjoin::test::run_cli;
@@ -327,6 +328,7 @@ TEST_CASE("the energy balance subtracts the contact work only with a contact law
 }
 
 TEST_CASE("adjoin plot run draws the gap and the contact force when the run has impacts.csv", "[pounding][plot]") {
+  adjoin::test::needs_program("gnuplot");
   const auto dir = fresh("pounding-plot");
   auto r = run_cli("run '" + kStrong + "' --set solver.scheme=implicit --set model.gap0=0.3 --set model.contact.model=linear " +
                    "--set model.contact.stiffness=100 --set model.contact.restitution=0.65 -q --out '" + dir.string() + "'");

@@ -7,7 +7,6 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <cstdint>
 #include <filesystem>
 #include <numbers>
 #include <sstream>
@@ -18,6 +17,8 @@
 #include "adjoin/ground/processing.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "cli_helpers.hpp"
+#include "needs_program.hpp"
+#include "png_check.hpp"
 #include "record_helpers.hpp"
 
 using namespace adjoin;
@@ -170,6 +171,7 @@ TEST_CASE("record process --integrate: t, a, v, d that the readers and spectrum 
 }
 
 TEST_CASE("plot record draws acceleration, velocity, displacement and the Husid plot", "[record][plot][cli]") {
+  adjoin::test::needs_program("gnuplot");
   const fs::path dir = fs::path(ADJOIN_TEST_TMP) / std::to_string(::getpid()) / "plot_record";
   fs::create_directories(dir);
   const fs::path png = dir / "acat.png", svg = dir / "cosmos.svg";
@@ -177,17 +179,7 @@ TEST_CASE("plot record draws acceleration, velocity, displacement and the Husid 
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.out, Contains("wrote") && Contains("acat.png"));
-  const std::string bytes = slurp(png);
-  REQUIRE(bytes.size() > 24);
-  CHECK(bytes.substr(0, 8) == std::string("\x89PNG\r\n\x1a\n", 8));
-  auto be32 = [&](std::size_t at) {
-    std::uint32_t v = 0;
-    for (std::size_t i = 0; i < 4; ++i) v = (v << 8) | static_cast<unsigned char>(bytes[at + i]);
-    return v;
-  };
-  CHECK(be32(16) == 800);
-  CHECK(be32(20) == 700);
-  CHECK(bytes.size() > 10000);
+  adjoin::test::require_png(png, 800, 700);
   // SVG of a multi-channel file's channel: the panels' labels and D5-95 in the key.
   const auto s = run_cli("plot record " + q(std::string(ADJOIN_SOURCE_DIR) + "/tests/data/records/cosmos-v2-two-channels.v2") +
                          " --channel 1 --out " + q(svg.string()));
@@ -196,7 +188,11 @@ TEST_CASE("plot record draws acceleration, velocity, displacement and the Husid 
   const std::string text = slurp(svg);
   CHECK_THAT(text, Contains("<svg") && Contains("a [g]") && Contains("v [m/s]") && Contains("d [m]") && Contains("Husid") &&
                        Contains("5-95"));
-  // Bad input: exit 2, the file named; no image left behind.
+}
+
+TEST_CASE("plot record on bad input: exit 2, the file or option named, no image left behind", "[record][plot][cli]") {
+  const fs::path dir = fs::path(ADJOIN_TEST_TMP) / std::to_string(::getpid()) / "plot_record_bad";
+  fs::create_directories(dir);
   const auto missing = run_cli("plot record " + q((dir / "none.AT2").string()) + " --out " + q((dir / "none.png").string()));
   CHECK(missing.status == 2);
   CHECK_THAT(missing.err, Contains("error:") && Contains("none.AT2"));
@@ -205,6 +201,9 @@ TEST_CASE("plot record draws acceleration, velocity, displacement and the Husid 
                                 " --out " + q((dir / "c.png").string()));
   CHECK(channels.status == 2);
   CHECK_THAT(channels.err, Contains("--channel"));
+  CHECK_FALSE(fs::exists(dir / "c.png"));
   const auto bad = run_cli("plot record " + q(real + "/smc/A-CAT090.AT2.smc") + " --out " + q((dir / "x.gif").string()));
   CHECK(bad.status == 2);
+  CHECK_THAT(bad.err, Contains("error:") && Contains("x.gif"));
+  CHECK_FALSE(fs::exists(dir / "x.gif"));
 }
