@@ -174,6 +174,9 @@ TEST_CASE("builder: a bad value is named by its field path", "[builder][errors]"
   CHECK(field_error([] { BuildingBuilder('A', 2).mass(1e3).zener({1}, {1e6, 0.5, 0.2, 0.01}).zener({2}, {1e6, 0.5, 0.01, 0.2}); })
             .field() == "building.A.device[2].tau_x");
   CHECK(field_error([] { BuildingBuilder('A', 2).mass(1e3).dashpot({1, 3}, 1e4); }).field() == "building.A.device[1].storeys");
+  const FieldError twice = field_error([] { BuildingBuilder('A', 2).mass(1e3).spring({2}, 1e6).spring({1, 1}, 1e6); });
+  CHECK(twice.field() == "building.A.device[2].storeys");
+  CHECK(twice.problem() == "1 is listed twice; list each storey once");
   CHECK(field_error([] { BuildingBuilder('A', 2).mass(1e3).build(); }).field() == "building.A");  // no stiffness
   CHECK(field_error([] { BuildingBuilder('A', 2).mass(1e3).period(1e-9).build(); }).field() == "building.A.period");
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <map>
 #include <set>
+#include <tuple>
 #include <sstream>
 
 #include <toml++/toml.h>
@@ -140,14 +141,10 @@ class TableReader {
     }
     return out;
   }
-  // A list of storeys or floors, each at most once (a storey listed twice would get the
-  // device twice).
-  std::vector<int> distinct_integers(const std::string& key) const {
+  // A device's storeys: whole numbers, by the rules of structure/rules.hpp.
+  std::vector<int> storeys(const std::string& key, int n) const {
     std::vector<int> out = integers(key, 0);
-    if (out.empty()) fail(key, "expected a list of at least one storey");
-    std::set<int> seen;
-    for (int v : out)
-      if (!seen.insert(v).second) fail(key, std::to_string(v) + " is listed twice; list each storey once");
+    if (const std::string problem = structure::device_storeys_problem(out, n); !problem.empty()) fail(key, problem);
     return out;
   }
   const toml::table& table() const { return table_; }
@@ -254,9 +251,7 @@ Building read_building(const toml::table& root, const std::string& name, const T
       const TableReader dr = r.inner(*dt, r.path() + ".device[" + std::to_string(index) + "]");
       structure::StoreyDevice dev;
       const std::string type = dr.text("type", {"zener", "dashpot", "spring"});
-      dev.storeys = dr.distinct_integers("storeys");
-      for (int s : dev.storeys)
-        if (s > n) dr.fail("storeys", "storey " + std::to_string(s) + " is not in 1.." + std::to_string(n));
+      dev.storeys = dr.storeys("storeys", n);
       if (type == "spring") {
         dr.only({"type", "storeys", "stiffness"});
         dev.type = DeviceType::spring;
@@ -362,8 +357,8 @@ structure::Structure detail::structure_from_tree(toml::table& root, const std::s
   auto floors_of = [&](const TableReader& r) {
     const auto f = r.integers("floors", 2);
     if (!s.b) r.fail("", "links and contacts join building A to building B: add [building.B]");
-    if (f[0] > s.a.floors()) r.fail("floors", "floor " + std::to_string(f[0]) + " is not a floor of A (1.." + std::to_string(s.a.floors()) + ")");
-    if (f[1] > s.b->floors()) r.fail("floors", "floor " + std::to_string(f[1]) + " is not a floor of B (1.." + std::to_string(s.b->floors()) + ")");
+    for (const auto& [name, floor, b] : {std::tuple{'A', f[0], &s.a}, std::tuple{'B', f[1], &*s.b}})
+      if (const std::string problem = structure::floor_problem(name, floor, *b); !problem.empty()) r.fail("floors", problem);
     return f;
   };
   if (const toml::array* links = root.get_as<toml::array>("link")) {

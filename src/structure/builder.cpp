@@ -1,7 +1,6 @@
 #include "adjoin/structure/builder.hpp"
 
 #include <cmath>
-#include <set>
 
 #include "adjoin/errors.hpp"
 #include "adjoin/structure/contact_rules.hpp"
@@ -101,14 +100,7 @@ BuildingBuilder& BuildingBuilder::rayleigh_damping(double ratio, int mode_i, int
 std::string BuildingBuilder::device_path() const { return item(path_ + ".device", b_.devices.size()); }
 
 void BuildingBuilder::add_device(StoreyDevice device, const std::vector<int>& storeys) {
-  const std::string field = device_path() + ".storeys";
-  if (storeys.empty()) throw FieldError(field, "expected a list of at least one storey");
-  std::set<int> seen;
-  for (int s : storeys) {
-    if (s < 1 || s > b_.floors())
-      throw FieldError(field, "storey " + std::to_string(s) + " is not in 1.." + std::to_string(b_.floors()));
-    if (!seen.insert(s).second) throw FieldError(field, std::to_string(s) + " is listed twice; list each storey once");
-  }
+  check(device_path() + ".storeys", device_storeys_problem(storeys, b_.floors()));
   device.storeys = storeys;
   b_.devices.push_back(std::move(device));
 }
@@ -263,10 +255,8 @@ namespace {
 // A link's or contact pair's floors: of A and of B, within each building.
 void check_floors(const std::string& path, int floor_a, int floor_b, const Structure& s) {
   if (!s.b) throw FieldError(path, "links and contacts join building A to building B: add building B");
-  if (floor_a < 1 || floor_a > s.a.floors())
-    throw FieldError(path + ".floors", "floor " + std::to_string(floor_a) + " is not a floor of A (1.." + std::to_string(s.a.floors()) + ")");
-  if (floor_b < 1 || floor_b > s.b->floors())
-    throw FieldError(path + ".floors", "floor " + std::to_string(floor_b) + " is not a floor of B (1.." + std::to_string(s.b->floors()) + ")");
+  check(path + ".floors", floor_problem('A', floor_a, s.a));
+  check(path + ".floors", floor_problem('B', floor_b, *s.b));
 }
 
 }  // namespace

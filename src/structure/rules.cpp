@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <set>
 #include <sstream>
 
 #include "adjoin/model/units.hpp"
@@ -61,6 +62,22 @@ std::string contact_stiffness_problem(double k, const std::string& unit) {
   if (!(k > kMaxContactStiffness)) return "";
   return number_text(k) + " is beyond the supported " + number_text(kMaxContactStiffness) + " " + unit +
          " (the contact force would overflow)";
+}
+
+std::string device_storeys_problem(const std::vector<int>& storeys, int n) {
+  if (storeys.empty()) return "expected a list of at least one storey";
+  // A storey listed twice would get the device twice.
+  std::set<int> seen;
+  for (int v : storeys)
+    if (!seen.insert(v).second) return std::to_string(v) + " is listed twice; list each storey once";
+  for (int v : storeys)
+    if (v < 1 || v > n) return "storey " + std::to_string(v) + " is not in 1.." + std::to_string(n);
+  return "";
+}
+
+std::string floor_problem(char name, int floor, const Building& b) {
+  if (floor >= 1 && floor <= b.floors()) return "";
+  return "floor " + std::to_string(floor) + " is not a floor of " + name + " (1.." + std::to_string(b.floors()) + ")";
 }
 
 double stiffness_for_period_in_range(const Eigen::VectorXd& masses, double period, std::string* problem) {

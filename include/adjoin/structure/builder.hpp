@@ -29,7 +29,8 @@ class BuildingBuilder {
   // `name` 'A' (the left building) or 'B'; 1 to kMaxStoreys storeys.
   BuildingBuilder(char name, int storeys);
 
-  // Floor masses [kg]: one for every floor, or a list bottom up (one per floor).
+  // Floor masses [kg]: one for every floor, or a list bottom up (one per floor). Of two ways
+  // of giving the same thing (mass, masses; stiffness, stiffnesses, period) the last counts.
   BuildingBuilder& mass(double kg);
   BuildingBuilder& masses(const std::vector<double>& kg);
   // Storey stiffness [N/m]: one for every storey, a list bottom up (0 where the storey's devices

@@ -7,6 +7,7 @@
 // the caller names it its own way (a scene's file:line and key, the builder's field path
 // "building.A.period", "link[1].slip_force").
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -56,6 +57,11 @@ std::string damping_ratio_problem(double ratio);
 std::string rayleigh_modes_problem(int mode_i, int mode_j, int n);
 // A contact stiffness within kMaxContactStiffness (in `unit`).
 std::string contact_stiffness_problem(double k, const std::string& unit);
+
+// A storey device's storeys: at least one, each once, each a storey 1..n.
+std::string device_storeys_problem(const std::vector<int>& storeys, int n);
+// A link's or contact pair's floor of building `name` ('A' or 'B'), within its floors.
+std::string floor_problem(char name, int floor, const Building& b);
 
 // Period -> stiffness. The uniform storey spring that gives a building of these floor masses
 // (and no other stiffness) the fundamental period `period` [s]; it must lie within
