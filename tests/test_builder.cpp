@@ -4,6 +4,7 @@
 // bad value is named by its field path, with the words the scene reader uses.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -134,6 +135,29 @@ TEST_CASE("builder: the step and horizon rules give what a scene without solver.
   // The step is no coarser than the record's samples, and the horizon outlasts the record.
   CHECK(spec.solver.h <= spec.base.ground->sample_interval());
   CHECK(spec.solver.t_end > spec.base.ground->duration());
+}
+
+TEST_CASE("builder: the grounds are a scene's grounds", "[builder][ground]") {
+  const std::string structure = "name = \"g\"\n[model]\nunits = \"SI\"\n[building.A]\nstoreys = 1\nmass = 1e4\nstiffness = 1e6\n";
+  const BuildingScene sine = parse_building_scene(
+      structure + "[ground]\nsource = \"decaying-sine\"\nu0 = 0.05\nomega = 8.0\nk = 0.3\n[solver]\nh = 0.01\nt_end = 2.0\n", "g.toml");
+  const auto code = decaying_sine_ground(0.05, 8.0, 0.3);
+  CHECK(code->describe() == sine.base.ground->describe());
+  for (double t : {0.0, 0.1, 0.37, 1.9}) CHECK(code->ag(t) == sine.base.ground->ag(t));
+
+  const BuildingScene scaled = parse_building_scene(
+      structure + "[ground]\nsource = \"record\"\nfile = \"" + kRecord + "\"\nscale_pga = 0.3\n[solver]\nh = 0.01\nt_end = 2.0\n", "g.toml");
+  const auto record = record_ground(kRecord, 0.3);
+  CHECK(record->describe() == scaled.base.ground->describe());
+  CHECK(record->duration() == scaled.base.ground->duration());
+  CHECK(record->sample_interval() == scaled.base.ground->sample_interval());
+  double pga = 0.0;
+  for (int i = 0; i * record->sample_interval() < record->duration(); ++i) {
+    const double t = i * record->sample_interval();
+    CHECK(record->ag(t) == scaled.base.ground->ag(t));
+    pga = std::max(pga, std::abs(record->ag(t)));
+  }
+  CHECK(pga == Approx(0.3).epsilon(1e-9));  // a_g in g, scaled to 0.3 g
 }
 
 TEST_CASE("builder: period to stiffness for shear buildings, by hand", "[builder][rules]") {
