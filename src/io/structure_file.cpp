@@ -5,8 +5,8 @@
 #include <cmath>
 #include <map>
 #include <set>
-#include <tuple>
 #include <sstream>
+#include <tuple>
 
 #include <toml++/toml.h>
 
@@ -19,8 +19,6 @@
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/structure/rules.hpp"
-#include "adjoin/model/parameters.hpp"
-#include "adjoin/model/units.hpp"
 
 namespace adjoin {
 namespace {
@@ -38,7 +36,6 @@ using structure::kForceRange;
 using structure::kMassRange;
 using structure::kSlipRatioRange;
 using structure::kStiffnessRange;
-using structure::number_text;
 using structure::Range;
 
 // Reads the keys of one table, each named by its dotted path in messages with the line.
