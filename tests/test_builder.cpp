@@ -15,6 +15,7 @@
 #include "adjoin/model/units.hpp"
 #include "adjoin/observe/channel_recorder.hpp"
 #include "adjoin/structure/builder.hpp"
+#include "adjoin/structure/modal.hpp"
 #include "adjoin/study/builder.hpp"
 #include "adjoin/study/building_run.hpp"
 
@@ -117,6 +118,96 @@ TEST_CASE("builder: the two-frame example built in code is its scene's structure
   CHECK(in_code.links[0].force_max == Approx(from_file.links[0].force_max).epsilon(1e-12));
   CHECK(in_code.links[0].switches == from_file.links[0].switches);
   CHECK(in_code.contacts[0].min_gap == Approx(from_file.contacts[0].min_gap).epsilon(1e-12));
+}
+
+TEST_CASE("builder: a period with storey devices, links of every type and a contact law are the scene's", "[builder]") {
+  const std::string text = R"(name = "t"
+[model]
+units = "SI"
+[building.A]
+storeys = 6
+mass = 80.0e3
+period = 0.8
+damping = { model = "modal", ratio = 0.02 }
+[[building.A.device]]
+storeys = [1, 2, 3]
+type = "zener"
+stiffness = 2.0e7
+order = 0.5
+tau_x = 0.15
+tau_f = 0.01
+[[building.A.device]]
+storeys = [4]
+type = "dashpot"
+c = 3.0e5
+[building.B]
+storeys = 2
+masses = [50.0e3, 40.0e3]
+stiffnesses = [4.0e7, 3.0e7]
+[[link]]
+floors = [2, 2]
+type = "friction"
+slip_force = 2.5e4
+[[link]]
+floors = [1, 1]
+type = "dashpot"
+c = 1.0e5
+[[link]]
+floors = [2, 1]
+type = "spring"
+stiffness = 1.0e6
+[[link]]
+floors = [3, 2]
+type = "zener"
+stiffness = 1.0e6
+order = 0.4
+tau_x = 0.3
+tau_f = 0.02
+[[contact]]
+floors = [2, 2]
+gap = 0.03
+model = "hertzdamp"
+stiffness = 2.0e9
+restitution = 0.65
+)";
+  const structure::Structure file = parse_structure(text, "t.toml");
+  StructureBuilder s;
+  s.building('A', 6).mass(80.0e3).period(0.8).modal_damping(0.02).zener({1, 2, 3}, {2.0e7, 0.5, 0.15, 0.01}).dashpot({4}, 3.0e5);
+  s.building('B', 2).masses({50.0e3, 40.0e3}).stiffnesses({4.0e7, 3.0e7});
+  s.friction_link(2, 2, 2.5e4).dashpot_link(1, 1, 1.0e5).spring_link(2, 1, 1.0e6).zener_link(3, 2, {1.0e6, 0.4, 0.3, 0.02});
+  s.contact(2, 2, 0.03).model(structure::ContactModel::hertzdamp).stiffness(2.0e9).restitution(0.65);
+  const structure::Structure code = s.build();
+  check_same_building(file.a, code.a);
+  CHECK(code.a.devices[1].c == 3.0e5);
+  REQUIRE(file.b);
+  check_same_building(*file.b, *code.b);
+  REQUIRE(code.links.size() == 4);
+  for (std::size_t i = 0; i < 4; ++i) {
+    INFO("link " << i + 1);
+    CHECK(code.links[i].type == file.links[i].type);
+    CHECK(code.links[i].floor_a == file.links[i].floor_a);
+    CHECK(code.links[i].floor_b == file.links[i].floor_b);
+    CHECK(code.links[i].slip_force == file.links[i].slip_force);
+    CHECK(code.links[i].c == file.links[i].c);
+    CHECK(code.links[i].k == file.links[i].k);
+    CHECK(code.links[i].zener.k == file.links[i].zener.k);
+    CHECK(code.links[i].zener.order == file.links[i].zener.order);
+    CHECK(code.links[i].zener.tau_x == file.links[i].zener.tau_x);
+    CHECK(code.links[i].zener.tau_f == file.links[i].zener.tau_f);
+  }
+  const structure::ContactLaw& a = file.contacts[0].law;
+  const structure::ContactLaw& b = code.contacts[0].law;
+  CHECK(b.model == a.model);
+  CHECK(b.stiffness == a.stiffness);
+  CHECK(b.restitution == a.restitution);
+  CHECK(std::isnan(b.damping) == std::isnan(a.damping));
+  CHECK(b.damping_parameter() == a.damping_parameter());
+  CHECK(b.tension_cut == a.tension_cut);
+  CHECK(code.contacts[0].gap == file.contacts[0].gap);
+  // The period holds with the devices' relaxed stiffness: the spring found is below the
+  // devices-free one.
+  CHECK(structure::building_modes(code.a).periods[0] == Approx(0.8).epsilon(1e-10));
+  CHECK(code.a.springs[0] < structure::BuildingBuilder('A', 6).mass(80.0e3).period(0.8).build().springs[0]);
 }
 
 TEST_CASE("builder: the step and horizon rules give what a scene without solver.h and t_end gets", "[builder]") {
