@@ -9,12 +9,28 @@
 // Library code throws these; only the command-line layer turns them into exit statuses.
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 namespace adjoin {
 
 class InputError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
+};
+
+// An InputError about one field of a description built in code (structure/builder.hpp), named
+// by its path: "building.A.period", "building.A.masses[3]", "link[1].slip_force" (elements and
+// list items counted from 1, as a scene's [[link]] tables are). what() is "path: problem"; a
+// reader that took the value from elsewhere (a scene line, a --set) spells the path its way.
+class FieldError : public InputError {
+ public:
+  FieldError(std::string field, std::string problem)
+      : InputError(field + ": " + problem), field_(std::move(field)), problem_(std::move(problem)) {}
+  const std::string& field() const { return field_; }
+  const std::string& problem() const { return problem_; }
+
+ private:
+  std::string field_, problem_;
 };
 
 class NumericalError : public std::runtime_error {

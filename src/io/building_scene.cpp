@@ -13,7 +13,7 @@
 #include "structure_edits.hpp"
 #include "sweep_scene_tree.hpp"
 #include "toml_text.hpp"
-#include "adjoin/structure/modal.hpp"
+#include "adjoin/study/builder.hpp"
 
 namespace adjoin {
 namespace {
@@ -149,18 +149,9 @@ BuildingScene detail::building_scene_from_tree(const toml::table& parsed, const 
   for (const auto& w : b.base.warnings)
     if (w.find("period") == std::string::npos) b.warnings.push_back(w);  // (its periods are the placeholder's)
 
-  // The structure's periods decide the defaults.
-  double t_longest = 0.0, t_shortest_fundamental = INFINITY;
-  for (const structure::Building* bd : {&b.structure.a, b.structure.b ? &*b.structure.b : nullptr}) {
-    if (!bd) continue;
-    const structure::Modes m = structure::building_modes(*bd);
-    t_longest = std::max(t_longest, m.periods[0]);
-    t_shortest_fundamental = std::min(t_shortest_fundamental, m.periods[0]);
-  }
-  if (b.structure.b) t_longest = std::max(t_longest, structure::coupled_modes(b.structure).periods_free[0]);
-
   // The base read [solver] after the --unset and --set edits: it chose a tolerance exactly
-  // when solver.h is not given, and says a rule for t_end exactly when t_end is not.
+  // when solver.h is not given, and says a rule for t_end exactly when t_end is not. The
+  // structure's periods decide the defaults, by the rules of study/builder.hpp.
   const bool h_given = !b.base.accuracy.tolerance;
   const bool t_end_given = b.base.accuracy.t_end_rule.empty();
   const double dt = b.base.ground->sample_interval();  // s (unit time scale)
@@ -168,30 +159,22 @@ BuildingScene detail::building_scene_from_tree(const toml::table& parsed, const 
     b.solver.h = b.base.solver.h;
     b.h_rule = "given";
   } else {
-    // Without solver.h the step is chosen for solver.tolerance (given, or 1e-3, the building
-    // scenes' default: three significant digits of every reported peak, what a structural
-    // engineer reads; base.accuracy holds it): this is the ladder's first rung, and the step
-    // of a sweep's rows, which do not climb the ladder.
-    if (!b.base.accuracy.tolerance_given) {
-      b.base.accuracy.tolerance = kBuildingDefaultTolerance;
-      b.base.accuracy.h_rule = "chosen for solver.tolerance = " + number(kBuildingDefaultTolerance) +
-                               " (the default: 3 significant digits of the peaks)";
-    }
-    b.solver.h = t_shortest_fundamental / 200.0;
-    if (dt > 0.0) b.solver.h = std::min(b.solver.h, dt);
-    b.h_rule = b.base.accuracy.h_rule + ", from h = the shortest fundamental period / 200" +
-               std::string(dt > 0.0 ? ", no coarser than the record's dt" : "") + " = " + number(b.solver.h) + " s";
+    // Without solver.h the step is chosen for solver.tolerance (given, or the building
+    // scenes' default; base.accuracy holds it).
+    AccuracyOptions& a = b.base.accuracy;
+    if (!a.tolerance_given) a.tolerance = kBuildingDefaultTolerance;
+    a.h_rule = tolerance_rule(*a.tolerance, a.tolerance_given);
+    const Chosen h = default_building_step(b.structure, dt, a.h_rule);
+    b.solver.h = h.value;
+    b.h_rule = h.rule;
   }
-  const double duration = b.base.ground->duration();
   if (t_end_given) {
     b.solver.t_end = b.base.solver.t_end;
     b.t_end_rule = "given";
-  } else if (std::isfinite(duration)) {
-    b.solver.t_end = duration + 5.0 * t_longest;
-    b.t_end_rule = "the motion's duration + 5 x the longest period (" + number(t_longest) + " s) = " + number(b.solver.t_end) + " s";
   } else {
-    b.solver.t_end = 20.0 * t_longest;
-    b.t_end_rule = "20 x the longest period (" + number(t_longest) + " s) = " + number(b.solver.t_end) + " s";
+    const Chosen t_end = default_building_horizon(b.structure, b.base.ground->duration());
+    b.solver.t_end = t_end.value;
+    b.t_end_rule = t_end.rule;
   }
   b.solver.history = b.base.solver.history;
   b.solver.restart = restart_for_scheme(b.base.solver.scheme, parsed, file.string(), overrides);

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <toml++/toml.h>
 
-#include "contact_keys.hpp"
+#include "adjoin/structure/contact_rules.hpp"
 #include "sweep_scene_tree.hpp"
 #include "toml_text.hpp"
 
@@ -342,7 +342,7 @@ std::string rod_key_of(const std::string& message) {
 }
 
 // [model.contact] (SPEC §6): the law at the blocks' gap model.gap0, by the rules of
-// contact_keys.hpp, absent: model "none". A dimensionless scene gives the stiffness in units
+// structure/contact_rules.hpp, absent: model "none". A dimensionless scene gives the stiffness in units
 // of k1 (linear) or k1 / X0^(1/2) (Hertz-type laws); an SI scene in N/m or N/m^1.5, scaled
 // here to those units (divided by k1 = F0 / X0, or by F0 / X0^(3/2)).
 structure::ContactLaw read_contact(const SceneReader& r, const Scales& scales) {
@@ -354,7 +354,7 @@ structure::ContactLaw read_contact(const SceneReader& r, const Scales& scales) {
                                     "\"hertzdamp\", \"jankowski\" or \"impact\"");
   }
   const auto linear = [](structure::ContactModel m) { return m == structure::ContactModel::linear; };
-  detail::ContactTable t;
+  structure::ContactTable t;
   t.where = "model.contact";
   t.has = [&](const std::string& key) { return r.has("model.contact." + key); };
   t.number = [&](const std::string& key) { return r.number("model.contact." + key); };
@@ -367,7 +367,7 @@ structure::ContactLaw read_contact(const SceneReader& r, const Scales& scales) {
     if (scales.si) return linear(m) ? "N/m" : "N/m^1.5";
     return linear(m) ? "in units of k1" : "in units of k1 / X0^(1/2)";
   };
-  structure::ContactLaw law = detail::read_contact_law(t, model);
+  structure::ContactLaw law = structure::contact_law_from(t, model);
   if (scales.si && law.compliant()) {
     const double unit = linear(model) ? scales.force / scales.length : scales.force / std::pow(scales.length, 1.5);
     law.stiffness /= unit;
@@ -946,12 +946,12 @@ std::vector<std::string> implied_unsets(const std::string& key, const std::strin
       for (const char* k : {".order", ".tau_x", ".tau_f"}) out.push_back(std::string(rod) + k);
   if (key == "ground.source" && unquoted(value) != current_source) out.push_back("ground");
   // A contact law's restitution and damping replace each other; a model drops the keys it
-  // does not take (contact_keys.hpp), as editing the file would.
+  // does not take (structure/contact_rules.hpp), as editing the file would.
   if (key == "model.contact.restitution") out.push_back("model.contact.damping");
   if (key == "model.contact.damping") out.push_back("model.contact.restitution");
   structure::ContactModel model;
   if (key == "model.contact.model" && structure::parse_contact_model(unquoted(value), &model))
-    for (const auto& k : detail::contact_keys_refused(model)) out.push_back("model.contact." + k);
+    for (const auto& k : structure::contact_keys_refused(model)) out.push_back("model.contact." + k);
   return out;
 }
 

@@ -5,7 +5,7 @@
 
 #include "adjoin/errors.hpp"
 #include "adjoin/io/text_file.hpp"
-#include "contact_keys.hpp"
+#include "adjoin/structure/contact_rules.hpp"
 #include "toml_text.hpp"
 
 namespace adjoin::detail {
@@ -116,7 +116,7 @@ void set(toml::table& root, const std::string& text, std::map<std::string, std::
   if (!contact)
     for (const auto& other : alternatives(parts.back())) table->erase(other);
   // A contact law's restitution and damping replace each other, and a model drops the keys
-  // it does not take (contact_keys.hpp), as editing the file would; not those another --set
+  // it does not take (structure/contact_rules.hpp), as editing the file would; not those another --set
   // put there (that is a contradiction the reader reports).
   if (contact) {
     std::vector<std::string> dropped;
@@ -125,7 +125,7 @@ void set(toml::table& root, const std::string& text, std::map<std::string, std::
     structure::ContactModel model;
     if (parts.back() == "model")
       if (const auto word = holder["v"].value<std::string>(); word && structure::parse_contact_model(*word, &model))
-        dropped = contact_keys_refused(model);
+        dropped = structure::contact_keys_refused(model);
     for (const auto& other : dropped)
       if (!origins.count(parent.path + "." + other)) table->erase(other);
   }

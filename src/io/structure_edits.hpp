@@ -9,7 +9,7 @@
 // the alternatives `stiffness`, `stiffnesses`, `period` (or `mass`, `masses`; or a friction
 // link's `slip_force`, `slip_ratio`) removes the others, as editing the file would; so do a
 // contact's `restitution` and `damping`, and a contact's `model` removes the law keys that
-// model does not take (contact_keys.hpp), unless another --set put them there.
+// model does not take (structure/contact_rules.hpp), unless another --set put them there.
 #include <map>
 #include <string>
 #include <vector>

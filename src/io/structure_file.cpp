@@ -3,14 +3,14 @@
 #include "adjoin/structure/two_block.hpp"
 
 #include <cmath>
-#include <limits>
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 
 #include <toml++/toml.h>
 
-#include "contact_keys.hpp"
+#include "adjoin/structure/contact_rules.hpp"
 #include "structure_edits.hpp"
 #include "sweep_scene_tree.hpp"
 #include "toml_text.hpp"
@@ -18,8 +18,7 @@
 #include "adjoin/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/structure/modal.hpp"
-#include "adjoin/model/parameters.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/structure/rules.hpp"
 
 namespace adjoin {
 namespace {
@@ -31,35 +30,13 @@ using structure::LinkType;
 
 using Origins = std::map<std::string, std::string>;
 
-std::string number_text(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
-
-// The range a building quantity may take. The bounds are the two-block scenes' (masses
-// 1e-3..1e12 kg, stiffnesses 1e-3..1e15 N/m, relaxation times up to 1e12): inside them the
-// step's matrices M + h/2 C + h^2/4 K stay finite and every reported force and energy too
-// (1e15 N/m x a metre, 1e12 kg x (1e3 m/s)^2), where 1e300 overflowed only at the end of a run.
-struct Range {
-  double lo, hi;
-  const char* unit;
-  std::string problem(double v) const {
-    if (v >= lo && v <= hi) return "";
-    return number_text(v) + " is outside the supported " + number_text(lo) + " to " + number_text(hi) + " " + unit +
-           " (bounds that keep the step's matrices finite and well conditioned)";
-  }
-};
-constexpr Range kMassRange{1e-3, 1e12, "kg"};
-constexpr Range kStiffnessRange{1e-3, 1e15, "N/m"};
-constexpr Range kDashpotRange{1e-3, 1e15, "N s/m"};
-constexpr Range kForceRange{1e-3, 1e18, "N"};
-constexpr Range kSlipRatioRange{1e-9, 1e6, "(slip force / weight)"};
-constexpr Range kTauRange{1e-9, kMaxRelaxationTime, "s^order"};
-constexpr double kMaxContactStiffness = 1e20;  // N/m or N/m^1.5
-// tau_x / tau_f: the Zener element's unrelaxed stiffness over its relaxed one.
-constexpr double kMaxTauRatio = kMaxRatio;
+using structure::bounded_problem;
+using structure::kDashpotRange;
+using structure::kForceRange;
+using structure::kMassRange;
+using structure::kSlipRatioRange;
+using structure::kStiffnessRange;
+using structure::Range;
 
 // Reads the keys of one table, each named by its dotted path in messages with the line.
 class TableReader {
@@ -116,10 +93,10 @@ class TableReader {
     if (!(v > 0.0)) fail(key, "expected a positive number");
     return v;
   }
-  // A positive value within `range` (kRanges below).
+  // A positive value within `range` (structure/rules.hpp).
   double bounded(const std::string& key, const Range& range) const {
-    const double v = positive(key);
-    if (const std::string problem = range.problem(v); !problem.empty()) fail(key, problem);
+    const double v = number(key);
+    if (const std::string problem = bounded_problem(v, range); !problem.empty()) fail(key, problem);
     return v;
   }
   int integer(const std::string& key, int lo, int hi) const {
@@ -161,14 +138,10 @@ class TableReader {
     }
     return out;
   }
-  // A list of storeys or floors, each at most once (a storey listed twice would get the
-  // device twice).
-  std::vector<int> distinct_integers(const std::string& key) const {
+  // A device's storeys: whole numbers, by the rules of structure/rules.hpp.
+  std::vector<int> storeys(const std::string& key, int n) const {
     std::vector<int> out = integers(key, 0);
-    if (out.empty()) fail(key, "expected a list of at least one storey");
-    std::set<int> seen;
-    for (int v : out)
-      if (!seen.insert(v).second) fail(key, std::to_string(v) + " is listed twice; list each storey once");
+    if (const std::string problem = structure::device_storeys_problem(out, n); !problem.empty()) fail(key, problem);
     return out;
   }
   const toml::table& table() const { return table_; }
@@ -190,33 +163,23 @@ class TableReader {
   const detail::CopiedFrom* copied_ = nullptr;
 };
 
+// A Zener element's keys, each checked by the rules as it is read (structure/rules.hpp).
 structure::Zener read_zener(const TableReader& r) {
   structure::Zener z;
   z.k = r.bounded("stiffness", kStiffnessRange);
   z.order = r.number("order");
-  if (!(z.order > 0.0 && z.order < 1.0)) r.fail("order", "expected a fractional order in (0, 1)");
-  z.tau_f = r.bounded("tau_f", kTauRange);
-  z.tau_x = r.bounded("tau_x", kTauRange);
-  if (!(z.tau_x > z.tau_f)) r.fail("tau_x", "must exceed tau_f (the second law; tau_x = tau_f is a spring)");
-  if (z.tau_x > kMaxTauRatio * z.tau_f)
-    r.fail("tau_x", "tau_x / tau_f = " + number_text(z.tau_x / z.tau_f) + " is beyond the supported " + number_text(kMaxTauRatio) +
-                        " (the unrelaxed stiffness, stiffness x tau_x / tau_f, would make the step ill conditioned)");
+  if (const std::string problem = structure::zener_order_problem(z.order); !problem.empty()) r.fail("order", problem);
+  z.tau_f = r.bounded("tau_f", structure::kTauRange);
+  z.tau_x = r.bounded("tau_x", structure::kTauRange);
+  if (const std::string problem = structure::zener_tau_problem(z.tau_x, z.tau_f); !problem.empty()) r.fail("tau_x", problem);
   return z;
 }
 
-// A uniform storey stiffness for `period` (s), which must give springs within kStiffnessRange;
-// the message says the periods that do for these masses (the stiffness goes as 1 / period^2).
+// A uniform storey stiffness for `period` (s), within the rules' stiffness range.
 double stiffness_for_period(const TableReader& r, const Eigen::VectorXd& masses) {
-  const double period = r.positive("period");
-  const double k_at_1s = structure::stiffness_for_period(masses, 1.0);
-  const double k = k_at_1s / (period * period);
-  if (!(k >= kStiffnessRange.lo && k <= kStiffnessRange.hi)) {
-    const double shortest = std::sqrt(k_at_1s / kStiffnessRange.hi), longest = std::sqrt(k_at_1s / kStiffnessRange.lo);
-    r.fail("period", number_text(period) + " s is outside the supported " + number_text(shortest) + " to " + number_text(longest) +
-                         " s for these floor masses (the periods of storey springs from " + number_text(kStiffnessRange.lo) +
-                         " to " + number_text(kStiffnessRange.hi) + " N/m, bounds that keep the step's matrices finite and "
-                         "well conditioned)");
-  }
+  std::string problem;
+  const double k = structure::stiffness_for_period_in_range(masses, r.positive("period"), &problem);
+  if (!problem.empty()) r.fail("period", problem);
   return k;
 }
 
@@ -226,7 +189,7 @@ Building read_building(const toml::table& root, const std::string& name, const T
   r.only({"storeys", "mass", "masses", "stiffness", "stiffnesses", "period", "damping", "device"});
   Building b;
   b.name = name;
-  const int n = r.integer("storeys", 1, 200);
+  const int n = r.integer("storeys", 1, structure::kMaxStoreys);
   if (r.has("mass") == r.has("masses")) r.fail("", "give the floor masses as mass (every floor) or masses (a list), one of them");
   b.masses = r.has("mass") ? Eigen::VectorXd::Constant(n, r.bounded("mass", kMassRange)) : Eigen::VectorXd(Eigen::Map<const Eigen::VectorXd>(r.numbers("masses", n).data(), n));
   for (int i = 0; i < n; ++i) {
@@ -264,14 +227,14 @@ Building read_building(const toml::table& root, const std::string& name, const T
     b.damping.model = model == "none" ? DampingModel::none : (model == "modal" ? DampingModel::modal : DampingModel::rayleigh);
     if (b.damping.model != DampingModel::none) {
       b.damping.ratio = dr.number("ratio");
-      if (!(b.damping.ratio >= 0.0 && b.damping.ratio < 1.0)) dr.fail("ratio", "expected a damping ratio in [0, 1) (0.05 is 5 %)");
+      if (const std::string problem = structure::damping_ratio_problem(b.damping.ratio); !problem.empty()) dr.fail("ratio", problem);
     }
     if (b.damping.model == DampingModel::rayleigh) {
       const auto modes = dr.has("modes") ? dr.integers("modes", 2) : std::vector<int>{1, 2};
       b.damping.mode_i = modes[0];
       b.damping.mode_j = modes[1];
-      if (modes[0] == modes[1] || modes[0] > n || modes[1] > n)
-        dr.fail(dr.has("modes") ? "modes" : "", "Rayleigh damping is fitted at two different modes of the " + std::to_string(n) + " the building has");
+      if (const std::string problem = structure::rayleigh_modes_problem(modes[0], modes[1], n); !problem.empty())
+        dr.fail(dr.has("modes") ? "modes" : "", problem);
     }
   }
   if (r.has("device")) {
@@ -285,9 +248,7 @@ Building read_building(const toml::table& root, const std::string& name, const T
       const TableReader dr = r.inner(*dt, r.path() + ".device[" + std::to_string(index) + "]");
       structure::StoreyDevice dev;
       const std::string type = dr.text("type", {"zener", "dashpot", "spring"});
-      dev.storeys = dr.distinct_integers("storeys");
-      for (int s : dev.storeys)
-        if (s > n) dr.fail("storeys", "storey " + std::to_string(s) + " is not in 1.." + std::to_string(n));
+      dev.storeys = dr.storeys("storeys", n);
       if (type == "spring") {
         dr.only({"type", "storeys", "stiffness"});
         dev.type = DeviceType::spring;
@@ -305,36 +266,18 @@ Building read_building(const toml::table& root, const std::string& name, const T
     }
   }
   if (r.has("period") && !b.devices.empty()) {
-    // The period is the building's with its devices (their relaxed stiffness): the uniform
-    // spring that gives it, by bisection (the period falls as the spring grows).
-    const double target = r.positive("period");
-    auto period_with = [&](double k) {
-      structure::Building trial = b;
-      trial.springs = Eigen::VectorXd::Constant(n, k);
-      const Eigen::VectorXd storey = trial.static_stiffness();
-      if (storey.minCoeff() <= 0.0) return std::numeric_limits<double>::infinity();
-      return structure::building_modes(trial).periods[0];
-    };
-    double hi = b.springs[0];  // enough on its own
-    if (period_with(0.0) <= target)
-      r.fail("period", "the storey devices alone already give a period of " + std::to_string(period_with(0.0)) +
-                           " s, below " + std::to_string(target) + " s: remove period, or soften the devices");
-    double lo = 0.0;
-    for (int i = 0; i < 200 && hi - lo > 1e-14 * hi; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (period_with(mid) > target ? lo : hi) = mid;
-    }
-    b.springs = Eigen::VectorXd::Constant(n, 0.5 * (lo + hi));
+    // The period is the building's with its devices (their relaxed stiffness).
+    std::string problem;
+    const double k = structure::spring_for_period_with_devices(b, r.positive("period"), b.springs[0], &problem);
+    if (!problem.empty()) r.fail("period", problem);
+    b.springs = Eigen::VectorXd::Constant(n, k);
   }
-  const Eigen::VectorXd k = b.static_stiffness();
-  for (int i = 0; i < n; ++i)
-    if (!(k[i] > 0.0))
-      r.fail("", "storey " + std::to_string(i + 1) + " has no stiffness: give stiffness, stiffnesses or period, or a spring or Zener device on it");
+  if (const std::string problem = structure::storey_stiffness_problem(b); !problem.empty()) r.fail("", problem);
   return b;
 }
 
 // A [[contact]]'s law (SPEC §6): model (default "none"), stiffness [N/m or N/m^1.5],
-// restitution, damping, tension_cut, by the rules of contact_keys.hpp.
+// restitution, damping, tension_cut, by the rules of structure/contact_rules.hpp.
 structure::ContactLaw read_contact_law(const TableReader& r) {
   structure::ContactModel model = structure::ContactModel::none;
   if (r.has("model")) {
@@ -343,7 +286,7 @@ structure::ContactLaw read_contact_law(const TableReader& r) {
     if (!word || !structure::parse_contact_model(*word, &model))
       r.fail("model", "expected one of \"none\", \"linear\", \"hertz\", \"hertzdamp\", \"jankowski\", \"impact\"");
   }
-  detail::ContactTable t;
+  structure::ContactTable t;
   t.where = r.path();
   t.has = [&](const std::string& key) { return r.has(key); };
   t.number = [&](const std::string& key) { return r.number(key); };
@@ -354,15 +297,12 @@ structure::ContactLaw read_contact_law(const TableReader& r) {
   };
   t.fail = [&](const std::string& key, const std::string& message) { r.fail(key, message); };
   t.stiffness_unit = [](structure::ContactModel m) { return m == structure::ContactModel::linear ? "N/m" : "N/m^1.5"; };
-  const structure::ContactLaw law = detail::read_contact_law(t, model);
-  // Stiff Hertz contacts of 1e15-1e16 are real (steel on concrete); 1e300 only overflows.
-  if (r.has("stiffness") && law.stiffness > kMaxContactStiffness)
-    r.fail("stiffness", number_text(law.stiffness) + " is beyond the supported " + number_text(kMaxContactStiffness) + " " +
-                            t.stiffness_unit(model) + " (the contact force would overflow)");
+  const structure::ContactLaw law = structure::contact_law_from(t, model);
+  if (const std::string problem = structure::contact_stiffness_problem(law.stiffness, t.stiffness_unit(model));
+      r.has("stiffness") && !problem.empty())
+    r.fail("stiffness", problem);
   return law;
 }
-
-double building_weight(const Building& b) { return b.masses.sum() * kStandardGravity; }
 
 }  // namespace
 
@@ -414,8 +354,8 @@ structure::Structure detail::structure_from_tree(toml::table& root, const std::s
   auto floors_of = [&](const TableReader& r) {
     const auto f = r.integers("floors", 2);
     if (!s.b) r.fail("", "links and contacts join building A to building B: add [building.B]");
-    if (f[0] > s.a.floors()) r.fail("floors", "floor " + std::to_string(f[0]) + " is not a floor of A (1.." + std::to_string(s.a.floors()) + ")");
-    if (f[1] > s.b->floors()) r.fail("floors", "floor " + std::to_string(f[1]) + " is not a floor of B (1.." + std::to_string(s.b->floors()) + ")");
+    for (const auto& [name, floor, b] : {std::tuple{'A', f[0], &s.a}, std::tuple{'B', f[1], &*s.b}})
+      if (const std::string problem = structure::floor_problem(name, floor, *b); !problem.empty()) r.fail("floors", problem);
     return f;
   };
   if (const toml::array* links = root.get_as<toml::array>("link")) {
@@ -440,7 +380,7 @@ structure::Structure detail::structure_from_tree(toml::table& root, const std::s
         } else {
           const double ratio = r.bounded("slip_ratio", kSlipRatioRange);
           const std::string of = r.text("of", {"A", "B"});
-          l.slip_force = ratio * building_weight(of == "A" ? s.a : *s.b);
+          l.slip_force = structure::slip_force_from_ratio(ratio, of == "A" ? s.a : *s.b);
         }
       } else if (type == "dashpot") {
         r.only({"floors", "type", "c"});

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "adjoin/io/scene.hpp"
+#include "adjoin/study/builder.hpp"
 #include "adjoin/study/run_spec.hpp"
 
 namespace adjoin {
@@ -14,10 +15,8 @@ namespace adjoin {
 // The run description itself is study's (study/run_spec.hpp); io reads files into it.
 using BuildingScene = BuildingRunSpec;
 
-// Without solver.h and solver.tolerance a building scene's step is chosen for this relative
-// error of its reported peaks: three significant digits, what a structural engineer reads
-// (two-block scenes keep 1e-6: their steps cost nanoseconds).
-inline constexpr double kBuildingDefaultTolerance = 1e-3;
+// Without solver.h and solver.tolerance a building scene's step is chosen for
+// kBuildingDefaultTolerance (study/builder.hpp, with the other run-level rules).
 
 // `overrides`: --set edits by dotted path of any key: the structure's (building.A.period,
 // building.B.damping.ratio, link.1.slip_ratio, contact.1.gap; io/structure_file.hpp) and

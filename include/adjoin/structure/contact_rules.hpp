@@ -1,7 +1,7 @@
 #pragma once
-// The keys of a contact law's table (SPEC §6): a building scene's [[contact]] and a two-block
-// scene's [model.contact] take the same `model`, `stiffness`, `restitution`, `damping` and
-// `tension_cut`, with the same rules (internal to io):
+// The keys of a contact law (SPEC §6): a building scene's [[contact]], a two-block scene's
+// [model.contact] and the typed builder's contacts (structure/builder.hpp) take the same
+// `model`, `stiffness`, `restitution`, `damping` and `tension_cut`, with the same rules:
 //
 //   model        "none" (the default), "linear", "hertz", "hertzdamp", "jankowski", "impact"
 //   stiffness    needed by linear, hertz, hertzdamp, jankowski; refused by impact
@@ -17,9 +17,9 @@
 
 #include "adjoin/structure/contact.hpp"
 
-namespace adjoin::detail {
+namespace adjoin::structure {
 
-// How a table is read: `has` a key, its `number` (the caller checks the type), its `boolean`,
+// How a table (a scene's, or the builder's values) is read: `has` a key, its `number` (the caller checks the type), its `boolean`,
 // and `fail`, which throws InputError naming the key ("" for the table itself) with the
 // message. `where` names the table in messages ("contact[2]", "model.contact");
 // `stiffness_unit` says in what unit a model's stiffness is given.
@@ -29,18 +29,18 @@ struct ContactTable {
   std::function<double(const std::string&)> number;
   std::function<bool(const std::string&)> boolean;
   std::function<void(const std::string& key, const std::string& message)> fail;
-  std::function<std::string(structure::ContactModel)> stiffness_unit;
+  std::function<std::string(ContactModel)> stiffness_unit;
 };
 
 // The law the table gives for `model` (already read), every rule above checked; the stiffness
 // as given (the caller scales it). The restitution stays 1 when not given.
-structure::ContactLaw read_contact_law(const ContactTable& t, structure::ContactModel model);
+ContactLaw contact_law_from(const ContactTable& t, ContactModel model);
 
 // The law keys `model` refuses: what an edit that sets the model drops from the table, as
 // editing the file would ("restitution", "damping" for hertz).
-std::vector<std::string> contact_keys_refused(structure::ContactModel model);
+std::vector<std::string> contact_keys_refused(ContactModel model);
 
 // The law keys, without `model`.
 const std::vector<std::string>& contact_law_keys();
 
-}  // namespace adjoin::detail
+}  // namespace adjoin::structure

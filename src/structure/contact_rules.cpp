@@ -1,12 +1,10 @@
-#include "contact_keys.hpp"
+#include "adjoin/structure/contact_rules.hpp"
 
 #include <cmath>
 #include <stdexcept>
 
-namespace adjoin::detail {
+namespace adjoin::structure {
 namespace {
-
-using structure::ContactModel;
 
 // The damping parameter's name for messages.
 const char* damping_name(ContactModel model) {
@@ -40,14 +38,14 @@ std::vector<std::string> contact_keys_refused(ContactModel model) {
   return out;
 }
 
-structure::ContactLaw read_contact_law(const ContactTable& t, ContactModel model) {
+ContactLaw contact_law_from(const ContactTable& t, ContactModel model) {
   const auto fail = [&](const std::string& key, const std::string& message) {
     t.fail(key, message);
     throw std::logic_error("ContactTable::fail returned");  // it throws InputError
   };
-  const std::string name = structure::to_string(model);
+  const std::string name = to_string(model);
   const std::string the_model = "the " + name + " model";
-  structure::ContactLaw law;
+  ContactLaw law;
   law.model = model;
 
   // Keys the model does not take.
@@ -110,4 +108,4 @@ structure::ContactLaw read_contact_law(const ContactTable& t, ContactModel model
   return law;
 }
 
-}  // namespace adjoin::detail
+}  // namespace adjoin::structure

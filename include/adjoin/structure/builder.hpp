@@ -1,0 +1,119 @@
+#pragma once
+// A structure described in code (SPEC §5), the way an engineer describes it: storey count,
+// floor masses, storey stiffnesses or a fundamental period, inherent damping, storey devices,
+// links and contacts at chosen floor pairs. Each setter checks its value by the rules a scene
+// file's reader applies (structure/rules.hpp, structure/contact_rules.hpp), and build() checks
+// what needs the whole (sizes, floors, a period with devices, a slip ratio's weight).
+//
+//     structure::StructureBuilder s;
+//     s.building('A', 5).mass(45.0e3).stiffness(5.482e6).modal_damping(0.05);
+//     s.building('B', 3).masses({60e3, 60e3, 50e3}).period(0.5);
+//     s.friction_link_ratio(3, 3, 0.05, 'B');
+//     s.contact(3, 3, 0.05).model(structure::ContactModel::linear).stiffness(2e9).restitution(0.65);
+//     structure::Structure structure = s.build();
+//
+// Errors are FieldError (adjoin/errors.hpp) naming the field by its path, counted from 1 as a
+// scene's tables are: "building.A.period", "building.A.masses[3]", "building.A.device[1].tau_x",
+// "link[2].slip_force", "contact[1].restitution". SI units throughout.
+#include <deque>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "adjoin/structure/building.hpp"
+
+namespace adjoin::structure {
+
+class BuildingBuilder {
+ public:
+  // `name` 'A' (the left building) or 'B'; 1 to kMaxStoreys storeys.
+  BuildingBuilder(char name, int storeys);
+
+  // Floor masses [kg]: one for every floor, or a list bottom up (one per floor). Of two ways
+  // of giving the same thing (mass, masses; stiffness, stiffnesses, period) the last counts.
+  BuildingBuilder& mass(double kg);
+  BuildingBuilder& masses(const std::vector<double>& kg);
+  // Storey stiffness [N/m]: one for every storey, a list bottom up (0 where the storey's devices
+  // alone stiffen it), or instead the fundamental period [s]: a uniform storey spring is found
+  // that gives it (with the devices' relaxed stiffness, when the building has devices).
+  BuildingBuilder& stiffness(double n_per_m);
+  BuildingBuilder& stiffnesses(const std::vector<double>& n_per_m);
+  BuildingBuilder& period(double seconds);
+  // Inherent (classical) damping: none (the default), one ratio for every mode, or Rayleigh's
+  // fitted at two modes (1-based).
+  BuildingBuilder& no_damping();
+  BuildingBuilder& modal_damping(double ratio);
+  BuildingBuilder& rayleigh_damping(double ratio, int mode_i = 1, int mode_j = 2);
+  // A device in parallel with the spring of each listed storey (1-based, each once).
+  BuildingBuilder& spring(const std::vector<int>& storeys, double k);
+  BuildingBuilder& dashpot(const std::vector<int>& storeys, double c);
+  BuildingBuilder& zener(const std::vector<int>& storeys, const Zener& z);
+
+  const std::string& path() const { return path_; }  // "building.A"
+  int storeys() const { return b_.floors(); }
+  // The building, every storey stiff (its spring or its devices).
+  Building build() const;
+
+ private:
+  void add_device(StoreyDevice device, const std::vector<int>& storeys);
+  std::string device_path() const;  // the next device's
+
+  std::string path_;
+  Building b_;
+  bool mass_given_ = false;
+  std::string stiffness_given_;  // "stiffness", "stiffnesses" or "period": the one given
+  double period_ = 0.0;
+};
+
+// A contact pair's law; the model's keys as a scene's [[contact]] takes them.
+class ContactBuilder {
+ public:
+  ContactBuilder(std::string path, int floor_a, int floor_b, double gap);
+  ContactBuilder& model(ContactModel model);
+  ContactBuilder& stiffness(double k);      // N/m (linear) or N/m^1.5
+  ContactBuilder& restitution(double e);    // 0 < e <= 1
+  ContactBuilder& damping(double value);    // zeta, xi_bar or xi directly (instead of restitution)
+  ContactBuilder& tension_cut(bool cut);    // linear only
+  Contact build() const;
+
+ private:
+  std::string path_;
+  Contact c_;
+  std::optional<double> stiffness_, restitution_, damping_;
+  std::optional<bool> tension_cut_;
+};
+
+class StructureBuilder {
+ public:
+  // Building A (the left one) or B (the right one, optional), made on the first call; a
+  // second call with the same name returns the same builder (its storeys must agree).
+  BuildingBuilder& building(char name, int storeys);
+
+  // Links between floor_a of A and floor_b of B, numbered link[1], link[2], ... in the order
+  // they are added. A friction link's slip force [N], or a fraction of building `of`'s weight.
+  StructureBuilder& friction_link(int floor_a, int floor_b, double slip_force);
+  StructureBuilder& friction_link_ratio(int floor_a, int floor_b, double slip_ratio, char of);
+  StructureBuilder& dashpot_link(int floor_a, int floor_b, double c);
+  StructureBuilder& spring_link(int floor_a, int floor_b, double k);
+  StructureBuilder& zener_link(int floor_a, int floor_b, const Zener& z);
+  // A pounding pair with its clear gap at rest [m] >= 0; set its law on the builder returned
+  // (no law: model none, the floors pass through).
+  ContactBuilder& contact(int floor_a, int floor_b, double gap);
+
+  Structure build() const;
+
+ private:
+  struct LinkEntry {
+    Link link;
+    std::optional<double> slip_ratio;  // friction, by weight
+    char of = 'B';
+  };
+  std::string link_path() const;  // the next link's
+  StructureBuilder& add_link(Link link);
+
+  std::optional<BuildingBuilder> a_, b_;
+  std::vector<LinkEntry> links_;
+  std::deque<ContactBuilder> contacts_;  // a deque: the references handed out stay valid
+};
+
+}  // namespace adjoin::structure

@@ -1,0 +1,85 @@
+#pragma once
+// The engineering rules of a structure (SPEC §5), in one place for every way of describing
+// one: a scene file's reader (io/structure_file.hpp) and the typed builder
+// (structure/builder.hpp) apply these same functions, so a value one accepts the other does.
+//
+// Each check returns what is wrong in words ("" when nothing is), without naming the field:
+// the caller names it its own way (a scene's file:line and key, the builder's field path
+// "building.A.period", "link[1].slip_force").
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
+
+#include "adjoin/model/parameters.hpp"
+#include "adjoin/structure/building.hpp"
+
+namespace adjoin::structure {
+
+// The range a building quantity may take. The bounds are the two-block scenes' (masses
+// 1e-3..1e12 kg, stiffnesses 1e-3..1e15 N/m, relaxation times up to 1e12): inside them the
+// step's matrices M + h/2 C + h^2/4 K stay finite and every reported force and energy too
+// (1e15 N/m x a metre, 1e12 kg x (1e3 m/s)^2), where 1e300 overflowed only at the end of a run.
+struct Range {
+  double lo, hi;
+  const char* unit;
+  // "" inside the range, else the value and the supported range.
+  std::string problem(double v) const;
+};
+inline constexpr Range kMassRange{1e-3, 1e12, "kg"};
+inline constexpr Range kStiffnessRange{1e-3, 1e15, "N/m"};
+inline constexpr Range kDashpotRange{1e-3, 1e15, "N s/m"};
+inline constexpr Range kForceRange{1e-3, 1e18, "N"};
+inline constexpr Range kSlipRatioRange{1e-9, 1e6, "(slip force / weight)"};
+inline constexpr Range kTauRange{1e-9, kMaxRelaxationTime, "s^order"};
+// Stiff Hertz contacts of 1e15-1e16 are real (steel on concrete); 1e300 only overflows.
+inline constexpr double kMaxContactStiffness = 1e20;  // N/m or N/m^1.5
+// tau_x / tau_f: the Zener element's unrelaxed stiffness over its relaxed one.
+inline constexpr double kMaxTauRatio = kMaxRatio;
+inline constexpr int kMaxStoreys = 200;
+
+// A number as messages show it (6 significant digits).
+std::string number_text(double v);
+
+// A positive value within `range`: "expected a positive number", the range's problem, or "".
+std::string bounded_problem(double v, const Range& range);
+// A Zener element's order in (0, 1).
+std::string zener_order_problem(double order);
+// tau_x > tau_f (the second law) and tau_x / tau_f within kMaxTauRatio; tau_x is the field
+// to blame.
+std::string zener_tau_problem(double tau_x, double tau_f);
+// Every rule of a Zener element, in the order a scene's keys are read: the field ("stiffness",
+// "order", "tau_f", "tau_x") and the problem, or {"", ""}.
+std::pair<std::string, std::string> zener_problem(const Zener& z);
+// An inherent damping ratio in [0, 1).
+std::string damping_ratio_problem(double ratio);
+// Rayleigh damping's two modes, different and within the building's n modes.
+std::string rayleigh_modes_problem(int mode_i, int mode_j, int n);
+// A contact stiffness within kMaxContactStiffness (in `unit`).
+std::string contact_stiffness_problem(double k, const std::string& unit);
+
+// A storey device's storeys: at least one, each once, each a storey 1..n.
+std::string device_storeys_problem(const std::vector<int>& storeys, int n);
+// A link's or contact pair's floor of building `name` ('A' or 'B'), within its floors.
+std::string floor_problem(char name, int floor, const Building& b);
+
+// Period -> stiffness. The uniform storey spring that gives a building of these floor masses
+// (and no other stiffness) the fundamental period `period` [s]; it must lie within
+// kStiffnessRange, else *problem says the periods that do for these masses (the stiffness
+// goes as 1 / period^2) and 0 is returned.
+double stiffness_for_period_in_range(const Eigen::VectorXd& masses, double period, std::string* problem);
+// The same for a building with storey devices: the uniform spring that, with the devices'
+// relaxed stiffness, gives `building` the period (by bisection from `enough`, a spring that
+// alone gives a shorter period: the period falls as the spring grows). *problem when the
+// devices alone already give a shorter period.
+double spring_for_period_with_devices(const Building& building, double period, double enough, std::string* problem);
+
+// Slip ratio -> slip force: a fraction of a building's weight, ratio x (sum of its floor
+// masses) x g [N].
+double slip_force_from_ratio(double ratio, const Building& of);
+
+// The storey that has no static stiffness (no spring and no spring or Zener device), as
+// "storey i has no stiffness: ...", or "".
+std::string storey_stiffness_problem(const Building& b);
+
+}  // namespace adjoin::structure
