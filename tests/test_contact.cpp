@@ -234,7 +234,7 @@ TEST_CASE("impact times, peak forces and peak displacements converge at order 2 
       {"hertzdamp", {"model.contact.model=hertzdamp", "model.contact.stiffness=1000", "model.contact.restitution=0.65"}, 1.7},
       {"jankowski", {"model.contact.model=jankowski", "model.contact.stiffness=1000", "model.contact.restitution=0.65"}, 1.7},
       // Newton's law reverses the damper's relative velocity by a jump inside a step, whose
-      // reversal the damper's step locates to first order only (see README, Numerics).
+      // reversal the damper's step locates to first order only (see docs/explanation/numerics.md).
       {"impact", {"model.contact.model=impact", "model.contact.restitution=0.65"}, 1.4},
   };
   for (const Law& law : laws) {

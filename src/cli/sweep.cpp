@@ -398,7 +398,7 @@ const Registration registration(50, [](CLI::App& app) -> Runner {
   auto args = std::make_shared<SweepArgs>();
   auto merge = std::make_shared<MergeArgs>();
   auto* sub = app.add_subcommand("sweep", "Run a sweep (base scene x axes x ground motions): sweep.csv and sweep.json");
-  sub->add_option("sweep", args->sweep, "Sweep file (TOML; README \"Sweeps\")");
+  sub->add_option("sweep", args->sweep, "Sweep file (TOML; docs/reference/sweep-file.md)");
   sub->add_option("--out", args->out, "Output folder (default out/<sweep name>/)");
   sub->add_option("--jobs,-j", args->jobs, "Threads (default: all local cores; under MPI, cores per local rank)");
   sub->add_option("--shard", args->shard, "Run only the runs i with i mod N == I (0-based I/N); merge the shards with `adjoin sweep merge`");

@@ -900,7 +900,7 @@ void plot_convergence_csv(const fs::path& csv, const fs::path& image, const Plot
 namespace {
 
 // Short axis labels with units for the columns adjoin's tables have (a sweep's sweep.csv, a
-// building sweep's channel columns; README "The table"): the quantity, the element, the unit.
+// building sweep's channel columns; docs/reference/outputs.md): the quantity, the element, the unit.
 // A column not listed keeps its name.
 struct ColumnLabel {
   const char* column;  // X stands for A or B, N for a link's or contact pair's number

@@ -154,7 +154,7 @@ void ContactStepper::fail_bound(double t, double delta, double w, const std::str
   m << "contact pair " << index_ + 1 << " (" << structure::to_string(law_.model) << "): its motion in contact " << what
     << " in one step at t = " << t << " (penetration " << delta << ", rate " << w << "); the contact's sub-steps grow "
     << "with its stiffness (about k^(1/3) for a pressed Hertz contact): lower the pair's stiffness to the values of "
-    << "README's contact stiffness guidance, or make solver.h smaller";
+    << "guidance in docs/how-to/choose-contact-stiffness.md, or make solver.h smaller";
   throw NumericalError(m.str(), t);
 }
 

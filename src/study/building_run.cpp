@@ -154,7 +154,7 @@ class BuildingObserver final : public StructureObserver {
       m << "contact pair " << k + 1 << " (" << structure::to_string(s_.contacts[k].law.model) << "): at t = " << t
         << " s it has given back " << created << " J more than the work done on it (the input so far " << input_scale_
         << " J): the step is too long for the contact's stiffness; make solver.h smaller or lower contact["
-        << k + 1 << "].stiffness (README, Choosing the contact stiffness)";
+        << k + 1 << "].stiffness (docs/how-to/choose-contact-stiffness.md)";
       throw NumericalError(m.str(), t);
     }
   }

@@ -41,7 +41,7 @@ std::string shortest(double v) { return sweep_number_cell(v); }
 
 // What a sweep holds in memory, per axis value (its edits) and per run (its row: the cells, then
 // the CSV and JSON texts built from them): measured 6.0 kB a run at 26 columns (40,000 runs,
-// peak RSS), rounded up to 256 bytes a column (README "Sweeps").
+// peak RSS), rounded up to 256 bytes a column (docs/reference/sweep-file.md).
 constexpr double kBytesPerValue = 256.0;
 double bytes_per_run(std::size_t columns) { return 256.0 * static_cast<double>(columns); }
 

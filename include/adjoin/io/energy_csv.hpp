@@ -9,7 +9,7 @@
 //
 //     t,input,kinetic,rod1,rod2,friction,contact,contact_dissipated,residual
 //
-// The definitions are those of observe/energy.hpp (and the README).
+// The definitions are those of observe/energy.hpp (and docs/reference/outputs.md).
 #include <ostream>
 
 #include "adjoin/model/units.hpp"

@@ -1,5 +1,5 @@
 #pragma once
-// The sweep file's reader (README "Sweeps"; the sweep itself is study's, study/sweep.hpp):
+// The sweep file's reader (docs/reference/sweep-file.md; the sweep itself is study's, study/sweep.hpp):
 //
 //     SweepSpec spec = load_sweep("examples/sweeps/slip-force.toml");
 //     std::vector<SweepRow> rows = run_sweep(spec);

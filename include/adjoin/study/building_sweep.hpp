@@ -32,7 +32,7 @@ struct SweepChannel {
   std::string name;     // "X.roof_max" (X: A or B), "linkN.force_max" (N from 1), "energy_input"
   ColumnType type;      // number, integer (a count, a storey) or boolean
   std::string unit;     // "m", "N", "m/s^2", "J", "s", or "" (a ratio, a count)
-  std::string meaning;  // for the README and --help
+  std::string meaning;  // for docs/reference/outputs.md and --help
   // The value for element k (building 0 = A, 1 = B; link or contact k counted from 0; 0 for
   // `whole`). Counts and booleans as 0/1...; NaN for "no value" (a share of zero input energy).
   std::function<double(const BuildingRunSpec&, const BuildingReport&, std::size_t k)> value;
