@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "corrupted_text.hpp"
 #include "adjoin/ground/record.hpp"
 #include "adjoin/ground/record_file.hpp"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <filesystem>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/observe/time_series.hpp"
 #include "adjoin/study/run.hpp"

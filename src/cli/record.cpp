@@ -38,7 +38,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/ground/integration.hpp"

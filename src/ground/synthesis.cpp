@@ -9,9 +9,9 @@
 #include <sstream>
 #include <system_error>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "synthesis_detail.hpp"
 
 namespace adjoin {

@@ -15,11 +15,11 @@
 #include "sweep_scene_tree.hpp"
 #include "toml_text.hpp"
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/structure/modal.hpp"
-#include "adjoin/model/parameters.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/structure/parameters.hpp"
+#include "adjoin/core/units.hpp"
 
 namespace adjoin {
 namespace {

@@ -38,7 +38,7 @@
 
 #include "adjoin/fractional/history.hpp"
 #include "adjoin/ground/ground_motion.hpp"
-#include "adjoin/observe/state.hpp"
+#include "adjoin/structure/state.hpp"
 #include "adjoin/structure/building.hpp"
 
 namespace adjoin {

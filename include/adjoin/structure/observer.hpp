@@ -8,8 +8,8 @@
 #include <vector>
 
 #include "adjoin/fractional/history.hpp"
-#include "adjoin/model/parameters.hpp"
-#include "adjoin/observe/state.hpp"
+#include "adjoin/structure/parameters.hpp"
+#include "adjoin/structure/state.hpp"
 
 namespace adjoin {
 
