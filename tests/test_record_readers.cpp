@@ -18,6 +18,7 @@
 #include "adjoin/ground/record.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/ground/synthesis.hpp"
+#include "adjoin/io/record_writer.hpp"
 
 using namespace adjoin;
 using Catch::Matchers::Contains;

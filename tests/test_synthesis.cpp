@@ -15,6 +15,7 @@
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/post/spectrum_matching.hpp"
 #include "adjoin/ground/synthesis.hpp"
+#include "adjoin/io/record_writer.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "cli_helpers.hpp"

@@ -47,6 +47,7 @@
 #include "adjoin/ground/synthesis.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/plots.hpp"
+#include "adjoin/io/record_writer.hpp"
 #include "adjoin/post/intensity.hpp"
 #include "adjoin/post/rotd.hpp"
 #include "adjoin/post/spectrum.hpp"

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/io/record_writer.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/post/spectrum_matching.hpp"
 #include "adjoin/ground/synthesis.hpp"
