@@ -13,7 +13,7 @@
 
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/ground/record_motion.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 
 namespace {

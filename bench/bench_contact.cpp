@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "adjoin/io/scene.hpp"
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/structure/observer.hpp"
 #include "adjoin/solver/simulate.hpp"
 
 namespace {

@@ -11,7 +11,7 @@
 // 0.1-3 s, +-10 %, 25 s at 0.005 s; counters give the iterations and the final max misfit.
 #include <benchmark/benchmark.h>
 
-#include "adjoin/ground/spectrum_matching.hpp"
+#include "adjoin/post/spectrum_matching.hpp"
 #include "adjoin/ground/synthesis.hpp"
 
 namespace {

@@ -2,7 +2,7 @@
 // load the scene, attach an observer that streams what we want to see, simulate, report.
 //
 //     paper_strong [SCENE.toml]       (default records/scenes/paper-strong.toml)
-#include <adjoin/errors.hpp>
+#include <adjoin/core/errors.hpp>
 #include <adjoin/io/scene.hpp>
 #include <adjoin/study/run.hpp>
 #include <cmath>

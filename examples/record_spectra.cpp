@@ -3,7 +3,7 @@
 //
 //     record_spectra [FILE [UNITS]]      (default: the project's synthetic EC8 record, in g)
 #include <adjoin/ground/record_file.hpp>
-#include <adjoin/model/units.hpp>
+#include <adjoin/core/units.hpp>
 #include <adjoin/post/intensity.hpp>
 #include <adjoin/post/spectrum.hpp>
 #include <cstdio>

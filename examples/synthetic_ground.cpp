@@ -5,7 +5,7 @@
 //     synthetic_ground [SEED]
 #include <adjoin/ground/record_motion.hpp>
 #include <adjoin/ground/synthesis.hpp>
-#include <adjoin/model/units.hpp>
+#include <adjoin/core/units.hpp>
 #include <adjoin/observe/peaks.hpp>
 #include <adjoin/observe/pounding.hpp>
 #include <adjoin/solver/simulate.hpp>

@@ -5,7 +5,7 @@
 // files), then a history kept as arrays.
 //
 //     two_frames [RECORD.AT2]     (default records/real/peer/RSN1044_DirRot2.AT2)
-#include <adjoin/errors.hpp>
+#include <adjoin/core/errors.hpp>
 #include <adjoin/io/building_files.hpp>
 #include <adjoin/observe/channel_recorder.hpp>
 #include <adjoin/structure/builder.hpp>

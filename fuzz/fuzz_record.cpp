@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

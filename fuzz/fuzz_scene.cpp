@@ -19,7 +19,7 @@
 #include <string>
 #include <toml++/toml.h>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/scene.hpp"
 
 namespace {

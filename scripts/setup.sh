@@ -8,7 +8,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libfftw3-dev libgsl-dev
   catch2 libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
-  libbenchmark-dev gnuplot-nox
+  libbenchmark-dev gnuplot-nox python3
 )
 for arg in "$@"; do
   case "$arg" in

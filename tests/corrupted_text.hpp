@@ -5,7 +5,7 @@
 #include <cmath>
 #include <string>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
 
 namespace adjoin::test {

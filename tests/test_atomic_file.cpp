@@ -14,7 +14,7 @@
 #include <string>
 #include <thread>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/output_place.hpp"
 #include "cli_helpers.hpp"

@@ -9,10 +9,10 @@
 #include <numbers>
 #include <string>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/structure_file.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/observe/channel_recorder.hpp"
 #include "adjoin/structure/builder.hpp"
 #include "adjoin/structure/modal.hpp"

@@ -12,7 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/building_files.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/study/building_error_estimate.hpp"

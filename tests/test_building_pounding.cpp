@@ -13,7 +13,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/building_files.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/plots.hpp"

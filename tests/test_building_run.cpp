@@ -13,7 +13,7 @@
 
 #include "adjoin/io/building_files.hpp"
 #include "adjoin/io/building_scene.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/study/building_run.hpp"

@@ -9,7 +9,7 @@
 #include <optional>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/sweep_files.hpp"
 #include "adjoin/io/sweep_file.hpp"

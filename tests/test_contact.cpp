@@ -7,8 +7,8 @@
 #include <cstdio>
 #include <vector>
 
-#include "adjoin/errors.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/errors.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/contact.hpp"
 #include "scene_helpers.hpp"

@@ -10,11 +10,11 @@
 #include <limits>
 #include <string>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/io/sweep_file.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/structure/building.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "cli_helpers.hpp"

@@ -5,10 +5,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
-#include "adjoin/ground/spectrum_matching.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/post/spectrum_matching.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/observe/time_series.hpp"
 #include "adjoin/study/run.hpp"

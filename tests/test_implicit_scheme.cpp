@@ -3,7 +3,7 @@
 #include <cmath>
 #include <complex>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/observe/time_series.hpp"

@@ -12,9 +12,9 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/post/inelastic.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "cli_helpers.hpp"

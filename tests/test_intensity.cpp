@@ -8,7 +8,7 @@
 #include <vector>
 #include <numbers>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/post/intensity.hpp"
 #include "adjoin/post/spectrum.hpp"

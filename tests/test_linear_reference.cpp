@@ -18,7 +18,7 @@
 #include <numbers>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/study/linear_reference.hpp"
 
 namespace {

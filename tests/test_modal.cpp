@@ -11,7 +11,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "cli_helpers.hpp"

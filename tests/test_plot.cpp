@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/gnuplot.hpp"
 #include "adjoin/io/plots.hpp"
 #include "cli_helpers.hpp"

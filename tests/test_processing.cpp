@@ -5,7 +5,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/processing.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "record_helpers.hpp"

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "corrupted_text.hpp"
 #include "adjoin/ground/record.hpp"
 #include "adjoin/ground/record_file.hpp"

@@ -1,7 +1,7 @@
 // RecordMotion: sign, scales, piecewise-linear interpolation, zero outside the record.
 #include <catch2/catch.hpp>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_motion.hpp"
 
 using namespace adjoin;

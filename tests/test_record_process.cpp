@@ -6,7 +6,7 @@
 
 #include "adjoin/ground/processing.hpp"
 #include "adjoin/ground/record_file.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "cli_helpers.hpp"
 
 using namespace adjoin;

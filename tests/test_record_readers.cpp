@@ -13,11 +13,12 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "corrupted_text.hpp"
 #include "adjoin/ground/record.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/ground/synthesis.hpp"
+#include "adjoin/io/record_writer.hpp"
 
 using namespace adjoin;
 using Catch::Matchers::Contains;

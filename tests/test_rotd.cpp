@@ -14,9 +14,9 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/post/intensity.hpp"
 #include "adjoin/post/rotd.hpp"
 #include "adjoin/post/spectrum.hpp"

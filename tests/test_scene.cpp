@@ -4,7 +4,7 @@
 #include <cmath>
 #include <fstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/observe/time_series.hpp"

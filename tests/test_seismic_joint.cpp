@@ -15,7 +15,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/study/building_run.hpp"

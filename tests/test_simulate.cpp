@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "adjoin/ground/decaying_sine.hpp"
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/structure/observer.hpp"
 #include "adjoin/solver/simulate.hpp"
 
 using namespace adjoin;

@@ -11,9 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/post/spectrum_matching.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/post/spectrum.hpp"
 
 namespace fs = std::filesystem;

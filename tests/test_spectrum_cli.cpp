@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "adjoin/ground/record_file.hpp"
-#include "adjoin/ground/spectrum_matching.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/post/spectrum_matching.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "needs_program.hpp"
 #include "png_check.hpp"

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/observe/time_series.hpp"
 #include "adjoin/study/run.hpp"

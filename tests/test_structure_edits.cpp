@@ -8,12 +8,12 @@
 #include <filesystem>
 #include <string>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "cli_helpers.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/structure/modal.hpp"
 
 using namespace adjoin;

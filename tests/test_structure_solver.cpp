@@ -16,7 +16,7 @@
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/ground/record_motion.hpp"
 #include "adjoin/io/structure_file.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/study/run.hpp"

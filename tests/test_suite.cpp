@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
-#include "adjoin/ground/spectrum_matching.hpp"
+#include "adjoin/post/spectrum_matching.hpp"
 #include "adjoin/post/suite.hpp"
 #include "cli_helpers.hpp"
 

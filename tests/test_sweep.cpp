@@ -15,7 +15,7 @@
 #include <sstream>
 #include <thread>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/io/file_name.hpp"
 #include "adjoin/io/folder_lock.hpp"

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <string>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 
 using adjoin::escaped_excerpt;

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "../src/solver/time_loop.hpp"
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/structure/observer.hpp"
 
 namespace {
 

@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 
 namespace adjoin::cli {
 

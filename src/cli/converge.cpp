@@ -11,7 +11,7 @@
 #include <memory>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/output_place.hpp"

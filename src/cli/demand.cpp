@@ -9,7 +9,7 @@
 #include <iostream>
 #include <memory>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/study/demand.hpp"

@@ -12,7 +12,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/scene.hpp"

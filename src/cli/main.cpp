@@ -6,7 +6,7 @@
 #include <new>
 #include <iostream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "command.hpp"
 

@@ -14,7 +14,7 @@
 #include <iostream>
 #include <memory>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/io/plots.hpp"
 #include "adjoin/io/record_plot.hpp"

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/ground/record_file.hpp"
 

@@ -38,7 +38,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/ground/integration.hpp"
@@ -47,6 +47,7 @@
 #include "adjoin/ground/synthesis.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/plots.hpp"
+#include "adjoin/io/record_writer.hpp"
 #include "adjoin/post/intensity.hpp"
 #include "adjoin/post/rotd.hpp"
 #include "adjoin/post/spectrum.hpp"

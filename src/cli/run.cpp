@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <iostream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/building_files.hpp"
 #include "adjoin/io/run_files.hpp"
 #include "adjoin/io/structure_file.hpp"

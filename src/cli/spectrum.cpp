@@ -34,10 +34,10 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/ground/record_file.hpp"
-#include "adjoin/ground/spectrum_matching.hpp"
+#include "adjoin/post/spectrum_matching.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/gnuplot.hpp"
 #include "adjoin/io/plots.hpp"

@@ -25,7 +25,7 @@
 #include <map>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/gnuplot.hpp"
 #include "command.hpp"

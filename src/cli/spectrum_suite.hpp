@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "adjoin/ground/record_file.hpp"
-#include "adjoin/ground/spectrum_matching.hpp"
+#include "adjoin/post/spectrum_matching.hpp"
 #include "adjoin/io/plots.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "adjoin/post/suite.hpp"

@@ -27,7 +27,7 @@
 #include <set>
 #include <thread>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/folder_lock.hpp"
 #include "adjoin/io/output_place.hpp"

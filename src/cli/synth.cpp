@@ -5,7 +5,7 @@
 //              [--max-iterations N] [--attempts N] --out FILE
 //
 // Synthesizes filtered white noise (ground/synthesis.hpp), optionally matched to a target
-// response spectrum (ground/spectrum_matching.hpp), and writes it as two columns "t a" (t in s,
+// response spectrum (post/spectrum_matching.hpp), and writes it as two columns "t a" (t in s,
 // a in g) after a '#' header that says how it was made, including the complete command (every
 // option spelled out) that reproduces it bit for bit (the header avoids the word NPTS, which
 // would make the automatic reader take the file for AT2). Read it back with
@@ -23,11 +23,12 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
+#include "adjoin/io/record_writer.hpp"
 #include "adjoin/io/text_file.hpp"
-#include "adjoin/ground/spectrum_matching.hpp"
+#include "adjoin/post/spectrum_matching.hpp"
 #include "adjoin/ground/synthesis.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/post/intensity.hpp"
 #include "command.hpp"
 

@@ -6,7 +6,7 @@
 #include <sstream>
 #include <string>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 
 namespace adjoin::detail {
 

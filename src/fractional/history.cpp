@@ -5,16 +5,6 @@
 
 namespace adjoin {
 
-std::string to_string(HistoryEngine engine) {
-  return engine == HistoryEngine::direct ? "direct" : "fft";
-}
-
-bool parse_history_engine(const std::string& name, HistoryEngine* engine) {
-  if (name == "direct") { *engine = HistoryEngine::direct; return true; }
-  if (name == "fft") { *engine = HistoryEngine::fft; return true; }
-  return false;
-}
-
 std::unique_ptr<ConvolutionHistory> make_history(HistoryEngine engine, std::vector<double> weights) {
   if (engine == HistoryEngine::fft) return std::make_unique<FftHistory>(std::move(weights));
   return std::make_unique<DirectHistory>(std::move(weights));

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "../detail/fftw_planner.hpp"
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 
 #include <fftw3.h>
 #include <mutex>

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "adjoin/ground/record.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 
 namespace adjoin {
 

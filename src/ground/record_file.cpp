@@ -8,7 +8,7 @@
 #include <cstring>
 #include <fstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "readers/registry.hpp"
 
 namespace adjoin {

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/errors.hpp"
+#include "adjoin/core/units.hpp"
 
 namespace adjoin {
 

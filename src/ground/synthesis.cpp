@@ -9,9 +9,8 @@
 #include <sstream>
 #include <system_error>
 
-#include "adjoin/errors.hpp"
-#include "adjoin/io/atomic_file.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/errors.hpp"
+#include "adjoin/core/units.hpp"
 #include "synthesis_detail.hpp"
 
 namespace adjoin {
@@ -284,26 +283,6 @@ Record synthesize(const SynthesisOptions& o) {
   r.dt = o.dt;
   r.accel = std::move(x);
   return r;
-}
-
-void write_record_g(const Record& record, const std::filesystem::path& path, const std::vector<std::string>& header) {
-  AtomicFile file(path);
-  std::ostream& out = file.stream();
-  for (const std::string& line : header) out << "# " << line << "\n";
-  // What the readers take back without options (record_file.cpp: "# units:").
-  out << "# units: g\n";
-  std::string text;
-  text.reserve(record.accel.size() * 36);
-  char buffer[80];
-  for (std::size_t i = 0; i < record.accel.size(); ++i) {
-    auto r = std::to_chars(buffer, buffer + 32, static_cast<double>(i) * record.dt);
-    *r.ptr++ = ' ';
-    r = std::to_chars(r.ptr, buffer + sizeof buffer - 1, record.accel[i] / kStandardGravity);
-    *r.ptr++ = '\n';
-    text.append(buffer, r.ptr);
-  }
-  out << text;
-  file.commit();
 }
 
 }  // namespace adjoin

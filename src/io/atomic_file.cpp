@@ -11,7 +11,7 @@
 #include <string>
 #include <system_error>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 
 namespace adjoin {
 namespace {

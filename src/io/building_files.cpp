@@ -11,7 +11,7 @@
 #include <nlohmann/json.hpp>
 
 #include "../detail/finite_output.hpp"
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/observe/channel_values.hpp"
 #include "adjoin/structure/channels.hpp"

@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/gnuplot.hpp"
 #include "adjoin/io/plots.hpp"
 #include "adjoin/structure/channels.hpp"

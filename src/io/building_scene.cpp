@@ -7,7 +7,7 @@
 
 #include <toml++/toml.h>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "structure_edits.hpp"

@@ -8,7 +8,7 @@
 #include <cerrno>
 #include <cstring>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 
 namespace adjoin {

@@ -10,7 +10,7 @@
 #include <cstdio>
 #include <memory>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 
 extern char** environ;
 

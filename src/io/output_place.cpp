@@ -8,7 +8,7 @@
 #include <cstring>
 #include <system_error>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 
 namespace adjoin {
 namespace {

@@ -17,7 +17,7 @@
 #include <optional>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/gnuplot.hpp"
 

@@ -8,7 +8,7 @@
 #include <sstream>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/integration.hpp"
 #include "adjoin/io/gnuplot.hpp"
 #include "adjoin/post/intensity.hpp"

@@ -4,7 +4,7 @@
 #include <memory>
 #include <system_error>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/energy_csv.hpp"
 #include "adjoin/io/impacts_csv.hpp"

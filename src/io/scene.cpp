@@ -15,14 +15,10 @@
 #include "toml_text.hpp"
 
 #include "../detail/nearest.hpp"
-#include "ground_cache.hpp"
-#include "adjoin/errors.hpp"
-#include "adjoin/ground/decaying_sine.hpp"
-#include "adjoin/ground/processing.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
-#include "adjoin/ground/record_motion.hpp"
-#include "adjoin/ground/spectrum_matching.hpp"
-#include "adjoin/ground/synthesis.hpp"
+#include "ground_sources/registry.hpp"
+#include "scene_reader.hpp"
 #include "adjoin/io/file_name.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/solver/simulate.hpp"
@@ -30,16 +26,16 @@
 namespace adjoin {
 namespace {
 
-enum class Kind { number, integer, string, boolean, numbers, strings };
+using detail::Kind;
+using detail::KeySpec;
+using detail::SceneReader;
 
-struct KeySpec {
-  const char* path;
-  Kind kind;
-};
-
-// The scene schema. Ground keys are checked again against the chosen source.
+// The scene schema: these keys, with [ground]'s from the ground sources' table
+// (ground_sources/registry.cpp) after model's. Ground keys are checked again against the
+// chosen source.
 const std::vector<KeySpec>& schema() {
-  static const std::vector<KeySpec> keys = {
+  static const std::vector<KeySpec> keys = [] {
+    std::vector<KeySpec> out = {
       {"name", Kind::string},
       {"model.units", Kind::string},
       {"model.rho", Kind::number},        {"model.eps", Kind::number},
@@ -54,32 +50,13 @@ const std::vector<KeySpec>& schema() {
       {"model.contact.model", Kind::string},
       {"model.contact.stiffness", Kind::number}, {"model.contact.restitution", Kind::number},
       {"model.contact.damping", Kind::number},   {"model.contact.tension_cut", Kind::boolean},
-      {"ground.source", Kind::string},
-      {"ground.u0", Kind::number},        {"ground.omega", Kind::number},
-      {"ground.k", Kind::number},
-      {"ground.file", Kind::string},        {"ground.format", Kind::string},
-      {"ground.units", Kind::string},       {"ground.dt", Kind::number},
-      {"ground.time_column", Kind::string}, {"ground.accel_column", Kind::string},
-      {"ground.channel", Kind::integer},
-      {"ground.time_scale", Kind::number},
-      {"ground.window_start", Kind::number}, {"ground.window_end", Kind::number},
-      {"ground.baseline", Kind::integer},
-      {"ground.pad_before", Kind::number},  {"ground.pad_after", Kind::number},
-      {"ground.filter", Kind::string},      {"ground.f_low", Kind::number},
-      {"ground.f_high", Kind::number},      {"ground.filter_order", Kind::integer},
-      {"ground.resample_dt", Kind::number}, {"ground.scale_pga", Kind::number},
-      {"ground.spectrum", Kind::string},    {"ground.omega_g", Kind::number},
-      {"ground.zeta_g", Kind::number},      {"ground.omega_f", Kind::number},
-      {"ground.zeta_f", Kind::number},      {"ground.s0", Kind::number},
-      {"ground.target_pga", Kind::number},  {"ground.envelope", Kind::string},
-      {"ground.t1", Kind::number},          {"ground.t2", Kind::number},
-      {"ground.decay", Kind::number},       {"ground.eps", Kind::number},
-      {"ground.eta", Kind::number},         {"ground.t_n", Kind::number},
-      {"ground.duration", Kind::number},    {"ground.seed", Kind::integer},
-      {"ground.match_ec8", Kind::string},   {"ground.match_ag", Kind::number},
-      {"ground.match_table", Kind::string}, {"ground.match_band", Kind::numbers},
-      {"ground.match_tolerance", Kind::number}, {"ground.match_ec8_type", Kind::number},
-      {"ground.match_damping", Kind::number},
+    };
+    out.push_back({"ground.source", Kind::string});
+    for (const detail::GroundSource& source : detail::ground_sources())
+      for (const KeySpec& key : source.keys())
+        if (std::none_of(out.begin(), out.end(), [&](const KeySpec& k) { return std::string_view(k.path) == key.path; }))
+          out.push_back(key);
+    out.insert(out.end(), {
       {"solver.scheme", Kind::string},    {"solver.history", Kind::string},
       {"solver.h", Kind::number},         {"solver.t_end", Kind::number},
       {"solver.locate_switches", Kind::boolean},
@@ -90,27 +67,14 @@ const std::vector<KeySpec>& schema() {
       {"output.energy_history", Kind::boolean},
       {"output.spectra.signals", Kind::strings}, {"output.spectra.damping", Kind::numbers},
       {"output.spectra.periods", Kind::numbers},
-  };
+    });
+    return out;
+  }();
   return keys;
 }
 
 const std::vector<std::string> kTables = {"model", "model.rod1", "model.rod2", "model.contact", "ground",
                                           "solver", "output", "output.spectra"};
-
-// Which ground keys each source takes.
-const std::map<std::string, std::vector<std::string>>& ground_keys() {
-  static const std::map<std::string, std::vector<std::string>> keys = {
-      {"decaying-sine", {"u0", "omega", "k"}},
-      {"record", {"file", "format", "units", "dt", "time_column", "accel_column", "channel", "time_scale",
-                  "window_start", "window_end", "baseline", "pad_before", "pad_after", "filter",
-                  "f_low", "f_high", "filter_order", "resample_dt", "scale_pga"}},
-      {"filtered-noise", {"spectrum", "omega_g", "zeta_g", "omega_f", "zeta_f", "s0", "target_pga", "envelope", "t1",
-                          "t2", "decay", "eps", "eta", "t_n", "duration", "dt", "seed", "match_ec8", "match_ag",
-                          "match_table", "match_band", "match_tolerance", "match_ec8_type", "match_damping",
-                          "time_scale"}},
-  };
-  return keys;
-}
 
 using detail::nearest;
 
@@ -137,80 +101,6 @@ std::string format_number(double v) {
   s << v;
   return s.str();
 }
-
-// Reads typed values out of the parsed (and overridden) TOML, and words errors with the file
-// and line of the key, or the --set option that put it there. `lines`: the parsed file the
-// table was copied from (a copy's nodes do not keep their lines), or null.
-class SceneReader {
- public:
-  SceneReader(toml::table table, std::string name, std::map<std::string, std::string> origins,
-              const toml::table* lines = nullptr)
-      : table_(std::move(table)), name_(std::move(name)), origins_(std::move(origins)), lines_(lines) {}
-
-  [[noreturn]] void fail(const std::string& key, const std::string& message) const {
-    throw InputError(where(key) + message);
-  }
-
-  // "FILE:LINE: " for the key (or its nearest existing parent), or "--set K=V: ".
-  std::string where(const std::string& key) const {
-    for (std::string k = key; !k.empty();) {
-      if (auto it = origins_.find(k); it != origins_.end()) return it->second + ": ";
-      if (auto node = table_.at_path(k); node) {
-        // A key no edit made is the file's: its line is in the parsed file.
-        const toml::node* original = lines_ ? lines_->at_path(k).node() : nullptr;
-        const auto& source = (original ? original : node.node())->source();
-        if (source.begin.line > 0) return name_ + ":" + std::to_string(source.begin.line) + ": ";
-      }
-      const auto dot = k.rfind('.');
-      k = dot == std::string::npos ? std::string() : k.substr(0, dot);
-    }
-    return name_ + ": ";
-  }
-
-  bool has(const std::string& key) const { return static_cast<bool>(table_.at_path(key)); }
-  bool overridden(const std::string& key) const { return origins_.count(key) > 0; }
-  const std::string& name() const { return name_; }
-
-  double number(const std::string& key) const {
-    auto node = table_.at_path(key);
-    if (!node) fail(key, "missing key " + key + " (a number)");
-    return *node.value<double>();  // types were checked against the schema
-  }
-  double number(const std::string& key, double fallback) const {
-    return has(key) ? number(key) : fallback;
-  }
-  std::string string(const std::string& key, const std::string& fallback) const {
-    auto node = table_.at_path(key);
-    return node ? *node.value<std::string>() : fallback;
-  }
-  bool boolean(const std::string& key, bool fallback) const {
-    auto node = table_.at_path(key);
-    return node ? *node.value<bool>() : fallback;
-  }
-  std::int64_t integer(const std::string& key, std::int64_t fallback) const {
-    auto node = table_.at_path(key);
-    return node ? *node.value<std::int64_t>() : fallback;
-  }
-  std::vector<double> numbers(const std::string& key) const {
-    std::vector<double> out;
-    if (auto node = table_.at_path(key); node && node.is_array())
-      for (const auto& v : *node.as_array()) out.push_back(*v.value<double>());
-    return out;
-  }
-  std::vector<std::string> strings(const std::string& key) const {
-    std::vector<std::string> out;
-    if (auto node = table_.at_path(key); node && node.is_array())
-      for (const auto& v : *node.as_array()) out.push_back(*v.value<std::string>());
-    return out;
-  }
-  const toml::table& table() const { return table_; }
-
- private:
-  toml::table table_;
-  std::string name_;
-  std::map<std::string, std::string> origins_;
-  const toml::table* lines_;
-};
 
 std::vector<std::string> all_known_keys() {
   std::vector<std::string> keys;
@@ -377,214 +267,6 @@ structure::ContactLaw read_contact(const SceneReader& r, const Scales& scales) {
                                             " it is not a finite positive number");
   }
   return law;
-}
-
-// What a record or synthetic ground is built from, as text: the [ground] table after the
-// overrides, the time scale, and `extra` (file stamps). The key of the ground cache.
-std::string ground_key(const SceneReader& r, double time_scale, const std::string& extra) {
-  std::ostringstream key;
-  key << toml::toml_formatter(*r.table()["ground"].as_table());
-  char scale[32];
-  std::snprintf(scale, sizeof scale, "%.17g", time_scale);
-  key << "\n" << scale << "\n" << extra;
-  return key.str();
-}
-
-// The time scale of a ground motion given in seconds: T0 for SI scenes, ground.time_scale
-// (default 1 s) for dimensionless ones.
-double record_time_scale(const SceneReader& r, const Scales& scales) {
-  if (scales.si) {
-    if (r.has("ground.time_scale")) r.fail("ground.time_scale", "ground.time_scale is set by m1 and k1 in an SI scene; remove it");
-    return scales.time;
-  }
-  const double time_scale = r.number("ground.time_scale", 1.0);
-  if (!(std::isfinite(time_scale) && time_scale > 0.0))
-    r.fail("ground.time_scale", "ground.time_scale = " + format_number(time_scale) + " must be a positive number of seconds");
-  return time_scale;
-}
-
-// source = "record": read, process, and scale to the solver's units. A dimensionless scene
-// says what one unit of its time is in seconds (ground.time_scale, default 1 s); its
-// accelerations are in g. An SI scene uses T0 = sqrt(m1/k1).
-std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, const Scales& scales) {
-  if (!r.has("ground.file")) r.fail("ground", "missing key ground.file (the accelerogram to read)");
-  std::filesystem::path file = r.string("ground.file", "");
-  // Paths in a scene file are relative to that file's folder; a --set path to the working folder.
-  if (file.is_relative() && !r.overridden("ground.file"))
-    file = std::filesystem::path(r.name()).parent_path() / file;
-
-  RecordFormat format;
-  const std::string kind = r.string("ground.format", "auto");
-  if (!parse_record_kind(kind, &format.kind))
-    r.fail("ground.format", "ground.format = " + escaped_excerpt(kind) + " must be one of " + record_kind_names());
-  if (r.has("ground.units")) {
-    AccelUnit unit;
-    const std::string units = r.string("ground.units", "");
-    if (!parse_accel_unit(units, &unit))
-      r.fail("ground.units", "ground.units = " + escaped_excerpt(units) + " must be \"g\", \"m/s2\", \"cm/s2\" (or \"gal\") or \"mm/s2\"");
-    format.units = unit;
-  }
-  if (r.has("ground.dt")) format.dt = r.number("ground.dt");
-  format.time_column = r.string("ground.time_column", "");
-  format.accel_column = r.string("ground.accel_column", "");
-  if (r.has("ground.channel")) {
-    const auto channel = r.integer("ground.channel", 0);
-    if (channel < 1 || channel > 100000) r.fail("ground.channel", "ground.channel = " + std::to_string(channel) + " must be a channel number 1, 2, ... (multi-channel COSMOS or DMG files)");
-    format.channel = static_cast<int>(channel);
-  }
-
-  Processing processing;
-  if (r.has("ground.window_start")) processing.window_t0 = r.number("ground.window_start");
-  if (r.has("ground.window_end")) processing.window_t1 = r.number("ground.window_end");
-  if (r.has("ground.baseline")) {
-    const auto order = r.integer("ground.baseline", 0);
-    if (order < 0 || order > 10) r.fail("ground.baseline", "ground.baseline = " + std::to_string(order) + " must be a polynomial order from 0 (mean) to 10");
-    processing.baseline_order = static_cast<int>(order);
-  }
-  processing.pad_before = r.number("ground.pad_before", 0.0);
-  processing.pad_after = r.number("ground.pad_after", 0.0);
-  for (const char* key : {"ground.f_low", "ground.f_high", "ground.filter_order"})
-    if (r.has(key) && !r.has("ground.filter"))
-      r.fail(key, std::string(key) + " belongs to ground.filter (\"bandpass\", \"highpass\" or \"lowpass\"); without it no filter runs");
-  if (r.has("ground.filter")) {
-    ButterworthFilter filter;
-    const std::string type = r.string("ground.filter", "");
-    if (type == "bandpass") filter.type = ButterworthFilter::Type::bandpass;
-    else if (type == "highpass") filter.type = ButterworthFilter::Type::highpass;
-    else if (type == "lowpass") filter.type = ButterworthFilter::Type::lowpass;
-    else r.fail("ground.filter", "ground.filter = " + escaped_excerpt(type) + " must be \"bandpass\", \"highpass\" or \"lowpass\"");
-    // A low-pass filter has no lower corner, a high-pass one no upper corner.
-    if (type == "lowpass" && r.has("ground.f_low")) r.fail("ground.f_low", "ground.f_low does not apply to a low-pass filter (its corner is ground.f_high)");
-    if (type == "highpass" && r.has("ground.f_high")) r.fail("ground.f_high", "ground.f_high does not apply to a high-pass filter (its corner is ground.f_low)");
-    filter.f_low = r.number("ground.f_low", 0.0);
-    filter.f_high = r.number("ground.f_high", 0.0);
-    const auto order = r.integer("ground.filter_order", 4);
-    if (order < 1 || order > 20) r.fail("ground.filter_order", "ground.filter_order = " + std::to_string(order) + ": expected an order from 1 to 20");
-    filter.order = static_cast<int>(order);
-    processing.filter = filter;
-  }
-  if (r.has("ground.resample_dt")) processing.dt = r.number("ground.resample_dt");
-  if (r.has("ground.scale_pga")) processing.target_pga = r.number("ground.scale_pga") * kStandardGravity;
-
-  const double time_scale = record_time_scale(r, scales);
-  return detail::cached_ground(ground_key(r, time_scale, detail::file_stamp(file)), [&]() -> std::shared_ptr<const GroundMotion> {
-    Record record = read_record(file, format);  // InputError names the file and line
-    // One validation with `record process` (ground/processing.hpp), named by the scene's keys.
-    if (const auto problem = check_processing(processing, record, 0.8 * physical_memory_bytes())) {
-      static const std::map<ProcessingField, const char*> keys = {
-          {ProcessingField::window_start, "ground.window_start"}, {ProcessingField::window_end, "ground.window_end"},
-          {ProcessingField::baseline, "ground.baseline"},         {ProcessingField::pad_before, "ground.pad_before"},
-          {ProcessingField::pad_after, "ground.pad_after"},       {ProcessingField::filter_order, "ground.filter_order"},
-          {ProcessingField::f_low, "ground.f_low"},               {ProcessingField::f_high, "ground.f_high"},
-          {ProcessingField::resample_dt, "ground.resample_dt"},   {ProcessingField::scale_pga, "ground.scale_pga"}};
-      const std::string key = keys.at(problem->field);
-      r.fail(r.has(key) ? key : "ground", key + ": " + problem->message + " (record " + file.string() + ")");
-    }
-    try {
-      record = process(record, processing);
-    } catch (const InputError& e) {
-      r.fail("ground", e.what());
-    }
-    return std::make_shared<RecordMotion>(std::move(record), time_scale, kStandardGravity);
-  });
-}
-
-// source = "filtered-noise": white noise shaped by a Kanai-Tajimi or Clough-Penzien spectrum
-// and an envelope (ground/synthesis.hpp), optionally matched to a target spectrum. Reproducible
-// from ground.seed.
-std::shared_ptr<const GroundMotion> synthesize_source(const SceneReader& r, const Scales& scales) {
-  SynthesisOptions o;
-  if (r.has("ground.spectrum")) {
-    const std::string name = r.string("ground.spectrum", "");
-    if (!parse_spectrum_model(name, &o.spectrum))
-      r.fail("ground.spectrum", "ground.spectrum = " + escaped_excerpt(name) + " must be \"kanai-tajimi\" or \"clough-penzien\"");
-  }
-  o.omega_g = r.number("ground.omega_g", o.omega_g);
-  o.zeta_g = r.number("ground.zeta_g", o.zeta_g);
-  o.omega_f = r.number("ground.omega_f", o.omega_f);
-  o.zeta_f = r.number("ground.zeta_f", o.zeta_f);
-  if (r.has("ground.s0")) o.s0 = r.number("ground.s0");
-  if (r.has("ground.target_pga")) o.target_pga = r.number("ground.target_pga");
-  if (r.has("ground.envelope")) {
-    const std::string name = r.string("ground.envelope", "");
-    if (!parse_envelope_kind(name, &o.envelope.kind))
-      r.fail("ground.envelope", "ground.envelope = " + escaped_excerpt(name) + " must be \"none\", \"jennings-housner-tsai\" or \"saragoni-hart\"");
-  }
-  // Keys of another spectrum or envelope than the one chosen would be ignored.
-  if (o.spectrum != SpectrumModel::clough_penzien)
-    for (const char* key : {"ground.omega_f", "ground.zeta_f"})
-      if (r.has(key)) r.fail(key, std::string(key) + " belongs to ground.spectrum = \"clough-penzien\" (its high-pass filter)");
-  const auto envelope_keys = [&](EnvelopeKind kind, std::initializer_list<const char*> keys, const char* name) {
-    if (o.envelope.kind == kind) return;
-    for (const char* key : keys)
-      if (r.has(key)) r.fail(key, std::string(key) + " belongs to ground.envelope = \"" + name + "\"");
-  };
-  envelope_keys(EnvelopeKind::jennings_housner_tsai, {"ground.t1", "ground.t2", "ground.decay"}, "jennings-housner-tsai");
-  envelope_keys(EnvelopeKind::saragoni_hart, {"ground.eps", "ground.eta", "ground.t_n"}, "saragoni-hart");
-  for (auto [key, field] : {std::pair{"ground.t1", &o.envelope.t1}, {"ground.t2", &o.envelope.t2}, {"ground.decay", &o.envelope.decay},
-                            {"ground.eps", &o.envelope.eps}, {"ground.eta", &o.envelope.eta}, {"ground.t_n", &o.envelope.t_n}})
-    if (r.has(key)) *field = r.number(key);
-  o.duration = r.number("ground.duration", o.duration);
-  o.dt = r.number("ground.dt", o.dt);
-  const std::int64_t seed = r.integer("ground.seed", 1);
-  if (seed < 0) r.fail("ground.seed", "ground.seed = " + std::to_string(seed) + " must be zero or positive");
-  o.seed = static_cast<std::uint64_t>(seed);
-  const bool match = r.has("ground.match_ec8") || r.has("ground.match_table");
-  // A matched motion takes its level from the target spectrum: no intensity needed.
-  if (match && !o.s0 && !o.target_pga) o.target_pga = 1.0;
-  std::string error;
-  if (!o.IsValid(&error)) r.fail(error.substr(0, error.find(' ')), error);
-  const double time_scale = record_time_scale(r, scales);
-
-  for (const char* key : {"ground.match_ag", "ground.match_band", "ground.match_tolerance", "ground.match_ec8_type",
-                          "ground.match_damping"})
-    if (r.has(key) && !match) r.fail(key, std::string(key) + " needs ground.match_ec8 or ground.match_table");
-  if (!match)
-    return detail::cached_ground(ground_key(r, time_scale, ""), [&]() -> std::shared_ptr<const GroundMotion> {
-      return std::make_shared<RecordMotion>(synthesize(o), time_scale, kStandardGravity);
-    });
-
-  MatchOptions m;
-  if (r.has("ground.match_ec8") && r.has("ground.match_table"))
-    r.fail("ground.match_table", "give ground.match_ec8 or ground.match_table, not both");
-  if (r.has("ground.match_ec8")) {
-    const std::string type = r.string("ground.match_ec8", "");
-    if (type.size() != 1 || std::string("ABCDE").find(type[0]) == std::string::npos)
-      r.fail("ground.match_ec8", "ground.match_ec8 = " + escaped_excerpt(type) + " must be an EC8 ground type, \"A\" to \"E\"");
-    const double ag = r.number("ground.match_ag", 0.25);
-    if (!(ag > 0.0 && ag <= 10.0))
-      r.fail("ground.match_ag", "ground.match_ag must be the design ground acceleration in g, > 0 and at most 10");
-    const double spectrum_type = r.number("ground.match_ec8_type", 1.0);
-    if (spectrum_type != 1.0 && spectrum_type != 2.0)
-      r.fail("ground.match_ec8_type", "ground.match_ec8_type must be 1 (EN 1998-1 Table 3.2) or 2 (Table 3.3)");
-    m.target = TargetSpectrum::ec8(type[0], ag, static_cast<int>(spectrum_type));
-  } else {
-    for (const char* key : {"ground.match_ag", "ground.match_ec8_type"})
-      if (r.has(key)) r.fail(key, std::string(key) + " belongs to ground.match_ec8, not to a target table");
-    std::filesystem::path file = r.string("ground.match_table", "");
-    if (file.is_relative() && !r.overridden("ground.match_table")) file = std::filesystem::path(r.name()).parent_path() / file;
-    m.target = load_target_spectrum(file);
-  }
-  if (r.has("ground.match_band")) {
-    const auto band = r.numbers("ground.match_band");
-    if (band.size() != 2) r.fail("ground.match_band", "ground.match_band must be [shortest, longest] period in s");
-    m.period_min = band[0];
-    m.period_max = band[1];
-  }
-  m.tolerance = r.number("ground.match_tolerance", m.tolerance);
-  m.damping = r.number("ground.match_damping", m.damping);
-  if (!m.IsValid(&error)) {
-    const std::string key = error.rfind("match.damping", 0) == 0     ? "ground.match_damping"
-                            : error.rfind("match.tolerance", 0) == 0 ? "ground.match_tolerance"
-                                                                     : "ground.match_band";
-    r.fail(key, "ground matching: " + error);
-  }
-  const std::string table_stamp = r.has("ground.match_ec8") ? std::string() : detail::file_stamp(m.target.name);
-  return detail::cached_ground(ground_key(r, time_scale, table_stamp), [&]() -> std::shared_ptr<const GroundMotion> {
-    MatchReport report;
-    Record matched = synthesize_matched(o, m, &report);
-    return std::make_shared<RecordMotion>(std::move(matched), time_scale, kStandardGravity);
-  });
 }
 
 // A run that cannot fit in memory is refused before it starts (it would otherwise fail after
@@ -770,36 +452,7 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
   }
 
   // ---- ground motion ----
-  const std::string source = r.string("ground.source", "");
-  if (source.empty()) r.fail("ground", "missing key ground.source (\"decaying-sine\", \"record\" or \"filtered-noise\")");
-  auto allowed = ground_keys().find(source);
-  if (allowed == ground_keys().end()) {
-    std::vector<std::string> names;
-    for (const auto& [n, keys] : ground_keys()) names.push_back(n);
-    r.fail("ground.source", "ground.source = " + escaped_excerpt(source) + " is not a known source; did you mean \"" +
-                                nearest(source, names) + "\"?");
-  }
-  for (const auto& [key, node] : *r.table()["ground"].as_table()) {
-    const std::string k(key.str());
-    if (k != "source" && std::find(allowed->second.begin(), allowed->second.end(), k) == allowed->second.end())
-      r.fail("ground." + k, text_excerpt("ground." + k) + " is not a key of source \"" + source + "\"");
-  }
-  if (source == "decaying-sine") {
-    const double u0 = r.number("ground.u0"), omega = r.number("ground.omega"), k = r.number("ground.k");
-    for (auto [key, value] : {std::pair{"ground.u0", u0}, {"ground.omega", omega}, {"ground.k", k}})
-      if (!std::isfinite(value)) r.fail(key, std::string(key) + " must be a finite number");
-    if (!(k >= 0.0)) r.fail("ground.k", "ground.k = " + format_number(k) + " must be zero or positive (decay rate)");
-    const Scales& s = scene.scales;  // SI: u0 [m], omega [rad/s], k [1/s]
-    // An SI scene's summary says the motion in the units the scene gave it.
-    const std::string si = s.si ? "decaying-sine u0=" + format_number(u0) + " m omega=" + format_number(omega) +
-                                      " rad/s k=" + format_number(k) + " 1/s"
-                                : std::string();
-    scene.ground = std::make_shared<DecayingSine>(u0 / s.length, omega * s.time, k * s.time, si);
-  } else if (source == "record") {
-    scene.ground = read_record_source(r, scene.scales);
-  } else if (source == "filtered-noise") {
-    scene.ground = synthesize_source(r, scene.scales);
-  }
+  scene.ground = detail::read_ground(r, scene.scales);
 
   // ---- solver ----
   SolverOptions& o = scene.solver;
@@ -988,5 +641,7 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
   scene.file = file;
   return scene;
 }
+
+std::string detail::format_scene_number(double v) { return format_number(v); }
 
 }  // namespace adjoin

@@ -3,7 +3,7 @@
 #include <cctype>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/structure/contact_rules.hpp"
 #include "toml_text.hpp"

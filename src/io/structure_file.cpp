@@ -15,10 +15,12 @@
 #include "sweep_scene_tree.hpp"
 #include "toml_text.hpp"
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/structure/rules.hpp"
+#include "adjoin/structure/parameters.hpp"
+#include "adjoin/core/units.hpp"
 
 namespace adjoin {
 namespace {

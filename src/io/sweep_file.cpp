@@ -11,7 +11,7 @@
 #include <toml++/toml.h>
 
 #include "../detail/nearest.hpp"
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/file_name.hpp"
 #include "adjoin/io/sweep_file.hpp"
 #include "adjoin/io/sweep_scenes.hpp"

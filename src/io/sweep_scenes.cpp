@@ -7,7 +7,7 @@
 
 #include <toml++/toml.h>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/scene.hpp"
 #include "sweep_scene_tree.hpp"
 #include "toml_text.hpp"

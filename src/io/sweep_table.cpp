@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "../detail/parse_number.hpp"
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/sweep_files.hpp"
 

@@ -8,7 +8,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 
 namespace adjoin {
 namespace {

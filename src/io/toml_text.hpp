@@ -6,7 +6,7 @@
 
 #include <toml++/toml.h>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 
 namespace adjoin::detail {
 

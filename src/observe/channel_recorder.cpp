@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 
 namespace adjoin {
 

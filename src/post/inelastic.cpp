@@ -12,8 +12,8 @@
 #include <sstream>
 #include <thread>
 
-#include "adjoin/errors.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/errors.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "spectrum_oscillator.hpp"
 

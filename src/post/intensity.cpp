@@ -14,8 +14,8 @@
 #include <sstream>
 #include <string>
 
-#include "adjoin/errors.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/errors.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/post/spectrum.hpp"
 
 namespace adjoin {

@@ -10,8 +10,8 @@
 #include <sstream>
 #include <thread>
 
-#include "adjoin/errors.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/errors.hpp"
+#include "adjoin/core/units.hpp"
 #include "../detail/simd_clones.hpp"
 #include "spectrum_lanes.hpp"
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 
 namespace adjoin::detail {
 namespace {

@@ -27,7 +27,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/observe/state.hpp"
+#include "adjoin/structure/state.hpp"
 #include "adjoin/structure/contact.hpp"
 
 namespace adjoin::detail {

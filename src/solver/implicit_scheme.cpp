@@ -40,7 +40,7 @@
 #include <utility>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/fractional/weights.hpp"
 #include "rod_law.hpp"
 #include "onset.hpp"

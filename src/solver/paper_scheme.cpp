@@ -16,7 +16,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/fractional/weights.hpp"
 #include "rod_law.hpp"
 #include "schemes.hpp"

@@ -15,7 +15,7 @@
 #include <vector>
 
 #include "adjoin/fractional/history.hpp"
-#include "adjoin/model/parameters.hpp"
+#include "adjoin/structure/parameters.hpp"
 
 namespace adjoin::detail {
 

@@ -3,8 +3,8 @@
 // source file; these run it through the one time loop, from rest over the grid of `options`,
 // reporting every grid point to `observer`.
 #include "adjoin/ground/ground_motion.hpp"
-#include "adjoin/model/parameters.hpp"
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/structure/parameters.hpp"
+#include "adjoin/structure/observer.hpp"
 #include "adjoin/solver/options.hpp"
 #include "time_loop.hpp"
 

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "schemes.hpp"
 
 namespace adjoin {

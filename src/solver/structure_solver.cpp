@@ -8,10 +8,10 @@
 #include <sstream>
 #include <tuple>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/solver/options.hpp"
 #include "adjoin/fractional/weights.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "box_qp.hpp"
 #include "contact_step.hpp"

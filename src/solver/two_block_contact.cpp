@@ -7,8 +7,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/errors.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/two_block.hpp"
 #include "schemes.hpp"

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/structure/contact_rules.hpp"
 #include "adjoin/structure/rules.hpp"
 

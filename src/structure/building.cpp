@@ -5,7 +5,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/structure/modal.hpp"
 
 namespace adjoin::structure {

@@ -4,7 +4,7 @@
 
 #include <Eigen/Eigenvalues>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 
 namespace adjoin::structure {
 namespace {

@@ -5,7 +5,7 @@
 #include <set>
 #include <sstream>
 
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/structure/modal.hpp"
 
 namespace adjoin::structure {

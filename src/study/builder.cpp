@@ -4,11 +4,11 @@
 #include <cmath>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
 #include "adjoin/ground/processing.hpp"
 #include "adjoin/ground/record_motion.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/structure/modal.hpp"
 

@@ -5,7 +5,7 @@
 #include <limits>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/structure/channels.hpp"
 #include "adjoin/study/building_run.hpp"
 

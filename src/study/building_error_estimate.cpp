@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/structure/channels.hpp"
 #include "step_ladder.hpp"

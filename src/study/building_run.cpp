@@ -7,7 +7,7 @@
 #include <sstream>
 #include <utility>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/observe/channel_values.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "adjoin/solver/simulate.hpp"

@@ -7,8 +7,8 @@
 #include <limits>
 #include <stdexcept>
 
-#include "adjoin/errors.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/errors.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/post/spectrum.hpp"
 
 namespace adjoin {

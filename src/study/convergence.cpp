@@ -5,7 +5,7 @@
 #include <limits>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
 #include "adjoin/study/linear_reference.hpp"
 #include "adjoin/study/run.hpp"

@@ -9,7 +9,7 @@
 #include <map>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/study/sweep.hpp"
 
 namespace adjoin {

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "step_ladder.hpp"
 

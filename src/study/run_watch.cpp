@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <vector>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 
 namespace adjoin {
 namespace {

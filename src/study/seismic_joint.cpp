@@ -7,7 +7,7 @@
 #include <functional>
 #include <limits>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/observe/peaks.hpp"
 #include "adjoin/observe/pounding.hpp"
 #include "adjoin/solver/simulate.hpp"

@@ -12,7 +12,7 @@
 #include <stdexcept>
 #include <thread>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_motion.hpp"
 #include "adjoin/observe/energy.hpp"
 #include "adjoin/observe/peaks.hpp"

@@ -19,13 +19,9 @@
 #include <string>
 #include <vector>
 
+#include "adjoin/core/history_engine.hpp"
+
 namespace adjoin {
-
-enum class HistoryEngine { direct, fft };
-
-// "direct" / "fft"; parse returns false on an unknown name.
-std::string to_string(HistoryEngine engine);
-bool parse_history_engine(const std::string& name, HistoryEngine* engine);
 
 class ConvolutionHistory {
  public:

@@ -12,7 +12,7 @@
 // The definitions are those of observe/energy.hpp (and docs/reference/outputs.md).
 #include <ostream>
 
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/observe/energy.hpp"
 
 namespace adjoin {

@@ -11,8 +11,8 @@
 #include <ostream>
 #include <string>
 
-#include "adjoin/model/units.hpp"
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/core/units.hpp"
+#include "adjoin/structure/observer.hpp"
 
 namespace adjoin {
 

@@ -13,8 +13,8 @@
 // Numbers are written in the shortest form that reads back to the same double.
 #include <ostream>
 
-#include "adjoin/model/units.hpp"
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/core/units.hpp"
+#include "adjoin/structure/observer.hpp"
 
 namespace adjoin {
 

@@ -19,7 +19,7 @@
 // use the trapezoidal rule on the grid samples.
 #include <vector>
 
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/structure/observer.hpp"
 
 namespace adjoin {
 

@@ -11,7 +11,7 @@
 #include <cmath>
 
 #include "adjoin/observe/extremum.hpp"
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/structure/observer.hpp"
 
 namespace adjoin {
 

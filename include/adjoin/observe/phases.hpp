@@ -6,7 +6,7 @@
 // through State::t of the sample where the phase changes (see the scheme's documentation).
 #include <vector>
 
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/structure/observer.hpp"
 
 namespace adjoin {
 

@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "adjoin/observe/extremum.hpp"
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/structure/observer.hpp"
 #include "adjoin/structure/contact.hpp"
 
 namespace adjoin {

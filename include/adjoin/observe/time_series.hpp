@@ -3,7 +3,7 @@
 // For long runs prefer a streaming writer (io/timeseries_csv.hpp), which keeps nothing.
 #include <vector>
 
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/structure/observer.hpp"
 
 namespace adjoin {
 

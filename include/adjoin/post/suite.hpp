@@ -28,7 +28,7 @@
 #include <string>
 #include <vector>
 
-#include "adjoin/ground/spectrum_matching.hpp"
+#include "adjoin/post/spectrum_matching.hpp"
 #include "adjoin/post/spectrum.hpp"
 
 namespace adjoin {

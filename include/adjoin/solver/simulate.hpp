@@ -21,8 +21,8 @@
 #include <string>
 
 #include "adjoin/ground/ground_motion.hpp"
-#include "adjoin/model/parameters.hpp"
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/structure/parameters.hpp"
+#include "adjoin/structure/observer.hpp"
 #include "adjoin/solver/options.hpp"
 
 namespace adjoin {

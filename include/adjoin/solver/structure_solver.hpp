@@ -38,7 +38,8 @@
 
 #include "adjoin/fractional/history.hpp"
 #include "adjoin/ground/ground_motion.hpp"
-#include "adjoin/observe/state.hpp"
+#include "adjoin/structure/observer.hpp"
+#include "adjoin/structure/state.hpp"
 #include "adjoin/structure/building.hpp"
 
 namespace adjoin {
@@ -66,35 +67,6 @@ inline const char* scheme_name(const StructureSolverOptions& o) {
   return o.restart == StructureSolverOptions::Restart::always ? "implicit-damped"
          : o.restart == StructureSolverOptions::Restart::never ? "implicit (no restart)" : "implicit";
 }
-
-struct StructureState {
-  double t = 0.0;
-  double ag = 0.0;                 // a_g = -(ground acceleration) [m/s^2]
-  Eigen::VectorXd x, v, a_abs;     // per floor, A's floors first then B's [m, m/s, m/s^2]
-  Eigen::VectorXd link_force;      // per link [N], acting -q on A's floor, +q on B's
-  Eigen::VectorXd link_stroke;     // x_A,i - x_B,j [m]
-  Eigen::VectorXd link_velocity;   // [m/s]
-  std::vector<Phase> link_phase;   // friction links: stick or slip direction (others: slip_*)
-  std::vector<double> link_switch; // the located switch inside the step ending here, or NaN
-  Eigen::VectorXd storey_force;    // per storey, A's then B's: spring + devices (its shear) [N]
-  // Per contact pair: its gap g = gap - s [m] (negative: the floors overlap), its force at the
-  // grid point [N] (compressive > 0; 0 for the Newton law, whose impacts are impulses), and,
-  // accumulated from t = 0, the work the floors have done on it [J] (its stored elastic
-  // energy plus what it dissipated) and the part dissipated [J].
-  Eigen::VectorXd contact_gap, contact_force, contact_work, contact_dissipated;
-};
-
-
-class StructureObserver {
- public:
-  virtual ~StructureObserver() = default;
-  virtual void begin(const structure::Structure&, const StructureSolverOptions&) {}
-  virtual void observe(const StructureState& state) = 0;
-  // An impact that ended in the step ending at the next observe() (called before it), or
-  // that is still going on at the end of the run (complete = false, before the last observe).
-  virtual void impact(const Impact& /*impact*/) {}
-  virtual void end() {}
-};
 
 struct StructureRunSummary {
   std::size_t steps = 0;

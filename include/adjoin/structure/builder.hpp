@@ -12,7 +12,7 @@
 //     s.contact(3, 3, 0.05).model(structure::ContactModel::linear).stiffness(2e9).restitution(0.65);
 //     structure::Structure structure = s.build();
 //
-// Errors are FieldError (adjoin/errors.hpp) naming the field by its path, counted from 1 as a
+// Errors are FieldError (adjoin/core/errors.hpp) naming the field by its path, counted from 1 as a
 // scene's tables are: "building.A.period", "building.A.masses[3]", "building.A.device[1].tau_x",
 // "link[2].slip_force", "contact[1].restitution". SI units throughout.
 #include <deque>

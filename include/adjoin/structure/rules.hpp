@@ -11,7 +11,7 @@
 
 #include <Eigen/Dense>
 
-#include "adjoin/model/parameters.hpp"
+#include "adjoin/structure/parameters.hpp"
 #include "adjoin/structure/building.hpp"
 
 namespace adjoin::structure {

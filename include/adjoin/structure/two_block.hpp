@@ -4,8 +4,8 @@
 // (if mu > 0) and one contact pair at floor 1 with gap gap0 and the model's contact law.
 // `scales` turns the dimensionless model into SI (masses m1, m1/rho, stiffnesses k1, eps k1,
 // tau in s^order); the default gives it in the model's dimensionless units.
-#include "adjoin/model/parameters.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/structure/parameters.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/structure/building.hpp"
 
 namespace adjoin::structure {

@@ -9,7 +9,7 @@
 //     BuildingRunSpec spec = building_run_spec(std::move(s), record_ground("RSN1044.AT2"), o);
 //     BuildingReport report = run_building(spec);          // study/building_run.hpp
 //
-// Errors are FieldError (adjoin/errors.hpp) naming the field: "ground.scale_pga", "solver.h".
+// Errors are FieldError (adjoin/core/errors.hpp) naming the field: "ground.scale_pga", "solver.h".
 // Every value in SI units (s, m, g for the ground's a_g).
 #include <filesystem>
 #include <memory>

@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "adjoin/study/run_spec.hpp"
-#include "adjoin/observe/state.hpp"
+#include "adjoin/structure/state.hpp"
 #include "adjoin/observe/peaks.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/modal.hpp"

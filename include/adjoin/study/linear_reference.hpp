@@ -33,7 +33,7 @@
 // Cost: a few hundred microseconds per call of at(t) with fractional rods; thread-safe.
 #include <complex>
 
-#include "adjoin/model/parameters.hpp"
+#include "adjoin/structure/parameters.hpp"
 
 namespace adjoin {
 

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "adjoin/ground/ground_motion.hpp"
-#include "adjoin/model/parameters.hpp"
-#include "adjoin/model/units.hpp"
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/structure/parameters.hpp"
+#include "adjoin/core/units.hpp"
+#include "adjoin/structure/observer.hpp"
 #include "adjoin/solver/options.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/building.hpp"

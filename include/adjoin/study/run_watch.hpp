@@ -23,7 +23,7 @@
 #include <utility>
 #include <vector>
 
-#include "adjoin/observe/observer.hpp"
+#include "adjoin/structure/observer.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 
 namespace adjoin {

@@ -9,7 +9,7 @@
 #include <cstdlib>
 #include <cstring>
 
-#include "adjoin/errors.hpp"
+#include "adjoin/core/errors.hpp"
 
 namespace adjoin::readers {
 

@@ -3,15 +3,20 @@
 // long run need not keep its whole history: each observer keeps only what it reports.
 //
 // Call order: begin(info) once, observe(state) for t_0 = 0, t_1, ..., t_N in order, then
-// end() once. States are in the solver's dimensionless units.
+// end() once. Two interfaces: Observer for the two-block solver (solver/simulate.hpp), in its
+// dimensionless units; StructureObserver for the structure solver
+// (solver/structure_solver.hpp), in SI units.
 #include <cstddef>
 #include <vector>
 
-#include "adjoin/fractional/history.hpp"
-#include "adjoin/model/parameters.hpp"
-#include "adjoin/observe/state.hpp"
+#include "adjoin/core/history_engine.hpp"
+#include "adjoin/structure/building.hpp"
+#include "adjoin/structure/parameters.hpp"
+#include "adjoin/structure/state.hpp"
 
 namespace adjoin {
+
+struct StructureSolverOptions;  // solver/structure_solver.hpp: what begin() is told of the run
 
 struct RunInfo {
   Model model;
@@ -44,6 +49,17 @@ class ObserverList final : public Observer {
 
  private:
   std::vector<Observer*> observers_;
+};
+
+class StructureObserver {
+ public:
+  virtual ~StructureObserver() = default;
+  virtual void begin(const structure::Structure&, const StructureSolverOptions&) {}
+  virtual void observe(const StructureState& state) = 0;
+  // An impact that ended in the step ending at the next observe() (called before it), or
+  // that is still going on at the end of the run (complete = false, before the last observe).
+  virtual void impact(const Impact& /*impact*/) {}
+  virtual void end() {}
 };
 
 }  // namespace adjoin

@@ -1,5 +1,5 @@
 // Spectrum-compatible motions by iterative Fourier-amplitude scaling (see spectrum_matching.hpp).
-#include "adjoin/ground/spectrum_matching.hpp"
+#include "adjoin/post/spectrum_matching.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -8,10 +8,10 @@
 #include <numbers>
 #include <sstream>
 
-#include "adjoin/errors.hpp"
-#include "adjoin/model/units.hpp"
+#include "adjoin/core/errors.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/post/spectrum.hpp"
-#include "synthesis_detail.hpp"
+#include "../ground/synthesis_detail.hpp"
 
 namespace adjoin {
 namespace {

@@ -1,4 +1,4 @@
-#include "adjoin/model/parameters.hpp"
+#include "adjoin/structure/parameters.hpp"
 
 #include <cmath>
 #include <sstream>

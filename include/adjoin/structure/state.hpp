@@ -1,7 +1,12 @@
 #pragma once
-// What the solver reports at each grid point t_m = m h, in dimensionless units.
+// What the solvers report at each grid point t_m = m h: State from the two-block solver
+// (solver/simulate.hpp), in dimensionless units; StructureState from the structure solver
+// (solver/structure_solver.hpp), in SI units.
 #include <limits>
 #include <string>
+#include <vector>
+
+#include <Eigen/Dense>
 
 namespace adjoin {
 
@@ -44,6 +49,23 @@ struct Impact {
   double rebound_speed = 0.0;      // opening speed at separation [m/s]
   double impulse = 0.0;            // integral of the force [N s]
   bool complete = true;            // false: still in contact at the end of the run
+};
+
+struct StructureState {
+  double t = 0.0;
+  double ag = 0.0;                 // a_g = -(ground acceleration) [m/s^2]
+  Eigen::VectorXd x, v, a_abs;     // per floor, A's floors first then B's [m, m/s, m/s^2]
+  Eigen::VectorXd link_force;      // per link [N], acting -q on A's floor, +q on B's
+  Eigen::VectorXd link_stroke;     // x_A,i - x_B,j [m]
+  Eigen::VectorXd link_velocity;   // [m/s]
+  std::vector<Phase> link_phase;   // friction links: stick or slip direction (others: slip_*)
+  std::vector<double> link_switch; // the located switch inside the step ending here, or NaN
+  Eigen::VectorXd storey_force;    // per storey, A's then B's: spring + devices (its shear) [N]
+  // Per contact pair: its gap g = gap - s [m] (negative: the floors overlap), its force at the
+  // grid point [N] (compressive > 0; 0 for the Newton law, whose impacts are impulses), and,
+  // accumulated from t = 0, the work the floors have done on it [J] (its stored elastic
+  // energy plus what it dissipated) and the part dissipated [J].
+  Eigen::VectorXd contact_gap, contact_force, contact_work, contact_dissipated;
 };
 
 }  // namespace adjoin

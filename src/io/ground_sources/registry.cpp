@@ -1,0 +1,77 @@
+// The table of ground sources: names, keys and builders in one place, so that the scene
+// schema, the check of [ground]'s keys, the messages and the choice of builder cannot disagree.
+#include "registry.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <vector>
+
+#include "../../detail/nearest.hpp"
+#include "adjoin/io/text_file.hpp"
+
+namespace adjoin::detail {
+namespace {
+
+// In the order of the scene schema's ground keys.
+constexpr std::array<GroundSource, 3> kSources = {{
+    {"decaying-sine", decaying_sine_keys, read_decaying_sine},
+    {"record", record_source_keys, read_record_source},
+    {"filtered-noise", filtered_noise_keys, read_filtered_noise},
+}};
+
+// "\"decaying-sine\", \"record\" or \"filtered-noise\"".
+std::string source_names() {
+  std::string out;
+  for (std::size_t i = 0; i < kSources.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == kSources.size() ? " or " : ", ") + ("\"" + std::string(kSources[i].name) + "\"");
+  return out;
+}
+
+}  // namespace
+
+std::span<const GroundSource> ground_sources() { return kSources; }
+
+std::shared_ptr<const GroundMotion> read_ground(const SceneReader& r, const Scales& scales) {
+  const std::string source = r.string("ground.source", "");
+  if (source.empty()) r.fail("ground", "missing key ground.source (" + source_names() + ")");
+  const auto entry = std::find_if(kSources.begin(), kSources.end(), [&](const GroundSource& s) { return s.name == source; });
+  if (entry == kSources.end()) {
+    std::vector<std::string> names;
+    for (const GroundSource& s : kSources) names.emplace_back(s.name);
+    std::sort(names.begin(), names.end());
+    r.fail("ground.source", "ground.source = " + escaped_excerpt(source) + " is not a known source; did you mean \"" +
+                                nearest(source, names) + "\"?");
+  }
+  const std::span<const KeySpec> allowed = entry->keys();
+  for (const auto& [key, node] : *r.table()["ground"].as_table()) {
+    const std::string k(key.str()), path = "ground." + k;
+    if (k != "source" && std::none_of(allowed.begin(), allowed.end(), [&](const KeySpec& s) { return path == s.path; }))
+      r.fail(path, text_excerpt(path) + " is not a key of source \"" + source + "\"");
+  }
+  return entry->read(r, scales);
+}
+
+std::string ground_key(const SceneReader& r, double time_scale, const std::string& extra) {
+  std::ostringstream key;
+  key << toml::toml_formatter(*r.table()["ground"].as_table());
+  char scale[32];
+  std::snprintf(scale, sizeof scale, "%.17g", time_scale);
+  key << "\n" << scale << "\n" << extra;
+  return key.str();
+}
+
+double record_time_scale(const SceneReader& r, const Scales& scales) {
+  if (scales.si) {
+    if (r.has("ground.time_scale")) r.fail("ground.time_scale", "ground.time_scale is set by m1 and k1 in an SI scene; remove it");
+    return scales.time;
+  }
+  const double time_scale = r.number("ground.time_scale", 1.0);
+  if (!(std::isfinite(time_scale) && time_scale > 0.0))
+    r.fail("ground.time_scale", "ground.time_scale = " + format_scene_number(time_scale) + " must be a positive number of seconds");
+  return time_scale;
+}
+
+}  // namespace adjoin::detail
