@@ -34,6 +34,7 @@
 #include <string>
 #include <vector>
 
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/errors.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/ground/record_file.hpp"
@@ -100,14 +101,7 @@ std::string trim(const std::string& s) {
   return s.substr(b, e - b + 1);
 }
 
-bool parse_number(const std::string& token, double* value) {
-  const std::string t = trim(token);
-  if (t.empty()) return false;
-  const char* first = t.data();
-  if (*first == '+') ++first;
-  const auto [ptr, ec] = std::from_chars(first, t.data() + t.size(), *value);
-  return ec == std::errc() && ptr == t.data() + t.size() && std::isfinite(*value);
-}
+bool parse_number(const std::string& token, double* value) { return parse_finite(trim(token), value); }
 
 std::vector<double> parse_list(const std::string& option, const std::string& text, const std::string& expected) {
   std::vector<double> values;

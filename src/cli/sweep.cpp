@@ -27,6 +27,7 @@
 #include <set>
 #include <thread>
 
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/folder_lock.hpp"
@@ -59,20 +60,9 @@ struct MergeArgs {
 SweepShard parse_shard(const std::string& text) {
   SweepShard shard;
   const auto slash = text.find('/');
-  try {
-    if (slash == std::string::npos) throw std::invalid_argument("no slash");
-    std::size_t used = 0;
-    const long long i = std::stoll(text.substr(0, slash), &used);
-    if (used != slash) throw std::invalid_argument("index");
-    const std::string rest = text.substr(slash + 1);
-    const long long n = std::stoll(rest, &used);
-    if (used != rest.size()) throw std::invalid_argument("count");
-    if (n < 1 || i < 0 || i >= n) throw std::invalid_argument("range");
-    shard.index = static_cast<std::size_t>(i);
-    shard.count = static_cast<std::size_t>(n);
-  } catch (const std::exception&) {
+  if (slash == std::string::npos || !parse_count(std::string_view(text).substr(0, slash), &shard.index) ||
+      !parse_count(std::string_view(text).substr(slash + 1), &shard.count) || shard.count < 1 || shard.index >= shard.count)
     throw InputError("--shard " + text_excerpt(text) + ": expected I/N with 0 <= I < N (0-based: --shard 0/2 and --shard 1/2 make a whole)");
-  }
   return shard;
 }
 

@@ -131,12 +131,8 @@ const char* kind_name(Kind kind) {
   return "?";
 }
 
-std::string format_number(double v) {
-  std::ostringstream s;
-  s.precision(12);
-  s << v;
-  return s.str();
-}
+// Numbers in the scene's messages: 12 significant digits (io/text_file.hpp).
+std::string format_number(double v) { return number_text(v, 12); }
 
 // Reads typed values out of the parsed (and overridden) TOML, and words errors with the file
 // and line of the key, or the --set option that put it there. `lines`: the parsed file the

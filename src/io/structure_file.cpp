@@ -31,12 +31,8 @@ using structure::LinkType;
 
 using Origins = std::map<std::string, std::string>;
 
-std::string number_text(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+// Numbers in the structure's messages: 6 significant digits (io/text_file.hpp).
+std::string number_text(double v) { return adjoin::number_text(v, 6); }
 
 // The range a building quantity may take. The bounds are the two-block scenes' (masses
 // 1e-3..1e12 kg, stiffnesses 1e-3..1e15 N/m, relaxation times up to 1e12): inside them the

@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "../detail/nearest.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/errors.hpp"
 #include "adjoin/io/file_name.hpp"
 #include "adjoin/io/sweep_file.hpp"
@@ -23,13 +24,6 @@ namespace adjoin {
 namespace {
 
 std::string shortest(double v) { return sweep_number_cell(v); }
-
-bool parse_double(const std::string& text, double* value) {
-  if (text.empty()) return false;
-  const char* end = text.data() + text.size();
-  const auto result = std::from_chars(text.data(), end, *value);
-  return result.ec == std::errc() && result.ptr == end;
-}
 
 // A double as a TOML float ("1.0", not "1", so that it stays a float).
 std::string toml_float(double v) {
@@ -332,7 +326,7 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
             s.label = label->as_string()->get();
             // A name that is a number ({name = "0", unset = ["link"]}: "no damper" as slip 0) keeps
             // the axis a number column when its other values are numbers.
-            if (double number = 0.0; parse_double(s.label, &number) && std::isfinite(number)) s.number = number;
+            if (double number = 0.0; parse_finite(s.label, &number)) s.number = number;
             read_edits(r, *vt, folder, s);
           } else {
             if (axis.key.empty()) r.fail(&v, "axis " + axis.name + ": a plain value needs the axis' key = \"dotted.scene.key\"");

@@ -154,4 +154,10 @@ std::string read_text_file(const std::filesystem::path& file, const std::string&
   return text;
 }
 
+std::string number_text(double v, int significant) {
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*g", significant, v);
+  return text;
+}
+
 }  // namespace adjoin

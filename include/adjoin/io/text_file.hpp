@@ -28,6 +28,10 @@ std::string escaped_excerpt(std::string_view text, std::size_t max_chars = 40);
 // most 80 characters of printable text (solver.h=0.01), else its escaped_excerpt.
 std::string text_excerpt(std::string_view text);
 
+// A number for a message with `significant` digits, as printf's %g writes it: 1e+15, 0.3,
+// 1.5e-09, inf, nan. (Scenes word their numbers with 12 digits, structures with 6.)
+std::string number_text(double v, int significant);
+
 // A message made safe to print: valid UTF-8 sequences, newlines and tabs kept; other control
 // characters and invalid bytes written as \xNN.
 std::string printable_message(std::string_view message);

@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/ground/record.hpp"
 #include "adjoin/ground/record_file.hpp"
 
@@ -54,10 +55,12 @@ std::string fmt(double x);
 [[noreturn]] void fail(const std::string& name, std::size_t line, const std::string& what);
 [[noreturn]] void fail(const std::string& name, const std::string& what);
 
-enum class NumberStatus { ok, not_a_number, not_finite, out_of_range };
 // Parses the number starting at p; *stop is where it ends. Accepts a leading '+', and Fortran
-// 'D' exponents. "nan" and "inf" are reported as not_finite.
-NumberStatus parse_number(const char* p, const char* end, double& value, const char*& stop);
+// 'D' exponents. "nan" and "inf" are reported as not_finite. (The project's one number
+// parser, core/parse_number.hpp, with Fortran exponents.)
+inline NumberStatus parse_number(const char* p, const char* end, double& value, const char*& stop) {
+  return scan_number(p, end, value, stop, /*fortran_exponent=*/true);
+}
 // A whole field must be one number; `expected` says what it should be.
 double field_number(std::string_view field, const std::string& name, std::size_t line, const std::string& expected);
 // The number at `from` in `text` (leading blanks skipped), or nullopt.
