@@ -194,7 +194,12 @@ struct MpiSession {
   MpiSession& operator=(const MpiSession&) = delete;
 };
 
-std::size_t cell_index(const std::vector<std::string>& cells) { return std::stoull(cells.at(0)); }
+// The run number of a row (rows come from the ranks' journals, checked there).
+std::size_t cell_index(const std::vector<std::string>& cells) {
+  std::size_t index = 0;
+  parse_count(cells.at(0), &index);
+  return index;
+}
 
 // Rank 0 receives every rank's text.
 std::vector<std::string> gather_text(const std::string& mine, const MpiSession& mpi) {

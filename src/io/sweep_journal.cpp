@@ -18,7 +18,12 @@
 namespace adjoin {
 namespace {
 
-std::size_t cell_index(const std::vector<std::string>& cells) { return std::stoull(cells.at(0)); }
+// The run number of a row read back (checked by sweep_row_problem).
+std::size_t cell_index(const std::vector<std::string>& cells) {
+  std::size_t index = 0;
+  parse_count(cells.at(0), &index);
+  return index;
+}
 
 }  // namespace
 

@@ -128,26 +128,37 @@ std::vector<double> x_values(const CsvTable& table, const std::string& name, std
   }
 }
 
-}  // namespace
+// A table read for the figure: the x values (numbers, or the positions of text values among
+// `categories`), the y columns, the groups; notes on what a log axis cannot show.
+struct SweepData {
+  CsvTable table;
+  std::vector<std::string> categories, notes, groups{""};
+  std::vector<double> x;
+  std::vector<std::vector<double>> ys;
+  std::size_t cg = 0;  // the grouping column
+  bool categorical = false, si = true;
+};
 
-std::vector<std::string> plot_sweep_csv(const fs::path& csv, const SweepPlotOptions& options, const fs::path& image,
-                                        const PlotStyle& style) {
+SweepData read_sweep_data(const fs::path& csv, const SweepPlotOptions& options) {
   if (options.x.empty()) throw InputError("--x: expected a column name");
   if (options.y.empty()) throw InputError("--y: expected one or more column names separated by commas");
-  const CsvTable table = read_csv_table(csv, "a CSV file with a header line");
-  std::vector<std::string> categories, notes;
-  const std::vector<double> x = x_values(table, options.x, &categories);
-  const bool categorical = !categories.empty();
+  SweepData d;
+  d.table = read_csv_table(csv, "a CSV file with a header line");
+  const CsvTable& table = d.table;
+  auto &categories = d.categories, &notes = d.notes, &groups = d.groups;
+  auto& x = d.x;
+  auto& ys = d.ys;
+  auto& cg = d.cg;
+  bool &categorical = d.categorical, &si = d.si;
+  x = x_values(table, options.x, &categories);
+  categorical = !categories.empty();
   if (categorical && options.log_x)
     throw InputError("--logx: column '" + options.x + "' holds text ('" + categories.front() +
                      "'), not numbers; a logarithmic axis needs numbers > 0");
-  std::vector<std::vector<double>> ys;
   for (const std::string& name : options.y) {
     if (name.empty()) throw InputError("--y: empty column name (expected names separated by commas)");
     ys.push_back(table.numbers(name, "--y"));
   }
-  std::vector<std::string> groups{""};
-  std::size_t cg = 0;
   if (!options.group.empty()) {
     cg = table.column(options.group, "--group");
     groups.clear();
@@ -175,12 +186,31 @@ std::vector<std::string> plot_sweep_csv(const fs::path& csv, const SweepPlotOpti
                         " <= 0 are not drawn (a logarithmic axis has no zero)");
     }
   // SI unless the table says otherwise (its `units` column).
-  bool si = true;
   if (table.has("units")) {
     const std::size_t cu = table.column("units");
     si = std::none_of(table.rows.begin(), table.rows.end(), [&](const auto& row) { return row[cu] == "dimensionless"; });
   }
+  for (std::size_t k = 0; k < ys.size(); ++k) {
+    const bool any = std::any_of(ys[k].begin(), ys[k].end(), [&](double v) {
+      return std::isfinite(v) && !(options.log_y && v <= 0.0);
+    });
+    if (!any)
+      throw InputError(csv.string() + ": column '" + options.y[k] + "' has no " +
+                       (options.log_y ? "positive " : "") + "numbers to plot");
+  }
+  return d;
+}
 
+// The figure's script: a panel per y column, a curve per group.
+std::string sweep_script(const fs::path& csv, const SweepPlotOptions& options, const SweepData& d) {
+  const auto& table = d.table;
+  const auto& categories = d.categories;
+  const auto& groups = d.groups;
+  const auto& x = d.x;
+  const auto& ys = d.ys;
+  const std::size_t cg = d.cg;
+  const bool categorical = d.categorical;
+  const bool si = d.si;
   std::ostringstream s;
   s << kGnuplotPreamble;
   // One datablock per group: x then every y column, sorted by x.
@@ -198,14 +228,6 @@ std::vector<std::string> plot_sweep_csv(const fs::path& csv, const SweepPlotOpti
         cols[k + 1].push_back(options.log_y && !(ys[k][i] > 0.0) ? kNaN : ys[k][i]);
     }
     gnuplot_datablock(s, "g" + std::to_string(g), cols);
-  }
-  for (std::size_t k = 0; k < ys.size(); ++k) {
-    const bool any = std::any_of(ys[k].begin(), ys[k].end(), [&](double v) {
-      return std::isfinite(v) && !(options.log_y && v <= 0.0);
-    });
-    if (!any)
-      throw InputError(csv.string() + ": column '" + options.y[k] + "' has no " +
-                       (options.log_y ? "positive " : "") + "numbers to plot");
   }
   const std::string where = csv.has_parent_path() && !csv.parent_path().filename().empty()
                                 ? (csv.parent_path().filename() / csv.filename()).string()
@@ -267,8 +289,16 @@ std::vector<std::string> plot_sweep_csv(const fs::path& csv, const SweepPlotOpti
     s << "\n";
   }
   if (panels) s << "unset multiplot\n";
-  render_gnuplot(s.str(), image, style);
-  return notes;
+  return s.str();
+}
+
+}  // namespace
+
+std::vector<std::string> plot_sweep_csv(const fs::path& csv, const SweepPlotOptions& options, const fs::path& image,
+                                        const PlotStyle& style) {
+  const SweepData data = read_sweep_data(csv, options);
+  render_gnuplot(sweep_script(csv, options, data), image, style);
+  return data.notes;
 }
 
 }  // namespace adjoin
