@@ -47,7 +47,7 @@
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/ground/synthesis.hpp"
 #include "adjoin/io/atomic_file.hpp"
-#include "adjoin/io/plots.hpp"
+#include "adjoin/io/spectrum_plots.hpp"
 #include "adjoin/post/intensity.hpp"
 #include "adjoin/post/rotd.hpp"
 #include "adjoin/post/spectrum.hpp"

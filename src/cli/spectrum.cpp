@@ -41,7 +41,7 @@
 #include "adjoin/ground/spectrum_matching.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/gnuplot.hpp"
-#include "adjoin/io/plots.hpp"
+#include "adjoin/io/spectrum_plots.hpp"
 #include "adjoin/post/inelastic.hpp"
 #include "adjoin/post/rotd.hpp"
 #include "adjoin/post/spectrum.hpp"
