@@ -14,6 +14,9 @@
 #include "figure_text.hpp"
 
 namespace adjoin {
+using figure::read_summary_json;
+using figure::force_unit;
+
 namespace {
 
 namespace fs = std::filesystem;

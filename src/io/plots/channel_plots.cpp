@@ -14,6 +14,8 @@
 #include "figure_text.hpp"
 
 namespace adjoin {
+using figure::read_summary_json;
+using figure::force_unit;
 
 namespace fs = std::filesystem;
 

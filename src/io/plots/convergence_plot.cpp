@@ -10,6 +10,8 @@
 #include "figure_text.hpp"
 
 namespace adjoin {
+using figure::join;
+
 namespace fs = std::filesystem;
 
 void plot_convergence_csv(const fs::path& csv, const fs::path& image, const PlotStyle& style,

@@ -12,6 +12,8 @@
 #include "figure_text.hpp"
 
 namespace adjoin {
+using figure::join;
+
 namespace fs = std::filesystem;
 
 bool CsvTable::has(const std::string& name) const {

@@ -5,7 +5,7 @@
 
 #include "adjoin/errors.hpp"
 
-namespace adjoin {
+namespace adjoin::figure {
 
 std::string join(const std::vector<std::string>& items, const std::string& separator) {
   std::string s;
@@ -30,4 +30,4 @@ std::pair<double, std::string> force_unit(double peak) {
   return {1.0, "N"};
 }
 
-}  // namespace adjoin
+}  // namespace adjoin::figure

@@ -7,7 +7,7 @@
 
 #include <nlohmann/json.hpp>
 
-namespace adjoin {
+namespace adjoin::figure {
 
 // "a, b, c".
 std::string join(const std::vector<std::string>& items, const std::string& separator);
@@ -16,4 +16,4 @@ nlohmann::json read_summary_json(const std::filesystem::path& file);
 // A force axis in N, kN or MN by the largest value: the divisor and the unit.
 std::pair<double, std::string> force_unit(double peak);
 
-}  // namespace adjoin
+}  // namespace adjoin::figure

@@ -15,6 +15,9 @@
 #include "figure_text.hpp"
 
 namespace adjoin {
+using figure::join;
+using figure::read_summary_json;
+
 namespace fs = std::filesystem;
 
 namespace {
