@@ -158,12 +158,14 @@ RunFigureData figure_data(const fs::path& dir, const PlotStyle& style) {
   d.run = load_run(dir, style);
   d.si = d.run.si;
   const CsvTable& ts = d.run.series;
-  d.t = ts.numbers("t"), d.x1 = ts.numbers("x1"), d.x2 = ts.numbers("x2"), d.v1 = ts.numbers("v1"), d.v2 = ts.numbers("v2");
-  d.f1 = ts.numbers("f1"), d.f2 = ts.numbers("f2"), d.q = ts.numbers("q"), d.ag = ts.numbers("ag"), d.gap = ts.numbers("gap");
+  for (auto [column, values] : {std::pair{"t", &d.t}, {"x1", &d.x1}, {"x2", &d.x2}, {"v1", &d.v1}, {"v2", &d.v2},
+                                 {"f1", &d.f1}, {"f2", &d.f2}, {"q", &d.q}, {"ag", &d.ag}, {"gap", &d.gap}})
+    *values = ts.numbers(column);
   d.dv.resize(d.t.size());
   for (std::size_t i = 0; i < d.t.size(); ++i) d.dv[i] = d.v1[i] - d.v2[i];
   // The t axis spans the run exactly; the data get a little headroom above and below.
-  d.xrange = "set xrange [" + gnuplot_number(d.t.front()) + ":" + gnuplot_number(d.t.back()) + "]\nset offsets 0, 0, graph 0.06, graph 0.06\n";
+  d.xrange = "set xrange [" + gnuplot_number(d.t.front()) + ":" + gnuplot_number(d.t.back()) +
+             "]\nset offsets 0, 0, graph 0.06, graph 0.06\n";
   d.tlabel = "set xlabel 'time t" + unit(d.si, "s") + "'\n";
   d.bands = stick_bands(d.run.phases);
   d.stick = has_stick(d.run.phases);
