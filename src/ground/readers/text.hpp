@@ -42,7 +42,7 @@ std::vector<Line> first_lines(std::string_view text, std::size_t count);
 inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
 char lower(char c);
-std::string_view trim(std::string_view s);
+inline std::string_view trim(std::string_view s) { return trim_blanks(s); }  // core/parse_number.hpp
 std::string to_lower(std::string_view s);
 // Case-insensitive search; npos if absent.
 std::size_t find_ci(std::string_view text, std::string_view word, std::size_t from = 0);
