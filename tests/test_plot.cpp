@@ -263,6 +263,21 @@ TEST_CASE("read_csv_table understands quotes and reports ragged rows by line", "
   CHECK_THROWS_WITH(adjoin::read_csv_table(ragged), Catch::Contains("ragged.csv:3") && Catch::Contains("expected 2"));
 }
 
+TEST_CASE("read_csv_table trims blanks around cells and names broken quoting and missing files", "[plot]") {
+  const fs::path file = write_temp("blanks.csv", "t , x\n 1 , \" a \" \n2,+1e-400\n");
+  const adjoin::CsvTable t = adjoin::read_csv_table(file);
+  CHECK(t.columns == std::vector<std::string>{"t", "x"});
+  CHECK(t.texts("x") == std::vector<std::string>{" a ", "+1e-400"});  // quoted blanks kept
+  CHECK(t.numbers("t") == std::vector<double>{1.0, 2.0});
+  CHECK_THROWS_WITH(t.numbers("x"), Catch::Contains("blanks.csv:2: column 'x' holds 'a', expected a number"));
+  const fs::path broken = write_temp("broken.csv", "a,b\n1,2\n3,4\"5\n");
+  CHECK_THROWS_WITH(adjoin::read_csv_table(broken), Catch::Contains("broken.csv:3: broken quoting"));
+  const fs::path unclosed = write_temp("unclosed.csv", "a,b\n\"1,2\n");
+  CHECK_THROWS_WITH(adjoin::read_csv_table(unclosed), Catch::Contains("unclosed.csv:2: broken quoting"));
+  CHECK_THROWS_WITH(adjoin::read_csv_table(file.parent_path() / "none.csv", "a sweep table"),
+                    Catch::Contains("none.csv: not found (expected a sweep table)"));
+}
+
 TEST_CASE("plot run on a building run draws floor profiles of both buildings and the roofs' histories", "[plot][cli]") {
   needs_program("gnuplot");
   const fs::path dir = scratch("building");

@@ -15,7 +15,7 @@
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/output_place.hpp"
-#include "adjoin/io/plots.hpp"
+#include "adjoin/io/table_plots.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/structure_file.hpp"

@@ -39,6 +39,7 @@
 #include <vector>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/ground/integration.hpp"
@@ -48,6 +49,7 @@
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/plots.hpp"
 #include "adjoin/io/record_writer.hpp"
+#include "adjoin/io/spectrum_plots.hpp"
 #include "adjoin/post/intensity.hpp"
 #include "adjoin/post/rotd.hpp"
 #include "adjoin/post/spectrum.hpp"
@@ -128,15 +130,11 @@ std::string table(const Record& record, const IntensityMeasures& m, const Spectr
 // "A:B" -> two numbers; InputError naming the option otherwise.
 std::pair<double, double> pair_of(const std::string& option, const std::string& text) {
   const auto colon = text.find(':');
-  try {
-    if (colon == std::string::npos) throw std::invalid_argument("no colon");
-    std::size_t used = 0;
-    const double a = std::stod(text.substr(0, colon), &used);
-    const double b = std::stod(text.substr(colon + 1));
-    return {a, b};
-  } catch (const std::exception&) {
+  double a = 0.0, b = 0.0;
+  if (colon == std::string::npos || !parse_finite(trim_blanks(std::string_view(text).substr(0, colon)), &a) ||
+      !parse_finite(trim_blanks(std::string_view(text).substr(colon + 1)), &b))
     throw InputError(option + " " + text_excerpt(text) + ": expected two numbers as A:B");
-  }
+  return {a, b};
 }
 
 // t, a [g], v [m/s], d [m] as CSV with '#' comment lines and a header the delimited reader

@@ -35,12 +35,13 @@
 #include <vector>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/post/spectrum_matching.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/gnuplot.hpp"
-#include "adjoin/io/plots.hpp"
+#include "adjoin/io/spectrum_plots.hpp"
 #include "adjoin/post/inelastic.hpp"
 #include "adjoin/post/rotd.hpp"
 #include "adjoin/post/spectrum.hpp"
@@ -93,21 +94,9 @@ std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t");
-  if (b == std::string::npos) return "";
-  const auto e = s.find_last_not_of(" \t");
-  return s.substr(b, e - b + 1);
-}
+std::string trim(const std::string& s) { return std::string(trim_blanks(s)); }
 
-bool parse_number(const std::string& token, double* value) {
-  const std::string t = trim(token);
-  if (t.empty()) return false;
-  const char* first = t.data();
-  if (*first == '+') ++first;
-  const auto [ptr, ec] = std::from_chars(first, t.data() + t.size(), *value);
-  return ec == std::errc() && ptr == t.data() + t.size() && std::isfinite(*value);
-}
+bool parse_number(const std::string& token, double* value) { return parse_finite(trim(token), value); }
 
 std::vector<double> parse_list(const std::string& option, const std::string& text, const std::string& expected) {
   std::vector<double> values;

@@ -26,6 +26,7 @@
 #include <sstream>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/csv_line.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/gnuplot.hpp"
 #include "command.hpp"
@@ -91,13 +92,6 @@ std::vector<Member> collect(const SuiteRequest& r, std::vector<std::string>* ski
     throw InputError("--suite: a suite of one record (" + (members.empty() ? std::string("none") : members[0].path) +
                      "): its standard deviation is undefined; for one record's spectrum leave out --suite");
   return members;
-}
-
-std::string csv_field(const std::string& text) {
-  if (text.find_first_of(",\"\n") == std::string::npos) return text;
-  std::string q = "\"";
-  for (char c : text) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
 }
 
 std::string cell(double v) {
@@ -223,7 +217,7 @@ int suite_command(const SuiteRequest& r) {
   if (scale) {
     std::ostream& f = files.open("factors.csv");
     f << "record,factor\n";
-    for (std::size_t k = 0; k < members.size(); ++k) f << csv_field(members[k].path) << cell(scale->factors[k]) << "\n";
+    for (std::size_t k = 0; k < members.size(); ++k) f << csv_line({members[k].path}) << cell(scale->factors[k]) << "\n";
   }
   files.commit();
 

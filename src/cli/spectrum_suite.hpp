@@ -10,6 +10,7 @@
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/post/spectrum_matching.hpp"
 #include "adjoin/io/plots.hpp"
+#include "adjoin/io/plot_style.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "adjoin/post/suite.hpp"
 

@@ -28,6 +28,7 @@
 #include <thread>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/folder_lock.hpp"
 #include "adjoin/io/output_place.hpp"
@@ -59,20 +60,9 @@ struct MergeArgs {
 SweepShard parse_shard(const std::string& text) {
   SweepShard shard;
   const auto slash = text.find('/');
-  try {
-    if (slash == std::string::npos) throw std::invalid_argument("no slash");
-    std::size_t used = 0;
-    const long long i = std::stoll(text.substr(0, slash), &used);
-    if (used != slash) throw std::invalid_argument("index");
-    const std::string rest = text.substr(slash + 1);
-    const long long n = std::stoll(rest, &used);
-    if (used != rest.size()) throw std::invalid_argument("count");
-    if (n < 1 || i < 0 || i >= n) throw std::invalid_argument("range");
-    shard.index = static_cast<std::size_t>(i);
-    shard.count = static_cast<std::size_t>(n);
-  } catch (const std::exception&) {
+  if (slash == std::string::npos || !parse_count(std::string_view(text).substr(0, slash), &shard.index) ||
+      !parse_count(std::string_view(text).substr(slash + 1), &shard.count) || shard.count < 1 || shard.index >= shard.count)
     throw InputError("--shard " + text_excerpt(text) + ": expected I/N with 0 <= I < N (0-based: --shard 0/2 and --shard 1/2 make a whole)");
-  }
   return shard;
 }
 
@@ -204,7 +194,12 @@ struct MpiSession {
   MpiSession& operator=(const MpiSession&) = delete;
 };
 
-std::size_t cell_index(const std::vector<std::string>& cells) { return std::stoull(cells.at(0)); }
+// The run number of a row (rows come from the ranks' journals, checked there).
+std::size_t cell_index(const std::vector<std::string>& cells) {
+  std::size_t index = 0;
+  parse_count(cells.at(0), &index);
+  return index;
+}
 
 // Rank 0 receives every rank's text.
 std::vector<std::string> gather_text(const std::string& mine, const MpiSession& mpi) {

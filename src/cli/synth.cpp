@@ -25,6 +25,7 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/io/record_writer.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/post/spectrum_matching.hpp"
 #include "adjoin/ground/synthesis.hpp"
@@ -69,12 +70,8 @@ std::string shell_word(const std::string& s) {
 
 void parse_band(const std::string& text, MatchOptions* m) {
   const std::size_t colon = text.find(':');
-  auto number = [&](const std::string& part, double* v) {
-    const auto r = std::from_chars(part.data(), part.data() + part.size(), *v);
-    return !part.empty() && r.ec == std::errc() && r.ptr == part.data() + part.size();
-  };
-  if (colon == std::string::npos || !number(text.substr(0, colon), &m->period_min) ||
-      !number(text.substr(colon + 1), &m->period_max))
+  if (colon == std::string::npos || !parse_finite(std::string_view(text).substr(0, colon), &m->period_min) ||
+      !parse_finite(std::string_view(text).substr(colon + 1), &m->period_max))
     throw InputError("--band " + text_excerpt(text) + ": expected T0:T1, two periods in s (e.g. 0.1:3)");
 }
 
@@ -104,9 +101,9 @@ int synth_command(SynthArgs& a) {
   o.dt = a.dt;
   if (!a.seed_text.empty()) {
     const std::string& t = a.seed_text;
-    std::uint64_t v = 0;
-    const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), v);
-    if (t.front() == '-' || t.front() == '+' || ec != std::errc() || end != t.data() + t.size())
+    std::size_t v = 0;
+    static_assert(sizeof v == sizeof a.seed, "a seed is a 64-bit count");
+    if (!parse_count(t, &v))
       throw InputError("--seed " + text_excerpt(t) + ": expected a whole number from 0 to 18446744073709551615");
     a.seed = v;
   }

@@ -12,6 +12,7 @@
 #include <system_error>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/parse_number.hpp"
 
 namespace adjoin {
 namespace {
@@ -26,9 +27,9 @@ void remove_stale_temporaries(const std::filesystem::path& target) {
     const std::string name = it->path().filename().string();
     if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
     const std::string digits = name.substr(prefix.size());
-    if (!std::all_of(digits.begin(), digits.end(), [](char c) { return c >= '0' && c <= '9'; }) || digits.size() > 9)
-      continue;
-    const pid_t pid = static_cast<pid_t>(std::stol(digits));
+    std::size_t number = 0;
+    if (digits.size() > 9 || !parse_count(digits, &number)) continue;
+    const pid_t pid = static_cast<pid_t>(number);
     if (pid == ::getpid()) continue;
     if (::kill(pid, 0) != 0 && errno == ESRCH) {
       std::error_code ignored;

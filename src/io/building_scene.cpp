@@ -8,6 +8,7 @@
 #include <toml++/toml.h>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "structure_edits.hpp"
@@ -54,8 +55,8 @@ void check_spectra_signals(const std::vector<std::string>& signals, const struct
     bool ok = false;
     if (b && signal.size() > 7 && signal.compare(signal.size() - 4, 4, "_abs") == 0) {
       const std::string digits = signal.substr(3, signal.size() - 7);
-      ok = !digits.empty() && digits.size() < 5 && digits.find_first_not_of("0123456789") == std::string::npos &&
-           std::stoi(digits) >= 1 && std::stoi(digits) <= b->floors();
+      std::size_t floor = 0;
+      ok = digits.size() < 5 && parse_count(digits, &floor) && floor >= 1 && floor <= static_cast<std::size_t>(b->floors());
     }
     if (ok) continue;
     std::string where = file;

@@ -183,4 +183,18 @@ std::string run_gnuplot(const std::string& script, const std::string& format, co
   return bytes;
 }
 
+std::string gnuplot_log_tics(const char* axis, double lo, double hi) {
+  if (!(lo > 0.0 && hi > lo) || hi / lo >= 100.0) return "";
+  std::string list;
+  for (int e = static_cast<int>(std::floor(std::log10(lo))) - 1; e <= static_cast<int>(std::ceil(std::log10(hi))); ++e)
+    for (double m : hi / lo < 10.0 ? std::vector<double>{1, 1.5, 2, 3, 4, 5, 6, 8} : std::vector<double>{1, 2, 5}) {
+      const double v = m * std::pow(10.0, e);
+      if (v < lo * (1 - 1e-9) || v > hi * (1 + 1e-9)) continue;
+      char text[64];
+      std::snprintf(text, sizeof text, "%s\"%g\" %.12g", list.empty() ? "" : ", ", v, v);
+      list += text;
+    }
+  return list.empty() ? "" : "set " + std::string(axis) + "tics (" + list + ")\n";
+}
+
 }  // namespace adjoin

@@ -95,12 +95,8 @@ const char* kind_name(Kind kind) {
   return "?";
 }
 
-std::string format_number(double v) {
-  std::ostringstream s;
-  s.precision(12);
-  s << v;
-  return s.str();
-}
+// Numbers in the scene's messages: 12 significant digits (io/text_file.hpp).
+std::string format_number(double v) { return number_text(v, 12); }
 
 std::vector<std::string> all_known_keys() {
   std::vector<std::string> keys;

@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/structure/contact_rules.hpp"
 #include "toml_text.hpp"
@@ -28,10 +29,11 @@ std::vector<std::string> split_path(const std::string& key, const std::string& o
   return parts;
 }
 
-bool is_index(const std::string& part) {
-  if (part.empty() || part.size() > 6) return false;
-  for (char c : part)
-    if (!std::isdigit(static_cast<unsigned char>(c))) return false;
+// A table's number in a key path (link.2): up to six digits.
+bool is_index(const std::string& part, std::size_t* n = nullptr) {
+  std::size_t value = 0;
+  if (part.size() > 6 || !parse_count(part, &value)) return false;
+  if (n) *n = value;
   return true;
 }
 
@@ -49,9 +51,9 @@ Parent walk(toml::table& root, const std::vector<std::string>& parts, const std:
     const std::string& part = parts[i];
     toml::node* next = nullptr;
     if (toml::array* array = current->as_array()) {
-      if (!is_index(part))
+      std::size_t n = 0;
+      if (!is_index(part, &n))
         throw InputError(origin + ": " + path + " is a list of tables: number them from 1, e.g. " + path + ".1");
-      const std::size_t n = std::stoul(part);
       if (n < 1 || n > array->size())
         throw InputError(origin + ": the scene has " + std::to_string(array->size()) + " [[" + path + "]] table" +
                          (array->size() == 1 ? "" : "s") + ", not a number " + text_excerpt(part));
@@ -87,8 +89,8 @@ void unset(toml::table& root, const std::string& key) {
   const Parent parent = walk(root, parts, origin);
   const std::string& leaf = parts.back();
   if (toml::array* array = parent.node->as_array()) {
-    if (!is_index(leaf)) throw InputError(origin + ": number the [[" + parent.path + "]] tables from 1");
-    const std::size_t n = std::stoul(leaf);
+    std::size_t n = 0;
+    if (!is_index(leaf, &n)) throw InputError(origin + ": number the [[" + parent.path + "]] tables from 1");
     if (n < 1 || n > array->size())
       throw InputError(origin + ": the scene has " + std::to_string(array->size()) + " [[" + parent.path + "]] tables");
     array->erase(array->begin() + static_cast<std::ptrdiff_t>(n - 1));

@@ -12,6 +12,7 @@
 
 #include "../detail/nearest.hpp"
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/io/file_name.hpp"
 #include "adjoin/io/sweep_file.hpp"
 #include "adjoin/io/sweep_scenes.hpp"
@@ -23,13 +24,6 @@ namespace adjoin {
 namespace {
 
 std::string shortest(double v) { return sweep_number_cell(v); }
-
-bool parse_double(const std::string& text, double* value) {
-  if (text.empty()) return false;
-  const char* end = text.data() + text.size();
-  const auto result = std::from_chars(text.data(), end, *value);
-  return result.ec == std::errc() && result.ptr == end;
-}
 
 // A double as a TOML float ("1.0", not "1", so that it stays a float).
 std::string toml_float(double v) {
@@ -247,6 +241,124 @@ void check_axis_keys(const SweepReader& r, const SweepSpec& spec) {
   }
 }
 
+// One [[axis]] table: its key or name (a new column of the table) and its values, listed or
+// a range.
+SweepAxis read_axis(const SweepReader& r, const toml::table& t, const std::filesystem::path& folder,
+                    std::set<std::string>& column_names) {
+  check_keys(r, t, {"key", "name", "values", "from", "to", "n", "spacing"}, "[[axis]]");
+  SweepAxis axis;
+  axis.line = r.line(&t);
+  if (auto k = t.get("key")) {
+    if (!k->is_string() || k->as_string()->get().empty()) r.fail(k, "axis key must be a dotted scene key (a string), e.g. \"model.mu\"");
+    axis.key = k->as_string()->get();
+    check_key_length(r, k, axis.key);
+  }
+  if (auto n = t.get("name")) {
+    if (!n->is_string() || n->as_string()->get().empty()) r.fail(n, "axis name must be a non-empty string");
+    axis.name = n->as_string()->get();
+    if (axis.name.size() > 200) r.fail(n, "axis name " + escaped_excerpt(axis.name) + " is longer than 200 characters");
+  }
+  if (axis.name.empty()) axis.name = axis.key;
+  if (axis.name.empty()) r.fail(&t, "[[axis]] needs key = \"dotted.scene.key\" or, when every value is a table of edits, name = \"column\"");
+  if (axis.name.rfind("sa_", 0) == 0 || !column_names.insert(axis.name).second)
+    r.fail(&t, "axis name \"" + axis.name + "\" is already a column of the table; give the axis another name = \"...\"");
+  const bool has_values = t.contains("values");
+  const bool has_range = t.contains("from") || t.contains("to") || t.contains("n");
+  if (has_values == has_range) r.fail(&t, "axis " + axis.name + ": give either values = [...] or from, to, n (and spacing)");
+  if (has_range) {
+    if (axis.key.empty()) r.fail(&t, "axis " + axis.name + ": a range needs key = \"dotted.scene.key\"");
+    for (double v : range_values(r, t, axis.name)) {
+      SweepSetting s;
+      s.label = shortest(v);
+      s.number = v;
+      s.line = axis.line;
+      s.set.emplace_back(axis.key, SweepValue{v, toml_float(v)});
+      axis.values.push_back(std::move(s));
+    }
+  } else {
+    auto values = t.get("values")->as_array();
+    if (!values || values->empty()) r.fail(t.get("values"), "axis " + axis.name + ": values must be a non-empty array");
+    std::set<std::string> labels;
+    for (auto& v : *values) {
+      SweepSetting s;
+      s.line = r.line(&v);
+      if (auto vt = v.as_table()) {
+        check_keys(r, *vt, {"name", "set", "unset"}, "an axis value");
+        auto label = vt->get("name");
+        if (!label || !label->is_string() || label->as_string()->get().empty())
+          r.fail(&v, "axis " + axis.name + ": a value written as a table needs name = \"label\" (and set = {...}, unset = [...])");
+        s.label = label->as_string()->get();
+        // A name that is a number ({name = "0", unset = ["link"]}: "no damper" as slip 0) keeps
+        // the axis a number column when its other values are numbers.
+        if (double number = 0.0; parse_finite(s.label, &number)) s.number = number;
+        read_edits(r, *vt, folder, s);
+      } else {
+        if (axis.key.empty()) r.fail(&v, "axis " + axis.name + ": a plain value needs the axis' key = \"dotted.scene.key\"");
+        auto [edit, label] = value_text(r, v, axis.key, &s.number);
+        if (axis.key == "ground.file" && v.is_string())
+          edit = string_value(resolve_path_value(axis.key, v.as_string()->get(), folder));
+        s.label = label;
+        s.set.emplace_back(axis.key, std::move(edit));
+      }
+      if (!labels.insert(s.label).second) r.fail(&v, "axis " + axis.name + ": the value " + s.label + " appears twice");
+      axis.values.push_back(std::move(s));
+    }
+  }
+  return axis;
+}
+
+// The [[motion]] tables (the table's motion column), or the base scene's own ground as "base".
+void read_motions(const SweepReader& r, const toml::table& root, const std::filesystem::path& folder, SweepSpec& spec) {
+  if (auto node = root.get("motion")) {
+    auto motions = node->as_array();
+    if (!motions || !motions->is_array_of_tables()) r.fail(node, "motion must be written as [[motion]] tables");
+    std::set<std::string> names;
+    for (auto& element : *motions) {
+      const toml::table& t = *element.as_table();
+      check_keys(r, t, {"name", "set", "unset"}, "[[motion]]");
+      SweepSetting s;
+      s.line = r.line(&t);
+      auto label = t.get("name");
+      if (!label || !label->is_string() || label->as_string()->get().empty())
+        r.fail(&t, "[[motion]] needs name = \"...\" (the table's motion column)");
+      s.label = label->as_string()->get();
+      if (!names.insert(s.label).second) r.fail(label, "motion \"" + s.label + "\" appears twice");
+      read_edits(r, t, folder, s);
+      spec.motions.push_back(std::move(s));
+    }
+  }
+  if (spec.motions.empty()) {
+    SweepSetting s;
+    s.label = "base";
+    spec.motions.push_back(s);
+  }
+}
+
+// [output]: the periods of the Sa columns and their damping.
+void read_output(const SweepReader& r, const toml::table& root, SweepSpec& spec) {
+  if (auto node = root.get("output")) {
+    auto t = node->as_table();
+    if (!t) r.fail(node, "output must be a table ([output])");
+    check_keys(r, *t, {"im_periods", "im_damping"}, "[output]");
+    if (auto p = t->get("im_periods")) {
+      auto a = p->as_array();
+      if (!a) r.fail(p, "output.im_periods must be an array of periods [s], e.g. [0.5, 1.0]");
+      for (auto& v : *a) {
+        auto x = v.value<double>();
+        if (!x || !(*x > 0.0) || !std::isfinite(*x)) r.fail(&v, "output.im_periods: each period must be a positive number [s]");
+        if (std::find(spec.im_periods.begin(), spec.im_periods.end(), *x) != spec.im_periods.end())
+          r.fail(&v, "output.im_periods: the period " + shortest(*x) + " appears twice");
+        spec.im_periods.push_back(*x);
+      }
+    }
+    if (auto d = t->get("im_damping")) {
+      auto x = d->value<double>();
+      if (!x || !(*x >= 0.0 && *x < 1.0)) r.fail(d, "output.im_damping must be a damping ratio in [0, 1)");
+      spec.im_damping = *x;
+    }
+  }
+}
+
 }  // namespace
 
 SweepSpec parse_sweep(const std::string& text, const std::string& name) {
@@ -285,114 +397,10 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   if (auto node = root.get("axis")) {
     auto axes = node->as_array();
     if (!axes || !axes->is_array_of_tables()) r.fail(node, "axis must be written as [[axis]] tables");
-    for (auto& element : *axes) {
-      const toml::table& t = *element.as_table();
-      check_keys(r, t, {"key", "name", "values", "from", "to", "n", "spacing"}, "[[axis]]");
-      SweepAxis axis;
-      axis.line = r.line(&t);
-      if (auto k = t.get("key")) {
-        if (!k->is_string() || k->as_string()->get().empty()) r.fail(k, "axis key must be a dotted scene key (a string), e.g. \"model.mu\"");
-        axis.key = k->as_string()->get();
-        check_key_length(r, k, axis.key);
-      }
-      if (auto n = t.get("name")) {
-        if (!n->is_string() || n->as_string()->get().empty()) r.fail(n, "axis name must be a non-empty string");
-        axis.name = n->as_string()->get();
-        if (axis.name.size() > 200) r.fail(n, "axis name " + escaped_excerpt(axis.name) + " is longer than 200 characters");
-      }
-      if (axis.name.empty()) axis.name = axis.key;
-      if (axis.name.empty()) r.fail(&t, "[[axis]] needs key = \"dotted.scene.key\" or, when every value is a table of edits, name = \"column\"");
-      if (axis.name.rfind("sa_", 0) == 0 || !column_names.insert(axis.name).second)
-        r.fail(&t, "axis name \"" + axis.name + "\" is already a column of the table; give the axis another name = \"...\"");
-      const bool has_values = t.contains("values");
-      const bool has_range = t.contains("from") || t.contains("to") || t.contains("n");
-      if (has_values == has_range) r.fail(&t, "axis " + axis.name + ": give either values = [...] or from, to, n (and spacing)");
-      if (has_range) {
-        if (axis.key.empty()) r.fail(&t, "axis " + axis.name + ": a range needs key = \"dotted.scene.key\"");
-        for (double v : range_values(r, t, axis.name)) {
-          SweepSetting s;
-          s.label = shortest(v);
-          s.number = v;
-          s.line = axis.line;
-          s.set.emplace_back(axis.key, SweepValue{v, toml_float(v)});
-          axis.values.push_back(std::move(s));
-        }
-      } else {
-        auto values = t.get("values")->as_array();
-        if (!values || values->empty()) r.fail(t.get("values"), "axis " + axis.name + ": values must be a non-empty array");
-        std::set<std::string> labels;
-        for (auto& v : *values) {
-          SweepSetting s;
-          s.line = r.line(&v);
-          if (auto vt = v.as_table()) {
-            check_keys(r, *vt, {"name", "set", "unset"}, "an axis value");
-            auto label = vt->get("name");
-            if (!label || !label->is_string() || label->as_string()->get().empty())
-              r.fail(&v, "axis " + axis.name + ": a value written as a table needs name = \"label\" (and set = {...}, unset = [...])");
-            s.label = label->as_string()->get();
-            // A name that is a number ({name = "0", unset = ["link"]}: "no damper" as slip 0) keeps
-            // the axis a number column when its other values are numbers.
-            if (double number = 0.0; parse_double(s.label, &number) && std::isfinite(number)) s.number = number;
-            read_edits(r, *vt, folder, s);
-          } else {
-            if (axis.key.empty()) r.fail(&v, "axis " + axis.name + ": a plain value needs the axis' key = \"dotted.scene.key\"");
-            auto [edit, label] = value_text(r, v, axis.key, &s.number);
-            if (axis.key == "ground.file" && v.is_string())
-              edit = string_value(resolve_path_value(axis.key, v.as_string()->get(), folder));
-            s.label = label;
-            s.set.emplace_back(axis.key, std::move(edit));
-          }
-          if (!labels.insert(s.label).second) r.fail(&v, "axis " + axis.name + ": the value " + s.label + " appears twice");
-          axis.values.push_back(std::move(s));
-        }
-      }
-      spec.axes.push_back(std::move(axis));
-    }
+    for (auto& element : *axes) spec.axes.push_back(read_axis(r, *element.as_table(), folder, column_names));
   }
-  if (auto node = root.get("motion")) {
-    auto motions = node->as_array();
-    if (!motions || !motions->is_array_of_tables()) r.fail(node, "motion must be written as [[motion]] tables");
-    std::set<std::string> names;
-    for (auto& element : *motions) {
-      const toml::table& t = *element.as_table();
-      check_keys(r, t, {"name", "set", "unset"}, "[[motion]]");
-      SweepSetting s;
-      s.line = r.line(&t);
-      auto label = t.get("name");
-      if (!label || !label->is_string() || label->as_string()->get().empty())
-        r.fail(&t, "[[motion]] needs name = \"...\" (the table's motion column)");
-      s.label = label->as_string()->get();
-      if (!names.insert(s.label).second) r.fail(label, "motion \"" + s.label + "\" appears twice");
-      read_edits(r, t, folder, s);
-      spec.motions.push_back(std::move(s));
-    }
-  }
-  if (spec.motions.empty()) {
-    SweepSetting s;
-    s.label = "base";
-    spec.motions.push_back(s);
-  }
-  if (auto node = root.get("output")) {
-    auto t = node->as_table();
-    if (!t) r.fail(node, "output must be a table ([output])");
-    check_keys(r, *t, {"im_periods", "im_damping"}, "[output]");
-    if (auto p = t->get("im_periods")) {
-      auto a = p->as_array();
-      if (!a) r.fail(p, "output.im_periods must be an array of periods [s], e.g. [0.5, 1.0]");
-      for (auto& v : *a) {
-        auto x = v.value<double>();
-        if (!x || !(*x > 0.0) || !std::isfinite(*x)) r.fail(&v, "output.im_periods: each period must be a positive number [s]");
-        if (std::find(spec.im_periods.begin(), spec.im_periods.end(), *x) != spec.im_periods.end())
-          r.fail(&v, "output.im_periods: the period " + shortest(*x) + " appears twice");
-        spec.im_periods.push_back(*x);
-      }
-    }
-    if (auto d = t->get("im_damping")) {
-      auto x = d->value<double>();
-      if (!x || !(*x >= 0.0 && *x < 1.0)) r.fail(d, "output.im_damping must be a damping ratio in [0, 1)");
-      spec.im_damping = *x;
-    }
-  }
+  read_motions(r, root, folder, spec);
+  read_output(r, root, spec);
   const double total = [&] {
     double n = static_cast<double>(spec.motions.size());
     for (const auto& a : spec.axes) n *= static_cast<double>(a.values.size());

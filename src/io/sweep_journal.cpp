@@ -7,8 +7,9 @@
 #include <set>
 #include <sstream>
 
-#include "../detail/parse_number.hpp"
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/csv_line.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/output_place.hpp"
 #include "adjoin/io/sweep_files.hpp"
@@ -17,10 +18,12 @@
 namespace adjoin {
 namespace {
 
-using detail::parse_double;
-using detail::parse_size;
-
-std::size_t cell_index(const std::vector<std::string>& cells) { return std::stoull(cells.at(0)); }
+// The run number of a row read back (checked by sweep_row_problem).
+std::size_t cell_index(const std::vector<std::string>& cells) {
+  std::size_t index = 0;
+  parse_count(cells.at(0), &index);
+  return index;
+}
 
 }  // namespace
 
@@ -36,7 +39,7 @@ std::string sweep_row_problem(const SweepSpec& spec, const SweepShard& shard, co
   const auto columns = sweep_columns(spec);
   if (cells.size() != columns.size())
     return std::to_string(cells.size()) + " cells; the sweep's table has " + std::to_string(columns.size());
-  if (!parse_size(cells[0], index) || cells[0] != std::to_string(*index))
+  if (!parse_count(cells[0], index) || cells[0] != std::to_string(*index))
     return "index " + escaped_excerpt(cells[0]) + " is not a run number";
   if (*index >= spec.runs())
     return "run " + cells[0] + " does not exist (the sweep has " + std::to_string(spec.runs()) + " runs)";
@@ -71,10 +74,10 @@ std::string sweep_row_problem(const SweepSpec& spec, const SweepShard& shard, co
     switch (columns[i].type) {
       case ColumnType::number:
         // An empty cell is a value the run did not have (a failed run, or no input energy).
-        if (!cell.empty() && !(parse_double(cell, &number) && std::isfinite(number))) return bad("a finite number or nothing");
+        if (!cell.empty() && !parse_finite(cell, &number)) return bad("a finite number or nothing");
         break;
       case ColumnType::integer:
-        if (cell.empty() ? !(failed || columns[i].may_be_empty) : !parse_size(cell, &count))
+        if (cell.empty() ? !(failed || columns[i].may_be_empty) : !parse_count(cell, &count))
           return bad("a count (nothing only for a failed run)");
         break;
       case ColumnType::boolean:

@@ -7,17 +7,14 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "../detail/parse_number.hpp"
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/sweep_files.hpp"
 
 namespace adjoin {
 
 namespace {
-
-using detail::parse_double;
-using detail::parse_size;
 
 std::string shortest(double v) { return sweep_number_cell(v); }
 
@@ -56,12 +53,12 @@ nlohmann::ordered_json cell_json(ColumnType type, const std::string& cell) {
   switch (type) {
     case ColumnType::integer: {
       std::size_t v = 0;
-      if (parse_size(cell, &v)) return v;
+      if (parse_count(cell, &v)) return v;
       break;
     }
     case ColumnType::number: {
       double v = 0;
-      if (parse_double(cell, &v)) return v;
+      if (const NumberStatus s = parse_number(cell, v); s == NumberStatus::ok || s == NumberStatus::not_finite) return v;
       break;
     }
     case ColumnType::boolean: return cell == "true";
@@ -199,7 +196,7 @@ SweepTableFile merge_sweep_tables(const std::vector<SweepTableFile>& parts) {
     if (!same_columns) throw InputError(name + ": its columns differ from those of " + first.file.string());
     for (const auto& row : p.table.rows) {
       std::size_t index = 0;
-      if (row.empty() || !parse_size(row[0], &index) || index >= first.runs)
+      if (row.empty() || !parse_count(row[0], &index) || index >= first.runs)
         throw InputError(name + ": a row has index \"" + (row.empty() ? std::string() : row[0]) + "\"; expected 0.." +
                          std::to_string(first.runs - 1));
       if (by_index[index])

@@ -7,8 +7,10 @@
 #include <fstream>
 #include <numbers>
 #include <sstream>
+#include <string_view>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "../ground/synthesis_detail.hpp"
@@ -136,8 +138,7 @@ TargetSpectrum load_target_spectrum(const std::filesystem::path& path) {
       std::size_t end = line.find_first_of(" \t,;", pos);
       if (end == std::string::npos) end = line.size();
       double v = 0.0;
-      const auto r = std::from_chars(line.data() + pos, line.data() + end, v);
-      if (r.ec != std::errc() || r.ptr != line.data() + end || !std::isfinite(v))
+      if (!parse_finite(std::string_view(line).substr(pos, end - pos), &v))
         throw InputError(where + "'" + line.substr(pos, end - pos) + "' is not a number (expected period [s] and PSA [g])");
       values.push_back(v);
       pos = end;
@@ -177,8 +178,7 @@ TargetSpectrum parse_target_spectrum(const std::string& text) {
     double ag = 0.25;
     if (parts.size() >= 2) {
       const std::string& a = parts[1];
-      const auto r = std::from_chars(a.data(), a.data() + a.size(), ag);
-      if (a.empty() || r.ec != std::errc() || r.ptr != a.data() + a.size())
+      if (!parse_finite(a, &ag))
         throw InputError("'" + text + "': '" + a + "' is not a number (expected ag in g, e.g. ec8:B:0.25)");
     }
     int type = 1;

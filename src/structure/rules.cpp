@@ -5,17 +5,14 @@
 #include <set>
 #include <sstream>
 
+#include "adjoin/core/number_text.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/structure/modal.hpp"
 
 namespace adjoin::structure {
 
-std::string number_text(double v) {
-  std::ostringstream s;
-  s.precision(6);
-  s << v;
-  return s.str();
-}
+// Numbers in the structure's messages: 6 significant digits.
+std::string number_text(double v) { return adjoin::number_text(v, 6); }
 
 std::string Range::problem(double v) const {
   if (v >= lo && v <= hi) return "";

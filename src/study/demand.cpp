@@ -1,4 +1,4 @@
-#include "../detail/parse_number.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/study/demand.hpp"
 
 #include <algorithm>
@@ -15,7 +15,6 @@
 namespace adjoin {
 namespace {
 
-using detail::parse_double;
 
 }  // namespace
 
@@ -107,10 +106,10 @@ std::string demand_im_column(const SweepCsvTable& table, const std::string& im) 
     if (std::find(table.header.begin(), table.header.end(), column) == table.header.end()) {
       // Accept "sa:1.0" for the column sa_1: compare the periods as numbers.
       double wanted = 0.0;
-      if (parse_double(im.substr(3), &wanted))
+      if (parse_finite(im.substr(3), &wanted))
         for (const auto& h : table.header) {
           double t = 0.0;
-          if (h.rfind("sa_", 0) == 0 && parse_double(h.substr(3), &t) && t == wanted) column = h;
+          if (h.rfind("sa_", 0) == 0 && parse_finite(h.substr(3), &t) && t == wanted) column = h;
         }
     }
   } else {
@@ -149,7 +148,7 @@ std::vector<DemandGroupFit> fit_sweep_demand(const SweepCsvTable& table, const s
     auto& [x, y] = data[key];
     double im_value = 0.0, d = 0.0;
     const bool failed = error_column < row.size() && !row[error_column].empty();
-    if (failed || !parse_double(row[im_column], &im_value) || !parse_double(row[response_column], &d) ||
+    if (failed || !parse_finite(row[im_column], &im_value) || !parse_finite(row[response_column], &d) ||
         !(im_value > 0.0) || !(d > 0.0) || !std::isfinite(im_value) || !std::isfinite(d)) {
       ++skipped[key];
       continue;

@@ -382,55 +382,6 @@ SweepTable sweep_table(const SweepSpec& spec, const std::vector<SweepRow>& rows)
   return table;
 }
 
-std::string csv_line(const std::vector<std::string>& cells) {
-  std::string line;
-  for (std::size_t i = 0; i < cells.size(); ++i) {
-    if (i) line += ',';
-    const std::string& c = cells[i];
-    if (c.find_first_of(",\"\n\r") == std::string::npos) {
-      line += c;
-    } else {
-      line += '"';
-      for (char ch : c) {
-        if (ch == '"') line += '"';
-        line += ch;
-      }
-      line += '"';
-    }
-  }
-  return line;
-}
-
-bool split_csv_line(const std::string& line, std::vector<std::string>* cells) {
-  cells->clear();
-  std::string cell;
-  bool quoted = false, was_quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"') {
-        if (i + 1 < line.size() && line[i + 1] == '"') { cell += '"'; ++i; }
-        else quoted = false;
-      } else {
-        cell += c;
-      }
-    } else if (c == ',') {
-      cells->push_back(std::move(cell));
-      cell.clear();
-      was_quoted = false;
-    } else if (c == '"' && cell.empty() && !was_quoted) {
-      quoted = was_quoted = true;
-    } else if (c == '"' || was_quoted) {
-      return false;  // a quote inside an unquoted cell, or text after a closing quote
-    } else {
-      cell += c;
-    }
-  }
-  if (quoted) return false;
-  cells->push_back(std::move(cell));
-  return true;
-}
-
 std::string sweep_csv(const SweepTable& table) {
   std::vector<std::string> header;
   for (const auto& c : table.columns) header.push_back(c.name);

@@ -30,6 +30,10 @@ std::string gnuplot_tick_format(const char* axis, const std::vector<double>& val
 // `scale`), 1, 2 or 5 times a power of ten: stacked panels are short, and gnuplot's own
 // choice crowds their labels.
 std::string gnuplot_tick_step(const char* axis, const std::vector<double>& values, double scale = 1.0);
+// "set <axis>tics (...)": labelled ticks on a log axis that spans less than two decades,
+// where gnuplot labels only the powers of ten (none, or one): 1, 2, 5 times powers of ten
+// inside [lo, hi] (finer under one decade). Empty otherwise (gnuplot's own ticks serve).
+std::string gnuplot_log_tics(const char* axis, double lo, double hi);
 // A datablock $name of whitespace-separated rows, one column a vector.
 void gnuplot_datablock(std::ostringstream& script, const std::string& name, const std::vector<std::vector<double>>& columns);
 // The common look of adjoin's figures: light grid, readable fonts, one palette of 12 distinct

@@ -1,5 +1,5 @@
 #pragma once
-// The figure of one accelerogram, drawn with gnuplot (see plots.hpp for the conventions):
+// The figure of one accelerogram, drawn with gnuplot (see io/plots.hpp for the conventions):
 // four panels on one time axis,
 //   acceleration [g], velocity [m/s], displacement [m]   (trapezoid integrals from rest,
 //                                                         ground/integration.hpp)
@@ -9,7 +9,7 @@
 #include <string>
 
 #include "adjoin/ground/record.hpp"
-#include "adjoin/io/plots.hpp"
+#include "adjoin/io/plot_style.hpp"
 
 namespace adjoin {
 

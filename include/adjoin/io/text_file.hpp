@@ -13,6 +13,8 @@
 #include <string>
 #include <string_view>
 
+#include "adjoin/core/number_text.hpp"  // (number_text, for io's messages)
+
 namespace adjoin {
 
 // `what` names the kind of file in messages ("scene", "sweep").

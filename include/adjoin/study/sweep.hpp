@@ -35,6 +35,7 @@
 #include <variant>
 #include <vector>
 
+#include "adjoin/core/csv_line.hpp"
 #include "adjoin/study/run_spec.hpp"
 
 namespace adjoin {
@@ -202,10 +203,7 @@ std::vector<std::string> sweep_cells(const SweepSpec& spec, const SweepRow& row)
 std::string sweep_number_cell(double v);
 SweepTable sweep_table(const SweepSpec& spec, const std::vector<SweepRow>& rows);
 
-// CSV: a header line, then one line per row; cells with ',', '"' or a line break are quoted.
-std::string csv_line(const std::vector<std::string>& cells);
-// Splits one CSV line (no line break); false if the quoting is broken.
-bool split_csv_line(const std::string& line, std::vector<std::string>* cells);
+// CSV: a header line, then one line per row (core/csv_line.hpp: csv_line, split_csv_line).
 std::string sweep_csv(const SweepTable& table);
 
 // A shard of the runs: indices i with i mod count == index (0-based).

@@ -188,7 +188,7 @@ int resolve_column(const std::string& wanted, const std::vector<std::string>& na
   const std::string_view w = trim(wanted);
   if (!w.empty() && std::all_of(w.begin(), w.end(), is_digit)) {
     std::size_t index = 0;
-    std::from_chars(w.data(), w.data() + w.size(), index);
+    parse_count(w, &index);  // digits only; too many for a size_t leave 0, which does not exist
     if (index < 1 || index > names.size())
       fail(name, line, role + " column " + std::string(w) + " does not exist (expected 1.." + std::to_string(names.size()) +
                            "; header: " + list_names(names) + ")");

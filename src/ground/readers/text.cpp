@@ -48,13 +48,6 @@ std::vector<Line> first_lines(std::string_view text, std::size_t count) {
 
 char lower(char c) { return static_cast<char>(std::tolower(static_cast<unsigned char>(c))); }
 
-std::string_view trim(std::string_view s) {
-  std::size_t b = 0, e = s.size();
-  while (b < e && is_blank(s[b])) ++b;
-  while (e > b && is_blank(s[e - 1])) --e;
-  return s.substr(b, e - b);
-}
-
 std::string to_lower(std::string_view s) {
   std::string out(s);
   for (char& c : out) c = lower(c);
@@ -109,58 +102,16 @@ void fail(const std::string& name, std::size_t line, const std::string& what) {
 
 void fail(const std::string& name, const std::string& what) { throw InputError(name + ": " + what); }
 
-NumberStatus parse_number(const char* p, const char* end, double& value, const char*& stop) {
-  const char* q = p;
-  if (q != end && *q == '+') {
-    ++q;
-    if (q == end || *q == '+' || *q == '-') return NumberStatus::not_a_number;
-  }
-  auto result = std::from_chars(q, end, value, std::chars_format::general);
-  if (result.ec == std::errc::invalid_argument) return NumberStatus::not_a_number;
-  stop = result.ptr;
-  if (stop != end && (*stop == 'D' || *stop == 'd')) {  // 1.5D-03
-    const char* e = stop + 1;
-    if (e != end && (*e == '+' || *e == '-')) ++e;
-    if (e != end && is_digit(*e)) {
-      while (e != end && is_digit(*e)) ++e;
-      std::string copy(q, e);
-      copy[static_cast<std::size_t>(stop - q)] = 'e';
-      auto again = std::from_chars(copy.data(), copy.data() + copy.size(), value, std::chars_format::general);
-      if (again.ec == std::errc::invalid_argument) return NumberStatus::not_a_number;
-      if (again.ec == std::errc::result_out_of_range) {
-        value = std::strtod(copy.c_str(), nullptr);
-        if (std::isinf(value)) return NumberStatus::out_of_range;
-      }
-      stop = e;
-      return std::isfinite(value) ? NumberStatus::ok : NumberStatus::not_finite;
-    }
-  }
-  if (result.ec == std::errc::result_out_of_range) {
-    // from_chars leaves the value alone on overflow and on underflow; strtod tells which.
-    const std::string copy(q, stop);
-    value = std::strtod(copy.c_str(), nullptr);
-    if (std::isinf(value)) return NumberStatus::out_of_range;
-  }
-  return std::isfinite(value) ? NumberStatus::ok : NumberStatus::not_finite;
-}
-
 double field_number(std::string_view field, const std::string& name, std::size_t line, const std::string& expected) {
   field = trim(field);
   if (field.empty()) fail(name, line, "empty field (expected " + expected + ")");
   double value = 0.0;
   const char* stop = field.data();
   const char* end = field.data() + field.size();
-  switch (parse_number(field.data(), end, value, stop)) {
-    case NumberStatus::ok:
-      if (stop == end) return value;
-      break;
-    case NumberStatus::not_finite:
-      fail(name, line, quote_token(field) + " is not a finite number (expected " + expected + ")");
-    case NumberStatus::out_of_range:
-      fail(name, line, quote_token(field) + " is out of the range of double (expected " + expected + ")");
-    case NumberStatus::not_a_number: break;
-  }
-  fail(name, line, quote_token(field) + " is not a number (expected " + expected + ")");
+  NumberStatus status = parse_number(field.data(), end, value, stop);
+  if (status == NumberStatus::ok && stop == end) return value;
+  if (status == NumberStatus::ok) status = NumberStatus::not_a_number;  // text after the number
+  fail(name, line, quote_token(field) + " " + number_problem(status) + " (expected " + expected + ")");
 }
 
 std::optional<double> number_at(std::string_view text, std::size_t from, std::size_t* end) {

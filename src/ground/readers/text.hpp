@@ -11,6 +11,7 @@
 #include <string_view>
 #include <vector>
 
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/ground/record.hpp"
 #include "adjoin/ground/record_file.hpp"
 
@@ -41,7 +42,7 @@ std::vector<Line> first_lines(std::string_view text, std::size_t count);
 inline bool is_blank(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v'; }
 inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
 char lower(char c);
-std::string_view trim(std::string_view s);
+inline std::string_view trim(std::string_view s) { return trim_blanks(s); }  // core/parse_number.hpp
 std::string to_lower(std::string_view s);
 // Case-insensitive search; npos if absent.
 std::size_t find_ci(std::string_view text, std::string_view word, std::size_t from = 0);
@@ -54,10 +55,12 @@ std::string fmt(double x);
 [[noreturn]] void fail(const std::string& name, std::size_t line, const std::string& what);
 [[noreturn]] void fail(const std::string& name, const std::string& what);
 
-enum class NumberStatus { ok, not_a_number, not_finite, out_of_range };
 // Parses the number starting at p; *stop is where it ends. Accepts a leading '+', and Fortran
-// 'D' exponents. "nan" and "inf" are reported as not_finite.
-NumberStatus parse_number(const char* p, const char* end, double& value, const char*& stop);
+// 'D' exponents. "nan" and "inf" are reported as not_finite. (The project's one number
+// parser, core/parse_number.hpp, with Fortran exponents.)
+inline NumberStatus parse_number(const char* p, const char* end, double& value, const char*& stop) {
+  return scan_number(p, end, value, stop, /*fortran_exponent=*/true);
+}
 // A whole field must be one number; `expected` says what it should be.
 double field_number(std::string_view field, const std::string& name, std::size_t line, const std::string& expected);
 // The number at `from` in `text` (leading blanks skipped), or nullopt.
