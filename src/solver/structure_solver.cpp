@@ -210,7 +210,9 @@ class StructureStepper {
     std::map<double, std::vector<double>> weights;  // per order
     auto zener_law = [&](const structure::Zener& z) {
       auto& w = weights[z.order];
-      if (w.empty()) w = bdf2_weights(z.order, n_steps + 2);
+      if (w.empty())
+        w = options.quadrature == StructureSolverOptions::Quadrature::bdf2 ? bdf2_weights(z.order, n_steps + 2)
+                                                                            : grunwald_letnikov_weights(z.order, n_steps + 2);
       return std::make_unique<detail::RodLaw>(rod_of(z), z.k, h, options.history, w);
     };
     auto add_building = [&](const structure::Building& b, int offset) {
@@ -513,8 +515,9 @@ class StructureStepper {
     first.a_abs = Eigen::VectorXd::Zero(n);
     k0.apply(first.x, internal);
     fill_links(first, friction_now);
-    if (first.x.isZero() && first.v.isZero()) first.a_abs.setConstant(-first.ag);  // at rest: the floors move with the ground
-    else first.a_abs = (mass * first.ag - cv_now - internal).cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, first.ag);
+    // At rest no storey, damper or link force acts yet, so no floor accelerates absolutely
+    // (its relative acceleration is the ground's, a_g): exactly 0, as the formula gives it.
+    if (!(first.x.isZero() && first.v.isZero())) first.a_abs = (mass * first.ag - cv_now - internal).cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, first.ag);
     second = first;
     now_p = &first;
     next_p = &second;

@@ -56,6 +56,10 @@ struct StructureSolverOptions {
   // `implicit-damped` rule), `never` (trapezoidal throughout: for comparisons).
   enum class Restart { automatic, always, never };
   Restart restart = Restart::automatic;
+  // The Zener elements' convolution quadrature: BDF2 (second order, the `implicit` schemes'),
+  // or the first-order Grünwald–Letnikov weights (the `implicit-gl` scheme's).
+  enum class Quadrature { bdf2, grunwald_letnikov };
+  Quadrature quadrature = Quadrature::bdf2;
   std::size_t steps() const;
   bool IsValid(std::string* error) const;
 };
@@ -63,6 +67,7 @@ struct StructureSolverOptions {
 // The solver.scheme these options run, for summaries: "implicit-damped" restarts after every
 // switch, "implicit" by the automatic rule.
 inline const char* scheme_name(const StructureSolverOptions& o) {
+  if (o.quadrature == StructureSolverOptions::Quadrature::grunwald_letnikov) return "implicit-gl";
   return o.restart == StructureSolverOptions::Restart::always ? "implicit-damped"
          : o.restart == StructureSolverOptions::Restart::never ? "implicit (no restart)" : "implicit";
 }
