@@ -15,14 +15,10 @@ namespace adjoin::detail {
 LoopResult run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                             Observer& observer);
 
-// "implicit", "implicit-damped" and "implicit-gl".
-LoopResult run_implicit_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                               Observer& observer);
-
-// A model with a contact law (model.contact): the two blocks as a structure on the structure
-// solver ("implicit" only), reported as two-block States.
-LoopResult run_two_block_contact(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                                 Observer& observer);
+// "implicit", "implicit-damped" and "implicit-gl", with or without a contact law: the two blocks
+// as a structure on the structure solver, reported as two-block States.
+LoopResult run_two_block_on_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                                      Observer& observer);
 
 // The friction force a stuck damper must carry: q = (rho f2 - f1) / (rho + 1).
 inline double stick_force(const Model& model, double f1, double f2) {

@@ -42,15 +42,11 @@ SolverSummary simulate(const SolverOptions& options, const Model& model, const G
 
   // Each scheme is a stepper driven by the one time loop (time_loop.hpp), which also times
   // the run (set-up included).
-  detail::LoopResult run;
-  if (model.contact.model != structure::ContactModel::none) {
-    run = detail::run_two_block_contact(options, model, ground, observer);
-  } else switch (options.scheme) {
-    case Scheme::paper: run = detail::run_paper_scheme(options, model, ground, observer); break;
-    case Scheme::implicit:
-    case Scheme::implicit_damped:
-    case Scheme::implicit_gl: run = detail::run_implicit_scheme(options, model, ground, observer); break;
-  }
+  if (options.scheme == Scheme::paper && model.contact.model != structure::ContactModel::none)
+    throw InputError("solver.scheme = \"paper\": a contact law (model.contact) runs on the implicit schemes only; use solver.scheme = \"implicit\"");
+  const detail::LoopResult run = options.scheme == Scheme::paper
+                                     ? detail::run_paper_scheme(options, model, ground, observer)
+                                     : detail::run_two_block_on_structure(options, model, ground, observer);
 
   SolverSummary summary;
   summary.scheme = to_string(options.scheme);

@@ -210,7 +210,9 @@ class StructureStepper {
     std::map<double, std::vector<double>> weights;  // per order
     auto zener_law = [&](const structure::Zener& z) {
       auto& w = weights[z.order];
-      if (w.empty()) w = bdf2_weights(z.order, n_steps + 2);
+      if (w.empty())
+        w = options.quadrature == StructureSolverOptions::Quadrature::bdf2 ? bdf2_weights(z.order, n_steps + 2)
+                                                                            : grunwald_letnikov_weights(z.order, n_steps + 2);
       return std::make_unique<detail::RodLaw>(rod_of(z), z.k, h, options.history, w);
     };
     auto add_building = [&](const structure::Building& b, int offset) {
@@ -341,8 +343,8 @@ class StructureStepper {
       return m;
     };
     trapezoidal = step_matrices(0.5);
-    // The backward-Euler restart (as the two-block implicit schemes have it: see
-    // solver/implicit_scheme.cpp). Trapezoidal mechanics does not damp the modes the step does
+    // The backward-Euler restart (the `implicit` schemes' rule; the two-block scenes' implicit
+    // schemes are this stepper: solver/two_block_structure.cpp). Trapezoidal mechanics does not damp the modes the step does
     // not resolve (its amplification tends to -1 as omega h grows): a damper's switch (a jump of
     // its force) excites the stiffest mode, which rings on and can drive a damper's relative
     // velocity through zero again and again (spurious switches). The step after a switch is
@@ -513,8 +515,9 @@ class StructureStepper {
     first.a_abs = Eigen::VectorXd::Zero(n);
     k0.apply(first.x, internal);
     fill_links(first, friction_now);
-    if (first.x.isZero() && first.v.isZero()) first.a_abs.setConstant(-first.ag);  // at rest: the floors move with the ground
-    else first.a_abs = (mass * first.ag - cv_now - internal).cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, first.ag);
+    // At rest no storey, damper or link force acts yet, so no floor accelerates absolutely
+    // (its relative acceleration is the ground's, a_g): exactly 0, as the formula gives it.
+    if (!(first.x.isZero() && first.v.isZero())) first.a_abs = (mass * first.ag - cv_now - internal).cwiseProduct(inv_mass) - Eigen::VectorXd::Constant(n, first.ag);
     second = first;
     now_p = &first;
     next_p = &second;

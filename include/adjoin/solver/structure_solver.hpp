@@ -10,7 +10,7 @@
 // stiffness, so the step matrix A = M + h/2 C + h^2/4 K_eff is constant and factorised once);
 // the friction dampers' step forces Q from the box-constrained QP of their Delassus matrix
 // S = h B A^-1 B' (solver/box_qp: exact stick, no regularisation). Second order where the
-// dampers do not switch. As in the two-block implicit scheme, the step after a damper's switch
+// dampers do not switch. As the implicit schemes have it, the step after a damper's switch
 // is taken with backward-Euler mechanics (A = M + h C + h^2 K_eff, also factorised once) when
 // the structure's stiffest mode is not resolved by the step, h omega_max > 1: trapezoidal
 // mechanics passes such a mode undamped, so what a switch excites rings on and drives the
@@ -20,7 +20,7 @@
 // Reported at each grid point: displacements, velocities, absolute accelerations, and per
 // link its force, stroke (s = x_A,i - x_B,j) and velocity; a friction link's force is its
 // value at the grid point (the force that keeps a stuck damper stuck, +-F when slipping), and
-// a switch is located inside the step as the two-block scheme locates it (a slip's end on
+// a switch is located inside the step (a slip's end on
 // the parabola of the link's grid velocities, an onset on the parabola of its grid stuck
 // forces), with the velocity kink at a slip's end integrated exactly.
 //
@@ -29,8 +29,9 @@
 // also for Rayleigh or none: A^-1 is dense); everything else is O(n) (the stiffness is a band
 // plus the links' entries) or O(dampers^2); a step allocates nothing. Plus each Zener
 // element's history push. The products and the passes over the floors use AVX where the
-// processor has it, with the same results bit for bit. The two-block scenes run on
-// solver/simulate.hpp.
+// processor has it, with the same results bit for bit. The two-block scenes' implicit schemes
+// ("implicit", "implicit-damped", "implicit-gl") are this stepper on the 1 + 1 structure
+// (solver/simulate.hpp); only the paper's explicit scheme has a stepper of its own.
 #include <Eigen/Dense>
 #include <cstddef>
 #include <limits>
@@ -57,6 +58,10 @@ struct StructureSolverOptions {
   // `implicit-damped` rule), `never` (trapezoidal throughout: for comparisons).
   enum class Restart { automatic, always, never };
   Restart restart = Restart::automatic;
+  // The Zener elements' convolution quadrature: BDF2 (second order, the `implicit` schemes'),
+  // or the first-order Grünwald–Letnikov weights (the `implicit-gl` scheme's).
+  enum class Quadrature { bdf2, grunwald_letnikov };
+  Quadrature quadrature = Quadrature::bdf2;
   std::size_t steps() const;
   bool IsValid(std::string* error) const;
 };
@@ -64,6 +69,7 @@ struct StructureSolverOptions {
 // The solver.scheme these options run, for summaries: "implicit-damped" restarts after every
 // switch, "implicit" by the automatic rule.
 inline const char* scheme_name(const StructureSolverOptions& o) {
+  if (o.quadrature == StructureSolverOptions::Quadrature::grunwald_letnikov) return "implicit-gl";
   return o.restart == StructureSolverOptions::Restart::always ? "implicit-damped"
          : o.restart == StructureSolverOptions::Restart::never ? "implicit (no restart)" : "implicit";
 }

@@ -1,8 +1,10 @@
-// The two-block system with a contact law (SPEC §6, `[model.contact]`): the paper's system is
-// the smallest structure (SPEC §5: one storey each, Zener storeys, one friction link, one
-// contact pair at gap0), so it runs on the structure solver, whose step is the implicit
-// scheme's for vectors (the two agree to rounding without contact: test_structure_solver), in
-// the model's dimensionless units, and its states are reported as the two-block State.
+// The implicit schemes of the two-block system ("implicit", "implicit-damped", "implicit-gl",
+// with or without a contact law, SPEC §6 `[model.contact]`): the paper's system is the smallest
+// structure (SPEC §5: one storey each, Zener storeys, one friction link, one contact pair at
+// gap0), so it runs on the structure solver, whose step is the implicit scheme's for vectors
+// (its restart rule and quadrature weights are the scheme's options), in the model's
+// dimensionless units, and its states are reported as the two-block State. Only the paper's
+// explicit scheme has a stepper of its own (paper_scheme.cpp).
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -18,9 +20,9 @@ namespace {
 
 class AsTwoBlock final : public StructureObserver {
  public:
-  AsTwoBlock(Observer& inner, bool damper, double m1, double m2) : inner_(inner), damper_(damper), m1_(m1), m2_(m2) {}
+  AsTwoBlock(Observer& inner, bool damper, bool locate_switches, double m1, double m2)
+      : inner_(inner), damper_(damper), locate_(locate_switches), m1_(m1), m2_(m2) {}
   void observe(const StructureState& s) override {
-    check_contact_energy(s);
     State out;
     out.t = s.t;
     out.x1 = s.x[0];
@@ -35,13 +37,24 @@ class AsTwoBlock final : public StructureObserver {
     if (damper_) {
       out.q = s.link_force[0];
       out.phase = s.link_phase[0];
-      out.t_switch = s.link_switch[0];
+      if (locate_) out.t_switch = s.link_switch[0];
     } else {
-      out.phase = s.v[0] - s.v[1] >= 0.0 ? Phase::slip_right : Phase::slip_left;
+      // Without a damper a "phase" is the sign of the relative velocity: its changes are
+      // located where it crosses zero (linear interpolation, second order).
+      const double w = s.v[0] - s.v[1];
+      out.phase = w > 0.0 ? Phase::slip_right : (w < 0.0 ? Phase::slip_left : Phase::stick);
+      // (As the two-block scheme did: not in the first step, which starts from rest.)
+      if (locate_ && points_ >= 2 && out.phase != phase_ && w_ != w)
+        out.t_switch = t_previous_ + std::clamp(w_ / (w_ - w), 0.0, 1.0) * (s.t - t_previous_);
+      w_ = w;
+      phase_ = out.phase;
+      t_previous_ = s.t;
+      ++points_;
     }
     out.fc = s.contact_force[0];
     out.contact_work = s.contact_work[0];
     out.contact_dissipated = s.contact_dissipated[0];
+    check_contact_energy(s);
     inner_.observe(out);
   }
   void impact(const Impact& i) override { inner_.impact(i); }
@@ -66,8 +79,12 @@ class AsTwoBlock final : public StructureObserver {
   }
 
   Observer& inner_;
-  bool damper_;
+  bool damper_, locate_;
   double m1_, m2_;
+  // Without a damper: the last grid point's phase, relative velocity and time, and the count.
+  Phase phase_ = Phase::stick;
+  double w_ = 0.0, t_previous_ = 0.0;
+  std::size_t points_ = 0;
   bool started_ = false;
   double t_ = 0.0, power_ = 0.0, input_ = 0.0, input_scale_ = 0.0;
 };
@@ -75,24 +92,25 @@ class AsTwoBlock final : public StructureObserver {
 }  // namespace
 
 
-LoopResult run_two_block_contact(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                                 Observer& observer) {
-  if (options.scheme != Scheme::implicit)
-    throw InputError("solver.scheme = \"" + to_string(options.scheme) +
-                     "\": a contact law (model.contact) runs on the implicit scheme only; use solver.scheme = \"implicit\"");
-  if (!(model.gap0 >= 0.0)) throw InputError("model.gap0 must be >= 0 with a contact law (the blocks may not start overlapping)");
+LoopResult run_two_block_on_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                                      Observer& observer) {
+  const bool contact = model.contact.model != structure::ContactModel::none;
+  if (contact && !(model.gap0 >= 0.0))
+    throw InputError("model.gap0 must be >= 0 with a contact law (the blocks may not start overlapping)");
   const structure::Structure s = structure::two_block_structure(model);
   StructureSolverOptions o;
   o.h = options.h;
   o.t_end = options.t_end;
   o.history = options.history;
+  if (options.scheme == Scheme::implicit_damped) o.restart = StructureSolverOptions::Restart::always;
+  if (options.scheme == Scheme::implicit_gl) o.quadrature = StructureSolverOptions::Quadrature::grunwald_letnikov;
   RunInfo info;
   info.model = model;
   info.h = options.h;
   info.steps = options.steps();
   info.history = options.history;
   observer.begin(info);
-  AsTwoBlock adapter(observer, model.mu > 0.0, s.a.masses[0], s.b->masses[0]);
+  AsTwoBlock adapter(observer, model.mu > 0.0, options.locate_switches, s.a.masses[0], s.b->masses[0]);
   const ScaledGround g(ground, 1.0 / kStandardGravity);
   const StructureRunSummary summary = simulate_structure(o, s, g, adapter);
   observer.end();
