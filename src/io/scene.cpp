@@ -189,7 +189,7 @@ void apply_override(toml::table& table, const std::string& text, std::map<std::s
       next = current->get(parts[i]);
       origins.emplace(path, origin);
     }
-    if (!next->is_table()) throw InputError(origin + ": " + text_excerpt(parts[i]) + " is not a table");
+    if (!next->is_table()) throw InputError(origin + ": " + text_excerpt(parts[i]) + " is not a table", field_path(key));
     current = next->as_table();
   }
   current->insert_or_assign(parts.back(), *valued.get("v"));
@@ -549,7 +549,8 @@ Scene parse_building_base(const std::string& text, const std::string& name, cons
 Scene detail::building_base_from_tree(toml::table table, const std::string& name, const std::vector<std::string>& overrides,
                                       const std::vector<std::string>& unsets, const toml::table* lines) {
   for (const auto& key : unsets)
-    if (!remove_key(table, key)) throw InputError("--unset " + text_excerpt(key) + ": the scene has no key or section " + text_excerpt(key));
+    if (!remove_key(table, key))
+      throw InputError("--unset " + text_excerpt(key) + ": the scene has no key or section " + text_excerpt(key), field_path(key));
   // The structure is read elsewhere; what stays is [ground], [solver], [output] and the name,
   // read as a scene with a unit two-block model (m = 1 kg, k = 1 N/m: T0 = 1 s, forces of
   // 1 kg g), so that times are in seconds and the ground's a_g is in g.
@@ -621,7 +622,8 @@ Scene load_scene(const std::filesystem::path& file, const std::vector<std::strin
         for (const auto& k : known_scene_keys())
           if (table.at_path(k)) present.push_back(k);
         throw InputError("--unset " + text_excerpt(key) + ": the scene has no key or section " + text_excerpt(key) +
-                         (present.empty() ? std::string() : "; did you mean " + nearest(key.substr(0, 200), present) + "?"));
+                         (present.empty() ? std::string() : "; did you mean " + nearest(key.substr(0, 200), present) + "?"),
+                         field_path(key));
       }
       removed.push_back(key);
     }

@@ -26,7 +26,7 @@ class SceneReader {
       : table_(std::move(table)), name_(std::move(name)), origins_(std::move(origins)), lines_(lines) {}
 
   [[noreturn]] void fail(const std::string& key, const std::string& message) const {
-    throw InputError(where(key) + message);
+    throw InputError(where(key) + message, field_path(key));
   }
 
   // "FILE:LINE: " for the key (or its nearest existing parent), or "--set K=V: ".

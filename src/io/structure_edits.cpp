@@ -148,10 +148,21 @@ bool is_structure_key(const std::string& key) {
 
 void edit_structure(toml::table& root, const std::vector<std::string>& overrides, const std::vector<std::string>& unsets,
                     std::map<std::string, std::string>& origins) {
+  // An edit that cannot be made is an error about the key it names (its field).
+  const auto about = [](const std::string& key, auto&& edit) {
+    try {
+      edit();
+    } catch (const InputError& e) {
+      if (!e.field().empty()) throw;
+      throw InputError(e.what(), field_path(trim(key)));
+    }
+  };
   for (const auto& key : unsets)
-    if (is_structure_key(key)) unset(root, trim(key));
-  for (const auto& o : overrides)
-    if (is_structure_key(o.substr(0, o.find('=')))) set(root, o, origins);  // (one without '=' is refused there)
+    if (is_structure_key(key)) about(key, [&] { unset(root, trim(key)); });
+  for (const auto& o : overrides) {
+    const std::string key = o.substr(0, o.find('='));
+    if (is_structure_key(key)) about(key, [&] { set(root, o, origins); });  // (one without '=' is refused there)
+  }
 }
 
 }  // namespace adjoin::detail

@@ -60,12 +60,20 @@ class TableReader {
     const std::string full = key.empty() ? path_ : path_ + "." + key;
     if (origins_ && origins_->count(full)) {
       m << origins_->at(full) << ": " << text_excerpt(full) << ": " << message;
-      throw InputError(m.str());
+      throw InputError(m.str(), full);
     }
     m << file_;
     if (source.begin.line > 0) m << ":" << source.begin.line;
     m << ": " << text_excerpt(full) << ": " << message;
-    throw InputError(m.str());
+    throw InputError(m.str(), full);
+  }
+  // A key the table must have and has not: the table's line, the key's field.
+  [[noreturn]] void missing(const std::string& key) const {
+    try {
+      fail("", "missing key " + key);
+    } catch (const InputError& e) {
+      throw InputError(e.what(), path_ + "." + key);
+    }
   }
   bool has(const std::string& key) const { return table_.contains(key); }
   void only(const std::set<std::string>& known) const {
@@ -84,7 +92,7 @@ class TableReader {
   }
   double number(const std::string& key) const {
     const toml::node* n = table_.get(key);
-    if (!n) fail("", "missing key " + key);
+    if (!n) missing(key);
     const auto v = n->value<double>();
     if (!v || !std::isfinite(*v)) fail(key, "expected a finite number");
     return *v;
@@ -103,14 +111,14 @@ class TableReader {
   }
   int integer(const std::string& key, int lo, int hi) const {
     const toml::node* n = table_.get(key);
-    if (!n) fail("", "missing key " + key);
+    if (!n) missing(key);
     const auto v = n->value_exact<std::int64_t>();
     if (!v || *v < lo || *v > hi) fail(key, "expected a whole number from " + std::to_string(lo) + " to " + std::to_string(hi));
     return static_cast<int>(*v);
   }
   std::string text(const std::string& key, const std::set<std::string>& allowed) const {
     const toml::node* n = table_.get(key);
-    if (!n) fail("", "missing key " + key);
+    if (!n) missing(key);
     const auto v = n->value_exact<std::string>();
     std::string list;
     for (const auto& a : allowed) list += (list.empty() ? "\"" : ", \"") + a + "\"";

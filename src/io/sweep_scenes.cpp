@@ -45,6 +45,29 @@ std::string at(const SweepSpec& spec, std::size_t line) {
   return spec.file.string() + (line ? ":" + std::to_string(line) : std::string()) + ": ";
 }
 
+// Whether `field` (InputError::field) is the key `key` edits or lies inside or above it: an
+// edit of link.1.slip_ratio is blamed for an error about link[1].slip_ratio, and an edit of
+// link.1 (or an unset of contact.1.stiffness) for one about link[1] (contact[1]).
+bool touches(const std::string& key, const std::string& field) {
+  if (field.empty()) return false;
+  const std::string path = field_path(key);
+  const auto below = [](const std::string& inner, const std::string& outer) {
+    return inner.size() > outer.size() && inner.rfind(outer, 0) == 0 && (inner[outer.size()] == '.' || inner[outer.size()] == '[');
+  };
+  return path == field || below(field, path) || below(path, field);
+}
+
+// The sweep file's line of the first axis value or motion whose edit touches `field` (0: none).
+std::size_t line_of_edit(const std::vector<SweepSetting>& settings, const std::string& field) {
+  for (const auto& s : settings) {
+    for (const auto& [key, value] : s.set)
+      if (touches(key, field)) return s.line;
+    for (const auto& key : s.unset)
+      if (touches(key, field)) return s.line;
+  }
+  return 0;
+}
+
 }  // namespace
 
 // The base scene's tree, parsed once: each run reads a copy with its edits (a two-block scene's
@@ -97,16 +120,9 @@ RunSpec SceneSweepScenes::scene(const SweepSpec& spec, std::size_t index) const 
     scene.file = spec.base;
     return scene;
   } catch (const InputError& e) {
-    // Point at the axis value or motion that set the offending key, when there is one.
-    std::size_t line = 0;
-    const std::string message = e.what();
-    for (const auto& s : settings) {
-      for (const auto& o : s.overrides())
-        if (message.rfind("--set " + o + ":", 0) == 0) line = s.line;
-      for (const auto& key : s.unset)
-        if (message.find("missing key " + key + " ") != std::string::npos) line = s.line;
-    }
-    throw InputError(at(spec, line) + "run " + std::to_string(index) + " (" + spec.describe(index) + "): " + message);
+    throw InputError(at(spec, line_of_edit(settings, e.field())) + "run " + std::to_string(index) + " (" +
+                         spec.describe(index) + "): " + e.what(),
+                     e.field());
   }
 }
 
@@ -117,16 +133,9 @@ BuildingRunSpec SceneSweepScenes::building_scene(const SweepSpec& spec, std::siz
   try {
     return detail::building_scene_from_tree(base_->tree, spec.base, overrides, unsets);
   } catch (const InputError& e) {
-    // Point at the axis value or motion whose edit the message names, when there is one.
-    std::size_t line = 0;
-    const std::string message = e.what();
-    for (const auto& s : settings) {
-      for (const auto& o : s.overrides())
-        if (!line && message.find("--set " + o) != std::string::npos) line = s.line;
-      for (const auto& key : s.unset)
-        if (!line && message.find("--unset " + key) != std::string::npos) line = s.line;
-    }
-    throw InputError(at(spec, line) + "run " + std::to_string(index) + " (" + spec.describe(index) + "): " + message);
+    throw InputError(at(spec, line_of_edit(settings, e.field())) + "run " + std::to_string(index) + " (" +
+                         spec.describe(index) + "): " + e.what(),
+                     e.field());
   }
 }
 
