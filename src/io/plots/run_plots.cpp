@@ -47,6 +47,13 @@ std::optional<double> json_number(const nlohmann::json& j, const char* a, const 
   return j[a][b].get<double>();
 }
 
+// A string member of a JSON object, or `fallback` when it is absent or not a string. (Not
+// json::value, whose inlined type checks GCC 12 flags with -Wnull-dereference.)
+std::string json_text(const nlohmann::json& j, const char* key, const std::string& fallback) {
+  const auto it = j.find(key);
+  return it != j.end() && it->is_string() ? it->get_ref<const std::string&>() : fallback;
+}
+
 RunData load_run(const fs::path& dir, const PlotStyle& style) {
   if (!fs::is_directory(dir))
     throw InputError(dir.string() + ": not a folder (expected the output folder of `adjoin run`)");
@@ -56,8 +63,8 @@ RunData load_run(const fs::path& dir, const PlotStyle& style) {
     throw InputError(summary_file.string() + ": not found (expected the summary.json written by `adjoin run`)");
   const nlohmann::json j = read_summary_json(summary_file);
   if (!j.is_object()) throw InputError(summary_file.string() + ": expected a JSON object");
-  run.scene = j.value("scene", dir.filename().string());
-  const std::string units = j.value("units", "dimensionless");
+  run.scene = json_text(j, "scene", dir.filename().string());
+  const std::string units = json_text(j, "units", "dimensionless");
   if (units != "SI" && units != "dimensionless")
     throw InputError(summary_file.string() + ": \"units\" is '" + units + "', expected \"SI\" or \"dimensionless\"");
   run.si = units == "SI";
@@ -65,7 +72,7 @@ RunData load_run(const fs::path& dir, const PlotStyle& style) {
     for (const auto& p : j["phases"])
       if (p.is_object() && p.contains("t_start") && p.contains("t_end") && p["t_start"].is_number() &&
           p["t_end"].is_number())
-        run.phases.push_back({p.value("state", ""), p["t_start"].get<double>(), p["t_end"].get<double>()});
+        run.phases.push_back({json_text(p, "state", ""), p["t_start"].get<double>(), p["t_end"].get<double>()});
   run.min_gap = json_number(j, "pounding", "min_gap");
   run.t_min_gap = json_number(j, "pounding", "t_min_gap");
   run.t_first_contact = json_number(j, "pounding", "t_first_contact");
