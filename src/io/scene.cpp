@@ -218,15 +218,6 @@ Rod read_rod(const SceneReader& r, const std::string& prefix, double time_scale)
   return rod;
 }
 
-std::string rod_key_of(const std::string& message) {
-  for (const char* key : {"model.rod1.order", "model.rod1.tau_x", "model.rod1.tau_f",
-                          "model.rod2.order", "model.rod2.tau_x", "model.rod2.tau_f", "model.rho",
-                          "model.eps", "model.mu", "model.gap0", "model.contact.stiffness",
-                          "model.contact.restitution", "model.contact.damping", "model.contact.tension_cut"})
-    if (message.rfind(key, 0) == 0) return key;
-  return "model";
-}
-
 // [model.contact] (SPEC §6): the law at the blocks' gap model.gap0, by the rules of
 // structure/contact_rules.hpp, absent: model "none". A dimensionless scene gives the stiffness in units
 // of k1 (linear) or k1 / X0^(1/2) (Hertz-type laws); an SI scene in N/m or N/m^1.5, scaled
@@ -352,22 +343,8 @@ void add_warnings(const SceneReader& r, Scene& scene) {
   }
 }
 
-Scene build_scene(const SceneReader& r, const std::string& name) {
-  Scene scene;
-  scene.name = r.string("name", "");
-  // The name picks the output folder (out/<name>/): a path there would write outside out/.
-  if (r.has("name"))
-    if (const std::string problem = plain_name_problem(scene.name); !problem.empty())
-      r.fail("name", "name = " + escaped_excerpt(scene.name) + " " + problem +
-                         "; expected a plain file name (it names the output folder out/<name>/)");
-  if (scene.name.empty()) {
-    scene.name = std::filesystem::path(name).stem().string();
-    if (!plain_name_problem(scene.name).empty()) scene.name = "scene";  // "", or a file called "..toml"
-  }
-  for (const auto& table : {"model", "ground"})
-    if (!r.has(table)) r.fail(table, std::string("missing section [") + table + "]");
-
-  // ---- model, in the scene's units ----
+// [model], in the scene's units: the two blocks, their rods and contact law, and the scales.
+void read_model(const SceneReader& r, Scene& scene) {
   const std::string units = r.string("model.units", "dimensionless");
   const std::vector<std::string> dimensionless_only = {"model.rho", "model.eps", "model.mu"};
   const std::vector<std::string> si_only = {"model.m1", "model.m2", "model.k1", "model.k2",
@@ -432,10 +409,9 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
     r.fail("model.gap0", "model.gap0 = " + format_number(r.number("model.gap0")) +
                              " is negative: with a contact law (model.contact.model = \"" + to_string(m.contact.model) +
                              "\") the blocks may not start inside each other; expected a gap >= 0");
-  std::string error;
-  if (!m.IsValid(&error)) {
+  std::string error, key;
+  if (!m.IsValid(&error, &key)) {
     // Word SI relaxation times back in the user's units by re-checking the raw values.
-    const std::string key = rod_key_of(error);
     if (scene.scales.si && key.find(".tau_") != std::string::npos) {
       const std::string prefix = key.substr(0, key.rfind('.'));
       error = prefix + ".tau_x = " + format_number(r.number(prefix + ".tau_x")) +
@@ -447,10 +423,12 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
     r.fail(key, error);
   }
 
-  // ---- ground motion ----
-  scene.ground = detail::read_ground(r, scene.scales);
+}
 
-  // ---- solver ----
+// [solver]: the scheme, the history engine, the step and the horizon.
+void read_solver(const SceneReader& r, Scene& scene) {
+  const Model& m = scene.model;
+  std::string error, key;
   SolverOptions& o = scene.solver;
   const std::string scheme = r.string("solver.scheme", to_string(o.scheme));
   if (!parse_scheme(scheme, &o.scheme))
@@ -460,12 +438,15 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
     r.fail("solver.history", "solver.history = " + escaped_excerpt(history) + " must be \"direct\" or \"fft\"");
   o.locate_switches = r.boolean("solver.locate_switches", o.locate_switches);
   read_step_and_horizon(r, scene);
-  if (!o.IsValid(&error)) r.fail(error.substr(0, error.find(' ')), error);
+  if (!o.IsValid(&error, &key)) r.fail(key, error);
   if (m.contact.model != structure::ContactModel::none && o.scheme == Scheme::paper)
     r.fail("solver.scheme", "solver.scheme = " + escaped_excerpt(scheme) + ": the contact laws need the implicit scheme (model.contact.model = \"" +
                                 to_string(m.contact.model) + "\"); remove solver.scheme (the default is \"implicit\") or choose an implicit one");
 
-  // ---- output ----
+}
+
+// [output]: what the run computes and writes.
+void read_output(const SceneReader& r, Scene& scene) {
   OutputOptions& out = scene.output;
   out.peaks = r.boolean("output.peaks", true);
   out.phases = r.boolean("output.phases", true);
@@ -505,6 +486,29 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
   const std::int64_t every = r.integer("output.every", 0);  // 0: not given, the run's rule
   if (r.has("output.every") && every < 1) r.fail("output.every", "output.every = " + std::to_string(every) + " must be 1 or more");
   scene.output.every = static_cast<std::size_t>(every);
+}
+
+Scene build_scene(const SceneReader& r, const std::string& name) {
+  Scene scene;
+  scene.name = r.string("name", "");
+  // The name picks the output folder (out/<name>/): a path there would write outside out/.
+  if (r.has("name"))
+    if (const std::string problem = plain_name_problem(scene.name); !problem.empty())
+      r.fail("name", "name = " + escaped_excerpt(scene.name) + " " + problem +
+                         "; expected a plain file name (it names the output folder out/<name>/)");
+  if (scene.name.empty()) {
+    scene.name = std::filesystem::path(name).stem().string();
+    if (!plain_name_problem(scene.name).empty()) scene.name = "scene";  // "", or a file called "..toml"
+  }
+  for (const auto& table : {"model", "ground"})
+    if (!r.has(table)) r.fail(table, std::string("missing section [") + table + "]");
+
+  read_model(r, scene);
+  // The ground motion, from its source's plug-in (ground_sources/).
+  scene.ground = detail::read_ground(r, scene.scales);
+
+  read_solver(r, scene);
+  read_output(r, scene);
   check_memory(r, scene);
   add_warnings(r, scene);
   return scene;

@@ -63,14 +63,18 @@ std::string step_count_problem(double t_end, double h) {
   return s.str();
 }
 
-bool SolverOptions::IsValid(std::string* error) const {
-  auto fail = [&](const std::string& m) { if (error) *error = m; return false; };
+bool SolverOptions::IsValid(std::string* error, std::string* field) const {
+  auto fail = [&](const char* key, const std::string& m) {
+    if (error) *error = m;
+    if (field) *field = key;
+    return false;
+  };
   std::ostringstream s;
   s.precision(12);
-  if (!(std::isfinite(h) && h > 0.0)) { s << "solver.h = " << h << " must be a positive number"; return fail(s.str()); }
-  if (!(std::isfinite(t_end) && t_end > 0.0)) { s << "solver.t_end = " << t_end << " must be a positive number"; return fail(s.str()); }
-  if (const std::string problem = step_count_problem(t_end, h); !problem.empty()) return fail(problem);
-  if (t_end / h < 1.0) { s << "solver.h = " << h << " must not exceed solver.t_end = " << t_end; return fail(s.str()); }
+  if (!(std::isfinite(h) && h > 0.0)) { s << "solver.h = " << h << " must be a positive number"; return fail("solver.h", s.str()); }
+  if (!(std::isfinite(t_end) && t_end > 0.0)) { s << "solver.t_end = " << t_end << " must be a positive number"; return fail("solver.t_end", s.str()); }
+  if (const std::string problem = step_count_problem(t_end, h); !problem.empty()) return fail("solver.t_end", problem);
+  if (t_end / h < 1.0) { s << "solver.h = " << h << " must not exceed solver.t_end = " << t_end; return fail("solver.h", s.str()); }
   return true;
 }
 

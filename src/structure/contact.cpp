@@ -61,21 +61,22 @@ double ContactLaw::damping_parameter() const {
   }
 }
 
-bool ContactLaw::IsValid(const std::string& where, std::string* error) const {
-  auto fail = [&](const std::string& m) {
-    if (error) *error = m;
+bool ContactLaw::IsValid(const std::string& where, std::string* error, std::string* field) const {
+  auto fail = [&](const char* key, const std::string& problem) {
+    if (error) *error = where + "." + key + ": " + problem;
+    if (field) *field = where + "." + key;
     return false;
   };
   if (compliant() && !(std::isfinite(stiffness) && stiffness > 0.0))
-    return fail(where + ".stiffness: expected a positive contact stiffness");
+    return fail("stiffness", "expected a positive contact stiffness");
   if (!(std::isfinite(restitution) && restitution > 0.0 && restitution <= 1.0))
-    return fail(where + ".restitution: expected a coefficient of restitution e with 0 < e <= 1");
+    return fail("restitution", "expected a coefficient of restitution e with 0 < e <= 1");
   if (!std::isnan(damping) && !(std::isfinite(damping) && damping >= 0.0))
-    return fail(where + ".damping: expected a non-negative damping parameter");
+    return fail("damping", "expected a non-negative damping parameter");
   if (model == ContactModel::linear && !std::isnan(damping) && damping >= 1.0)
-    return fail(where + ".damping: the linear model's damping ratio must be below 1");
+    return fail("damping", "the linear model's damping ratio must be below 1");
   if (tension_cut && model != ContactModel::linear)
-    return fail(where + ".tension_cut: only the linear model pulls before separation");
+    return fail("tension_cut", "only the linear model pulls before separation");
   return true;
 }
 

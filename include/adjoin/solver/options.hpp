@@ -51,7 +51,8 @@ struct SolverOptions {
   // Number of steps N: the smallest with N h >= t_end. The grid is t_m = m h, m = 0..N.
   std::size_t steps() const;
   // Checks h > 0, t_end > 0, and a grid that fits in memory; names the scene key on failure.
-  bool IsValid(std::string* error) const;
+  // `field` (optional): the key of the problem (solver.h or solver.t_end).
+  bool IsValid(std::string* error, std::string* field = nullptr) const;
 };
 
 // The most steps a run takes (two-block and building runs alike), and the one message for a

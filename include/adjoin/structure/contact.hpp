@@ -48,7 +48,8 @@ struct ContactLaw {
   // Why the law is not valid (stiffness > 0 for compliant models, 0 < e <= 1, damping >= 0,
   // tension_cut only on linear), with `where` ("contact[2]", "model.contact") and the key
   // ("contact[2].stiffness"), or true.
-  bool IsValid(const std::string& where, std::string* error) const;
+  // `field` (optional): the key of the problem (WHERE.stiffness, ...).
+  bool IsValid(const std::string& where, std::string* error, std::string* field = nullptr) const;
 };
 
 // The formulas of SPEC §6, e in (0, 1].

@@ -32,7 +32,8 @@ struct Rod {
 
   static Rod Elastic() { Rod r; r.elastic = true; return r; }
   // Checks the restrictions; on failure writes a message naming `prefix`.key and returns false.
-  bool IsValid(const std::string& prefix, std::string* error) const;
+  // `field` (optional): the key of the problem (prefix.order, ...), for the reader to spell.
+  bool IsValid(const std::string& prefix, std::string* error, std::string* field = nullptr) const;
 };
 
 struct Model {
@@ -46,7 +47,8 @@ struct Model {
   // k1, a Hertz one in k1 / L^(1/2). None: the blocks pass through each other (the paper).
   structure::ContactLaw contact;
 
-  bool IsValid(std::string* error) const;
+  // `field` (optional): the key of the problem (model.rho, model.rod1.order, ...).
+  bool IsValid(std::string* error, std::string* field = nullptr) const;
   // The paper's common parameters (SPEC §1, "What the paper reports").
   static Model Paper() { return Model{}; }
 };
