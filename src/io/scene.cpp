@@ -488,8 +488,8 @@ void read_output(const SceneReader& r, Scene& scene) {
   scene.output.every = static_cast<std::size_t>(every);
 }
 
-Scene build_scene(const SceneReader& r, const std::string& name) {
-  Scene scene;
+// The scene's name (out/<name>/), or its file's stem.
+void read_name(const SceneReader& r, const std::string& file_name, Scene& scene) {
   scene.name = r.string("name", "");
   // The name picks the output folder (out/<name>/): a path there would write outside out/.
   if (r.has("name"))
@@ -497,9 +497,35 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
       r.fail("name", "name = " + escaped_excerpt(scene.name) + " " + problem +
                          "; expected a plain file name (it names the output folder out/<name>/)");
   if (scene.name.empty()) {
-    scene.name = std::filesystem::path(name).stem().string();
+    scene.name = std::filesystem::path(file_name).stem().string();
     if (!plain_name_problem(scene.name).empty()) scene.name = "scene";  // "", or a file called "..toml"
   }
+}
+
+// A building scene's [ground], [solver] and [output] (its structure is read by
+// io/structure_file.cpp): in SI scales of 1 kg and 1 N/m, so that times are in seconds and the
+// ground's a_g is in g. The two-block model it carries is a placeholder (elastic rods, no
+// damper), set here, not read.
+Scene build_building_base(const SceneReader& r, const std::string& name) {
+  Scene scene;
+  read_name(r, name, scene);
+  if (!r.has("ground")) r.fail("ground", "missing section [ground]");
+  scene.scales = Scales::SI(1.0, 1.0);
+  scene.model.rho = scene.model.eps = 1.0;
+  scene.model.mu = 0.0;
+  scene.model.gap0 = 1.0 / scene.scales.length;
+  scene.model.rod1 = scene.model.rod2 = Rod::Elastic();
+  scene.ground = detail::read_ground(r, scene.scales);
+  read_solver(r, scene);
+  read_output(r, scene);
+  check_memory(r, scene);
+  add_warnings(r, scene);
+  return scene;
+}
+
+Scene build_scene(const SceneReader& r, const std::string& name) {
+  Scene scene;
+  read_name(r, name, scene);
   for (const auto& table : {"model", "ground"})
     if (!r.has(table)) r.fail(table, std::string("missing section [") + table + "]");
 
@@ -555,13 +581,8 @@ Scene detail::building_base_from_tree(toml::table table, const std::string& name
   for (const auto& key : unsets)
     if (!remove_key(table, key))
       throw InputError("--unset " + text_excerpt(key) + ": the scene has no key or section " + text_excerpt(key), field_path(key));
-  // The structure is read elsewhere; what stays is [ground], [solver], [output] and the name,
-  // read as a scene with a unit two-block model (m = 1 kg, k = 1 N/m: T0 = 1 s, forces of
-  // 1 kg g), so that times are in seconds and the ground's a_g is in g.
+  // The structure is read elsewhere; what stays is [ground], [solver], [output] and the name.
   for (const char* key : {"building", "link", "contact", "model"}) table.erase(key);
-  table.insert("model", toml::table{{"units", "SI"}, {"m1", 1.0}, {"m2", 1.0}, {"k1", 1.0}, {"k2", 1.0},
-                                    {"slip_force", 0.0}, {"gap0", 1.0},
-                                    {"rod1", toml::table{{"elastic", true}}}, {"rod2", toml::table{{"elastic", true}}}});
   std::map<std::string, std::string> origins;
   for (const auto& o : overrides) apply_override(table, o, origins);
   // In-structure spectra name the floors' channels (A.a3_abs), which only the structure can
@@ -583,7 +604,7 @@ Scene detail::building_base_from_tree(toml::table table, const std::string& name
   }
   SceneReader reader(std::move(table), name, std::move(origins), lines);
   check_keys(reader, reader.table(), "");
-  Scene scene = build_scene(reader, name);
+  Scene scene = build_building_base(reader, name);
   if (signals && scene.output.spectra) scene.output.spectra->signals = *signals;
   return scene;
 }
