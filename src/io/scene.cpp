@@ -502,6 +502,17 @@ void read_name(const SceneReader& r, const std::string& file_name, Scene& scene)
   }
 }
 
+// What every scene has beside its structure, in its scales: the ground motion (from its
+// source's plug-in, ground_sources/), the solver and the output, with the run's memory checked
+// and its warnings gathered.
+void read_run(const SceneReader& r, Scene& scene) {
+  scene.ground = detail::read_ground(r, scene.scales);
+  read_solver(r, scene);
+  read_output(r, scene);
+  check_memory(r, scene);
+  add_warnings(r, scene);
+}
+
 // A building scene's [ground], [solver] and [output] (its structure is read by
 // io/structure_file.cpp): in SI scales of 1 kg and 1 N/m, so that times are in seconds and the
 // ground's a_g is in g. The two-block model it carries is a placeholder (elastic rods, no
@@ -515,11 +526,7 @@ Scene build_building_base(const SceneReader& r, const std::string& name) {
   scene.model.mu = 0.0;
   scene.model.gap0 = 1.0 / scene.scales.length;
   scene.model.rod1 = scene.model.rod2 = Rod::Elastic();
-  scene.ground = detail::read_ground(r, scene.scales);
-  read_solver(r, scene);
-  read_output(r, scene);
-  check_memory(r, scene);
-  add_warnings(r, scene);
+  read_run(r, scene);
   return scene;
 }
 
@@ -530,13 +537,7 @@ Scene build_scene(const SceneReader& r, const std::string& name) {
     if (!r.has(table)) r.fail(table, std::string("missing section [") + table + "]");
 
   read_model(r, scene);
-  // The ground motion, from its source's plug-in (ground_sources/).
-  scene.ground = detail::read_ground(r, scene.scales);
-
-  read_solver(r, scene);
-  read_output(r, scene);
-  check_memory(r, scene);
-  add_warnings(r, scene);
+  read_run(r, scene);
   return scene;
 }
 
