@@ -38,7 +38,7 @@ void counters(benchmark::State& state, const adjoin::TolerantRun& t) {
 void BM_plain(benchmark::State& state, double tolerance) {
   adjoin::TolerantRun t;
   const adjoin::Scene s = at_chosen_h(tolerance, &t);
-  for (auto _ : state) benchmark::DoNotOptimize(adjoin::run_scene(s).peaks.x1.max_abs);
+  for (auto _ : state) benchmark::DoNotOptimize(adjoin::run(s).two_block->peaks.x1.max_abs);
   counters(state, t);
 }
 
@@ -46,7 +46,7 @@ void BM_estimated(benchmark::State& state, double tolerance) {
   adjoin::TolerantRun t;
   const adjoin::Scene s = at_chosen_h(tolerance, &t);
   for (auto _ : state) {
-    const auto r = adjoin::run_scene(s);
+    const auto r = adjoin::run(s);
     benchmark::DoNotOptimize(adjoin::estimate_error(s, r).max_relative_peak);
   }
   counters(state, t);

@@ -57,7 +57,7 @@ int main() {
       adjoin::TimeSeriesRecorder recorder;
       const long long before = live.load();
       peak.store(before);
-      const adjoin::RunReport r = adjoin::run_scene(scene, keep_series ? &recorder : nullptr);
+      const adjoin::Report r = adjoin::run(scene, {nullptr, keep_series ? &recorder : nullptr});
       used[keep_series] = peak.load() - before;
       steps = r.solver.steps;
     }

@@ -28,9 +28,9 @@ std::string exact(double v) {
 void run(benchmark::State& state, const adjoin::Scene& s) {
   std::size_t bytes = 0;
   for (auto _ : state) {
-    const auto report = adjoin::run_scene(s);
+    const auto report = adjoin::run(s);
     bytes = report.solver.history_bytes;
-    benchmark::DoNotOptimize(report.peaks.x1.max_abs);
+    benchmark::DoNotOptimize(report.two_block->peaks.x1.max_abs);
   }
   const double steps = static_cast<double>(s.solver.steps());
   state.counters["steps/s"] = benchmark::Counter(steps, benchmark::Counter::kIsIterationInvariantRate);

@@ -10,8 +10,8 @@
 #include <adjoin/observe/channel_recorder.hpp>
 #include <adjoin/structure/builder.hpp>
 #include <adjoin/study/builder.hpp>
-#include <adjoin/study/building_error_estimate.hpp>
-#include <adjoin/study/building_run.hpp>
+#include <adjoin/study/error_estimate.hpp>
+#include <adjoin/study/run.hpp>
 #include <cstdio>
 #include <iostream>
 
@@ -28,11 +28,11 @@ int main(int argc, char** argv) {
     options.name = "two-frames";
     options.h = 0.002;   // s
     options.t_end = 45.0;  // s: the record (40 s) and some free vibration
-    const adjoin::BuildingRunSpec spec = adjoin::building_run_spec(s.build(), adjoin::record_ground(record), options);
+    const adjoin::RunSpec spec = adjoin::building_run_spec(s.build(), adjoin::record_ground(record), options);
 
     adjoin::ChannelRecorder recorder({"A.x5", "link1.force"});
-    const adjoin::BuildingReport report = adjoin::run_building(spec, &recorder);
-    const adjoin::BuildingErrorEstimate estimate = adjoin::estimate_error(spec, report);  // as `adjoin run` does
+    const adjoin::Report report = adjoin::run(spec, {&recorder});
+    const adjoin::ErrorEstimate estimate = adjoin::estimate_error(spec, report);  // as `adjoin run` does
     std::cout << adjoin::building_brief_report(spec, report, &estimate);
     std::printf("recorded %zu rows of %zu channels; A.x5 at t = %.1f s: %+.5f m\n", static_cast<std::size_t>(recorder.times().size()),
                 recorder.names().size(), recorder.times()[5000], recorder.values()(5000, 0));

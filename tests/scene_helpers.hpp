@@ -17,7 +17,7 @@ inline Scene paper_scene(const char* which, std::vector<std::string> overrides =
 // Every grid point of a run of the scene.
 inline std::vector<State> trajectory(const Scene& scene) {
   TimeSeriesRecorder recorder;
-  run_scene(scene, &recorder);
+  run(scene, {nullptr, &recorder});
   return recorder.states();
 }
 

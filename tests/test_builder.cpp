@@ -17,7 +17,7 @@
 #include "adjoin/structure/builder.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/study/builder.hpp"
-#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run.hpp"
 
 using namespace adjoin;
 using structure::StructureBuilder;
@@ -76,7 +76,7 @@ TEST_CASE("builder: the two-frame example built in code is its scene's structure
   o.name = "two-frames";
   o.h = 0.002;
   o.t_end = 45.0;
-  const BuildingRunSpec spec = building_run_spec(two_frames(), record_ground(kRecord), o);
+  const RunSpec spec = building_run_spec(two_frames(), record_ground(kRecord), o);
 
   const structure::Structure& a = scene.structure;
   const structure::Structure& b = spec.structure;
@@ -99,13 +99,13 @@ TEST_CASE("builder: the two-frame example built in code is its scene's structure
   CHECK(spec.solver.t_end == scene.solver.t_end);
   CHECK(spec.solver.history == scene.solver.history);
   CHECK(spec.solver.restart == scene.solver.restart);
-  CHECK(spec.h_rule == scene.h_rule);
-  CHECK(spec.t_end_rule == scene.t_end_rule);
-  CHECK(spec.base.ground->duration() == scene.base.ground->duration());
-  CHECK(spec.base.ground->ag(12.345) == scene.base.ground->ag(12.345));
+  CHECK(spec.accuracy.h_rule == scene.accuracy.h_rule);
+  CHECK(spec.accuracy.t_end_rule == scene.accuracy.t_end_rule);
+  CHECK(spec.ground->duration() == scene.ground->duration());
+  CHECK(spec.ground->ag(12.345) == scene.ground->ag(12.345));
 
-  const BuildingReport from_file = run_building(scene);
-  const BuildingReport in_code = run_building(spec);
+  const Report from_file = run(scene);
+  const Report in_code = run(spec);
   REQUIRE(from_file.peaks.size() == in_code.peaks.size());
   REQUIRE(from_file.peaks.size() > 20);
   for (std::size_t i = 0; i < from_file.peaks.size(); ++i) {
@@ -214,18 +214,18 @@ TEST_CASE("builder: the step and horizon rules give what a scene without solver.
   const BuildingScene scene = load_building_scene(kScene, {}, {"solver.h", "solver.t_end"});
   BuildingRunOptions o;
   o.name = "two-frames";
-  const BuildingRunSpec spec = building_run_spec(two_frames(), record_ground(kRecord), o);
+  const RunSpec spec = building_run_spec(two_frames(), record_ground(kRecord), o);
   CHECK(spec.solver.h == scene.solver.h);
   CHECK(spec.solver.t_end == scene.solver.t_end);
-  CHECK(spec.h_rule == scene.h_rule);
-  CHECK(spec.t_end_rule == scene.t_end_rule);
-  REQUIRE(spec.base.accuracy.tolerance);
-  CHECK(*spec.base.accuracy.tolerance == kBuildingDefaultTolerance);
-  CHECK(*spec.base.accuracy.tolerance == *scene.base.accuracy.tolerance);
-  CHECK(spec.h_rule.find("the default: 3 significant digits") != std::string::npos);
+  CHECK(spec.accuracy.h_rule == scene.accuracy.h_rule);
+  CHECK(spec.accuracy.t_end_rule == scene.accuracy.t_end_rule);
+  REQUIRE(spec.accuracy.tolerance);
+  CHECK(*spec.accuracy.tolerance == kBuildingDefaultTolerance);
+  CHECK(*spec.accuracy.tolerance == *scene.accuracy.tolerance);
+  CHECK(spec.accuracy.h_rule.find("the default: 3 significant digits") != std::string::npos);
   // The step is no coarser than the record's samples, and the horizon outlasts the record.
-  CHECK(spec.solver.h <= spec.base.ground->sample_interval());
-  CHECK(spec.solver.t_end > spec.base.ground->duration());
+  CHECK(spec.solver.h <= spec.ground->sample_interval());
+  CHECK(spec.solver.t_end > spec.ground->duration());
 }
 
 TEST_CASE("builder: the grounds are a scene's grounds", "[builder][ground]") {
@@ -233,19 +233,19 @@ TEST_CASE("builder: the grounds are a scene's grounds", "[builder][ground]") {
   const BuildingScene sine = parse_building_scene(
       structure + "[ground]\nsource = \"decaying-sine\"\nu0 = 0.05\nomega = 8.0\nk = 0.3\n[solver]\nh = 0.01\nt_end = 2.0\n", "g.toml");
   const auto code = decaying_sine_ground(0.05, 8.0, 0.3);
-  CHECK(code->describe() == sine.base.ground->describe());
-  for (double t : {0.0, 0.1, 0.37, 1.9}) CHECK(code->ag(t) == sine.base.ground->ag(t));
+  CHECK(code->describe() == sine.ground->describe());
+  for (double t : {0.0, 0.1, 0.37, 1.9}) CHECK(code->ag(t) == sine.ground->ag(t));
 
   const BuildingScene scaled = parse_building_scene(
       structure + "[ground]\nsource = \"record\"\nfile = \"" + kRecord + "\"\nscale_pga = 0.3\n[solver]\nh = 0.01\nt_end = 2.0\n", "g.toml");
   const auto record = record_ground(kRecord, 0.3);
-  CHECK(record->describe() == scaled.base.ground->describe());
-  CHECK(record->duration() == scaled.base.ground->duration());
-  CHECK(record->sample_interval() == scaled.base.ground->sample_interval());
+  CHECK(record->describe() == scaled.ground->describe());
+  CHECK(record->duration() == scaled.ground->duration());
+  CHECK(record->sample_interval() == scaled.ground->sample_interval());
   double pga = 0.0;
   for (int i = 0; i * record->sample_interval() < record->duration(); ++i) {
     const double t = i * record->sample_interval();
-    CHECK(record->ag(t) == scaled.base.ground->ag(t));
+    CHECK(record->ag(t) == scaled.ground->ag(t));
     pga = std::max(pga, std::abs(record->ag(t)));
   }
   CHECK(pga == Approx(0.3).epsilon(1e-9));  // a_g in g, scaled to 0.3 g
@@ -352,11 +352,11 @@ TEST_CASE("builder: a channel recorder keeps the times and the asked channels as
   o.h = 0.005;
   o.t_end = 4.0;
   o.error_estimate = false;
-  const BuildingRunSpec spec = building_run_spec(two_frames(), decaying_sine_ground(0.05, 8.0, 0.3), o);
+  const RunSpec spec = building_run_spec(two_frames(), decaying_sine_ground(0.05, 8.0, 0.3), o);
   ChannelRecorder recorder({"A.shear1", "link1.force", "A.x5"});
   ChannelRecorder every_tenth({"A.x5"}, 10);
-  const BuildingReport report = run_building(spec, &recorder);
-  run_building(spec, &every_tenth);
+  const Report report = run(spec, {&recorder});
+  run(spec, {&every_tenth});
   const std::size_t rows = spec.solver.steps() + 1;
   REQUIRE(static_cast<std::size_t>(recorder.times().size()) == rows);
   CHECK(recorder.values().rows() == static_cast<Eigen::Index>(rows));
@@ -381,10 +381,10 @@ TEST_CASE("builder: a channel recorder keeps the times and the asked channels as
   }
   // No names: every channel of the structure.
   ChannelRecorder all;
-  run_building(spec, &all);
+  run(spec, {&all});
   CHECK(all.names().size() == structure::channels(spec.structure).size());
   CHECK(field_error([&] {
           ChannelRecorder bad({"A.x5", "A.x9"});
-          run_building(spec, &bad);
+          run(spec, {&bad});
         }).field() == "channels[2]");
 }

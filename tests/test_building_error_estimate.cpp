@@ -15,7 +15,7 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/io/building_files.hpp"
 #include "adjoin/io/building_scene.hpp"
-#include "adjoin/study/building_error_estimate.hpp"
+#include "adjoin/study/error_estimate.hpp"
 
 using namespace adjoin;
 
@@ -41,7 +41,7 @@ const std::string kFriction = "[[link]]\nfloors = [2, 2]\ntype = \"friction\"\ns
 
 const double kReferenceDivisor = 64.0;  // the reference run's step is h / 64: its error 4096 x smaller
 
-const Peak& peak_of(const BuildingReport& r, const std::string& channel) {
+const Peak& peak_of(const Report& r, const std::string& channel) {
   const auto it = std::find_if(r.peaks.begin(), r.peaks.end(), [&](const ChannelPeak& p) { return p.channel == channel; });
   REQUIRE(it != r.peaks.end());
   return it->peak;
@@ -67,9 +67,9 @@ TEST_CASE("linear frames: every estimated error is within a factor 3 of the true
   for (double h : {0.02, 0.01, 0.005, 0.0025}) {
     INFO("h = " << h);
     const BuildingScene scene = frames(kSpring, h);
-    const BuildingReport r = run_building(scene);
-    const BuildingReport ref = run_building(frames(kSpring, h / kReferenceDivisor));
-    const BuildingErrorEstimate e = estimate_error(scene, r);
+    const Report r = run(scene);
+    const Report ref = run(frames(kSpring, h / kReferenceDivisor));
+    const ErrorEstimate e = estimate_error(scene, r);
     REQUIRE(e.available);
     CHECK(e.order == 2);
     CHECK(e.companion_h == Approx(2 * h).epsilon(1e-9));
@@ -106,10 +106,10 @@ TEST_CASE("one friction damper: the roofs' peaks and the friction energy are est
   for (double h : {0.02, 0.01, 0.005, 0.0025}) {
     INFO("h = " << h);
     const BuildingScene scene = frames(kFriction, h);
-    const BuildingReport r = run_building(scene);
-    const BuildingReport ref = run_building(frames(kFriction, h / kReferenceDivisor));
+    const Report r = run(scene);
+    const Report ref = run(frames(kFriction, h / kReferenceDivisor));
     REQUIRE(r.links[0].switches > 10);  // it sticks and slips
-    const BuildingErrorEstimate e = estimate_error(scene, r);
+    const ErrorEstimate e = estimate_error(scene, r);
     REQUIRE(e.available);
     std::vector<Compared> all;
     for (const char* roof : {"A.x3", "B.x2"}) {
@@ -135,15 +135,15 @@ TEST_CASE("switches the companion run counts otherwise are reported as not estim
   for (double h : {0.02, 0.01, 0.005, 0.0025}) {
     INFO("h = " << h);
     const BuildingScene scene = frames(kFriction, h);
-    const BuildingReport r = run_building(scene);
+    const Report r = run(scene);
     // The companion's count, from a run of our own at 2h (6 s / h is even: exactly 2h) with the
     // run's own restart decision, as the estimate's companion takes it.
     BuildingScene twice = frames(kFriction, 2 * h);
-    twice.solver.restart = takes_restarts(scene.solver, scene.structure, *scene.base.ground)
+    twice.solver.restart = takes_restarts(scene.solver, scene.structure, *scene.ground)
                                ? StructureSolverOptions::Restart::always
                                : StructureSolverOptions::Restart::never;
-    const std::size_t companion = run_building(twice).links[0].switches;
-    const BuildingErrorEstimate e = estimate_error(scene, r);
+    const std::size_t companion = run(twice).links[0].switches;
+    const ErrorEstimate e = estimate_error(scene, r);
     REQUIRE(e.available);
     const LinkError& le = e.links[0];
     CHECK(le.switches_matched == (companion == r.links[0].switches));
@@ -169,14 +169,14 @@ TEST_CASE("run_to_tolerance meets 1e-4 on the true error of every estimated peak
   for (const std::string& link : {kSpring, kFriction}) {
     INFO((link == kSpring ? "spring link" : "friction link"));
     const BuildingScene scene = frames(link, 0.05);  // the first rung: h = 0.05 s
-    const BuildingTolerantRun t = run_to_tolerance(scene, 1e-4);
+    const TolerantRun t = run_to_tolerance(scene, 1e-4);
     CHECK(t.met);
     CHECK(t.estimate.max_relative_peak <= 1e-4);
     CHECK(t.ladder.size() >= 2);
     CHECK(t.ladder.front() == 0.05);
     CHECK(t.ladder.back() == t.h);
     CHECK(t.report.solver.steps == static_cast<std::size_t>(std::ceil(6.0 / t.h * (1 - 1e-12))));
-    const BuildingReport ref = run_building(frames(link, t.h / kReferenceDivisor));
+    const Report ref = run(frames(link, t.h / kReferenceDivisor));
     for (const auto& pe : t.estimate.peaks) {
       const Peak& p = peak_of(t.report, pe.channel);
       const Peak& q = peak_of(ref, pe.channel);
@@ -198,7 +198,7 @@ TEST_CASE("a building run's files carry its error estimate, and a tolerance choo
 
   // A given step: the run as before, and its estimate, the same as estimate_error's.
   const BuildingScene given = frames(kFriction, "h = 0.005\n");
-  BuildingFiles files = run_building_to_folder(given, dir / "given");
+  RunFiles files = run_to_folder(given, dir / "given");
   REQUIRE(files.estimate);
   CHECK_FALSE(files.tolerant);
   nlohmann::json j = summary(dir / "given");
@@ -218,7 +218,7 @@ TEST_CASE("a building run's files carry its error estimate, and a tolerance choo
 
   // solver.error_estimate = false: no companion, no section.
   const BuildingScene quiet = frames(kFriction, "h = 0.005\nerror_estimate = false\n");
-  files = run_building_to_folder(quiet, dir / "quiet");
+  files = run_to_folder(quiet, dir / "quiet");
   CHECK_FALSE(files.estimate);
   CHECK_FALSE(summary(dir / "quiet").contains("error_estimate"));
 
@@ -226,10 +226,10 @@ TEST_CASE("a building run's files carry its error estimate, and a tolerance choo
   // the chosen step reported; the time series is the kept rung's.
   BuildingScene tolerant = frames(kSpring, "tolerance = 1e-4\n");
   CHECK(tolerant.solver.h == Approx(0.5 / 200).epsilon(1e-6));
-  CHECK(tolerant.h_rule.find("chosen for solver.tolerance = 0.0001") == 0);
-  tolerant.base.output.timeseries = true;
-  tolerant.base.output.every = 1;  // (with a chosen step the default is a row every 1/200 s)
-  files = run_building_to_folder(tolerant, dir / "tolerant");
+  CHECK(tolerant.accuracy.h_rule.find("chosen for solver.tolerance = 0.0001") == 0);
+  tolerant.output.timeseries = true;
+  tolerant.output.every = 1;  // (with a chosen step the default is a row every 1/200 s)
+  files = run_to_folder(tolerant, dir / "tolerant");
   REQUIRE(files.tolerant);
   j = summary(dir / "tolerant");
   CHECK(j["solver"]["tolerance"].get<double>() == 1e-4);
@@ -244,7 +244,7 @@ TEST_CASE("a building run's files carry its error estimate, and a tolerance choo
 
   // Neither solver.h nor solver.tolerance: the building scenes' default tolerance, 1e-3.
   const BuildingScene neither = frames(kSpring, "");
-  REQUIRE(neither.base.accuracy.tolerance);
-  CHECK(*neither.base.accuracy.tolerance == 1e-3);
-  CHECK(neither.h_rule.find("(the default") != std::string::npos);
+  REQUIRE(neither.accuracy.tolerance);
+  CHECK(*neither.accuracy.tolerance == 1e-3);
+  CHECK(neither.accuracy.h_rule.find("(the default") != std::string::npos);
 }

@@ -18,7 +18,7 @@
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/plots.hpp"
 #include "adjoin/io/sweep_file.hpp"
-#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run.hpp"
 #include "adjoin/study/building_sweep.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "cli_helpers.hpp"
@@ -99,7 +99,7 @@ std::map<std::string, std::vector<double>> columns(const fs::path& file) {
 }
 
 // The channel cells of a run by column name, as a sweep row has them.
-std::map<std::string, std::string> sweep_cells(const BuildingScene& scene, const BuildingReport& r) {
+std::map<std::string, std::string> sweep_cells(const BuildingScene& scene, const Report& r) {
   const auto cols = building_channel_columns(scene.structure);
   const auto cells = building_channel_cells(scene.structure, scene, r);
   std::map<std::string, std::string> out;
@@ -113,7 +113,7 @@ TEST_CASE("pounding without a contact law: every value after the first overlap i
   const fs::path dir = scratch("none");
   const BuildingScene scene = pounding_scene();
   REQUIRE(scene.structure.contacts.at(0).law.model == structure::ContactModel::none);
-  const BuildingFiles files = run_building_to_folder(scene, dir);
+  const RunFiles files = run_to_folder(scene, dir);
   CHECK(!fs::exists(dir / "impacts.csv"));  // no contact law, no impacts
   const auto ts = columns(dir / "timeseries.csv");
   // The first grid point where the gap is <= 0, independently from the written gap column.
@@ -137,9 +137,9 @@ TEST_CASE("pounding without a contact law: every value after the first overlap i
   // Even when the overlap falls between written rows, the flag is on from the next row.
   {
     BuildingScene sparse = scene;
-    sparse.base.output.every = 7;
+    sparse.output.every = 7;
     const fs::path d2 = scratch("none-sparse");
-    run_building_to_folder(sparse, d2);
+    run_to_folder(sparse, d2);
     const auto s2 = columns(d2 / "timeseries.csv");
     for (std::size_t i = 0; i < s2.at("t").size(); ++i) {
       INFO("t = " << s2.at("t")[i]);
@@ -185,7 +185,7 @@ TEST_CASE("a joint that never closes: no flag, no impacts file", "[building_run]
   std::ofstream(dir / "impacts.csv") << "stale\n";
   BuildingScene scene = pounding_scene({"contact.1.gap=1.0"});
   REQUIRE(scene.structure.contacts.at(0).gap == 1.0);
-  const BuildingFiles files = run_building_to_folder(scene, dir);
+  const RunFiles files = run_to_folder(scene, dir);
   CHECK(!fs::exists(dir / "impacts.csv"));
   const auto j = summary(dir);
   CHECK(j["contacts"][0]["contact"] == false);
@@ -203,7 +203,7 @@ TEST_CASE("a joint that never closes: no flag, no impacts file", "[building_run]
   BuildingScene lawful = scene;
   set_linear_law(lawful);
   const fs::path d2 = scratch("wide-law");
-  run_building_to_folder(lawful, d2);
+  run_to_folder(lawful, d2);
   REQUIRE(fs::exists(d2 / "impacts.csv"));
   const auto rows = csv(d2 / "impacts.csv");
   REQUIRE(rows.size() == 1);
@@ -217,10 +217,10 @@ TEST_CASE("pounding with a contact law: impacts.csv, summary and sweep cells are
   BuildingScene scene = pounding_scene();
   set_linear_law(scene);
   Recorder rec;
-  const BuildingReport direct = run_building(scene, &rec);
+  const Report direct = run(scene, {&rec});
   REQUIRE(rec.impacts.size() >= 3);  // the joint closes several times
   const fs::path dir = scratch("linear");
-  const BuildingFiles files = run_building_to_folder(scene, dir);
+  const RunFiles files = run_to_folder(scene, dir);
   // impacts.csv: one row per streamed impact, in the order they started, every field.
   std::vector<Impact> events = rec.impacts;
   std::stable_sort(events.begin(), events.end(), [](const Impact& a, const Impact& b) { return a.start < b.start; });
@@ -292,7 +292,7 @@ TEST_CASE("the energy balance with pounding closes at order 2", "[building_run][
   std::vector<double> residuals;
   for (double h : {0.002, 0.001}) {
     scene.solver.h = h;
-    const BuildingReport r = run_building(scene);
+    const Report r = run(scene);
     REQUIRE(r.contacts[0].impacts >= 3);
     INFO("h = " << h << ": input " << r.energy.input << " J, contact work " << r.energy.contacts[0] << " J, residual "
                 << r.energy.residual << " J");
@@ -327,7 +327,7 @@ TEST_CASE("building sweeps: the pounding columns of a row are the single run's s
     REQUIRE(row.error.empty());
     const BuildingScene scene = building_sweep_scene(spec, run);
     const fs::path dir = scratch("sweep-" + std::to_string(run));
-    run_building_to_folder(scene, dir);
+    run_to_folder(scene, dir);
     const auto c = summary(dir)["contacts"][0];
     REQUIRE(row.channels.size() == cols.size());
     auto cell = [&](const std::string& name) { return row.channels.at(column(name)); };
@@ -343,7 +343,7 @@ TEST_CASE("building sweeps: the pounding columns of a row are the single run's s
 TEST_CASE("plot run on a building run with contacts draws contacts with the impacts marked", "[plot][cli][pounding]") {
   adjoin::test::needs_program("gnuplot");
   const fs::path dir = scratch("plot-none");
-  run_building_to_folder(pounding_scene(), dir);
+  run_to_folder(pounding_scene(), dir);
   const fs::path out = scratch("plot-none-svg") / "";
   const auto none = run_cli("plot run '" + dir.string() + "' --format svg --out '" + out.string() + "'");
   INFO(none.err);
@@ -357,7 +357,7 @@ TEST_CASE("plot run on a building run with contacts draws contacts with the impa
   BuildingScene scene = pounding_scene();
   set_linear_law(scene);
   const fs::path law = scratch("plot-law");
-  const BuildingFiles files = run_building_to_folder(scene, law);
+  const RunFiles files = run_to_folder(scene, law);
   REQUIRE(files.report.contacts[0].impacts > 0);
   const fs::path png = scratch("plot-law-png") / "";
   const auto drawn = run_cli("plot run '" + law.string() + "' --size 800x500 --out '" + png.string() + "'");
@@ -379,7 +379,7 @@ TEST_CASE("the terminal line of a Newton-law pair gives its largest impulse, not
   auto& law = scene.structure.contacts.at(0).law;
   law.model = structure::ContactModel::impact;
   law.restitution = 0.65;
-  const BuildingReport r = run_building(scene);
+  const Report r = run(scene);
   const ContactReport& c = r.contacts.at(0);
   REQUIRE(c.impacts >= 2);
   REQUIRE(c.impulse_max > 0.0);
@@ -393,7 +393,7 @@ TEST_CASE("the terminal line of a Newton-law pair gives its largest impulse, not
   CHECK(brief.find(impulse) != std::string::npos);
   // One impact, one switch: singular (a report made up for the wording; the counts are the
   // report's own).
-  BuildingReport one = r;
+  Report one = r;
   one.contacts.at(0).impacts = 1;
   REQUIRE_FALSE(one.links.empty());
   one.links.at(0).switches = 1;
@@ -419,7 +419,7 @@ TEST_CASE("an elastic Hertz contact beside a friction damper gives back what it 
   };
   std::vector<double> lost;
   for (double h : {0.002, 0.001}) {
-    const BuildingReport r = run_building(hertz(2e10, h));
+    const Report r = run(hertz(2e10, h));
     REQUIRE(r.contacts[0].impacts >= 5);
     INFO("h " << h << ": dissipated " << r.contacts[0].dissipated << " J of an input of " << r.energy.input << " J");
     CHECK(std::abs(r.contacts[0].dissipated) < 1e-3 * r.energy.input);
@@ -427,7 +427,7 @@ TEST_CASE("an elastic Hertz contact beside a friction damper gives back what it 
   }
   CHECK(lost[1] < 0.35 * lost[0]);  // order 2: a quarter
   try {
-    run_building(hertz(1e16, 0.002));
+    run(hertz(1e16, 0.002));
     FAIL("the run did not stop");
   } catch (const NumericalError& e) {
     const std::string m = e.what();

@@ -16,7 +16,7 @@
 #include "adjoin/core/units.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "adjoin/structure/modal.hpp"
-#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run.hpp"
 #include "adjoin/study/run.hpp"
 #include "cli_helpers.hpp"
 #include "needs_program.hpp"
@@ -52,7 +52,7 @@ std::map<std::string, std::vector<double>> read_columns(const std::filesystem::p
 TEST_CASE("a building scene reads whole, and chooses h and t_end when not given", "[building_run]") {
   const BuildingScene given = load_building_scene(kScene);
   CHECK(given.solver.h == 0.002);
-  CHECK(given.h_rule == "given");
+  CHECK(given.accuracy.h_rule == "given");
   CHECK(given.structure.a.floors() == 5);
   const BuildingScene chosen = load_building_scene(kScene, {"solver.h=0.001", "solver.t_end=2"});
   CHECK(chosen.solver.h == 0.001);
@@ -73,15 +73,15 @@ TEST_CASE("a building scene reads whole, and chooses h and t_end when not given"
   std::filesystem::remove(file);
   CHECK(d.solver.h == Approx(0.5 / 200).epsilon(1e-9));
   const double longest = structure::coupled_modes(d.structure).periods_free[0];
-  CHECK(d.solver.t_end == Approx(d.base.ground->duration() + 5 * longest).epsilon(1e-9));
-  CHECK(d.t_end_rule.find("duration") != std::string::npos);
+  CHECK(d.solver.t_end == Approx(d.ground->duration() + 5 * longest).epsilon(1e-9));
+  CHECK(d.accuracy.t_end_rule.find("duration") != std::string::npos);
 }
 
 TEST_CASE("a building run's files agree with the modal analysis and the time series", "[building_run]") {
   const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "building-run";
   std::filesystem::remove_all(dir);
   const BuildingScene scene = load_building_scene(kScene, {"output.every=1", "solver.t_end=12"});
-  const BuildingFiles files = run_building_to_folder(scene, dir);
+  const RunFiles files = run_to_folder(scene, dir);
   REQUIRE(files.written.size() == 2);
   std::ifstream in(dir / "summary.json");
   const auto j = nlohmann::json::parse(in);
@@ -129,7 +129,7 @@ TEST_CASE("in-structure spectra of floors are the spectra of the floors' acceler
   const BuildingScene scene = load_building_scene(
       kScene, {"output.every=1", "solver.t_end=12", "output.spectra.signals=[\"ground\", \"A.a5_abs\", \"B.a2_abs\"]",
                "output.spectra.periods=[0.02, 0.1, 0.5, 1.0, 2.0]", "output.spectra.damping=[0.02, 0.05]"});
-  const BuildingFiles files = run_building_to_folder(scene, dir);
+  const RunFiles files = run_to_folder(scene, dir);
   REQUIRE(files.report.spectra.size() == 3);
   const auto columns = read_columns(dir / "timeseries.csv");
   const auto spectra = read_columns(dir / "spectra.csv");  // (the signal column reads as NaN)
@@ -160,7 +160,7 @@ TEST_CASE("the SI record scene written in building keys gives the two-block resu
     void observe(const State& s) override { states.push_back(s); }
     std::vector<State> states;
   } grid;
-  run_scene(two_block, &grid);
+  run(two_block, {nullptr, &grid});
   // (t_end inside the record: at its very end, 30 s, one time axis rounds past the last sample.)
   const BuildingScene building =
       load_building_scene(std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/buildings/si-record-as-building.toml", {"solver.t_end=29"});
@@ -169,7 +169,7 @@ TEST_CASE("the SI record scene written in building keys gives the two-block resu
     void observe(const StructureState& s) override { states.push_back(s); }
     std::vector<StructureState> states;
   } rec;
-  simulate_structure(building.solver, building.structure, *building.base.ground, rec);
+  simulate_structure(building.solver, building.structure, *building.ground, rec);
   REQUIRE(rec.states.size() == grid.states.size());
   const Scales& k = two_block.scales;
   double dx = 0.0, dq = 0.0, x_max = 0.0;
@@ -199,7 +199,7 @@ TEST_CASE("the energy balance of a building run closes at order 2 with several d
   std::vector<double> residuals;
   for (double h : {0.004, 0.002, 0.001}) {
     scene.solver.h = h;
-    const BuildingReport r = run_building(scene);
+    const Report r = run(scene);
     INFO("h = " << h << ": input " << r.energy.input << " J, residual " << r.energy.residual << " J");
     for (std::size_t l = 0; l < 2; ++l) {
       CHECK(r.links[l].switches > 2);
@@ -248,9 +248,9 @@ TEST_CASE("r3 defaults: a building scene without [solver] takes an engineer's to
   // With a contact law (impacts): rows every 1/1000 s, in whole steps.
   const BuildingScene scene = scene_without_solver(
       "r3-defaults", {"contact.1.model=hertzdamp", "contact.1.stiffness=2e9", "contact.1.restitution=0.65"});
-  REQUIRE(scene.base.accuracy.tolerance);
-  REQUIRE(*scene.base.accuracy.tolerance == 1e-3);  // before the run: 1e-6 would take minutes
-  CHECK(scene.h_rule.find("solver.tolerance = 0.001 (the default") != std::string::npos);
+  REQUIRE(scene.accuracy.tolerance);
+  REQUIRE(*scene.accuracy.tolerance == 1e-3);  // before the run: 1e-6 would take minutes
+  CHECK(scene.accuracy.h_rule.find("solver.tolerance = 0.001 (the default") != std::string::npos);
   CHECK(building_output_interval(scene) == 1e-3);
   CHECK(building_output_every(scene, 2.5e-4) == 4);
   CHECK(building_output_every(scene, 3e-4) == 3);
@@ -258,7 +258,7 @@ TEST_CASE("r3 defaults: a building scene without [solver] takes an engineer's to
   const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "r3-defaults";
   std::filesystem::remove_all(dir);
   std::vector<std::string> warnings;
-  const BuildingFiles files = run_building_to_folder(scene, dir, [&](const std::string& w) { warnings.push_back(w); });
+  const RunFiles files = run_to_folder(scene, dir, [&](const std::string& w) { warnings.push_back(w); });
   REQUIRE(files.tolerant);
   CHECK(files.tolerant->met);
   const double h = files.tolerant->h;
@@ -286,7 +286,7 @@ TEST_CASE("r3 defaults: without a contact law rows every 1/200 s, and a scene's 
   CHECK(building_output_every(given_every, 1e-4) == 7);
   // A scene's own tolerance is kept.
   const BuildingScene given_tol = scene_without_solver("r3-defaults-tol", {"solver.tolerance=1e-5"});
-  CHECK(*given_tol.base.accuracy.tolerance == 1e-5);
+  CHECK(*given_tol.accuracy.tolerance == 1e-5);
 }
 
 TEST_CASE("r3 defaults: a time series over 50 MB is announced with its size before it is written", "[building_run][defaults]") {
@@ -295,7 +295,7 @@ TEST_CASE("r3 defaults: a time series over 50 MB is announced with its size befo
   const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "r3-defaults-large";
   std::filesystem::remove_all(dir);
   std::vector<std::string> warnings;
-  run_building_to_folder(scene, dir, [&](const std::string& w) { warnings.push_back(w); });
+  run_to_folder(scene, dir, [&](const std::string& w) { warnings.push_back(w); });
   REQUIRE(warnings.size() == 1);
   INFO(warnings[0]);
   CHECK(warnings[0].find("timeseries.csv will be about") != std::string::npos);

@@ -13,7 +13,7 @@
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/sweep_files.hpp"
 #include "adjoin/io/sweep_file.hpp"
-#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run.hpp"
 #include "adjoin/study/building_sweep.hpp"
 #include "adjoin/study/demand.hpp"
 #include "adjoin/study/sweep.hpp"
@@ -100,7 +100,7 @@ im_periods = [1.0]
       load_building_scene(kOneDamper,
                           {"solver.t_end=4.0", "solver.h=0.004", "output.timeseries=false", "link.1.slip_ratio=0.1",
                            "building.A.damping.ratio=0.02"});
-  const BuildingReport report = run_building(scene);
+  const Report report = run(scene);
   CHECK(row.channels == building_channel_cells(scene.structure, scene, report));
   // Spelled out for the columns one reads first.
   const auto columns = sweep_columns(spec);
@@ -249,10 +249,10 @@ values = [{name = "ok", set = {"link.1.slip_ratio" = 0.05, "building.A.period" =
         CHECK(swept->structure.links[l].slip_force == run->structure.links[l].slip_force);
       CHECK(swept->solver.h == run->solver.h);
       CHECK(swept->solver.t_end == run->solver.t_end);
-      CHECK(swept->h_rule == run->h_rule);
-      CHECK(swept->t_end_rule == run->t_end_rule);
+      CHECK(swept->accuracy.h_rule == run->accuracy.h_rule);
+      CHECK(swept->accuracy.t_end_rule == run->accuracy.t_end_rule);
       CHECK(swept->warnings == run->warnings);
-      for (double t : {0.3, 1.7}) CHECK(swept->base.ground->ag(t) == run->base.ground->ag(t));
+      for (double t : {0.3, 1.7}) CHECK(swept->ground->ag(t) == run->ground->ag(t));
     }
   }
   CHECK(compared == 2);

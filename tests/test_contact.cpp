@@ -253,12 +253,12 @@ TEST_CASE("impact times, peak forces and peak displacements converge at order 2 
         double x1 = 0.0, start = 0.0, force = 0.0;
         int impacts = 0;
       } log;
-      const RunReport report = run_scene(test::paper_scene("strong", keys), &log);
+      const Report report = run(test::paper_scene("strong", keys), {nullptr, &log});
       REQUIRE(log.impacts >= 1);
-      drift.push_back(report.peaks.drift.max_abs);
+      drift.push_back(report.two_block->peaks.drift.max_abs);
       t_first.push_back(log.start);
       force.push_back(log.force);
-      x1.push_back(report.peaks.x1.max_abs);
+      x1.push_back(report.two_block->peaks.x1.max_abs);
     }
     auto order = [](const std::vector<double>& v) { return std::log2(std::abs(v[0] - v[1]) / std::abs(v[1] - v[2])); };
     INFO("orders: first touch " << order(t_first) << ", peak force " << order(force) << ", peak x1 " << order(x1)
@@ -380,7 +380,7 @@ TEST_CASE("a two-block contact too stiff for its step stops when it gives back m
                                     "model.contact.stiffness=1e15", "solver.t_end=2", "solver.h=" + std::to_string(h)};
   };
   try {
-    run_scene(test::paper_scene("strong", keys(0.05)));
+    run(test::paper_scene("strong", keys(0.05)));
     FAIL("the run did not stop");
   } catch (const NumericalError& e) {
     const std::string m = e.what();
@@ -389,9 +389,9 @@ TEST_CASE("a two-block contact too stiff for its step stops when it gives back m
     CHECK(m.find("make solver.h smaller or lower model.contact.stiffness") != std::string::npos);
     CHECK(e.time() > 0.0);
   }
-  const RunReport fine = run_scene(test::paper_scene("strong", keys(0.002)));
-  REQUIRE(fine.pounding);
-  CHECK(fine.pounding->contact);
+  const Report fine = run(test::paper_scene("strong", keys(0.002)));
+  REQUIRE(fine.two_block->pounding);
+  CHECK(fine.two_block->pounding->contact);
 }
 
 TEST_CASE("pounding that dies down: a floor dropped on the wall bounces, then rests at the static answer", "[contact]") {

@@ -25,25 +25,25 @@ struct Compared {
 };
 
 // Every estimated quantity of `r` with its estimate and its true error against `ref`.
-std::vector<Compared> compare(const RunReport& r, const ErrorEstimate& e, const RunReport& ref) {
+std::vector<Compared> compare(const Report& r, const ErrorEstimate& e, const Report& ref) {
   std::vector<Compared> out;
   auto peak = [&](const char* name, const Peak& p, const Peak& pr, const PeakError& pe) {
     out.push_back({std::string(name) + ".max_abs", pe.max_abs, std::abs(p.max_abs - pr.max_abs), pr.max_abs});
     out.push_back({std::string(name) + ".t", pe.t, std::abs(p.t - pr.t)});
   };
-  peak("x1", r.peaks.x1, ref.peaks.x1, e.x1);
-  peak("x2", r.peaks.x2, ref.peaks.x2, e.x2);
-  peak("drift", r.peaks.drift, ref.peaks.drift, e.drift);
-  peak("f1", r.peaks.f1, ref.peaks.f1, e.f1);
-  peak("f2", r.peaks.f2, ref.peaks.f2, e.f2);
-  peak("q", r.peaks.q, ref.peaks.q, e.q);
-  out.push_back({"min_gap", e.min_gap, std::abs(r.pounding->min_gap - ref.pounding->min_gap), ref.pounding->min_gap});
-  out.push_back({"t_min_gap", e.t_min_gap, std::abs(r.pounding->t_min_gap - ref.pounding->t_min_gap)});
-  out.push_back({"friction", e.friction, std::abs(r.energy->friction - ref.energy->friction), ref.energy->friction});
+  peak("x1", r.two_block->peaks.x1, ref.two_block->peaks.x1, e.x1);
+  peak("x2", r.two_block->peaks.x2, ref.two_block->peaks.x2, e.x2);
+  peak("drift", r.two_block->peaks.drift, ref.two_block->peaks.drift, e.drift);
+  peak("f1", r.two_block->peaks.f1, ref.two_block->peaks.f1, e.f1);
+  peak("f2", r.two_block->peaks.f2, ref.two_block->peaks.f2, e.f2);
+  peak("q", r.two_block->peaks.q, ref.two_block->peaks.q, e.q);
+  out.push_back({"min_gap", e.min_gap, std::abs(r.two_block->pounding->min_gap - ref.two_block->pounding->min_gap), ref.two_block->pounding->min_gap});
+  out.push_back({"t_min_gap", e.t_min_gap, std::abs(r.two_block->pounding->t_min_gap - ref.two_block->pounding->t_min_gap)});
+  out.push_back({"friction", e.friction, std::abs(r.two_block->energy->friction - ref.two_block->energy->friction), ref.two_block->energy->friction});
   REQUIRE(e.switches_matched);
-  REQUIRE(r.phases.size() == ref.phases.size());
-  for (std::size_t i = 1; i < r.phases.size(); ++i)
-    out.push_back({"switch " + std::to_string(i), e.switches[i - 1], std::abs(r.phases[i].t_start - ref.phases[i].t_start)});
+  REQUIRE(r.two_block->phases.size() == ref.two_block->phases.size());
+  for (std::size_t i = 1; i < r.two_block->phases.size(); ++i)
+    out.push_back({"switch " + std::to_string(i), e.switches[i - 1], std::abs(r.two_block->phases[i].t_start - ref.two_block->phases[i].t_start)});
   return out;
 }
 
@@ -111,11 +111,11 @@ TEST_CASE("strong scene: the estimated errors are within a factor 3 of the true 
     o.push_back("solver.h=" + std::to_string(h));
     return paper_scene("strong", o);
   };
-  const RunReport ref = run_scene(with(3.125e-5));
+  const Report ref = run(with(3.125e-5));
   for (double h : {2e-3, 1e-3, 5e-4}) {
     INFO("h = " << h);
     const Scene scene = with(h);
-    const RunReport r = run_scene(scene);
+    const Report r = run(scene);
     const ErrorEstimate e = estimate_error(scene, r);
     REQUIRE(e.available);
     CHECK(e.order == 2);
@@ -134,11 +134,11 @@ TEST_CASE("record scene: the estimated errors are within a factor 3 of the true 
   // Steps that divide the record's sample interval (0.005 s), the companion's too: the ground
   // acceleration is piecewise linear, and a kink inside a step adds an error that is
   // irregular in h.
-  const RunReport ref = run_scene(with(0.005 / 128));
+  const Report ref = run(with(0.005 / 128));
   for (double h : {0.0025, 0.00125}) {
     INFO("h = " << h);
     const Scene scene = with(h);
-    const RunReport r = run_scene(scene);
+    const Report r = run(scene);
     const ErrorEstimate e = estimate_error(scene, r);
     REQUIRE(e.available);
     check_honest(compare(r, e, ref), 1e-9, kRecordExceptions);
@@ -149,7 +149,7 @@ TEST_CASE("a run to a tolerance meets it, and says which steps it tried", "[erro
   const std::vector<std::string> implicit = {"solver.scheme=implicit", "solver.history=fft"};
   auto o = implicit;
   o.push_back("solver.h=3.125e-5");
-  const RunReport ref = run_scene(paper_scene("strong", o));
+  const Report ref = run(paper_scene("strong", o));
   for (double tolerance : {1e-5, 1e-6}) {
     INFO("tolerance " << tolerance);
     const TolerantRun t = run_to_tolerance(paper_scene("strong", implicit), tolerance);
@@ -159,9 +159,9 @@ TEST_CASE("a run to a tolerance meets it, and says which steps it tried", "[erro
     CHECK(t.report.solver.h == t.h);
     CHECK(t.estimate.max_relative_peak <= tolerance);
     // The true relative errors of the peaks meet the tolerance too.
-    for (auto [p, pr] : {std::pair{t.report.peaks.x1, ref.peaks.x1}, {t.report.peaks.x2, ref.peaks.x2},
-                         {t.report.peaks.f1, ref.peaks.f1}, {t.report.peaks.f2, ref.peaks.f2},
-                         {t.report.peaks.drift, ref.peaks.drift}, {t.report.peaks.q, ref.peaks.q}})
+    for (auto [p, pr] : {std::pair{t.report.two_block->peaks.x1, ref.two_block->peaks.x1}, {t.report.two_block->peaks.x2, ref.two_block->peaks.x2},
+                         {t.report.two_block->peaks.f1, ref.two_block->peaks.f1}, {t.report.two_block->peaks.f2, ref.two_block->peaks.f2},
+                         {t.report.two_block->peaks.drift, ref.two_block->peaks.drift}, {t.report.two_block->peaks.q, ref.two_block->peaks.q}})
       CHECK(std::abs(p.max_abs - pr.max_abs) <= tolerance * pr.max_abs);
   }
 }

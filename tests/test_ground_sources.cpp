@@ -48,9 +48,9 @@ TEST_CASE("a record scene sees the record: a_g = -u'' in g on the solver's grid"
     const double t = static_cast<double>(i) * raw.dt / scene.scales.time;  // dimensionless
     CHECK(scene.ground->ag(t) == Approx(-(raw.accel[i] - mean) * scale / kStandardGravity).epsilon(1e-9));
   }
-  const RunReport r = run_scene(scene);
-  CHECK(r.peaks.ag.max_abs * scene.scales.acceleration / kStandardGravity == Approx(0.25).epsilon(0.02));
-  CHECK(r.energy->input > 0.0);
+  const Report r = run(scene);
+  CHECK(r.two_block->peaks.ag.max_abs * scene.scales.acceleration / kStandardGravity == Approx(0.25).epsilon(0.02));
+  CHECK(r.two_block->energy->input > 0.0);
 }
 
 TEST_CASE("record keys are checked: missing file, bad units, bad filter, keys of another source", "[ground][record]") {
@@ -69,7 +69,7 @@ TEST_CASE("a filtered-noise scene is reproducible from its seed and changes with
   auto run = [&](const char* seed) {
     Scene s = load_scene(kScenes + "si-noise.toml", {std::string("ground.seed=") + seed, "solver.t_end=5", "output.spectra.periods=[0.5]"});
     TimeSeriesRecorder rec;
-    run_scene(s, &rec);
+    adjoin::run(s, {nullptr, &rec});
     return rec.states();
   };
   const auto a = run("7"), b = run("7"), c = run("8");

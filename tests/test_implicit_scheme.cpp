@@ -45,16 +45,16 @@ TEST_CASE("implicit, weak excitation: stick throughout, exactly one velocity", "
       REQUIRE(s.v1 == s.v2);
       max_q = std::max(max_q, std::abs(s.q));
     }
-    CHECK(max_q < scene.model.mu);
-    CHECK(max_q > 0.5 * scene.model.mu);
+    CHECK(max_q < scene.model->mu);
+    CHECK(max_q > 0.5 * scene.model->mu);
   }
 }
 
 TEST_CASE("implicit, strong excitation: the paper's phase structure, exact final stick", "[implicit]") {
   const Scene scene = paper_scene("strong", {"solver.scheme=implicit"});
-  const double mu = scene.model.mu;
-  const RunReport report = run_scene(scene);
-  const auto& phases = report.phases;
+  const double mu = scene.model->mu;
+  const Report report = run(scene);
+  const auto& phases = report.two_block->phases;
   REQUIRE(phases.size() >= 4);
   CHECK(phases.front().state == Phase::stick);
   CHECK(phases.front().t_end > 0.1);
@@ -73,7 +73,7 @@ TEST_CASE("implicit, strong excitation: the paper's phase structure, exact final
   double c = std::nan("");
   for (std::size_t i = 1; i < states.size(); ++i) {
     const State& s = states[i];
-    REQUIRE(scene.model.gap0 + s.x2 - s.x1 > 0.0);
+    REQUIRE(scene.model->gap0 + s.x2 - s.x1 > 0.0);
     REQUIRE(std::abs(s.q) <= mu);
     if (s.phase == Phase::stick) REQUIRE(s.v1 == s.v2);  // stick holds exactly: no chatter
     // In slip, q sits on the limit, except in the step where the slip reverses (its average).
@@ -88,33 +88,33 @@ TEST_CASE("implicit, strong excitation: the paper's phase structure, exact final
     }
   }
   CHECK(std::abs(c) > 1e-3);
-  CHECK(report.energy->friction > 0.0);
+  CHECK(report.two_block->energy->friction > 0.0);
 }
 
 TEST_CASE("implicit: second order on the strong scene (peaks, gap, friction energy, energy residual)", "[implicit][order]") {
   // Successive differences over h = 0.004, 0.002, 0.001 give the observed order without a
   // reference solution; the residual of the energy balance is itself an error.
-  std::vector<RunReport> r;
+  std::vector<Report> r;
   for (const char* h : {"0.004", "0.002", "0.001"})
-    r.push_back(run_scene(paper_scene("strong", {"solver.scheme=implicit", std::string("solver.h=") + h})));
+    r.push_back(run(paper_scene("strong", {"solver.scheme=implicit", std::string("solver.h=") + h})));
   auto order = [&](auto get) { return order_of(std::abs(get(r[0]) - get(r[1])), std::abs(get(r[1]) - get(r[2]))); };
-  const double p_x1 = order([](const RunReport& x) { return x.peaks.x1.max_abs; });
-  const double p_gap = order([](const RunReport& x) { return x.pounding->min_gap; });
-  const double p_friction = order([](const RunReport& x) { return x.energy->friction; });
-  const double p_residual = order_of(std::abs(r[0].energy->residual), std::abs(r[2].energy->residual)) / 2.0;
+  const double p_x1 = order([](const Report& x) { return x.two_block->peaks.x1.max_abs; });
+  const double p_gap = order([](const Report& x) { return x.two_block->pounding->min_gap; });
+  const double p_friction = order([](const Report& x) { return x.two_block->energy->friction; });
+  const double p_residual = order_of(std::abs(r[0].two_block->energy->residual), std::abs(r[2].two_block->energy->residual)) / 2.0;
   INFO("orders: x1 " << p_x1 << ", gap " << p_gap << ", friction " << p_friction << ", residual " << p_residual);
   CHECK(p_x1 > 1.7);
   CHECK(p_gap > 1.7);
   CHECK(p_friction > 1.7);
   CHECK(p_residual > 1.7);
   // And already accurate: relative change from h = 0.002 to 0.001 below 1e-5.
-  CHECK(std::abs(r[1].peaks.x1.max_abs - r[2].peaks.x1.max_abs) < 1e-5 * r[2].peaks.x1.max_abs);
-  CHECK(std::abs(r[1].energy->friction - r[2].energy->friction) < 1e-5 * r[2].energy->friction);
+  CHECK(std::abs(r[1].two_block->peaks.x1.max_abs - r[2].two_block->peaks.x1.max_abs) < 1e-5 * r[2].two_block->peaks.x1.max_abs);
+  CHECK(std::abs(r[1].two_block->energy->friction - r[2].two_block->energy->friction) < 1e-5 * r[2].two_block->energy->friction);
 }
 
 TEST_CASE("observed orders on the smooth (stick-only) weak scene: implicit 2, implicit-gl and paper 1", "[implicit][order]") {
   auto x16 = [](const char* scheme, const char* h) {
-    return run_scene(paper_scene("weak", {std::string("solver.scheme=") + scheme, std::string("solver.h=") + h})).final.x1;
+    return run(paper_scene("weak", {std::string("solver.scheme=") + scheme, std::string("solver.h=") + h})).two_block->final.x1;
   };
   for (auto [scheme, expected] : {std::pair{"implicit", 2.0}, {"implicit-gl", 1.0}, {"paper", 1.0}}) {
     const double a = x16(scheme, "0.004"), b = x16(scheme, "0.002"), c = x16(scheme, "0.001");
@@ -156,20 +156,20 @@ TEST_CASE("implicit stays stable and accurate where the paper scheme must stop",
     o.push_back(std::string("solver.h=") + h);
     return paper_scene("strong", o);
   };
-  CHECK_THROWS_AS(run_scene(with("paper", "0.1")), NumericalError);
-  const RunReport coarse = run_scene(with("implicit", "0.1"));
-  const RunReport fine = run_scene(with("implicit", "0.001"));
-  CHECK(std::isfinite(coarse.peaks.x1.max_abs));
-  CHECK(coarse.peaks.x1.max_abs == Approx(fine.peaks.x1.max_abs).epsilon(0.05));
-  CHECK(std::abs(coarse.energy->residual) < 0.01 * coarse.energy->input);
+  CHECK_THROWS_AS(run(with("paper", "0.1")), NumericalError);
+  const Report coarse = run(with("implicit", "0.1"));
+  const Report fine = run(with("implicit", "0.001"));
+  CHECK(std::isfinite(coarse.two_block->peaks.x1.max_abs));
+  CHECK(coarse.two_block->peaks.x1.max_abs == Approx(fine.two_block->peaks.x1.max_abs).epsilon(0.05));
+  CHECK(std::abs(coarse.two_block->energy->residual) < 0.01 * coarse.two_block->energy->input);
 }
 
 TEST_CASE("shortcuts agree with the general path: mu = 0 and elastic rods", "[implicit][shortcuts]") {
   auto run = [](std::vector<std::string> o, bool elastic_rod2 = false) {
     Scene scene = paper_scene("strong", o);
-    if (elastic_rod2) scene.model.rod2 = Rod::Elastic();
+    if (elastic_rod2) scene.model->rod2 = Rod::Elastic();
     TimeSeriesRecorder r;
-    run_scene(scene, &r);
+    adjoin::run(scene, {nullptr, &r});
     return r.states();
   };
   // mu = 0 skips the damper logic; a vanishing slip force goes through it.

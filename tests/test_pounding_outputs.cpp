@@ -137,7 +137,7 @@ TEST_CASE("no contact law and a closing gap: summary, time series and terminal f
   const Scene scene = load_scene(kStrong, {"model.gap0=0.3"});
   std::ostringstream plain;
   TimeSeriesCsvWriter writer(plain, scene.scales);
-  run_scene(scene, &writer);
+  run(scene, {nullptr, &writer});
   const auto plain_lines = lines_of(plain.str());
   REQUIRE(plain_lines.size() == lines.size());
   CHECK(plain_lines[0] == "t,x1,x2,v1,v2,f1,f2,q,ag,gap,phase");
@@ -364,7 +364,7 @@ TEST_CASE("with a contact law: impacts.csv holds the impacts the solver streamed
           "[pounding][outputs]") {
   const Scene scene = linear_contact_scene({"output.energy_history=true"});
   ImpactRecorder recorded;
-  run_scene(scene, &recorded);
+  run(scene, {nullptr, &recorded});
   REQUIRE(recorded.impacts.size() >= 2);
 
   const auto dir = fresh("pounding-linear");
@@ -437,14 +437,14 @@ TEST_CASE("with a contact law the energy residual subtracts the contact work and
           "[pounding][energy]") {
   std::vector<double> residual, contact;
   for (const char* h : {"solver.h=0.002", "solver.h=0.001", "solver.h=0.0005"}) {
-    const RunReport r = run_scene(linear_contact_scene({h, "solver.error_estimate=false"}));
-    REQUIRE(r.energy);
-    REQUIRE(r.pounding);
-    REQUIRE(r.pounding->impacts.size() >= 2);
-    residual.push_back(std::abs(r.energy->residual));
-    contact.push_back(r.energy->contact);
+    const Report r = run(linear_contact_scene({h, "solver.error_estimate=false"}));
+    REQUIRE(r.two_block->energy);
+    REQUIRE(r.two_block->pounding);
+    REQUIRE(r.two_block->pounding->impacts.size() >= 2);
+    residual.push_back(std::abs(r.two_block->energy->residual));
+    contact.push_back(r.two_block->energy->contact);
     // After the last impact nothing is stored in the contact: its work is all dissipated.
-    CHECK(r.energy->contact == Approx(r.energy->contact_dissipated).epsilon(1e-12));
+    CHECK(r.two_block->energy->contact == Approx(r.two_block->energy->contact_dissipated).epsilon(1e-12));
   }
   INFO("residuals " << residual[0] << " " << residual[1] << " " << residual[2] << ", contact " << contact[0]);
   CHECK(contact[0] > 0.05);
@@ -466,8 +466,8 @@ TEST_CASE("sweep rows with a contact law report the impacts", "[pounding][sweep]
   const auto rows = run_sweep(spec, {});
   REQUIRE(rows.size() == 2);
   const Scene scene = linear_contact_scene();
-  const RunReport r = run_scene(scene);
-  REQUIRE(r.pounding);
+  const Report r = run(scene);
+  REQUIRE(r.two_block->pounding);
   const auto columns = sweep_columns(spec);
   std::vector<std::string> names;
   for (const auto& c : columns) names.push_back(c.name);
@@ -476,9 +476,9 @@ TEST_CASE("sweep rows with a contact law report the impacts", "[pounding][sweep]
   CHECK(never[index_of(names, "contact.force_max")] == "0");
   CHECK(never[index_of(names, "outside_model")] == "false");
   CHECK(pounds[index_of(names, "outside_model")] == "false");
-  CHECK(pounds[index_of(names, "contact.impacts")] == std::to_string(r.pounding->impacts.size()));
-  CHECK(std::stod(pounds[index_of(names, "contact.force_max")]) == r.pounding->force_max);
-  CHECK(std::stod(pounds[index_of(names, "contact.penetration_max")]) == r.pounding->penetration_max);
+  CHECK(pounds[index_of(names, "contact.impacts")] == std::to_string(r.two_block->pounding->impacts.size()));
+  CHECK(std::stod(pounds[index_of(names, "contact.force_max")]) == r.two_block->pounding->force_max);
+  CHECK(std::stod(pounds[index_of(names, "contact.penetration_max")]) == r.two_block->pounding->penetration_max);
 }
 
 TEST_CASE("with the Newton impact law the gap's minimum is 0 at the first touch and impulses are reported",

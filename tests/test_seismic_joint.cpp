@@ -18,7 +18,7 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/scene.hpp"
-#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run.hpp"
 #include "adjoin/study/run.hpp"
 #include "adjoin/study/seismic_joint.hpp"
 #include "cli_helpers.hpp"
@@ -40,16 +40,16 @@ BuildingScene frames_scene() { return load_building_scene(kFrames, {"solver.t_en
 // A two-block run of `scene` with gap0 = gap (scene units) and the contact law `law`.
 PoundingMargin two_block_run(const Scene& scene, double gap, const structure::ContactLaw& law = {}) {
   Scene s = scene;
-  s.model.gap0 = gap / s.scales.length;
-  s.model.contact = law;
-  return *run_scene(s).pounding;
+  s.model->gap0 = gap / s.scales.length;
+  s.model->contact = law;
+  return *run(s).two_block->pounding;
 }
 
 ContactReport building_run(const BuildingScene& scene, double gap, const structure::ContactLaw& law = {}) {
   BuildingScene s = scene;
   s.structure.contacts.at(0).gap = gap;
   s.structure.contacts.at(0).law = law;
-  return run_building(s).contacts.at(0);
+  return run(s).contacts.at(0);
 }
 
 void check_agreement(const SeismicJoint& j) {
@@ -79,8 +79,8 @@ TEST_CASE("seismic joint of the paper's strong scene: bisection and direct s_max
   CHECK(j.gap_key == "model.gap0");
   CHECK_FALSE(j.building);
   // The scene's own run (gap0 = 2) reports the margin min_gap = gap0 - s_max.
-  const PoundingMargin own = *run_scene(scene).pounding;
-  CHECK(scene.model.gap0 - own.min_gap == Approx(j.s_max).epsilon(1e-12));
+  const PoundingMargin own = *run(scene).two_block->pounding;
+  CHECK(scene.model->gap0 - own.min_gap == Approx(j.s_max).epsilon(1e-12));
   CHECK(j.t_critical == Approx(own.t_min_gap).epsilon(1e-12));
 
   // A gap of joint + tol never touches; joint - 10 tol does, without a contact law and with
@@ -104,7 +104,7 @@ TEST_CASE("seismic joint of the paper's strong scene: bisection and direct s_max
   SeismicJointOptions coarse;
   coarse.tol = 1e-3;
   Scene with_law = scene;
-  with_law.model.contact = linear;
+  with_law.model->contact = linear;
   const SeismicJoint c = seismic_joint(with_law, coarse);
   CHECK(c.agree);
   CHECK(c.tol == 1e-3);
@@ -124,7 +124,7 @@ TEST_CASE("seismic joint of two frames under a record: bisection and direct s_ma
   CHECK(j.floor_b == 3);
   // The scene's own run (gap 0.05 m, no contact law) reports its minimum gap on the grid: the
   // joint's s_max is refined between grid points, a little above 0.05 - min_gap (O(h^2)).
-  const ContactReport own = run_building(scene).contacts.at(0);
+  const ContactReport own = run(scene).contacts.at(0);
   CHECK(j.s_max >= 0.05 - own.min_gap);
   CHECK(j.s_max - (0.05 - own.min_gap) < 1e-3 * j.s_max);
   CHECK(std::abs(j.t_critical - own.t_min_gap) <= scene.solver.h);
@@ -251,7 +251,7 @@ TEST_CASE("seismic joint: another pair that pounds once is noted as 1 impact, in
   std::ofstream(file) << scene;
   const BuildingScene s = load_building_scene(file);
   fs::remove(file);
-  const BuildingReport r = run_building(s);
+  const Report r = run(s);
   REQUIRE(r.contacts.at(1).impacts == 1);
   SeismicJointOptions o;
   o.tol = 1e-2;

@@ -150,10 +150,10 @@ TEST_CASE("building scenes: solver.scheme picks the structure step's restart rul
 
 TEST_CASE("an SI building scene describes its ground in SI units, as written", "[structure_edits][building]") {
   const BuildingScene b = parse_building_scene(building_run_scene(), "b.toml", {}, {});
-  CHECK(b.base.ground->describe() == "decaying-sine u0=0.1 m omega=6 rad/s k=0.3 1/s");
+  CHECK(b.ground->describe() == "decaying-sine u0=0.1 m omega=6 rad/s k=0.3 1/s");
   // and runs it as that motion: a_g = u0 omega^2 e^{-k t} sin(omega t) [m/s^2]
   const double t = 0.2;
-  CHECK(b.base.ground->ag(t) * kStandardGravity == Approx(0.1 * 36.0 * std::exp(-0.3 * t) * std::sin(6.0 * t)).epsilon(1e-12));
+  CHECK(b.ground->ag(t) * kStandardGravity == Approx(0.1 * 36.0 * std::exp(-0.3 * t) * std::sin(6.0 * t)).epsilon(1e-12));
 }
 
 TEST_CASE("a building run's summary says the scheme it ran and the ground in SI", "[structure_edits][building][cli]") {

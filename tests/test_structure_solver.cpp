@@ -513,7 +513,7 @@ TEST_CASE("the paper's system with a light block: the restart after a switch kee
   const Scene scene =
       test::paper_scene("strong", {"solver.scheme=implicit", "solver.history=fft", "model.rho=1e5", "solver.h=0.002"});
   GridRecorder two_block;
-  run_scene(scene, &two_block);
+  run(scene, {nullptr, &two_block});
   const Structure s = structure_of(scene);
   const ScaledGround ground(*scene.ground, 1.0 / kStandardGravity);
   StructureSolverOptions o;
@@ -534,7 +534,7 @@ TEST_CASE("the paper's system with a light block: the restart after a switch kee
   }
   INFO("dx " << dx << " dq " << dq);
   CHECK(dx < 1e-12 * scale_x);
-  CHECK(dq < 1e-12 * scene.model.mu);
+  CHECK(dq < 1e-12 * scene.model->mu);
   CHECK(switches == 10);
   o.restart = Restart::never;
   Recorder trapezoidal;

@@ -18,7 +18,7 @@
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/study/seismic_joint.hpp"
-#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run.hpp"
 #include "adjoin/study/run_watch.hpp"
 #include "command.hpp"
 #include "progress.hpp"
@@ -115,7 +115,7 @@ int joint_command(const JointArgs& args) {
   if (is_building_scene(args.scene)) {
     BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
     for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
-    check_building_memory(scene);
+    check_memory(scene);
     const std::size_t n = scene.structure.contacts.size();
     if (n == 0)
       throw InputError(args.scene + ": no contact pair: adjoin joint needs a [[contact]] with floors = [i, j] (its gap "

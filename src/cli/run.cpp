@@ -6,12 +6,10 @@
 #include <iostream>
 
 #include "adjoin/core/errors.hpp"
-#include "adjoin/io/building_files.hpp"
 #include "adjoin/io/run_files.hpp"
-#include "adjoin/io/structure_file.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/summary.hpp"
-#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run.hpp"
 #include "adjoin/study/run_watch.hpp"
 #include "command.hpp"
 #include "progress.hpp"
@@ -28,36 +26,18 @@ struct RunArgs {
   bool allow_long = false;
 };
 
-int run_building_command(const RunArgs& args) {
-  BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
-  for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
-  check_building_memory(scene);  // before the output folder is touched
-  RunWatch watch(watch_options(args.quiet, args.allow_long));
-  scene.watch = &watch;
-  const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args.out);
-  const BuildingFiles files =
-      run_building_to_folder(scene, dir, [](const std::string& warning) { std::cerr << "warning: " << warning << "\n"; });
-  if (!args.quiet) {
-    std::cout << building_brief_report(scene, files.report, files.estimate ? &*files.estimate : nullptr,
-                                       files.tolerant ? &*files.tolerant : nullptr)
-              << "wrote ";
-    for (std::size_t i = 0; i < files.written.size(); ++i) std::cout << (i ? ", " : "") << files.written[i].string();
-    std::cout << "\n";
-  }
-  return 0;
-}
-
 int run_command(const RunArgs& args) {
-  if (is_building_scene(args.scene)) return run_building_command(args);
   Scene scene = load_scene(args.scene, args.overrides, args.unsets);
-  for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
+  const auto warn = [](const std::string& warning) { std::cerr << "warning: " << warning << "\n"; };
+  for (const auto& warning : scene.warnings) warn(warning);
+  check_memory(scene);  // before the output folder is touched
   RunWatch::Options watching = watch_options(args.quiet, args.allow_long);
   watching.time_scale = scene.scales.time;
   watching.h_unit = scene.scales.si ? " s" : " (dimensionless)";
   RunWatch watch(std::move(watching));
   scene.watch = &watch;
   const std::filesystem::path dir = args.out.empty() ? std::filesystem::path("out") / scene.name : std::filesystem::path(args.out);
-  const RunFiles files = run_to_folder(scene, dir);
+  const RunFiles files = run_to_folder(scene, dir, warn);
   if (!args.quiet) {
     std::cout << brief_report(scene, files.report, files.estimate ? &*files.estimate : nullptr,
                               files.tolerant ? &*files.tolerant : nullptr);

@@ -64,7 +64,7 @@ constexpr double kLargeCsvBytes = 50e6;  // warned before writing
 // Before a run whose file would exceed 50 MB it tells `warn` the size.
 class BuildingCsvWriter final : public StructureObserver {
  public:
-  BuildingCsvWriter(std::ostream& out, const BuildingScene& scene, BuildingWarning warn)
+  BuildingCsvWriter(std::ostream& out, const BuildingScene& scene, RunWarning warn)
       : out_(out), scene_(scene), warn_(std::move(warn)) {}
   void begin(const structure::Structure& s, const StructureSolverOptions& o) override {
     s_ = &s;
@@ -129,7 +129,7 @@ class BuildingCsvWriter final : public StructureObserver {
 
   std::ostream& out_;
   const BuildingScene& scene_;
-  BuildingWarning warn_;
+  RunWarning warn_;
   double warned_bytes_ = 0.0;
   std::size_t every_ = 1, steps_ = 0, count_ = 0;
   const structure::Structure* s_ = nullptr;
@@ -161,7 +161,7 @@ std::string unmodelled_message(std::size_t k, const structure::Contact& c, doubl
 }
 
 // Estimated absolute errors of the reported values (SI), shaped as a two-block run's.
-ordered_json building_error_json(const BuildingScene& scene, const BuildingErrorEstimate& e) {
+ordered_json building_error_json(const BuildingScene& scene, const ErrorEstimate& e) {
   if (!e.available) return ordered_json{{"available", false}, {"reason", e.reason}};
   ordered_json peaks = ordered_json::object();
   for (const auto& p : e.peaks) peaks[p.channel] = {{"max_abs", p.error.max_abs}, {"t", p.error.t}};
@@ -213,7 +213,7 @@ class RestartingWriter final : public StructureObserver {
 }  // namespace
 
 double building_output_interval(const BuildingScene& scene) {
-  if (scene.base.output.every > 0 || scene.h_rule == "given") return 0.0;
+  if (scene.output.every > 0 || scene.accuracy.h_rule == "given") return 0.0;
   const auto& contacts = scene.structure.contacts;
   const bool impacts = std::any_of(contacts.begin(), contacts.end(),
                                    [](const structure::Contact& c) { return c.law.model != structure::ContactModel::none; });
@@ -221,14 +221,14 @@ double building_output_interval(const BuildingScene& scene) {
 }
 
 std::size_t building_output_every(const BuildingScene& scene, double h) {
-  if (scene.base.output.every > 0) return scene.base.output.every;
+  if (scene.output.every > 0) return scene.output.every;
   const double interval = building_output_interval(scene);
   if (!(interval > 0.0 && h > 0.0)) return 1;
   return std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(interval / h * (1.0 + 1e-9))));
 }
 
-std::string building_summary_json(const BuildingScene& scene, const BuildingReport& r, const BuildingErrorEstimate* estimate,
-                                  const BuildingTolerantRun* tolerant) {
+std::string building_summary_json(const BuildingScene& scene, const Report& r, const ErrorEstimate* estimate,
+                                  const TolerantRun* tolerant) {
   const structure::Structure& s = scene.structure;
   ordered_json j;
   j["scene"] = scene.name;
@@ -239,14 +239,14 @@ std::string building_summary_json(const BuildingScene& scene, const BuildingRepo
                  {"steps", r.solver.steps},
                  {"wall_seconds", r.solver.wall_seconds},
                  {"t_end", scene.solver.t_end},
-                 {"h_rule", scene.h_rule},
-                 {"t_end_rule", scene.t_end_rule}};
+                 {"h_rule", scene.accuracy.h_rule},
+                 {"t_end_rule", scene.accuracy.t_end_rule}};
   if (tolerant) {
     j["solver"]["tolerance"] = tolerant->tolerance;
     j["solver"]["steps_tried"] = tolerant->ladder;
     j["solver"]["tolerance_met"] = tolerant->met;
   }
-  j["ground"] = scene.base.ground->describe();
+  j["ground"] = scene.ground->describe();
   ordered_json st;
   st["A"] = modes_json(r.modes[0]);
   if (s.b) {
@@ -319,18 +319,18 @@ std::string building_summary_json(const BuildingScene& scene, const BuildingRepo
   return j.dump(2) + "\n";
 }
 
-std::string building_brief_report(const BuildingScene& scene, const BuildingReport& r, const BuildingErrorEstimate* estimate,
-                                  const BuildingTolerantRun* tolerant) {
+std::string building_brief_report(const BuildingScene& scene, const Report& r, const ErrorEstimate* estimate,
+                                  const TolerantRun* tolerant) {
   std::ostringstream o;
   char line[512];
   const structure::Structure& s = scene.structure;
-  std::string h_rule = scene.h_rule;
+  std::string h_rule = scene.accuracy.h_rule;
   if (tolerant)
     h_rule += "; " + std::to_string(tolerant->ladder.size()) + (tolerant->ladder.size() == 1 ? " run" : " runs") +
               (tolerant->met ? "" : "; NOT met, see error_estimate");
   std::snprintf(line, sizeof line, "%s: %d + %d floors, h = %.4g s (%s), t_end = %.4g s (%s), %zu steps in %.3g s\n",
                 scene.name.c_str(), s.a.floors(), s.b ? s.b->floors() : 0, tolerant ? tolerant->h : scene.solver.h, h_rule.c_str(),
-                scene.solver.t_end, scene.t_end_rule.c_str(), r.solver.steps, r.solver.wall_seconds);
+                scene.solver.t_end, scene.accuracy.t_end_rule.c_str(), r.solver.steps, r.solver.wall_seconds);
   o << line;
   for (std::size_t b = 0; b < r.modes.size(); ++b) {
     std::snprintf(line, sizeof line, "building %s: T1 = %.4g s, modal damping %.3g (inherent %.3g, devices %.3g)\n",
@@ -403,7 +403,7 @@ std::string building_brief_report(const BuildingScene& scene, const BuildingRepo
   return o.str();
 }
 
-std::string building_impacts_csv(const BuildingReport& r) {
+std::string building_impacts_csv(const Report& r) {
   std::vector<Impact> all;
   for (const auto& c : r.contacts) all.insert(all.end(), c.impact_list.begin(), c.impact_list.end());
   std::stable_sort(all.begin(), all.end(), [](const Impact& a, const Impact& b) { return a.start < b.start; });
@@ -421,24 +421,24 @@ std::string building_impacts_csv(const BuildingReport& r) {
   return out;
 }
 
-BuildingFiles run_building_to_folder(const BuildingScene& scene, const std::filesystem::path& dir,
-                                     const BuildingWarning& warn) {
+RunFiles run_building_to_folder(const BuildingScene& scene, const std::filesystem::path& dir,
+                                     const RunWarning& warn) {
   check_output_folder(dir);  // before the run: the folder itself is made by the set's commit
   FileSet set(dir, {"summary.json", "timeseries.csv", "energy.csv", "spectra.csv", "impacts.csv"});
   std::unique_ptr<BuildingCsvWriter> writer;
   std::unique_ptr<RestartingWriter> restarting;
-  if (scene.base.output.timeseries) {
+  if (scene.output.timeseries) {
     writer = std::make_unique<BuildingCsvWriter>(set.open("timeseries.csv"), scene, warn);
     restarting = std::make_unique<RestartingWriter>(set, *writer);
   }
-  BuildingFiles files;
-  const AccuracyOptions& accuracy = scene.base.accuracy;
+  RunFiles files;
+  const AccuracyOptions& accuracy = scene.accuracy;
   if (accuracy.tolerance) {
-    files.tolerant = run_to_tolerance(scene, *accuracy.tolerance, restarting.get());
+    files.tolerant = run_to_tolerance(scene, *accuracy.tolerance, {restarting.get()});
     files.report = files.tolerant->report;
     files.estimate = files.tolerant->estimate;
   } else {
-    files.report = run_building(scene, restarting.get());
+    files.report = run(scene, {restarting.get()});
     if (accuracy.error_estimate) files.estimate = estimate_error(scene, files.report);
   }
   if (!files.report.spectra.empty()) set.open("spectra.csv") << spectra_csv(files.report.spectra);

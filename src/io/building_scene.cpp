@@ -140,45 +140,40 @@ BuildingScene detail::building_scene_from_tree(const toml::table& parsed, const 
   // then the rest (the base drops the structure's sections). Messages cite the parsed lines.
   toml::table tree = parsed;
   const CopiedFrom copied = copied_from(tree, parsed);
-  BuildingScene b;
+  structure::Structure structure = structure_from_tree(tree, file.string(), overrides, unsets, &copied);
+  BuildingScene b = building_base_from_tree(std::move(tree), file.string(), base_overrides, base_unsets, &parsed);
   b.file = file;
-  b.structure = structure_from_tree(tree, file.string(), overrides, unsets, &copied);
-  b.base = building_base_from_tree(std::move(tree), file.string(), base_overrides, base_unsets, &parsed);
-  b.base.file = file;
-  b.name = b.base.name;
-  if (b.base.output.spectra) check_spectra_signals(b.base.output.spectra->signals, b.structure, parsed, file.string(), overrides);
-  for (const auto& w : b.base.warnings)
-    if (w.find("period") == std::string::npos) b.warnings.push_back(w);  // (its periods are the placeholder's)
+  b.structure = std::move(structure);
+  if (b.output.spectra) check_spectra_signals(b.output.spectra->signals, b.structure, parsed, file.string(), overrides);
+  // (The base's warnings about periods are about its two-block rules, not this structure.)
+  std::erase_if(b.warnings, [](const std::string& w) { return w.find("period") != std::string::npos; });
 
   // The base read [solver] after the --unset and --set edits: it chose a tolerance exactly
   // when solver.h is not given, and says a rule for t_end exactly when t_end is not. The
   // structure's periods decide the defaults, by the rules of study/builder.hpp.
-  const bool h_given = !b.base.accuracy.tolerance;
-  const bool t_end_given = b.base.accuracy.t_end_rule.empty();
-  const double dt = b.base.ground->sample_interval();  // s (unit time scale)
+  AccuracyOptions& a = b.accuracy;
+  const bool h_given = !a.tolerance;
+  const bool t_end_given = a.t_end_rule.empty();
+  const double dt = b.ground->sample_interval();  // s (unit time scale)
   if (h_given) {
-    b.solver.h = b.base.solver.h;
-    b.h_rule = "given";
+    a.h_rule = "given";
   } else {
     // Without solver.h the step is chosen for solver.tolerance (given, or the building
-    // scenes' default; base.accuracy holds it).
-    AccuracyOptions& a = b.base.accuracy;
+    // scenes' default).
     if (!a.tolerance_given) a.tolerance = kBuildingDefaultTolerance;
-    a.h_rule = tolerance_rule(*a.tolerance, a.tolerance_given);
-    const Chosen h = default_building_step(b.structure, dt, a.h_rule);
+    const Chosen h = default_building_step(b.structure, dt, tolerance_rule(*a.tolerance, a.tolerance_given));
     b.solver.h = h.value;
-    b.h_rule = h.rule;
+    a.h_rule = h.rule;
   }
   if (t_end_given) {
-    b.solver.t_end = b.base.solver.t_end;
-    b.t_end_rule = "given";
+    a.t_end_rule = "given";
   } else {
-    const Chosen t_end = default_building_horizon(b.structure, b.base.ground->duration());
+    const Chosen t_end = default_building_horizon(b.structure, b.ground->duration());
     b.solver.t_end = t_end.value;
-    b.t_end_rule = t_end.rule;
+    a.t_end_rule = t_end.rule;
   }
-  b.solver.history = b.base.solver.history;
-  b.solver.restart = restart_for_scheme(b.base.solver.scheme, parsed, file.string(), overrides);
+  b.solver = with_scheme(b.solver, b.solver.scheme);
+  b.solver.restart = restart_for_scheme(b.solver.scheme, parsed, file.string(), overrides);
   std::string error;
   if (!b.solver.IsValid(&error)) throw InputError(file.string() + ": " + error);
   if (dt > 0.0 && b.solver.h > dt * (1 + 1e-9))

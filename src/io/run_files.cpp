@@ -6,6 +6,7 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
+#include "adjoin/io/building_files.hpp"
 #include "adjoin/io/energy_csv.hpp"
 #include "adjoin/io/impacts_csv.hpp"
 #include "adjoin/io/summary.hpp"
@@ -44,7 +45,8 @@ class RestartingStreams final : public Observer {
 
 }  // namespace
 
-RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir) {
+RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir, const RunWarning& warn) {
+  if (!scene.two_block()) return run_building_to_folder(scene, dir, warn);
   check_output_folder(dir);  // before the run: the folder itself is made by the set's commit
 
   FileSet set(dir, run_file_names());
@@ -62,30 +64,30 @@ RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir) {
     writers.push_back(std::make_unique<EnergyCsvWriter>(set.open("energy.csv"), scene.scales, scene.output.every));
     streams.add(writers.back().get());
   }
-  if (scene.model.contact.model != structure::ContactModel::none) {
+  if (scene.model->contact.model != structure::ContactModel::none) {
     writers.push_back(std::make_unique<ImpactsCsvWriter>(set.open("impacts.csv"), scene.scales));
     streams.add(writers.back().get());
   }
   RunFiles files;
   RestartingStreams restarting(set, streams);
-  Observer* extra = writers.empty() ? nullptr : &restarting;
+  const RunObservers extra{nullptr, writers.empty() ? nullptr : &restarting};
   if (scene.accuracy.tolerance) {
     files.tolerant = run_to_tolerance(scene, *scene.accuracy.tolerance, extra);
     files.report = files.tolerant->report;
     files.estimate = files.tolerant->estimate;
   } else {
-    files.report = run_scene(scene, extra);
+    files.report = run(scene, extra);
     if (scene.accuracy.error_estimate) files.estimate = estimate_error(scene, files.report);
   }
-  if (files.report.outside_model_from && timeseries) {
+  if (files.report.two_block->outside_model_from && timeseries) {
     // No contact law and the gap closed: the time series gets its outside_model column. Its
     // header was written before the contact was known, so the kept run is streamed again
     // (same step, same grid: the same numbers) with the column; a run that never pounds keeps
     // the SPEC header and pays nothing.
     timeseries->set_flag_outside_model(true);
-    SolverOptions again = scene.solver;
+    SolverOptions again = two_block_options(scene);
     again.h = files.report.solver.h;
-    simulate(again, scene.model, *scene.ground, restarting);
+    simulate(again, *scene.model, *scene.ground, restarting);
   }
   if (!files.report.spectra.empty()) set.open("spectra.csv") << spectra_csv(files.report);
   set.open("summary.json") << summary_json(scene, files.report, files.estimate ? &*files.estimate : nullptr,

@@ -1,4 +1,6 @@
 #include "adjoin/io/scene.hpp"
+#include "adjoin/io/building_scene.hpp"
+#include "adjoin/io/structure_file.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -261,7 +263,8 @@ structure::ContactLaw read_contact(const SceneReader& r, const Scales& scales) {
 // for in-run spectra, against 80 % of the machine's memory.
 void check_memory(const SceneReader& r, const Scene& scene) {
   const double steps = static_cast<double>(scene.solver.steps());
-  double need = estimated_history_bytes(scene.solver, scene.model);
+  // (A building's base has no model: its memory is checked with its structure, study/run.hpp.)
+  double need = scene.model ? estimated_history_bytes(two_block_options(scene), *scene.model) : 4096.0;
   if (scene.output.spectra) need += 3.0 * 8.0 * (steps + 1.0);
   const std::string problem = memory_problem(
       need, "the " + to_string(scene.solver.history) + " history" +
@@ -277,7 +280,7 @@ void check_memory(const SceneReader& r, const Scene& scene) {
 // solver.error_estimate. Every default is stated in scene.accuracy's rules so that the summary
 // and the terminal can say what was chosen.
 void read_step_and_horizon(const SceneReader& r, Scene& scene) {
-  SolverOptions& o = scene.solver;
+  StructureSolverOptions& o = scene.solver;
   AccuracyOptions& a = scene.accuracy;
   const double T = scene.scales.time;
   const std::string unit = scene.scales.si ? " s" : "";
@@ -291,8 +294,10 @@ void read_step_and_horizon(const SceneReader& r, Scene& scene) {
     // The motion, then free vibration: five periods of the slowest mode of the blocks on
     // their relaxed rods (block 1 alone, block 2 alone, or both stuck together), for the
     // response to decay through the rods' and the damper's dissipation.
-    const Model& m = scene.model;
-    const double omega2 = std::min({1.0, m.rho * m.eps, m.rho * (1.0 + m.eps) / (1.0 + m.rho)});
+    // (A building's base has no model: its reader says its own rule, io/building_scene.cpp.)
+    const double omega2 = scene.model ? std::min({1.0, scene.model->rho * scene.model->eps,
+                                                  scene.model->rho * (1.0 + scene.model->eps) / (1.0 + scene.model->rho)})
+                                      : 1.0;
     const double period = 2.0 * std::numbers::pi / std::sqrt(omega2);
     o.t_end = scene.ground->duration() + 5.0 * period;
     char rule[160];
@@ -349,7 +354,7 @@ void read_model(const SceneReader& r, Scene& scene) {
   const std::vector<std::string> dimensionless_only = {"model.rho", "model.eps", "model.mu"};
   const std::vector<std::string> si_only = {"model.m1", "model.m2", "model.k1", "model.k2",
                                             "model.slip_force"};
-  Model& m = scene.model;
+  Model& m = scene.model.emplace();
   if (units == "dimensionless") {
     for (const auto& k : si_only)
       if (r.has(k)) r.fail(k, k + " belongs to SI scenes; this scene has model.units = \"dimensionless\" (use model.rho, model.eps, model.mu)");
@@ -427,9 +432,9 @@ void read_model(const SceneReader& r, Scene& scene) {
 
 // [solver]: the scheme, the history engine, the step and the horizon.
 void read_solver(const SceneReader& r, Scene& scene) {
-  const Model& m = scene.model;
+  const structure::ContactModel contact = scene.model ? scene.model->contact.model : structure::ContactModel::none;
   std::string error, key;
-  SolverOptions& o = scene.solver;
+  StructureSolverOptions& o = scene.solver;
   const std::string scheme = r.string("solver.scheme", to_string(o.scheme));
   if (!parse_scheme(scheme, &o.scheme))
     r.fail("solver.scheme", "solver.scheme = " + escaped_excerpt(scheme) + " is not a scheme; expected one of " + scheme_names());
@@ -438,10 +443,10 @@ void read_solver(const SceneReader& r, Scene& scene) {
     r.fail("solver.history", "solver.history = " + escaped_excerpt(history) + " must be \"direct\" or \"fft\"");
   o.locate_switches = r.boolean("solver.locate_switches", o.locate_switches);
   read_step_and_horizon(r, scene);
-  if (!o.IsValid(&error, &key)) r.fail(key, error);
-  if (m.contact.model != structure::ContactModel::none && o.scheme == Scheme::paper)
+  if (!two_block_options(scene).IsValid(&error, &key)) r.fail(key, error);
+  if (contact != structure::ContactModel::none && o.scheme == Scheme::paper)
     r.fail("solver.scheme", "solver.scheme = " + escaped_excerpt(scheme) + ": the contact laws need the implicit scheme (model.contact.model = \"" +
-                                to_string(m.contact.model) + "\"); remove solver.scheme (the default is \"implicit\") or choose an implicit one");
+                                to_string(contact) + "\"); remove solver.scheme (the default is \"implicit\") or choose an implicit one");
 
 }
 
@@ -515,17 +520,12 @@ void read_run(const SceneReader& r, Scene& scene) {
 
 // A building scene's [ground], [solver] and [output] (its structure is read by
 // io/structure_file.cpp): in SI scales of 1 kg and 1 N/m, so that times are in seconds and the
-// ground's a_g is in g. The two-block model it carries is a placeholder (elastic rods, no
-// damper), set here, not read.
+// ground's a_g is in g. It has no two-block model.
 Scene build_building_base(const SceneReader& r, const std::string& name) {
   Scene scene;
   read_name(r, name, scene);
   if (!r.has("ground")) r.fail("ground", "missing section [ground]");
   scene.scales = Scales::SI(1.0, 1.0);
-  scene.model.rho = scene.model.eps = 1.0;
-  scene.model.mu = 0.0;
-  scene.model.gap0 = 1.0 / scene.scales.length;
-  scene.model.rod1 = scene.model.rod2 = Rod::Elastic();
   read_run(r, scene);
   return scene;
 }
@@ -633,6 +633,8 @@ std::vector<std::string> implied_unsets(const std::string& key, const std::strin
 
 Scene load_scene(const std::filesystem::path& file, const std::vector<std::string>& overrides,
                  const std::vector<std::string>& unsets) {
+  // A building scene (SPEC §5) has its own reader: its structure, then the sections below.
+  if (is_building_scene(file)) return load_building_scene(file, overrides, unsets);
   const std::string text = read_text_file(file, "scene");
   std::vector<std::string> removed;
   if (!unsets.empty() || !overrides.empty()) {

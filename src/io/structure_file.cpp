@@ -435,6 +435,8 @@ structure::Structure detail::structure_from_tree(toml::table& root, const std::s
   return s;
 }
 
-structure::Structure structure_of(const Scene& scene) { return structure::two_block_structure(scene.model, scene.scales); }
+structure::Structure structure_of(const Scene& scene) {
+  return scene.model ? structure::two_block_structure(*scene.model, scene.scales) : scene.structure;
+}
 
 }  // namespace adjoin

@@ -1,5 +1,7 @@
 #include "adjoin/io/summary.hpp"
 
+#include "adjoin/io/building_files.hpp"
+
 #include <algorithm>
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -71,8 +73,9 @@ ordered_json peak(const Peak& p, double scale, double time_scale) {
 
 }  // namespace
 
-std::string summary_json(const Scene& scene, const RunReport& r, const ErrorEstimate* estimate,
+std::string summary_json(const Scene& scene, const Report& r, const ErrorEstimate* estimate,
                          const TolerantRun* tolerant) {
+  if (!scene.two_block()) return building_summary_json(scene, r, estimate, tolerant);
   const Scales& k = scene.scales;
   ordered_json j;
   j["scene"] = scene.name;
@@ -96,16 +99,16 @@ std::string summary_json(const Scene& scene, const RunReport& r, const ErrorEsti
   const OutputOptions& asked = scene.output;
   if (asked.phases) {
     ordered_json phases = ordered_json::array();
-    for (const auto& p : r.phases)
+    for (const auto& p : r.two_block->phases)
       phases.push_back(
           ordered_json{{"state", to_string(p.state)}, {"t_start", p.t_start * k.time}, {"t_end", p.t_end * k.time}});
     j["phases"] = phases;
-    j["switches"] = r.phases.empty() ? 0 : r.phases.size() - 1;
+    j["switches"] = r.two_block->phases.empty() ? 0 : r.two_block->phases.size() - 1;
   } else {
     j["phases"] = nullptr;
   }
   if (asked.peaks) {
-    const Peaks& p = r.peaks;
+    const Peaks& p = r.two_block->peaks;
     j["peaks"] = ordered_json{{"x1", peak(p.x1, k.length, k.time)},
                               {"x2", peak(p.x2, k.length, k.time)},
                               {"f1", peak(p.f1, k.force, k.time)},
@@ -120,12 +123,12 @@ std::string summary_json(const Scene& scene, const RunReport& r, const ErrorEsti
   } else {
     j["peaks"] = nullptr;
   }
-  const State& f = r.final;
+  const State& f = r.two_block->final;
   j["final"] = ordered_json{{"t", f.t * k.time},       {"x1", f.x1 * k.length},   {"x2", f.x2 * k.length},
                             {"v1", f.v1 * k.velocity}, {"v2", f.v2 * k.velocity}, {"f1", f.f1 * k.force},
                             {"f2", f.f2 * k.force},    {"q", f.q * k.force},      {"phase", to_string(f.phase)}};
-  if (r.pounding) {
-    const PoundingMargin& g = *r.pounding;
+  if (r.two_block->pounding) {
+    const PoundingMargin& g = *r.two_block->pounding;
     j["pounding"] = ordered_json{
         {"min_gap", g.min_gap * k.length},
         {"t_min_gap", g.t_min_gap * k.time},
@@ -148,12 +151,12 @@ std::string summary_json(const Scene& scene, const RunReport& r, const ErrorEsti
   } else {
     j["pounding"] = nullptr;
   }
-  if (r.energy) {
-    const EnergyBalance& e = *r.energy;
+  if (r.two_block->energy) {
+    const EnergyBalance& e = *r.two_block->energy;
     j["energy"] = ordered_json{{"input", e.input * k.energy},       {"kinetic", e.kinetic * k.energy},
                                {"rod1", e.rod1 * k.energy},         {"rod2", e.rod2 * k.energy},
                                {"friction", e.friction * k.energy}, {"residual", e.residual * k.energy}};
-    if (scene.model.contact.model != structure::ContactModel::none) {
+    if (scene.model->contact.model != structure::ContactModel::none) {
       // The residual already subtracts the contact term (observe/energy.hpp).
       j["energy"]["contact"] = e.contact * k.energy;
       j["energy"]["contact_dissipated"] = e.contact_dissipated * k.energy;
@@ -178,17 +181,18 @@ std::string summary_json(const Scene& scene, const RunReport& r, const ErrorEsti
   // As a building run's summary: the top-level time from which values are outside the model,
   // and its flag in words (only for a run that has one, so a run that never pounds keeps its
   // summary).
-  if (r.outside_model_from) {
-    j["outside_model_from"] = *r.outside_model_from * k.time;
-    j["flags"] = ordered_json::array({outside_model_warning(scene, *r.outside_model_from)});
+  if (r.two_block->outside_model_from) {
+    j["outside_model_from"] = *r.two_block->outside_model_from * k.time;
+    j["flags"] = ordered_json::array({outside_model_warning(scene, *r.two_block->outside_model_from)});
   }
   const double t_end = static_cast<double>(r.solver.steps) * r.solver.h;
   require_finite(j, "", t_end * k.time, t_end);
   return j.dump(2) + "\n";
 }
 
-std::string brief_report(const Scene& scene, const RunReport& r, const ErrorEstimate* estimate,
+std::string brief_report(const Scene& scene, const Report& r, const ErrorEstimate* estimate,
                          const TolerantRun* tolerant) {
+  if (!scene.two_block()) return building_brief_report(scene, r, estimate, tolerant);
   const Scales& k = scene.scales;
   const bool si = k.si;
   auto u = [&](const char* unit) { return si ? std::string(" ") + unit : std::string(); };
@@ -212,20 +216,20 @@ std::string brief_report(const Scene& scene, const RunReport& r, const ErrorEsti
     s << "\n";
   }
   if (scene.output.phases) {
-    s << "phases (" << r.phases.size() << "):";
+    s << "phases (" << r.two_block->phases.size() << "):";
     const std::size_t shown = 8;
-    for (std::size_t i = 0; i < r.phases.size(); ++i) {
-      if (i == shown && r.phases.size() > shown + 1) {
-        s << " ... (" << r.phases.size() - shown - 1 << " more)";
-        i = r.phases.size() - 1;
+    for (std::size_t i = 0; i < r.two_block->phases.size(); ++i) {
+      if (i == shown && r.two_block->phases.size() > shown + 1) {
+        s << " ... (" << r.two_block->phases.size() - shown - 1 << " more)";
+        i = r.two_block->phases.size() - 1;
       }
-      std::snprintf(line, sizeof line, " %s [%.4g, %.4g]", to_string(r.phases[i].state), r.phases[i].t_start * k.time,
-                    r.phases[i].t_end * k.time);
+      std::snprintf(line, sizeof line, " %s [%.4g, %.4g]", to_string(r.two_block->phases[i].state), r.two_block->phases[i].t_start * k.time,
+                    r.two_block->phases[i].t_end * k.time);
       s << line;
     }
     s << "\n";
   }
-  const Peaks& p = r.peaks;
+  const Peaks& p = r.two_block->peaks;
   if (scene.output.peaks) {
     std::snprintf(line, sizeof line, "peaks: |x1| %.6g%s at t = %.4g, |x2| %.6g%s at t = %.4g, |q| %.6g%s\n",
                   p.x1.max_abs * k.length, u("m").c_str(), p.x1.t * k.time, p.x2.max_abs * k.length, u("m").c_str(),
@@ -235,8 +239,8 @@ std::string brief_report(const Scene& scene, const RunReport& r, const ErrorEsti
                   p.f2.max_abs * k.force, u("N").c_str());
     s << line;
   }
-  if (r.pounding && r.pounding->has_law()) {
-    const PoundingMargin& g = *r.pounding;
+  if (r.two_block->pounding && r.two_block->pounding->has_law()) {
+    const PoundingMargin& g = *r.two_block->pounding;
     s << "pounding (" << structure::to_string(g.model) << "): ";
     if (!g.contact) {
       std::snprintf(line, sizeof line, "min gap %.6g%s at t = %.4g, no contact\n", g.min_gap * k.length, u("m").c_str(),
@@ -254,22 +258,22 @@ std::string brief_report(const Scene& scene, const RunReport& r, const ErrorEsti
                     u("m").c_str(), g.dissipated * k.energy, u("J").c_str());
     }
     s << line;
-  } else if (r.pounding) {
-    const PoundingMargin& g = *r.pounding;
+  } else if (r.two_block->pounding) {
+    const PoundingMargin& g = *r.two_block->pounding;
     std::snprintf(
         line, sizeof line, "pounding: min gap %.6g%s at t = %.4g, %s\n", g.min_gap * k.length, u("m").c_str(),
         g.t_min_gap * k.time,
         g.contact ? ("CONTACT first at t = " + std::to_string(*g.t_first_contact * k.time)).c_str() : "no contact");
     s << line;
   }
-  if (r.outside_model_from) s << "WARNING: " << outside_model_warning(scene, *r.outside_model_from) << "\n";
-  if (r.energy) {
-    const EnergyBalance& e = *r.energy;
+  if (r.two_block->outside_model_from) s << "WARNING: " << outside_model_warning(scene, *r.two_block->outside_model_from) << "\n";
+  if (r.two_block->energy) {
+    const EnergyBalance& e = *r.two_block->energy;
     std::snprintf(line, sizeof line, "energy%s: input %.6g, kinetic %.6g, rod1 %.6g, rod2 %.6g, friction %.6g, ",
                   si ? " [J]" : " (per unit m1)", e.input * k.energy, e.kinetic * k.energy, e.rod1 * k.energy,
                   e.rod2 * k.energy, e.friction * k.energy);
     s << line;
-    if (scene.model.contact.model != structure::ContactModel::none) {
+    if (scene.model->contact.model != structure::ContactModel::none) {
       std::snprintf(line, sizeof line, "contact %.6g, ", e.contact * k.energy);
       s << line;
     }
@@ -298,7 +302,7 @@ std::string brief_report(const Scene& scene, const RunReport& r, const ErrorEsti
   return s.str();
 }
 
-std::string spectra_csv(const RunReport& report) { return spectra_csv(report.spectra); }
+std::string spectra_csv(const Report& report) { return spectra_csv(report.spectra); }
 
 std::string spectra_csv(const std::vector<SignalSpectrum>& spectra) {
   std::ostringstream s;

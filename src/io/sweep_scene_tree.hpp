@@ -40,7 +40,7 @@ CopiedFrom copied_from(const toml::node& copy, const toml::node& parsed);
 // A building scene (SPEC §5, io/building_scene.hpp) from `parsed`, its file's tree as parsed:
 // read from a copy after the `unsets` and `overrides` (--unset / --set strings), with every
 // check and message of parse_building_scene(), which is this after parsing the text.
-BuildingRunSpec building_scene_from_tree(const toml::table& parsed, const std::filesystem::path& file,
+RunSpec building_scene_from_tree(const toml::table& parsed, const std::filesystem::path& file,
                                          const std::vector<std::string>& overrides,
                                          const std::vector<std::string>& unsets);
 

@@ -97,7 +97,7 @@ bool SceneSweepScenes::building() const { return base_->building; }
 
 RunSpec SceneSweepScenes::base() const { return detail::scene_from_tree(base_->tree, base_->name, {}, {}, &base_->tree); }
 
-BuildingRunSpec SceneSweepScenes::building_base() const {
+RunSpec SceneSweepScenes::building_base() const {
   return detail::building_scene_from_tree(base_->tree, base_->file, {}, {});
 }
 
@@ -126,7 +126,7 @@ RunSpec SceneSweepScenes::scene(const SweepSpec& spec, std::size_t index) const 
   }
 }
 
-BuildingRunSpec SceneSweepScenes::building_scene(const SweepSpec& spec, std::size_t index) const {
+RunSpec SceneSweepScenes::building_scene(const SweepSpec& spec, std::size_t index) const {
   const auto settings = spec.settings(index);
   std::vector<std::string> overrides, unsets;
   gather_edits(base_->source, settings, overrides, unsets);

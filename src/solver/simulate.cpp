@@ -6,6 +6,7 @@
 #include <string>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/solver/structure_solver.hpp"
 #include "schemes.hpp"
 
 namespace adjoin {
@@ -56,6 +57,13 @@ SolverSummary simulate(const SolverOptions& options, const Model& model, const G
   summary.wall_seconds = run.wall_seconds;
   summary.history_bytes = run.history_bytes;
   return summary;
+}
+
+StructureSolverOptions with_scheme(StructureSolverOptions o, Scheme scheme) {
+  o.scheme = scheme;
+  if (scheme == Scheme::implicit_damped) o.restart = StructureSolverOptions::Restart::always;
+  if (scheme == Scheme::implicit_gl) o.quadrature = StructureSolverOptions::Quadrature::grunwald_letnikov;
+  return o;
 }
 
 }  // namespace adjoin

@@ -95,43 +95,42 @@ Chosen default_building_horizon(const structure::Structure& s, double duration) 
 
 // ---- a run ----
 
-BuildingRunSpec building_run_spec(structure::Structure structure, std::shared_ptr<const GroundMotion> ground,
+RunSpec building_run_spec(structure::Structure structure, std::shared_ptr<const GroundMotion> ground,
                                   const BuildingRunOptions& o) {
   if (!ground) throw FieldError("ground", "missing: give the run a ground motion");
   if (o.h && o.tolerance) throw FieldError("solver.tolerance", "give solver.h or solver.tolerance, not both (the tolerance chooses the step)");
   if (o.tolerance && !(*o.tolerance >= 1e-12 && *o.tolerance <= 0.1))
     throw FieldError("solver.tolerance", number(*o.tolerance, 12) + " must lie in [1e-12, 0.1] (relative error of the reported peaks)");
-  BuildingRunSpec spec;
+  RunSpec spec;
   spec.name = o.name;
   spec.structure = std::move(structure);
-  spec.base.name = o.name;
-  spec.base.ground = std::move(ground);
-  spec.base.output = o.output;
-  spec.base.accuracy.error_estimate = o.error_estimate;
-  const double dt = spec.base.ground->sample_interval();  // s
+  spec.scales = Scales::SI(1.0, 1.0);
+  spec.ground = std::move(ground);
+  spec.output = o.output;
+  AccuracyOptions& a = spec.accuracy;
+  a.error_estimate = o.error_estimate;
+  const double dt = spec.ground->sample_interval();  // s
   if (o.h) {
     spec.solver.h = *o.h;
-    spec.h_rule = "given";
+    a.h_rule = "given";
   } else {
-    spec.base.accuracy.tolerance = o.tolerance.value_or(kBuildingDefaultTolerance);
-    spec.base.accuracy.tolerance_given = o.tolerance.has_value();
-    spec.base.accuracy.h_rule = tolerance_rule(*spec.base.accuracy.tolerance, spec.base.accuracy.tolerance_given);
-    const Chosen h = default_building_step(spec.structure, dt, spec.base.accuracy.h_rule);
+    a.tolerance = o.tolerance.value_or(kBuildingDefaultTolerance);
+    a.tolerance_given = o.tolerance.has_value();
+    const Chosen h = default_building_step(spec.structure, dt, tolerance_rule(*a.tolerance, a.tolerance_given));
     spec.solver.h = h.value;
-    spec.h_rule = h.rule;
+    a.h_rule = h.rule;
   }
   if (o.t_end) {
     spec.solver.t_end = *o.t_end;
-    spec.t_end_rule = "given";
+    a.t_end_rule = "given";
   } else {
-    const Chosen t_end = default_building_horizon(spec.structure, spec.base.ground->duration());
+    const Chosen t_end = default_building_horizon(spec.structure, spec.ground->duration());
     spec.solver.t_end = t_end.value;
-    spec.t_end_rule = spec.base.accuracy.t_end_rule = t_end.rule;
+    a.t_end_rule = t_end.rule;
   }
-  spec.base.solver.h = spec.solver.h;
-  spec.base.solver.t_end = spec.solver.t_end;
-  spec.base.solver.history = spec.solver.history = o.history;
+  spec.solver.history = o.history;
   spec.solver.restart = o.restart;
+  if (o.restart == StructureSolverOptions::Restart::always) spec.solver.scheme = Scheme::implicit_damped;
   std::string error;
   if (!spec.solver.IsValid(&error)) {
     // "solver.h must be ...": the field, then the problem.

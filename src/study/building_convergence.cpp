@@ -7,7 +7,7 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/structure/channels.hpp"
-#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run.hpp"
 
 namespace adjoin {
 namespace {
@@ -48,7 +48,7 @@ std::string number(double v) {
 }
 
 // Every reported quantity of a building run, by name, its value (or instant) as reported.
-std::vector<QuantityError> reported_quantities(const BuildingRunSpec& spec, const BuildingReport& r) {
+std::vector<QuantityError> reported_quantities(const RunSpec& spec, const Report& r) {
   std::vector<QuantityError> out;
   auto value = [&](const std::string& name, double v) { out.push_back({name, false, v, kNaN}); };
   auto instant = [&](const std::string& name, double t) { out.push_back({name, true, t, kNaN}); };
@@ -76,7 +76,7 @@ std::vector<QuantityError> reported_quantities(const BuildingRunSpec& spec, cons
   return out;
 }
 
-bool same_switches(const BuildingReport& a, const BuildingReport& b) {
+bool same_switches(const Report& a, const Report& b) {
   for (std::size_t l = 0; l < a.links.size() && l < b.links.size(); ++l)
     if (a.links[l].switch_times.size() != b.links[l].switch_times.size()) return false;
   return true;
@@ -98,7 +98,7 @@ bool BuildingConvergenceOptions::IsValid(std::string* error) const {
   return true;
 }
 
-ConvergenceResult run_building_convergence(const BuildingRunSpec& spec, const BuildingConvergenceOptions& options) {
+ConvergenceResult run_building_convergence(const RunSpec& spec, const BuildingConvergenceOptions& options) {
   std::string error;
   if (!options.IsValid(&error)) throw InputError(error);
   std::vector<double> steps = options.steps;
@@ -109,10 +109,10 @@ ConvergenceResult run_building_convergence(const BuildingRunSpec& spec, const Bu
   for (double h : steps) stride_of(coarse, h);
 
   auto with = [&](HistoryEngine engine, double h) {
-    BuildingRunSpec s = spec;
+    RunSpec s = spec;
     s.solver.history = engine;
     s.solver.h = h;
-    s.base.output.spectra.reset();  // spectra are not compared; they cost a history per signal
+    s.output.spectra.reset();  // spectra are not compared; they cost a history per signal
     return s;
   };
 
@@ -121,7 +121,7 @@ ConvergenceResult run_building_convergence(const BuildingRunSpec& spec, const Bu
   const bool fft = std::find(options.engines.begin(), options.engines.end(), HistoryEngine::fft) != options.engines.end();
   const HistoryEngine ref_engine = fft || options.engines.size() > 1 ? HistoryEngine::fft : options.engines.front();
   CoarseFloors ref_grid(stride_of(coarse, h_ref));
-  const BuildingReport ref = run_building(with(ref_engine, h_ref), &ref_grid);
+  const Report ref = run(with(ref_engine, h_ref), {&ref_grid});
   double scale = 0.0;
   for (const auto& x : ref_grid.x) scale = std::max(scale, x.cwiseAbs().maxCoeff());
   if (scale == 0.0) scale = 1.0;
@@ -140,9 +140,9 @@ ConvergenceResult run_building_convergence(const BuildingRunSpec& spec, const Bu
       row.peak_x1 = row.min_gap = row.friction = kNaN;  // two-block summaries
       CoarseFloors grid(stride_of(coarse, h));
       try {
-        const BuildingRunSpec s = with(engine, h);
+        const RunSpec s = with(engine, h);
         row.steps = s.solver.steps();
-        const BuildingReport r = run_building(s, &grid);
+        const Report r = run(s, {&grid});
         row.wall_seconds = r.solver.wall_seconds;
         double e = 0.0;
         for (std::size_t j = 0; j < grid.x.size() && j < ref_grid.x.size(); ++j)

@@ -17,19 +17,19 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 
-const structure::Building& building(const BuildingRunSpec& scene, std::size_t k) {
+const structure::Building& building(const RunSpec& scene, std::size_t k) {
   return k == 0 ? scene.structure.a : *scene.structure.b;
 }
 
 // The peak of channel `name` (0 if the report has none).
-double peak(const BuildingReport& r, const std::string& name) {
+double peak(const Report& r, const std::string& name) {
   for (const auto& p : r.peaks)
     if (p.channel == name) return p.peak.max_abs;
   return 0.0;
 }
 
 // The largest peak of the channels X.<stem>1 ... X.<stem>n<suffix>, and where (1-based).
-std::pair<double, int> largest(const BuildingRunSpec& scene, const BuildingReport& r, std::size_t k, const std::string& stem,
+std::pair<double, int> largest(const RunSpec& scene, const Report& r, std::size_t k, const std::string& stem,
                                const std::string& suffix = "") {
   const structure::Building& b = building(scene, k);
   double best = 0.0;
@@ -41,7 +41,7 @@ std::pair<double, int> largest(const BuildingRunSpec& scene, const BuildingRepor
   return {best, where};
 }
 
-double share(double work, const BuildingReport& r) { return r.energy.input != 0.0 ? work / r.energy.input : kNaN; }
+double share(double work, const Report& r) { return r.energy.input != 0.0 ? work / r.energy.input : kNaN; }
 
 std::string expand(const std::string& name, ChannelScope scope, std::size_t k) {
   std::string out = name;
@@ -144,51 +144,51 @@ const std::vector<SweepChannel>& building_sweep_channels() {
   using T = ColumnType;
   static const std::vector<SweepChannel> channels = {
       {S::building, "X.T1", T::number, "s", "fundamental period of building X alone (static stiffness)",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.modes[k].periods[0]; }},
+       [](const RunSpec&, const Report& r, std::size_t k) { return r.modes[k].periods[0]; }},
       {S::building, "X.roof_max", T::number, "m", "peak roof displacement relative to the ground (peak of X.xN, N the top floor)",
-       [](const BuildingRunSpec& s, const BuildingReport& r, std::size_t k) {
+       [](const RunSpec& s, const Report& r, std::size_t k) {
          const auto& b = building(s, k);
          return peak(r, b.name + ".x" + std::to_string(b.floors()));
        }},
       {S::building, "X.drift_max", T::number, "m", "largest peak interstorey drift over the storeys (of X.drift1 ... X.driftN)",
-       [](const BuildingRunSpec& s, const BuildingReport& r, std::size_t k) { return largest(s, r, k, "drift").first; }},
+       [](const RunSpec& s, const Report& r, std::size_t k) { return largest(s, r, k, "drift").first; }},
       {S::building, "X.drift_storey", T::integer, "", "the storey where X.drift_max occurs (1 = ground storey)",
-       [](const BuildingRunSpec& s, const BuildingReport& r, std::size_t k) {
+       [](const RunSpec& s, const Report& r, std::size_t k) {
          return static_cast<double>(largest(s, r, k, "drift").second);
        }},
       {S::building, "X.accel_max", T::number, "m/s^2", "largest peak absolute floor acceleration (of X.a1_abs ... X.aN_abs)",
-       [](const BuildingRunSpec& s, const BuildingReport& r, std::size_t k) { return largest(s, r, k, "a", "_abs").first; }},
+       [](const RunSpec& s, const Report& r, std::size_t k) { return largest(s, r, k, "a", "_abs").first; }},
       {S::building, "X.base_shear_max", T::number, "N", "peak base shear (X.base_shear: the floors' inertia forces summed)",
-       [](const BuildingRunSpec& s, const BuildingReport& r, std::size_t k) { return peak(r, building(s, k).name + ".base_shear"); }},
+       [](const RunSpec& s, const Report& r, std::size_t k) { return peak(r, building(s, k).name + ".base_shear"); }},
       {S::building, "X.share_inherent", T::number, "", "work of X's inherent (Rayleigh or modal) damping / total input energy",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return share(r.energy.buildings[k].inherent, r); }},
+       [](const RunSpec&, const Report& r, std::size_t k) { return share(r.energy.buildings[k].inherent, r); }},
       {S::link, "linkN.force_max", T::number, "N", "peak force of link N",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.links[k].force_max; }},
+       [](const RunSpec&, const Report& r, std::size_t k) { return r.links[k].force_max; }},
       {S::link, "linkN.stroke_max", T::number, "m", "peak stroke of link N (relative displacement of its two floors)",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.links[k].stroke_max; }},
+       [](const RunSpec&, const Report& r, std::size_t k) { return r.links[k].stroke_max; }},
       {S::link, "linkN.switches", T::integer, "", "stick/slip phase changes of link N (friction; 0 for other link types)",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return static_cast<double>(r.links[k].switches); }},
+       [](const RunSpec&, const Report& r, std::size_t k) { return static_cast<double>(r.links[k].switches); }},
       {S::link, "linkN.energy_share", T::number, "", "work done on link N / total input energy (friction: dissipated)",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return share(r.energy.links[k], r); }},
+       [](const RunSpec&, const Report& r, std::size_t k) { return share(r.energy.links[k], r); }},
       {S::contact, "contactN.min_gap", T::number, "m", "smallest gap of contact pair N (negative: the floors overlapped)",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.contacts[k].min_gap; }},
+       [](const RunSpec&, const Report& r, std::size_t k) { return r.contacts[k].min_gap; }},
       {S::contact, "contactN.contact", T::boolean, "", "whether the floors of pair N touched (an impact, or the gap reached 0)",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.contacts[k].contact ? 1.0 : 0.0; }},
+       [](const RunSpec&, const Report& r, std::size_t k) { return r.contacts[k].contact ? 1.0 : 0.0; }},
       {S::contact, "contactN.impacts", T::integer, "", "impacts of pair N (0 without a contact law)",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return static_cast<double>(r.contacts[k].impacts); }},
+       [](const RunSpec&, const Report& r, std::size_t k) { return static_cast<double>(r.contacts[k].impacts); }},
       {S::contact, "contactN.force_max", T::number, "N", "largest peak force of pair N's impacts",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.contacts[k].force_max; }},
+       [](const RunSpec&, const Report& r, std::size_t k) { return r.contacts[k].force_max; }},
       {S::contact, "contactN.penetration_max", T::number, "m", "largest penetration of pair N's impacts",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.contacts[k].penetration_max; }},
+       [](const RunSpec&, const Report& r, std::size_t k) { return r.contacts[k].penetration_max; }},
       {S::contact, "contactN.energy_share", T::number, "", "energy dissipated by pair N's impacts / total input energy",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return share(r.contacts[k].dissipated, r); }},
+       [](const RunSpec&, const Report& r, std::size_t k) { return share(r.contacts[k].dissipated, r); }},
       {S::contact, "contactN.outside_model", T::boolean, "",
        "pair N has no contact law and its floors overlapped: the row's values are outside the model",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t k) { return r.contacts[k].outside_model() ? 1.0 : 0.0; }},
+       [](const RunSpec&, const Report& r, std::size_t k) { return r.contacts[k].outside_model() ? 1.0 : 0.0; }},
       {S::whole, "energy_input", T::number, "J", "input energy of the ground motion, both buildings",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t) { return r.energy.input; }},
+       [](const RunSpec&, const Report& r, std::size_t) { return r.energy.input; }},
       {S::whole, "share_residual", T::number, "", "energy balance residual / input (closes at the scheme's order)",
-       [](const BuildingRunSpec&, const BuildingReport& r, std::size_t) { return share(r.energy.residual, r); }},
+       [](const RunSpec&, const Report& r, std::size_t) { return share(r.energy.residual, r); }},
   };
   return channels;
 }
@@ -201,8 +201,8 @@ std::vector<SweepColumn> building_channel_columns(const structure::Structure& s)
   return columns;
 }
 
-std::vector<std::string> building_channel_cells(const structure::Structure& base, const BuildingRunSpec& scene,
-                                                const BuildingReport& report) {
+std::vector<std::string> building_channel_cells(const structure::Structure& base, const RunSpec& scene,
+                                                const Report& report) {
   std::vector<std::string> cells;
   for_each_column(base, [&](const SweepChannel& c, std::size_t k) {
     if (k >= count(scene.structure, c.scope)) {
@@ -224,10 +224,10 @@ void prepare_building_sweep(SweepSpec& spec, const structure::Structure& base) {
   spec.channel_columns = building_channel_columns(base);
 }
 
-BuildingRunSpec building_sweep_scene(const SweepSpec& spec, std::size_t index) {
+RunSpec building_sweep_scene(const SweepSpec& spec, std::size_t index) {
   if (!spec.scenes)
     throw std::logic_error("building_sweep_scene: the sweep has no SweepScenes (read it with load_sweep or parse_sweep)");
-  BuildingRunSpec scene = spec.scenes->building_scene(spec, index);
+  RunSpec scene = spec.scenes->building_scene(spec, index);
   check_groups(spec, index, spec.settings(index), scene.structure);
   return scene;
 }
@@ -237,11 +237,11 @@ SweepRow run_building_sweep_point(const SweepSpec& spec, std::size_t index) {
   SweepRow row;
   row.index = index;
   row.units = "SI";
-  BuildingRunSpec scene = building_sweep_scene(spec, index);
-  scene.base.output.spectra.reset();  // a sweep writes no run files: no in-structure spectra
+  RunSpec scene = building_sweep_scene(spec, index);
+  scene.output.spectra.reset();  // a sweep writes no run files: no in-structure spectra
   GroundHistory ground(!spec.im_periods.empty());
   try {
-    const BuildingReport report = run_building(scene, &ground);
+    const Report report = run(scene, {&ground});
     row.channels = building_channel_cells(*spec.base_structure, scene, report);
     row.pga_g = ground.pga / kStandardGravity;
     SpectrumOptions options;

@@ -38,30 +38,30 @@ class CoarseGrid final : public Observer {
 };
 
 // Every reported quantity of a run, by name (see the header).
-std::vector<QuantityError> reported_quantities(const RunReport& r) {
+std::vector<QuantityError> reported_quantities(const Report& r) {
   std::vector<QuantityError> out;
   auto value = [&](const std::string& name, double v) { out.push_back({name, false, v, kNaN}); };
   auto instant = [&](const std::string& name, double t) { out.push_back({name, true, t, kNaN}); };
-  const std::pair<const char*, const Peak*> peaks[] = {{"x1", &r.peaks.x1},   {"x2", &r.peaks.x2}, {"stroke", &r.peaks.drift},
-                                                       {"f1", &r.peaks.f1},   {"f2", &r.peaks.f2}, {"q", &r.peaks.q}};
+  const std::pair<const char*, const Peak*> peaks[] = {{"x1", &r.two_block->peaks.x1},   {"x2", &r.two_block->peaks.x2}, {"stroke", &r.two_block->peaks.drift},
+                                                       {"f1", &r.two_block->peaks.f1},   {"f2", &r.two_block->peaks.f2}, {"q", &r.two_block->peaks.q}};
   for (const auto& [name, p] : peaks) {
     value(std::string("peak ") + name, p->max_abs);
     instant(std::string("t peak ") + name, p->t);
   }
-  if (r.pounding) {
-    value("min gap", r.pounding->min_gap);
-    instant("t min gap", r.pounding->t_min_gap);
+  if (r.two_block->pounding) {
+    value("min gap", r.two_block->pounding->min_gap);
+    instant("t min gap", r.two_block->pounding->t_min_gap);
   }
-  if (r.energy) value("friction", r.energy->friction);
-  value("final q", r.final.q);
-  for (std::size_t i = 1; i < r.phases.size(); ++i) instant("switch " + std::to_string(i), r.phases[i].t_start);
+  if (r.two_block->energy) value("friction", r.two_block->energy->friction);
+  value("final q", r.two_block->final.q);
+  for (std::size_t i = 1; i < r.two_block->phases.size(); ++i) instant("switch " + std::to_string(i), r.two_block->phases[i].t_start);
   return out;
 }
 
-bool same_phases(const RunReport& a, const RunReport& b) {
-  if (a.phases.size() != b.phases.size()) return false;
-  for (std::size_t i = 0; i < a.phases.size(); ++i)
-    if (a.phases[i].state != b.phases[i].state) return false;
+bool same_phases(const Report& a, const Report& b) {
+  if (a.two_block->phases.size() != b.two_block->phases.size()) return false;
+  for (std::size_t i = 0; i < a.two_block->phases.size(); ++i)
+    if (a.two_block->phases[i].state != b.two_block->phases[i].state) return false;
   return true;
 }
 
@@ -71,7 +71,7 @@ struct Reference {
   double scale = 1.0;          // max |x_ref|
   bool has_summary = false;
   double peak_x1 = 0.0, min_gap = 0.0, friction = 0.0;
-  RunReport report;  // the finer run (has_summary)
+  Report report;  // the finer run (has_summary)
 };
 
 std::size_t stride_of(double coarse, double h) {
@@ -130,19 +130,19 @@ ConvergenceResult run_convergence(const RunSpec& scene, const ConvergenceOptions
   bool analytic = false;
   if (sine) {
     bool stuck = false;
-    if (scene.model.mu > 0.0) {
+    if (scene.model->mu > 0.0) {
       // Linear only if the damper never slips: ask the best scheme at the finest step.
       CoarseGrid probe(1);
-      run_scene(with(Scheme::implicit, HistoryEngine::direct, finest), &probe);
+      run(with(Scheme::implicit, HistoryEngine::direct, finest), {nullptr, &probe});
       stuck = probe.all_stuck;
     }
-    if (scene.model.mu == 0.0 || stuck) {
-      const LinearReference exact(scene.model, sine->u0(), sine->omega(), sine->k(), stuck);
+    if (scene.model->mu == 0.0 || stuck) {
+      const LinearReference exact(*scene.model, sine->u0(), sine->omega(), sine->k(), stuck);
       const std::size_t n = static_cast<std::size_t>(std::ceil(scene.solver.t_end / coarse * (1 - 1e-12))) + 1;
       analytic = true;
       for (std::size_t j = 0; j < n; ++j) {
         const LinearResponse r = exact.at(static_cast<double>(j) * coarse);
-        if (stuck && std::abs(r.q) >= scene.model.mu) analytic = false;  // the exact solution slips
+        if (stuck && std::abs(r.q) >= scene.model->mu) analytic = false;  // the exact solution slips
         ref.x1.push_back(r.x1);
         ref.x2.push_back(r.x2);
       }
@@ -154,19 +154,19 @@ ConvergenceResult run_convergence(const RunSpec& scene, const ConvergenceOptions
     const double h_ref = finest / options.reference_factor;
     CoarseGrid grid(stride_of(coarse, h_ref));
     RunSpec s = with(Scheme::implicit, HistoryEngine::fft, h_ref);
-    RunReport r;
+    Report r;
     try {
-      r = run_scene(s, &grid);
+      r = run(s, {nullptr, &grid});
     } catch (const InputError&) {  // no fft engine in this build: fall back to direct
       s.solver.history = HistoryEngine::direct;
-      r = run_scene(s, &grid);
+      r = run(s, {nullptr, &grid});
     }
     ref.x1 = grid.x1;
     ref.x2 = grid.x2;
     ref.has_summary = true;
-    ref.peak_x1 = r.peaks.x1.max_abs;
-    ref.min_gap = r.pounding->min_gap;
-    ref.friction = r.energy->friction;
+    ref.peak_x1 = r.two_block->peaks.x1.max_abs;
+    ref.min_gap = r.two_block->pounding->min_gap;
+    ref.friction = r.two_block->energy->friction;
     ref.report = r;
     // In the scene's time unit (seconds for an SI scene), as the ladder's steps are printed.
     ref.description = "a finer run: implicit/" + to_string(s.solver.history) + " at h = " + number(h_ref * scene.scales.time) +
@@ -192,7 +192,7 @@ ConvergenceResult run_convergence(const RunSpec& scene, const ConvergenceOptions
         try {
           const RunSpec s = with(scheme, engine, h);
           row.steps = s.solver.steps();
-          const RunReport r = run_scene(s, &grid);
+          const Report r = run(s, {nullptr, &grid});
           row.wall_seconds = r.solver.wall_seconds;
           double e = 0.0;
           const std::size_t n = std::min(grid.x1.size(), ref.x1.size());
@@ -201,9 +201,9 @@ ConvergenceResult run_convergence(const RunSpec& scene, const ConvergenceOptions
           row.error = e / ref.scale;
           row.order = std::isnan(previous) ? kNaN : std::log(previous / row.error) / std::log(result.rows.back().h / h);
           previous = row.error;
-          row.peak_x1 = ref.has_summary ? relative(r.peaks.x1.max_abs, ref.peak_x1) : kNaN;
-          row.min_gap = ref.has_summary ? relative(r.pounding->min_gap, ref.min_gap) : kNaN;
-          row.friction = ref.has_summary && ref.friction > 0.0 ? relative(r.energy->friction, ref.friction) : kNaN;
+          row.peak_x1 = ref.has_summary ? relative(r.two_block->peaks.x1.max_abs, ref.peak_x1) : kNaN;
+          row.min_gap = ref.has_summary ? relative(r.two_block->pounding->min_gap, ref.min_gap) : kNaN;
+          row.friction = ref.has_summary && ref.friction > 0.0 ? relative(r.two_block->energy->friction, ref.friction) : kNaN;
           if (ref.has_summary) {
             row.switches_differ = !same_phases(r, ref.report);
             const auto mine = reported_quantities(r), theirs = reported_quantities(ref.report);

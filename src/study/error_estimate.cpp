@@ -2,9 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/solver/simulate.hpp"
+#include "adjoin/structure/channels.hpp"
 #include "step_ladder.hpp"
 
 namespace adjoin {
@@ -16,10 +19,53 @@ PeakError peak_error(const Peak& fine, const Peak& coarse, double denominator) {
   return {std::abs(richardson(fine.max_abs, coarse.max_abs, denominator)), std::abs(richardson(fine.t, coarse.t, denominator))};
 }
 
-// The Richardson estimate of `fine`'s errors from a run `c` on a grid `ratio` times coarser.
-void compare_runs(const RunReport& fine, const RunReport& c, double ratio, ErrorEstimate* e) {
-  const double denominator = std::pow(ratio, e->order) - 1.0;
+// A building's values: the refined channel peaks, the links, the contact pairs.
+void compare_channels(const RunSpec& spec, const Report& fine, const Report& c, double denominator, ErrorEstimate* e) {
+  auto error = [&](double f, double g) { return std::abs(richardson(f, g, denominator)); };
+  // Both runs observe the same structure: the same channels in the same order.
+  for (std::size_t i = 0; i < fine.peaks.size() && i < c.peaks.size(); ++i) {
+    const ChannelPeak& p = fine.peaks[i];
+    const auto channel = structure::find_channel(spec.structure, p.channel);
+    if (!channel || structure::info(channel->quantity).peak != structure::PeakRule::refined) continue;
+    e->peaks.push_back({p.channel, peak_error(p.peak, c.peaks[i].peak, denominator)});
+    if (p.peak.max_abs > 0.0) {
+      const double relative = e->peaks.back().error.max_abs / p.peak.max_abs;
+      if (relative > e->max_relative_peak || e->worst_channel.empty()) {
+        e->max_relative_peak = std::max(e->max_relative_peak, relative);
+        e->worst_channel = p.channel;
+      }
+    }
+  }
+  for (std::size_t l = 0; l < fine.links.size(); ++l) {
+    const LinkReport& f = fine.links[l];
+    const LinkReport& g = c.links.at(l);
+    LinkError le;
+    le.force_max = error(f.force_max, g.force_max);
+    le.stroke_max = error(f.stroke_max, g.stroke_max);
+    if (spec.structure.links.at(l).type == structure::LinkType::friction) {
+      le.energy = error(f.friction_energy, g.friction_energy);
+      le.switches_matched = f.switch_times.size() == g.switch_times.size();
+      if (le.switches_matched) {
+        for (std::size_t k = 0; k < f.switch_times.size(); ++k) le.switches.push_back(error(f.switch_times[k], g.switch_times[k]));
+      } else {
+        le.switches_note = "the companion run found " + std::to_string(g.switch_times.size()) + " switches, this run " +
+                           std::to_string(f.switch_times.size()) + "; instants not estimated";
+      }
+    } else {
+      le.switches_matched = true;  // none to match
+    }
+    e->links.push_back(std::move(le));
+  }
+  for (std::size_t k = 0; k < fine.contacts.size(); ++k) {
+    const ContactReport& f = fine.contacts[k];
+    const ContactReport& g = c.contacts.at(k);
+    e->contacts.push_back({error(f.min_gap, g.min_gap), error(f.t_min_gap, g.t_min_gap)});
+  }
+}
 
+// A two-block spec's values: the paper's peaks, the minimum gap, the friction energy, the
+// switching instants.
+void compare_two_block(const TwoBlockReport& fine, const TwoBlockReport& c, double denominator, ErrorEstimate* e) {
   const Peaks& pf = fine.peaks;
   const Peaks& pc = c.peaks;
   e->x1 = peak_error(pf.x1, pc.x1, denominator);
@@ -43,88 +89,121 @@ void compare_runs(const RunReport& fine, const RunReport& c, double ratio, Error
   if (e->switches_matched)
     for (std::size_t i = 1; i < fine.phases.size(); ++i)
       e->switches.push_back(std::abs(richardson(fine.phases[i].t_start, c.phases[i].t_start, denominator)));
-  e->available = true;
 }
 
-}  // namespace
-
-ErrorEstimate estimate_error(const RunSpec& scene, const RunReport& fine) {
+// The Richardson estimate of `fine`'s errors from a run `c` on a grid `ratio` times coarser.
+ErrorEstimate compare_runs(const RunSpec& spec, const Report& fine, const Report& c, double ratio) {
   ErrorEstimate e;
-  e.order = scheme_order(scene.solver.scheme);
-  const std::size_t n = fine.solver.steps;
-  if (n < 8) {
-    e.reason = "the run has fewer than 8 steps";
-    return e;
-  }
-  const std::size_t n_coarse = n / 2;
-  RunSpec coarse = scene;
-  coarse.solver.h = static_cast<double>(n) * fine.solver.h / static_cast<double>(n_coarse);
-  coarse.solver.t_end = static_cast<double>(n) * fine.solver.h;
-  coarse.output.spectra.reset();  // not estimated; not needed
-  e.companion_h = coarse.solver.h;
-  RunReport c;
-  try {
-    c = run_scene(coarse);
-  } catch (const NumericalError& failure) {
-    e.reason = std::string("the companion run at h = 2h failed: ") + failure.what();
-    return e;
-  }
-  e.companion_wall_seconds = c.solver.wall_seconds;
-  compare_runs(fine, c, coarse.solver.h / fine.solver.h, &e);
+  e.order = scheme_order(spec.solver.scheme);
+  const double denominator = std::pow(ratio, e.order) - 1.0;
+  if (fine.two_block && c.two_block) compare_two_block(*fine.two_block, *c.two_block, denominator, &e);
+  else compare_channels(spec, fine, c, denominator, &e);
+  e.available = true;
   return e;
 }
 
-namespace {
+// The companion's spec: the same horizon on about half the steps, with the run's own scheme.
+RunSpec companion_of(const RunSpec& spec, std::size_t n) {
+  const std::size_t n_coarse = n / 2;
+  RunSpec coarse = spec;
+  coarse.solver.h = static_cast<double>(n) * spec.solver.h / static_cast<double>(n_coarse);
+  coarse.solver.t_end = static_cast<double>(n) * spec.solver.h;
+  coarse.output.spectra.reset();  // not estimated; not needed
+  if (!spec.two_block() && spec.solver.restart == StructureSolverOptions::Restart::automatic)
+    coarse.solver.restart = takes_restarts(spec.solver, spec.structure, *spec.ground) ? StructureSolverOptions::Restart::always
+                                                                                     : StructureSolverOptions::Restart::never;
+  return coarse;
+}
 
-// The rungs of a two-block scene's ladder: run_scene at each step, estimate_error to decide.
-class TwoBlockRungs final : public detail::StepLadder {
- public:
-  TwoBlockRungs(const RunSpec& scene, double tolerance, Observer* extra) : scene_(scene), tolerance_(tolerance), extra_(extra) {}
-  void run(double h) override {
-    RunSpec s = scene_;
-    s.solver.h = h;
-    if (memory_ > 0.0 && estimated_history_bytes(s.solver, s.model) > memory_)
-      throw NumericalError("solver.tolerance = " + std::to_string(tolerance_) + " would need solver.h = " + std::to_string(h) +
+// A rung that would not fit in memory is refused, saying that the tolerance chose its step: a
+// building's by every run's rule (InputError), a two-block spec's history by the solver's
+// estimate (NumericalError, as when it was read).
+void check_rung_memory(const RunSpec& rung, double tolerance) {
+  if (rung.two_block()) {
+    const double memory = 0.8 * physical_memory_bytes();
+    if (memory > 0.0 && estimated_history_bytes(two_block_options(rung), *rung.model) > memory)
+      throw NumericalError("solver.tolerance = " + std::to_string(tolerance) + " would need solver.h = " +
+                               std::to_string(rung.solver.h) +
                                " (dimensionless), whose history does not fit in memory; loosen solver.tolerance or set solver.h",
                            0.0);
+    return;
+  }
+  try {
+    RunSpec given = rung;
+    given.accuracy.h_rule = "given";  // this rung's step is said below
+    check_memory(given);
+  } catch (const InputError& e) {
+    char chose[96];
+    std::snprintf(chose, sizeof chose, "solver.tolerance = %.3g chose solver.h = %.4g s: ", tolerance, rung.solver.h);
+    throw InputError(chose + std::string(e.what()) + " (or loosen solver.tolerance)");
+  }
+}
+
+// The rungs of a ladder: run() at each step, estimate_error to decide.
+class Rungs final : public detail::StepLadder {
+ public:
+  Rungs(const RunSpec& spec, double tolerance, const RunObservers& extra) : spec_(spec), tolerance_(tolerance), extra_(extra) {}
+  void run(double h) override {
+    RunSpec s = spec_;
+    s.solver.h = h;
+    check_rung_memory(s, tolerance_);
     previous = std::move(current);
     // The extra observer (a streaming writer) sees every rung's run (not the companions);
     // each begin() starts a new one, and the last it sees is the run that is kept.
-    current = run_scene(s, extra_);
+    current = adjoin::run(s, extra_);
     h_ = h;
   }
-  double quick_error(double ratio) override {
-    ErrorEstimate quick;
-    quick.order = scheme_order(scene_.solver.scheme);
-    compare_runs(current, previous, ratio, &quick);
-    return quick.max_relative_peak;
-  }
+  double quick_error(double ratio) override { return compare_runs(spec_, current, previous, ratio).max_relative_peak; }
   double estimate() override {
-    RunSpec s = scene_;
+    RunSpec s = spec_;
     s.solver.h = h_;
     kept = estimate_error(s, current);
     return kept.available ? kept.max_relative_peak : INFINITY;
   }
-  RunReport current, previous;
+  Report current, previous;
   ErrorEstimate kept;  // the last rung's own estimate
 
  private:
-  const RunSpec& scene_;
+  const RunSpec& spec_;
   double tolerance_;
-  Observer* extra_;
-  double memory_ = 0.8 * physical_memory_bytes();
+  RunObservers extra_;
   double h_ = 0.0;
 };
 
 }  // namespace
 
-TolerantRun run_to_tolerance(const RunSpec& scene, double tolerance, Observer* extra) {
+ErrorEstimate estimate_error(const RunSpec& spec, const Report& fine) {
+  ErrorEstimate e;
+  e.order = scheme_order(spec.solver.scheme);
+  const std::size_t n = fine.solver.steps;
+  if (n < 8) {
+    e.reason = "the run has fewer than 8 steps";
+    return e;
+  }
+  const RunSpec coarse = companion_of(spec, n);
+  e.companion_h = coarse.solver.h;
+  Report c;
+  try {
+    c = run(coarse);
+  } catch (const NumericalError& failure) {
+    e.reason = std::string("the companion run at h = 2h failed: ") + failure.what();
+    return e;
+  }
+  e = compare_runs(spec, fine, c, coarse.solver.h / spec.solver.h);
+  e.companion_h = coarse.solver.h;
+  e.companion_wall_seconds = c.solver.wall_seconds;
+  return e;
+}
+
+TolerantRun run_to_tolerance(const RunSpec& spec, double tolerance, const RunObservers& extra) {
   if (!(tolerance > 0.0 && tolerance < 1.0)) throw InputError("solver.tolerance must lie in (0, 1)");
-  double h0 = scene.solver.t_end / 2000.0;
-  const double dt = scene.ground->sample_interval();
-  if (dt > 0.0) h0 = std::min(h0, dt);
-  TwoBlockRungs rungs(scene, tolerance, extra);
-  const detail::LadderOutcome climbed = detail::climb_to_tolerance(rungs, h0, tolerance, scheme_order(scene.solver.scheme));
+  double h0 = spec.solver.h;
+  if (spec.two_block()) {
+    h0 = spec.solver.t_end / 2000.0;
+    if (const double dt = spec.ground->sample_interval(); dt > 0.0) h0 = std::min(h0, dt);
+  }
+  Rungs rungs(spec, tolerance, extra);
+  const detail::LadderOutcome climbed = detail::climb_to_tolerance(rungs, h0, tolerance, scheme_order(spec.solver.scheme));
   TolerantRun out;
   out.tolerance = tolerance;
   out.report = std::move(rungs.current);

@@ -1,9 +1,43 @@
 #include "adjoin/study/run.hpp"
 
+#include <algorithm>
+#include <cstdio>
 #include <memory>
+#include <utility>
+
+#include "adjoin/core/errors.hpp"
+#include "adjoin/structure/two_block.hpp"
+#include "adjoin/study/run_watch.hpp"
+#include "channel_observer.hpp"
 
 namespace adjoin {
+
+structure::Structure solver_structure(const RunSpec& spec) {
+  return spec.model ? structure::two_block_structure(*spec.model) : spec.structure;
+}
+
+SolverOptions two_block_options(const RunSpec& spec) {
+  SolverOptions o;
+  o.scheme = spec.solver.scheme;
+  o.history = spec.solver.history;
+  o.h = spec.solver.h;
+  o.t_end = spec.solver.t_end;
+  o.stability_check = spec.solver.stability_check;
+  o.locate_switches = spec.solver.locate_switches;
+  return o;
+}
+
+double Report::unmodelled_from() const {
+  if (two_block) return two_block->outside_model_from.value_or(std::numeric_limits<double>::quiet_NaN());
+  double t = std::numeric_limits<double>::quiet_NaN();
+  for (const auto& c : contacts)
+    if (c.outside_model() && !(t <= c.unmodelled_from)) t = c.unmodelled_from;
+  return t;
+}
+
 namespace {
+
+// ---- two-block specs ----
 
 // Keeps only the last state.
 class LastState final : public Observer {
@@ -26,16 +60,16 @@ class AccelerationRecorder final : public Observer {
   std::vector<double> ag, a1, a2;
 };
 
-std::vector<SignalSpectrum> spectra_of(const RunSpec& scene, const AccelerationRecorder& recorded) {
-  const SpectraOutput& asked = *scene.output.spectra;
-  const Scales& k = scene.scales;
+std::vector<SignalSpectrum> spectra_of(const RunSpec& spec, const AccelerationRecorder& recorded) {
+  const SpectraOutput& asked = *spec.output.spectra;
+  const Scales& k = spec.scales;
   SpectrumOptions options;
   options.dampings = asked.damping;
   // Periods are in the scene's time unit already, as is the step below.
   options.periods = asked.periods.empty() ? default_spectrum_periods() : asked.periods;
   // The library works in m/s^2 and s; dimensionless accelerations are in g. For a
   // dimensionless scene, lengths come out multiplied by g and are divided back below.
-  const double dt = scene.solver.h * k.time;
+  const double dt = spec.solver.h * k.time;
   const double length_back = k.si ? 1.0 : 1.0 / kStandardGravity;
   std::vector<SignalSpectrum> out;
   for (const std::string& signal : asked.signals) {
@@ -53,16 +87,64 @@ std::vector<SignalSpectrum> spectra_of(const RunSpec& scene, const AccelerationR
   return out;
 }
 
-}  // namespace
+// A two-block State as the 1 + 1 structure's StructureState (dimensionless), for the
+// structure observers of a two-block run.
+class AsStructure final : public Observer {
+ public:
+  AsStructure(StructureObserver& inner, const RunSpec& spec) : inner_(inner), structure_(solver_structure(spec)), options_(spec.solver) {
+    const bool link = !structure_.links.empty(), contact = !structure_.contacts.empty();
+    for (auto* v : {&state_.x, &state_.v, &state_.a_abs, &state_.storey_force}) v->setZero(2);
+    for (auto* v : {&state_.link_force, &state_.link_stroke, &state_.link_velocity}) v->setZero(link ? 1 : 0);
+    state_.link_phase.assign(link ? 1 : 0, Phase::stick);
+    state_.link_switch.assign(link ? 1 : 0, 0.0);
+    for (auto* v : {&state_.contact_gap, &state_.contact_force, &state_.contact_work, &state_.contact_dissipated})
+      v->setZero(contact ? 1 : 0);
+    gap0_ = spec.model->gap0;
+  }
+  void begin(const RunInfo&) override { inner_.begin(structure_, options_); }
+  void observe(const State& s) override {
+    StructureState& o = state_;
+    o.t = s.t;
+    o.ag = s.ag;
+    o.x << s.x1, s.x2;
+    o.v << s.v1, s.v2;
+    o.a_abs << s.a1, s.a2;
+    o.storey_force << s.f1, s.f2;
+    if (o.link_force.size() == 1) {
+      o.link_force[0] = s.q;
+      o.link_stroke[0] = s.x1 - s.x2;
+      o.link_velocity[0] = s.v1 - s.v2;
+      o.link_phase[0] = s.phase;
+      o.link_switch[0] = s.t_switch;
+    }
+    if (o.contact_gap.size() == 1) {
+      o.contact_gap[0] = gap0_ + s.x2 - s.x1;
+      o.contact_force[0] = s.fc;
+      o.contact_work[0] = s.contact_work;
+      o.contact_dissipated[0] = s.contact_dissipated;
+    }
+    inner_.observe(o);
+  }
+  void impact(const Impact& i) override { inner_.impact(i); }
+  void end() override { inner_.end(); }
 
-RunReport run_scene(const RunSpec& scene, Observer* extra) {
-  const OutputOptions& asked = scene.output;
+ private:
+  StructureObserver& inner_;
+  structure::Structure structure_;
+  StructureSolverOptions options_;
+  StructureState state_;
+  double gap0_ = 0.0;
+};
+
+Report run_two_block(const RunSpec& spec, const RunObservers& extra) {
+  const OutputOptions& asked = spec.output;
   PeakObserver peaks;
   PhaseObserver phases;
   PoundingObserver pounding;
   EnergyObserver energy;
   LastState last;
   std::unique_ptr<AccelerationRecorder> accelerations;
+  std::unique_ptr<AsStructure> structure_extra;
   ObserverList observers({&last});
   if (asked.peaks) observers.add(&peaks);
   if (asked.phases) observers.add(&phases);
@@ -74,19 +156,151 @@ RunReport run_scene(const RunSpec& scene, Observer* extra) {
     accelerations = std::make_unique<AccelerationRecorder>();
     observers.add(accelerations.get());
   }
-  if (extra) observers.add(extra);
-  if (scene.watch) observers.add(scene.watch);  // (it may stop the run: a refusal)
+  if (extra.two_block) observers.add(extra.two_block);
+  if (extra.structure) {
+    structure_extra = std::make_unique<AsStructure>(*extra.structure, spec);
+    observers.add(structure_extra.get());
+  }
+  if (spec.watch) observers.add(spec.watch);  // (it may stop the run: a refusal)
 
-  RunReport report;
-  report.solver = simulate(scene.solver, scene.model, *scene.ground, observers);
-  report.final = last.last;
-  if (asked.phases) report.phases = phases.intervals();
-  if (asked.peaks) report.peaks = peaks.peaks();
-  if (asked.pounding) report.pounding = pounding.margin();
-  if (pounding.margin().outside_model()) report.outside_model_from = pounding.margin().t_first_contact;
-  if (asked.energy) report.energy = energy.balance();
-  if (accelerations) report.spectra = spectra_of(scene, *accelerations);
+  Report report;
+  report.solver = simulate(two_block_options(spec), *spec.model, *spec.ground, observers);
+  TwoBlockReport& r = report.two_block.emplace();
+  r.final = last.last;
+  if (asked.phases) r.phases = phases.intervals();
+  if (asked.peaks) r.peaks = peaks.peaks();
+  if (asked.pounding) r.pounding = pounding.margin();
+  if (pounding.margin().outside_model()) r.outside_model_from = pounding.margin().t_first_contact;
+  if (asked.energy) r.energy = energy.balance();
+  if (accelerations) report.spectra = spectra_of(spec, *accelerations);
   return report;
+}
+
+// ---- buildings ----
+
+// Fans every call out to a list of structure observers (not owned), in order.
+class StructureObserverList final : public StructureObserver {
+ public:
+  void add(StructureObserver* o) { if (o) observers_.push_back(o); }
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override { for (auto* x : observers_) x->begin(s, o); }
+  void observe(const StructureState& st) override { for (auto* x : observers_) x->observe(st); }
+  void impact(const Impact& e) override { for (auto* x : observers_) x->impact(e); }
+  void end() override { for (auto* x : observers_) x->end(); }
+
+ private:
+  std::vector<StructureObserver*> observers_;
+};
+
+// The structure's Zener elements (each storey of a Zener device, each Zener link) and their
+// distinct orders (the weights are computed once per order).
+std::pair<std::size_t, std::size_t> zener_elements(const structure::Structure& s) {
+  std::size_t elements = 0;
+  std::vector<double> orders;
+  for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr}) {
+    if (!b) continue;
+    for (const auto& d : b->devices)
+      if (d.type == structure::DeviceType::zener) {
+        elements += d.storeys.size();
+        orders.push_back(d.zener.order);
+      }
+  }
+  for (const auto& l : s.links)
+    if (l.type == structure::LinkType::zener) {
+      ++elements;
+      orders.push_back(l.zener.order);
+    }
+  std::sort(orders.begin(), orders.end());
+  return {elements, static_cast<std::size_t>(std::unique(orders.begin(), orders.end()) - orders.begin())};
+}
+
+std::string shortest(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", v);
+  return text;
+}
+
+Report run_building(const RunSpec& spec, const RunObservers& extra) {
+  Report r;
+  const structure::Structure& s = spec.structure;
+  r.modes.push_back(structure::building_modes(s.a));
+  if (s.b) {
+    r.modes.push_back(structure::building_modes(*s.b));
+    r.coupled = structure::coupled_modes(s);
+  }
+  detail::ChannelObserver observer(s);
+  const auto& asked = spec.output.spectra;
+  std::unique_ptr<detail::SignalRecorder> recorder;
+  if (asked) recorder = std::make_unique<detail::SignalRecorder>(s, asked->signals);
+  StructureObserverList all;
+  all.add(&observer);
+  all.add(recorder.get());
+  all.add(extra.structure);
+  r.solver = simulate_spec(spec, s, all);
+  if (recorder) {
+    SpectrumOptions options;
+    options.dampings = asked->damping;
+    options.periods = asked->periods.empty() ? default_spectrum_periods() : asked->periods;
+    for (std::size_t k = 0; k < asked->signals.size(); ++k)
+      r.spectra.push_back({asked->signals[k], response_spectrum(spec.solver.h, recorder->histories[k], options)});
+  }
+  r.peaks = observer.peaks();
+  r.links = observer.links();
+  r.contacts = observer.contacts();
+  r.energy = observer.energy();
+  return r;
+}
+
+}  // namespace
+
+double estimated_run_bytes(const RunSpec& spec) {
+  const double steps = static_cast<double>(spec.solver.steps()) + 2.0;
+  const auto [elements, orders] = zener_elements(spec.structure);
+  const double per_element_step = spec.solver.history == HistoryEngine::fft ? 64.0 : 16.0;
+  const double signals = spec.output.spectra ? static_cast<double>(spec.output.spectra->signals.size()) : 0.0;
+  const double dofs = static_cast<double>(spec.structure.dofs());
+  return steps * (static_cast<double>(elements) * per_element_step + 8.0 * static_cast<double>(orders) + 8.0 * signals) +
+         16.0 * 8.0 * dofs * dofs + 65536.0;
+}
+
+void check_memory(const RunSpec& spec) {
+  if (spec.two_block()) return;  // checked when read (io/scene.hpp)
+  const auto elements = zener_elements(spec.structure).first;
+  std::string what = "the " + to_string(spec.solver.history) + " history of " + std::to_string(elements) + " Zener element" +
+                     (elements == 1 ? "" : "s");
+  if (spec.output.spectra) what += " and the accelerations kept for output.spectra";
+  const std::string problem = memory_problem(estimated_run_bytes(spec), what);
+  if (problem.empty()) return;
+  const std::string where = spec.file.empty() ? std::string() : spec.file.string() + ": ";
+  const std::string& h_rule = spec.accuracy.h_rule;
+  const std::string& t_end_rule = spec.accuracy.t_end_rule;
+  const bool h_given = h_rule.empty() || h_rule == "given";
+  const bool t_end_given = t_end_rule.empty() || t_end_rule == "given";
+  throw InputError(where + "a run of " + shortest(static_cast<double>(spec.solver.steps())) + " steps (solver.h = " +
+                   shortest(spec.solver.h) + " s" + (h_given ? "" : ", " + h_rule) + "; solver.t_end = " +
+                   shortest(spec.solver.t_end) + " s" + (t_end_given ? "" : ", " + t_end_rule) + ") " + problem +
+                   (h_given ? "; raise solver.h or shorten solver.t_end"
+                            : "; set a coarser solver.h, loosen solver.tolerance or shorten solver.t_end"));
+}
+
+SolverSummary simulate_spec(const RunSpec& spec, const structure::Structure& s, StructureObserver& observer) {
+  check_memory(spec);
+  StructureObserverList watched;
+  watched.add(&observer);
+  watched.add(spec.watch);
+  const StructureSolverOptions options = with_scheme(spec.solver, spec.solver.scheme);
+  const StructureRunSummary run = simulate_structure(options, s, *spec.ground, watched);
+  SolverSummary summary;
+  summary.scheme = scheme_name(options);
+  summary.history = to_string(options.history);
+  summary.h = options.h;
+  summary.steps = run.steps;
+  summary.wall_seconds = run.wall_seconds;
+  summary.history_bytes = run.history_bytes;
+  return summary;
+}
+
+Report run(const RunSpec& spec, const RunObservers& extra) {
+  return spec.two_block() ? run_two_block(spec, extra) : run_building(spec, extra);
 }
 
 }  // namespace adjoin

@@ -12,7 +12,7 @@
 #include "adjoin/observe/pounding.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/solver/structure_solver.hpp"
-#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run.hpp"
 
 namespace adjoin {
 namespace {
@@ -229,7 +229,9 @@ bool SeismicJointOptions::IsValid(std::string* error) const {
   return true;
 }
 
-SeismicJoint seismic_joint(const RunSpec& scene, const SeismicJointOptions& options) {
+namespace {
+
+SeismicJoint two_block_joint(const RunSpec& scene, const SeismicJointOptions& options) {
   SeismicJoint j;
   j.scene = scene.name;
   j.building = false;
@@ -237,7 +239,7 @@ SeismicJoint seismic_joint(const RunSpec& scene, const SeismicJointOptions& opti
   j.length_unit = scene.scales.si ? "m" : "X0";
   j.time_unit = scene.scales.si ? "s" : "T0";
   const Scales& k = scene.scales;
-  Model model = scene.model;
+  Model model = *scene.model;
   if (model.contact.model != structure::ContactModel::none)
     j.notes.push_back(std::string("the scene's contact law (") + structure::to_string(model.contact.model) +
                       ") is not used: with a gap of at least the joint the blocks never touch");
@@ -248,7 +250,7 @@ SeismicJoint seismic_joint(const RunSpec& scene, const SeismicJointOptions& opti
     PoundingObserver pounding;
     PeakObserver peaks;
     ObserverList observers({&pounding, &peaks});
-    simulate(scene.solver, model, *scene.ground, observers);
+    simulate(two_block_options(scene), model, *scene.ground, observers);
     Trial t;
     t.min_gap = pounding.margin().min_gap * k.length;
     t.t_min_gap = pounding.margin().t_min_gap * k.time;
@@ -262,7 +264,7 @@ SeismicJoint seismic_joint(const RunSpec& scene, const SeismicJointOptions& opti
   return find_joint(j, options, run_at);
 }
 
-SeismicJoint seismic_joint(const BuildingRunSpec& scene, const SeismicJointOptions& options) {
+SeismicJoint building_joint(const RunSpec& scene, const SeismicJointOptions& options) {
   const auto& contacts = scene.structure.contacts;
   if (contacts.empty())
     throw InputError(scene.file.string() + ": the scene has no contact pair: add a [[contact]] with floors = [i, j] "
@@ -292,12 +294,18 @@ SeismicJoint seismic_joint(const BuildingRunSpec& scene, const SeismicJointOptio
   const RunAt run_at = [&](double gap) {
     s.contacts[index].gap = gap;
     JointObserver observer(s, index);
-    simulate_building(scene, s, observer);
+    simulate_spec(scene, s, observer);
     Trial t = observer.trial();
     t.notes.insert(t.notes.begin(), law_note.begin(), law_note.end());
     return t;
   };
   return find_joint(j, options, run_at);
+}
+
+}  // namespace
+
+SeismicJoint seismic_joint(const RunSpec& scene, const SeismicJointOptions& options) {
+  return scene.two_block() ? two_block_joint(scene, options) : building_joint(scene, options);
 }
 
 }  // namespace adjoin

@@ -176,15 +176,16 @@ SweepRow run_sweep_point(const SweepSpec& spec, std::size_t index) {
   const Scales& k = scene.scales;
   row.units = k.units_name();
 
-  PeakObserver peaks;
-  PhaseObserver phases;
-  PoundingObserver pounding;
-  EnergyObserver energy;
+  // Every row has the same columns, whatever the scene's [output] asks of `adjoin run`.
+  RunSpec asked = scene;
+  asked.output.peaks = asked.output.phases = asked.output.pounding = asked.output.energy = true;
+  asked.output.spectra.reset();
   GroundRecorder ground(!spec.im_periods.empty());
-  ObserverList observers({&peaks, &phases, &pounding, &energy, &ground});
   try {
-    simulate(scene.solver, scene.model, *scene.ground, observers);
-    const Peaks& p = peaks.peaks();
+    const Report report = run(asked, {nullptr, &ground});
+    const TwoBlockReport& r = *report.two_block;
+    const Peaks& p = r.peaks;
+    const PoundingMargin& margin = *r.pounding;
     row.x1 = p.x1.max_abs * k.length;
     row.x2 = p.x2.max_abs * k.length;
     row.drift = p.drift.max_abs * k.length;
@@ -192,25 +193,25 @@ SweepRow run_sweep_point(const SweepSpec& spec, std::size_t index) {
     row.f2 = p.f2.max_abs * k.force;
     row.a1_abs = p.a1.max_abs * k.acceleration;
     row.a2_abs = p.a2.max_abs * k.acceleration;
-    row.min_gap = pounding.margin().min_gap * k.length;
-    row.contact = pounding.margin().contact;
-    row.outside_model = pounding.margin().outside_model();
-    row.contact_law = pounding.margin().has_law();
+    row.min_gap = margin.min_gap * k.length;
+    row.contact = margin.contact;
+    row.outside_model = margin.outside_model();
+    row.contact_law = margin.has_law();
     if (row.contact_law) {
-      row.impacts = pounding.margin().impacts.size();
-      row.force_max = pounding.margin().force_max * k.force;
-      row.penetration_max = pounding.margin().penetration_max * k.length;
+      row.impacts = margin.impacts.size();
+      row.force_max = margin.force_max * k.force;
+      row.penetration_max = margin.penetration_max * k.length;
     }
-    const EnergyBalance& e = energy.balance();
+    const EnergyBalance& e = *r.energy;
     row.energy_input = e.input * k.energy;
     const double in = e.input != 0.0 ? e.input : kNaN;
     row.share_rod1 = e.rod1 / in;
     row.share_rod2 = e.rod2 / in;
     row.share_friction = e.friction / in;
     row.share_residual = e.residual / in;
-    for (const auto& interval : phases.intervals())
+    for (const auto& interval : r.phases)
       ++(interval.state == Phase::stick ? row.stick_intervals : row.slip_intervals);
-    row.switches = phases.switches();
+    row.switches = r.phases.empty() ? 0 : r.phases.size() - 1;
     // Intensity measures of the forcing as the solver saw it (dimensionless accelerations are in g).
     row.pga_g = ground.pga;
     if (!spec.im_periods.empty()) {

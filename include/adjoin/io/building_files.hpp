@@ -10,7 +10,7 @@
 //
 // The step is the scene's solver.h, or chosen for solver.tolerance (run_to_tolerance); the
 // run's error is estimated from a companion run at about 2h unless solver.error_estimate =
-// false (study/building_error_estimate.hpp); the summary's `error_estimate` holds it.
+// false (study/error_estimate.hpp); the summary's `error_estimate` holds it.
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -18,31 +18,23 @@
 #include <vector>
 
 #include "adjoin/io/building_scene.hpp"
-#include "adjoin/study/building_error_estimate.hpp"
-#include "adjoin/study/building_run.hpp"
+#include "adjoin/io/run_files.hpp"
+#include "adjoin/study/error_estimate.hpp"
+#include "adjoin/study/run.hpp"
 
 namespace adjoin {
 
-struct BuildingFiles {
-  BuildingReport report;
-  std::optional<BuildingErrorEstimate> estimate;  // when the scene asks (solver.error_estimate)
-  std::optional<BuildingTolerantRun> tolerant;    // when the step was chosen for a tolerance (its
-                                                  // report and estimate are the two above)
-  std::vector<std::filesystem::path> written;
-};
 
-std::string building_summary_json(const BuildingScene& scene, const BuildingReport& report,
-                                  const BuildingErrorEstimate* estimate = nullptr, const BuildingTolerantRun* tolerant = nullptr);
-std::string building_brief_report(const BuildingScene& scene, const BuildingReport& report,
-                                  const BuildingErrorEstimate* estimate = nullptr, const BuildingTolerantRun* tolerant = nullptr);
+std::string building_summary_json(const BuildingScene& scene, const Report& report,
+                                  const ErrorEstimate* estimate = nullptr, const TolerantRun* tolerant = nullptr);
+std::string building_brief_report(const BuildingScene& scene, const Report& report,
+                                  const ErrorEstimate* estimate = nullptr, const TolerantRun* tolerant = nullptr);
 // impacts.csv: contact,start,duration,force_max,t_force_max,penetration_max,approach_speed,
 // rebound_speed,impulse,complete (SI; complete: true or false).
-std::string building_impacts_csv(const BuildingReport& report);
+std::string building_impacts_csv(const Report& report);
 // Told, before a run starts writing, what is valid but probably unintended ("timeseries.csv
 // will be about 504 MB ..."): the command line prints it on stderr as a warning.
-using BuildingWarning = std::function<void(const std::string&)>;
-BuildingFiles run_building_to_folder(const BuildingScene& scene, const std::filesystem::path& dir,
-                                     const BuildingWarning& warn = {});
+RunFiles run_building_to_folder(const BuildingScene& scene, const std::filesystem::path& dir, const RunWarning& warn = {});
 
 // The rows of timeseries.csv: every output.every-th grid point when the scene gives it; else,
 // with a step the scene gives (solver.h), every grid point; else (a step chosen for a

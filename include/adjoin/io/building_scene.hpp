@@ -13,7 +13,7 @@
 namespace adjoin {
 
 // The run description itself is study's (study/run_spec.hpp); io reads files into it.
-using BuildingScene = BuildingRunSpec;
+using BuildingScene = RunSpec;
 
 // Without solver.h and solver.tolerance a building scene's step is chosen for
 // kBuildingDefaultTolerance (study/builder.hpp, with the other run-level rules).

@@ -15,6 +15,7 @@
 // succeeds leaves exactly its own files (outputs of an earlier run that this one does not
 // write are removed).
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -25,7 +26,7 @@
 namespace adjoin {
 
 struct RunFiles {
-  RunReport report;
+  Report report;
   std::optional<ErrorEstimate> estimate;  // when the scene asks (solver.error_estimate)
   std::optional<TolerantRun> tolerant;    // when the step was chosen for a tolerance (its
                                           // report and estimate are the two above)
@@ -37,6 +38,9 @@ const std::vector<std::string>& run_file_names();
 
 // Checks `dir` (io/output_place.hpp), runs the scene and commits its files; `dir` is created
 // (if it is not there) for the files and removed again if the run fails.
-RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir);
+// A building scene's files are io/building_files.hpp's; `warn` is told, before the run starts
+// writing, what is valid but probably unintended ("timeseries.csv will be about 504 MB ...").
+using RunWarning = std::function<void(const std::string&)>;
+RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir, const RunWarning& warn = {});
 
 }  // namespace adjoin

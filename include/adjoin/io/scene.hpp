@@ -24,7 +24,8 @@ namespace adjoin {
 // The run description itself is study's (study/run_spec.hpp); io reads files into it.
 using Scene = RunSpec;
 
-// Reads and checks a scene file; `overrides` are "dotted.key=value" strings (TOML values; a
+// Reads and checks a scene file, a building scene (SPEC §5: io/building_scene.hpp) or a
+// two-block one (SPEC §3); `overrides` are "dotted.key=value" strings (TOML values; a
 // bare word is taken as a string), `unsets` dotted keys or sections removed first (`--unset`;
 // each must exist). Overrides restructure the scene as a sweep's edits do
 // (implied_unsets): `ground.source` set to another source drops the old source's [ground]

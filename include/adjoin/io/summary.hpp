@@ -12,13 +12,13 @@ namespace adjoin {
 // summary.json text (pretty-printed, ends with a newline). With an estimate, the section
 // "error_estimate"; with a tolerant run, "solver" says the tolerance, the steps tried and
 // whether it was met.
-std::string summary_json(const Scene& scene, const RunReport& report, const ErrorEstimate* estimate = nullptr,
+std::string summary_json(const Scene& scene, const Report& report, const ErrorEstimate* estimate = nullptr,
                          const TolerantRun* tolerant = nullptr);
 // A few lines: scene, solver, phases, peaks, pounding margin, energy, error estimate.
-std::string brief_report(const Scene& scene, const RunReport& report, const ErrorEstimate* estimate = nullptr,
+std::string brief_report(const Scene& scene, const Report& report, const ErrorEstimate* estimate = nullptr,
                          const TolerantRun* tolerant = nullptr);
 // spectra.csv: signal,period,damping,sd,sv,sa,psv,psa (the scene's units; sa and psa in g).
-std::string spectra_csv(const RunReport& report);
+std::string spectra_csv(const Report& report);
 std::string spectra_csv(const std::vector<SignalSpectrum>& spectra);
 
 }  // namespace adjoin

@@ -22,9 +22,9 @@ class SceneSweepScenes final : public SweepScenes {
   // The base scene without edits (a two-block base), checked as `adjoin run BASE` checks it.
   RunSpec base() const;
   // The base without edits (a building base), checked as `adjoin run BASE` checks it.
-  BuildingRunSpec building_base() const;
+  RunSpec building_base() const;
   RunSpec scene(const SweepSpec& spec, std::size_t index) const override;
-  BuildingRunSpec building_scene(const SweepSpec& spec, std::size_t index) const override;
+  RunSpec building_scene(const SweepSpec& spec, std::size_t index) const override;
 
  private:
   struct Base;

@@ -4,7 +4,7 @@
 // rather than files.
 //
 //     ChannelRecorder recorder({"A.x5", "B.x3", "link1.force"});
-//     run_building(spec, &recorder);
+//     run(spec, &recorder);
 //     recorder.times();            // [s], rows of values()
 //     recorder.values().col(2);    // link1.force [N]
 //

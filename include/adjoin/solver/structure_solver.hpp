@@ -38,6 +38,7 @@
 #include <vector>
 
 #include "adjoin/fractional/history.hpp"
+#include "adjoin/solver/options.hpp"
 #include "adjoin/ground/ground_motion.hpp"
 #include "adjoin/structure/observer.hpp"
 #include "adjoin/structure/state.hpp"
@@ -49,6 +50,14 @@ struct StructureSolverOptions {
   double h = 0.001;     // s
   double t_end = 10.0;  // s
   HistoryEngine history = HistoryEngine::fft;
+  // The scheme a run takes (solver/options.hpp): implicit, implicit-damped (restart always),
+  // implicit-gl (Grünwald–Letnikov weights) on this stepper; paper (two-block runs only, its
+  // own stepper: solver/simulate.hpp). with_scheme() sets restart and quadrature to match.
+  Scheme scheme = Scheme::implicit;
+  // Two-block runs (solver/simulate.hpp SolverOptions): the located switches, the explicit
+  // scheme's stability check.
+  bool locate_switches = true;
+  bool stability_check = true;
   // The state at t = 0 (empty: at rest). Free vibration and impact tests start from these; an
   // initial displacement needs a structure without Zener elements and friction links (their
   // state at t = 0 is relaxed and stuck at zero deformation).
@@ -65,6 +74,9 @@ struct StructureSolverOptions {
   std::size_t steps() const;
   bool IsValid(std::string* error) const;
 };
+
+// `o` with `scheme` and the restart rule and weights it takes.
+StructureSolverOptions with_scheme(StructureSolverOptions o, Scheme scheme);
 
 // The solver.scheme these options run, for summaries: "implicit-damped" restarts after every
 // switch, "implicit" by the automatic rule.

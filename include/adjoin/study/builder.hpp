@@ -6,8 +6,8 @@
 //     structure::Structure s = ...;                        // structure/builder.hpp
 //     BuildingRunOptions o;
 //     o.h = 0.002;                                         // or leave it: chosen for a tolerance
-//     BuildingRunSpec spec = building_run_spec(std::move(s), record_ground("RSN1044.AT2"), o);
-//     BuildingReport report = run_building(spec);          // study/building_run.hpp
+//     RunSpec spec = building_run_spec(std::move(s), record_ground("RSN1044.AT2"), o);
+//     Report report = run(spec);          // study/building_run.hpp
 //
 // Errors are FieldError (adjoin/core/errors.hpp) naming the field: "ground.scale_pga", "solver.h".
 // Every value in SI units (s, m, g for the ground's a_g).
@@ -74,7 +74,7 @@ struct BuildingRunOptions {
 // The run of `structure` on `ground`: its step and horizon given or chosen by the rules above,
 // checked (FieldError "solver.h", "solver.t_end", "solver.tolerance"). Warnings for valid but
 // probably unintended choices (a step coarser than the record's samples) in .warnings.
-BuildingRunSpec building_run_spec(structure::Structure structure, std::shared_ptr<const GroundMotion> ground,
+RunSpec building_run_spec(structure::Structure structure, std::shared_ptr<const GroundMotion> ground,
                                   const BuildingRunOptions& options = {});
 
 }  // namespace adjoin

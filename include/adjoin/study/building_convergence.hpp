@@ -33,6 +33,6 @@ struct BuildingConvergenceOptions {
   bool IsValid(std::string* error) const;
 };
 
-ConvergenceResult run_building_convergence(const BuildingRunSpec& spec, const BuildingConvergenceOptions& options);
+ConvergenceResult run_building_convergence(const RunSpec& spec, const BuildingConvergenceOptions& options);
 
 }  // namespace adjoin

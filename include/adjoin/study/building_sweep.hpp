@@ -3,11 +3,11 @@
 // edits (spec.scenes, io's), exactly `adjoin run BASE --set KEY=VALUE ... --unset KEY ...`
 // (structure keys by dotted path: building.A.period, link.1.slip_ratio,
 // building.A.device.2.c, contact.1.gap; and the ground, solver and output keys), then
-// run_building() without writing files, plus the motion's intensity measures (pga_g, sa_T).
+// run() without writing files, plus the motion's intensity measures (pga_g, sa_T).
 //
 // Columns. They are generated from one registry, building_sweep_channels(): each entry is a
 // column template ("X.drift_max", "linkN.stroke_max"), its type, unit and meaning, and how it
-// is read from the BuildingReport. The base structure decides the columns: one set per
+// is read from the Report. The base structure decides the columns: one set per
 // building present (A, then B), per link and per contact, in scene order. A run's structure
 // must keep the base's buildings, links and contacts, or drop a whole group (B, every link or
 // every contact: `unset = ["link"]`), whose cells it then leaves empty; a run that adds or
@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "adjoin/study/run_spec.hpp"
-#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run.hpp"
 #include "adjoin/study/sweep.hpp"
 
 namespace adjoin {
@@ -35,7 +35,7 @@ struct SweepChannel {
   std::string meaning;  // for docs/reference/outputs.md and --help
   // The value for element k (building 0 = A, 1 = B; link or contact k counted from 0; 0 for
   // `whole`). Counts and booleans as 0/1...; NaN for "no value" (a share of zero input energy).
-  std::function<double(const BuildingRunSpec&, const BuildingReport&, std::size_t k)> value;
+  std::function<double(const RunSpec&, const Report&, std::size_t k)> value;
 };
 
 // The registry, in column order within each scope.
@@ -46,8 +46,8 @@ std::vector<SweepColumn> building_channel_columns(const structure::Structure& s)
 
 // The cells of those columns for a run of `scene` (the run's own structure) with its report;
 // groups the base has and the run does not are empty.
-std::vector<std::string> building_channel_cells(const structure::Structure& base, const BuildingRunSpec& scene,
-                                                const BuildingReport& report);
+std::vector<std::string> building_channel_cells(const structure::Structure& base, const RunSpec& scene,
+                                                const Report& report);
 
 // Sets spec.base_structure and spec.channel_columns from the base scene's structure (the sweep
 // file's reader calls it once it has checked the base scene as `adjoin run` would).
@@ -55,7 +55,7 @@ void prepare_building_sweep(SweepSpec& spec, const structure::Structure& base);
 
 // The building scene of run `index` (spec.scenes; InputError prefixed with the sweep file, the
 // line of the edit that caused it and the run), its groups checked against the base's.
-BuildingRunSpec building_sweep_scene(const SweepSpec& spec, std::size_t index);
+RunSpec building_sweep_scene(const SweepSpec& spec, std::size_t index);
 
 // One run (InputError propagates; NumericalError is caught into row.error).
 SweepRow run_building_sweep_point(const SweepSpec& spec, std::size_t index);

@@ -1,47 +1,45 @@
 #pragma once
-// One run of a scene: simulate() with the observers the scene's [output] asks for, and
-// everything a single run reports. Studies (convergence, sweeps) are loops over run_scene().
+// One run of a spec, whatever the scene (SPEC §4: one model, one pipeline):
 //
-//     RunReport report = run_scene(scene, &csv_writer);   // extra observer optional
+//     Report report = run(spec);                       // the run's own observers
+//     Report report = run(spec, {&writer});            // and a structure observer
 //
-// Parts the scene did not ask for are neither computed nor kept (their optionals are empty).
-// Values are dimensionless, except the spectra, which are in the scene's units (periods in
-// its time unit, SD in its length unit, SV and PSV in length per time, SA and PSA in g);
-// io/summary.hpp converts the rest.
-#include <optional>
-#include <string>
-#include <vector>
-
+// A building (SPEC §5) runs on the structure stepper with the observers of its channels (peaks,
+// links, contact pairs, energy). A two-block spec (SPEC §1) runs on the paper's stepper or on
+// the structure stepper as its scheme says (solver/simulate.hpp), with the paper's observers
+// (peaks, phases, pounding margin, energy balance). Every run made from a spec goes through
+// here: `adjoin run`, a sweep row, a convergence rung, an error estimate's companion, the
+// tolerance ladder, the seismic joint. Parts the spec did not ask for are neither computed nor
+// kept.
+#include "adjoin/study/report.hpp"
 #include "adjoin/study/run_spec.hpp"
-#include "adjoin/observe/energy.hpp"
-#include "adjoin/observe/peaks.hpp"
-#include "adjoin/observe/phases.hpp"
-#include "adjoin/observe/pounding.hpp"
-#include "adjoin/post/spectrum.hpp"
-#include "adjoin/solver/simulate.hpp"
 
 namespace adjoin {
 
-struct SignalSpectrum {
-  std::string signal;  // "ground", "block1", "block2"
-  ResponseSpectrum spectrum;
+// What else sees a run's grid points (not owned; either may be null).
+struct RunObservers {
+  StructureObserver* structure = nullptr;  // any run: its StructureState (a two-block run's 1 + 1)
+  Observer* two_block = nullptr;           // a two-block spec: its State (io's two-block writers)
 };
 
-struct RunReport {
-  SolverSummary solver;
-  State final;
-  std::vector<PhaseInterval> phases;  // empty if output.phases = false
-  Peaks peaks;                        // all zero if output.peaks = false
-  std::optional<PoundingMargin> pounding;
-  // The model has no contact law and the gap closed: the first contact time, from which every
-  // value of the run is outside the model (set [model.contact]). Kept even when the pounding
-  // margin was not asked for (output.pounding = false).
-  std::optional<double> outside_model_from;
-  std::optional<EnergyBalance> energy;
-  std::vector<SignalSpectrum> spectra;
-};
+Report run(const RunSpec& spec, const RunObservers& extra = {});
 
-// `extra` (optional, not owned) also sees every grid point, e.g. a time-series writer.
-RunReport run_scene(const RunSpec& scene, Observer* extra = nullptr);
+// Integrates `s` (the spec's structure or an edit of it of the same size) with the spec's
+// ground and solver options, the spec's memory checked first (check_memory) and its steps
+// shown to the spec's watch: a building run whose observers the caller chooses (the seismic
+// joint's bisection).
+SolverSummary simulate_spec(const RunSpec& spec, const structure::Structure& s, StructureObserver& observer);
+
+// Refuses (InputError, exit 2) before it starts a building run that could hold the step and
+// horizon it needs only by using more memory than the machine can give: every run's rule
+// (solver/simulate.hpp memory_problem). run() checks each run (and so `run`, `joint`,
+// `converge` and sweeps); commands call it first to refuse before any work. (A two-block
+// scene's history is checked when it is read: io/scene.hpp.)
+void check_memory(const RunSpec& spec);
+// What a building run holds [bytes], known before it starts: each Zener element's history
+// (weights and past values, 16 bytes a step with the direct engine, 64 with fft: the two-block
+// rods' figures), the quadrature weights of each order (8 bytes a step), the histories kept
+// for in-run spectra (8 bytes a step each) and the step's dense matrices.
+double estimated_run_bytes(const RunSpec& spec);
 
 }  // namespace adjoin

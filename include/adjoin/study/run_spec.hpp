@@ -1,9 +1,8 @@
 #pragma once
 // What a run is, typed and free of any file format (SPEC §4): the structure, the scales between
-// the solver's dimensionless numbers and the user's units, the ground, the solver's options and
-// what the run computes and writes. io/ reads scene files into these (io/scene.hpp,
-// io/building_scene.hpp); study/ runs them (study/run.hpp, study/building_run.hpp) and sweeps
-// edit them (study/sweep.hpp).
+// the solver's numbers and the user's units, the ground, the solver's options and what the run
+// computes and writes. io/ reads scene files into it (io/scene.hpp); study/ runs it
+// (study/run.hpp) and sweeps edit it (study/sweep.hpp).
 #include <cstddef>
 #include <filesystem>
 #include <memory>
@@ -58,38 +57,41 @@ struct AccuracyOptions {
   std::string h_rule, t_end_rule;
 };
 
+class RunWatch;  // study/run_watch.hpp
+
+// One run, whatever the scene: a building pair (SPEC §5) in SI units, or the paper's two blocks
+// (SPEC §1, a scene written with the two-block keys) in their dimensionless units, whose
+// structure is the 1 + 1 structure of `model` (structure/two_block.hpp; solver_structure() below).
 struct RunSpec {
   std::string name;
   std::filesystem::path file;  // where it was read from (empty if built in code)
-  Model model;                 // dimensionless, valid
-  Scales scales;               // dimensionless <-> scene units
+  // The structure (SPEC §5), SI. Empty for a two-block spec: its structure is its model's.
+  structure::Structure structure;
+  // A two-block spec: the paper's model, dimensionless and valid (the `paper` scheme's input;
+  // io presents such a run under the two-block names of SPEC §3). Empty for a building.
+  std::optional<Model> model;
+  Scales scales;  // the solver's numbers <-> the scene's units (a building's: SI, all 1)
+  // a_g against time: in g and seconds for a building; for a two-block spec in the model's
+  // dimensionless units (SPEC §1).
   std::shared_ptr<const GroundMotion> ground;
-  SolverOptions solver;        // dimensionless h and t_end
+  // The step and horizon (seconds, or dimensionless for a two-block spec), the scheme, the
+  // history engine. A building's scheme is implicit or implicit-damped.
+  StructureSolverOptions solver;
   OutputOptions output;
   AccuracyOptions accuracy;
   // Valid but probably unintended choices ("solver.h is coarser than the record's dt"): the
   // command line prints them on stderr as "warning: ..." and the run goes on.
   std::vector<std::string> warnings;
   // Sees every run made from this spec, none if null (not owned): a command's RunWatch
-  // (study/run_watch.hpp).
-  Observer* watch = nullptr;
+  // estimates each run's time, refuses the clearly unintended, shows progress.
+  RunWatch* watch = nullptr;
+
+  bool two_block() const { return model.has_value(); }
 };
 
-// A building scene's run (SPEC §5): its structure, and its ground, solver and output sections
-// (the two-block keys, read by the same code), with the step and horizon chosen when not given
-// (the rules are said in `h_rule`, `t_end_rule`).
-struct BuildingRunSpec {
-  std::string name;
-  std::filesystem::path file;
-  structure::Structure structure;
-  RunSpec base;  // ground (a_g in g, time in s), output; its model is a unit placeholder
-  StructureSolverOptions solver;
-  std::string h_rule, t_end_rule;
-  std::vector<std::string> warnings;
-  // Sees every run made from this spec, none if null (not owned): a command's RunWatch
-  // (study/run_watch.hpp) estimates each run's time, refuses the clearly unintended, shows
-  // progress.
-  StructureObserver* watch = nullptr;
-};
+// The structure a spec runs: its own, or a two-block spec's 1 + 1 structure of its model.
+structure::Structure solver_structure(const RunSpec& spec);
+// The two-block solver's options of a two-block spec (solver/simulate.hpp).
+SolverOptions two_block_options(const RunSpec& spec);
 
 }  // namespace adjoin

@@ -2,7 +2,7 @@
 // Long runs (building and two-block): each run's wall time estimated from its own first steps, the clearly
 // unintended ones refused with the estimate, and the progress of the long ones shown.
 //
-// A command puts a RunWatch into BuildingRunSpec::watch (RunSpec::watch for two-block runs);
+// A command puts a RunWatch into RunSpec::watch (RunSpec::watch for two-block runs);
 // every run made from that spec (the run, its error estimate's companion at 2h, a tolerance's rungs, a joint's bisection, a
 // convergence ladder's runs) reports its steps to it. After a run's first steps (0.25 s of
 // wall time, or its end) the watch estimates the run's wall time: its N steps at the cost of a

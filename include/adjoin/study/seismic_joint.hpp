@@ -84,11 +84,10 @@ struct SeismicJoint {
   std::vector<std::string> notes;       // what the reader should know (other pairs, horizon)
 };
 
-// Two-block scene (SPEC §3): the joint is model.gap0 (the scene's [model.contact] is not
-// used). InputError if the options are not valid.
+// A building (SPEC §5): the joint is contact `options.contact`'s gap; InputError if the scene
+// has no contact pair or `contact` is out of range (the message names "contact N"). A two-block
+// spec (SPEC §3): the joint is model.gap0 (the scene's [model.contact] is not used).
+// InputError if the options are not valid.
 SeismicJoint seismic_joint(const RunSpec& scene, const SeismicJointOptions& options = {});
-// Building scene (SPEC §5): the joint is contact `options.contact`'s gap. InputError if the
-// scene has no contact pair or `contact` is out of range (the message names "contact N").
-SeismicJoint seismic_joint(const BuildingRunSpec& scene, const SeismicJointOptions& options = {});
 
 }  // namespace adjoin

@@ -13,7 +13,7 @@
 // A run's description is the base scene with the run's edits (the axis values, then the
 // motion), exactly like `adjoin run BASE --set KEY=VALUE...`; the sweep asks spec.scenes for it
 // (SweepScenes: io reads the base once and applies the edits, io/sweep_scenes.hpp). It is
-// integrated with the observers run_scene() uses (peaks, phases, pounding, energy) plus the
+// integrated with the observers run() uses (peaks, phases, pounding, energy) plus the
 // ground-motion intensity measures of the forcing the solver actually saw (PGA; Sa(T, damping)
 // at the sweep's im_periods). A NumericalError is recorded in the row's `error`; an InputError
 // stops the sweep with the sweep file, the run and the key. A building scene as the base
@@ -90,7 +90,7 @@ class SweepScenes {
   // The description of run `index` of a two-block sweep, of a building sweep (InputError
   // prefixed with the sweep file, the line of the edit that caused it and the run).
   virtual RunSpec scene(const SweepSpec& spec, std::size_t index) const = 0;
-  virtual BuildingRunSpec building_scene(const SweepSpec& spec, std::size_t index) const = 0;
+  virtual RunSpec building_scene(const SweepSpec& spec, std::size_t index) const = 0;
 };
 
 // Where finished rows go (io's journal, io/sweep_files.hpp, writes them as they come, so that

@@ -1,28 +1,27 @@
-#include "adjoin/study/building_run.hpp"
-
+#pragma once
+// The observers of a run's channels (study/run.cpp, internal): the peak of every channel, the
+// links' extremes and switches, the contact pairs' gaps and impacts, the energy balance; and the
+// histories of the signals whose spectra a run is asked for.
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <memory>
 #include <sstream>
-#include <utility>
+#include <string>
+#include <vector>
+
+#include <Eigen/Dense>
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/observe/channel_values.hpp"
-#include "adjoin/post/spectrum.hpp"
-#include "adjoin/solver/simulate.hpp"
 #include "adjoin/structure/channels.hpp"
-#include "adjoin/structure/modal.hpp"
+#include "adjoin/structure/observer.hpp"
+#include "adjoin/study/report.hpp"
 
-namespace adjoin {
-namespace {
-
-using structure::LinkType;
+namespace adjoin::detail {
 
 // Peaks of every channel, the links' extremes and switches, the contact pairs' gaps.
-class BuildingObserver final : public StructureObserver {
+class ChannelObserver final : public StructureObserver {
  public:
-  explicit BuildingObserver(const structure::Structure& s) : s_(s) {}
+  explicit ChannelObserver(const structure::Structure& s) : s_(s) {}
 
   void begin(const structure::Structure& s, const StructureSolverOptions&) override {
     // Every channel with a peak (structure/channels.hpp): floors, storeys, buildings, links.
@@ -57,7 +56,7 @@ class BuildingObserver final : public StructureObserver {
       LinkReport& r = links_[l];
       r.force_max = std::max(r.force_max, std::abs(st.link_force[l]));
       r.stroke_max = std::max(r.stroke_max, std::abs(st.link_stroke[l]));
-      if (s_.links[l].type == LinkType::friction && !first_) {
+      if (s_.links[l].type == structure::LinkType::friction && !first_) {
         if (st.link_phase[l] != last_phase_[l]) {
           ++r.switches;
           r.switch_times.push_back(std::isnan(st.link_switch[l]) ? st.t : st.link_switch[l]);
@@ -235,120 +234,4 @@ class SignalRecorder final : public StructureObserver {
   std::vector<int> index_;
 };
 
-class Both final : public StructureObserver {
- public:
-  Both(StructureObserver& a, StructureObserver* b) : a_(a), b_(b) {}
-  void begin(const structure::Structure& s, const StructureSolverOptions& o) override { a_.begin(s, o); if (b_) b_->begin(s, o); }
-  void observe(const StructureState& st) override { a_.observe(st); if (b_) b_->observe(st); }
-  void impact(const Impact& e) override { a_.impact(e); if (b_) b_->impact(e); }
-  void end() override { a_.end(); if (b_) b_->end(); }
-
- private:
-  StructureObserver& a_;
-  StructureObserver* b_;
-};
-
-}  // namespace
-
-double BuildingReport::unmodelled_from() const {
-  double t = std::numeric_limits<double>::quiet_NaN();
-  for (const auto& c : contacts)
-    if (c.outside_model() && !(t <= c.unmodelled_from)) t = c.unmodelled_from;
-  return t;
-}
-
-namespace {
-
-// The structure's Zener elements (each storey of a Zener device, each Zener link) and their
-// distinct orders (the weights are computed once per order).
-std::pair<std::size_t, std::size_t> zener_elements(const structure::Structure& s) {
-  std::size_t elements = 0;
-  std::vector<double> orders;
-  for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr}) {
-    if (!b) continue;
-    for (const auto& d : b->devices)
-      if (d.type == structure::DeviceType::zener) {
-        elements += d.storeys.size();
-        orders.push_back(d.zener.order);
-      }
-  }
-  for (const auto& l : s.links)
-    if (l.type == LinkType::zener) {
-      ++elements;
-      orders.push_back(l.zener.order);
-    }
-  std::sort(orders.begin(), orders.end());
-  return {elements, static_cast<std::size_t>(std::unique(orders.begin(), orders.end()) - orders.begin())};
-}
-
-std::string shortest(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", v);
-  return text;
-}
-
-}  // namespace
-
-double estimated_building_run_bytes(const BuildingRunSpec& scene) {
-  const double steps = static_cast<double>(scene.solver.steps()) + 2.0;
-  const auto [elements, orders] = zener_elements(scene.structure);
-  const double per_element_step = scene.solver.history == HistoryEngine::fft ? 64.0 : 16.0;
-  const double signals = scene.base.output.spectra ? static_cast<double>(scene.base.output.spectra->signals.size()) : 0.0;
-  const double dofs = static_cast<double>(scene.structure.dofs());
-  return steps * (static_cast<double>(elements) * per_element_step + 8.0 * static_cast<double>(orders) + 8.0 * signals) +
-         16.0 * 8.0 * dofs * dofs + 65536.0;
-}
-
-void check_building_memory(const BuildingRunSpec& scene) {
-  const auto elements = zener_elements(scene.structure).first;
-  std::string what = "the " + to_string(scene.solver.history) + " history of " + std::to_string(elements) + " Zener element" +
-                     (elements == 1 ? "" : "s");
-  if (scene.base.output.spectra) what += " and the accelerations kept for output.spectra";
-  const std::string problem = memory_problem(estimated_building_run_bytes(scene), what);
-  if (problem.empty()) return;
-  const std::string where = scene.file.empty() ? std::string() : scene.file.string() + ": ";
-  const bool h_given = scene.h_rule.empty() || scene.h_rule == "given";
-  const bool t_end_given = scene.t_end_rule.empty() || scene.t_end_rule == "given";
-  throw InputError(where + "a run of " + shortest(static_cast<double>(scene.solver.steps())) + " steps (solver.h = " +
-                   shortest(scene.solver.h) + " s" + (h_given ? "" : ", " + scene.h_rule) + "; solver.t_end = " +
-                   shortest(scene.solver.t_end) + " s" + (t_end_given ? "" : ", " + scene.t_end_rule) + ") " + problem +
-                   (h_given ? "; raise solver.h or shorten solver.t_end"
-                            : "; set a coarser solver.h, loosen solver.tolerance or shorten solver.t_end"));
-}
-
-StructureRunSummary simulate_building(const BuildingRunSpec& scene, const structure::Structure& s, StructureObserver& observer) {
-  check_building_memory(scene);
-  Both watched(observer, scene.watch);
-  return simulate_structure(scene.solver, s, *scene.base.ground, watched);
-}
-
-BuildingReport run_building(const BuildingRunSpec& scene, StructureObserver* extra) {
-  BuildingReport r;
-  const structure::Structure& s = scene.structure;
-  r.modes.push_back(structure::building_modes(s.a));
-  if (s.b) {
-    r.modes.push_back(structure::building_modes(*s.b));
-    r.coupled = structure::coupled_modes(s);
-  }
-  BuildingObserver observer(s);
-  const auto& asked = scene.base.output.spectra;
-  std::unique_ptr<SignalRecorder> recorder;
-  if (asked) recorder = std::make_unique<SignalRecorder>(s, asked->signals);
-  Both recorded(observer, recorder.get());
-  Both both(recorded, extra);
-  r.solver = simulate_building(scene, s, both);
-  if (recorder) {
-    SpectrumOptions options;
-    options.dampings = asked->damping;
-    options.periods = asked->periods.empty() ? default_spectrum_periods() : asked->periods;
-    for (std::size_t k = 0; k < asked->signals.size(); ++k)
-      r.spectra.push_back({asked->signals[k], response_spectrum(scene.solver.h, recorder->histories[k], options)});
-  }
-  r.peaks = observer.peaks();
-  r.links = observer.links();
-  r.contacts = observer.contacts();
-  r.energy = observer.energy();
-  return r;
-}
-
-}  // namespace adjoin
+}  // namespace adjoin::detail
