@@ -53,6 +53,15 @@ enum class AccelUnit { g, m_s2, cm_s2, mm_s2 };
 enum class SpectrumModel { kanai_tajimi, clough_penzien };
 enum class EnvelopeKind { none, jennings_housner_tsai, saragoni_hart };
 
+// A record's Butterworth filter (ground/processing.hpp: ButterworthFilter::Type).
+enum class FilterType { lowpass, highpass, bandpass };
+
+// Response spectra (post/): the periods' spacing, the inelastic oscillator's hysteresis, how
+// a suite is scaled to a target.
+enum class PeriodSpacing { linear, log };
+enum class Hysteresis { elastic_perfectly_plastic, bilinear };
+enum class SuiteScaling { fit, uniform };
+
 namespace structure {
 // A contact pair's law (structure/contact.hpp).
 enum class ContactModel { none, linear, hertz, hertzdamp, jankowski, impact };
@@ -120,6 +129,28 @@ struct EnumTable<EnvelopeKind> {
                                                        {EnvelopeKind::saragoni_hart, "saragoni-hart"},
                                                        {EnvelopeKind::jennings_housner_tsai, "jht"},
                                                        {EnvelopeKind::saragoni_hart, "sh"}};
+};
+
+template <>
+struct EnumTable<FilterType> {
+  static constexpr EnumName<FilterType> entries[] = {
+      {FilterType::bandpass, "bandpass"}, {FilterType::highpass, "highpass"}, {FilterType::lowpass, "lowpass"}};
+};
+
+template <>
+struct EnumTable<PeriodSpacing> {
+  static constexpr EnumName<PeriodSpacing> entries[] = {
+      {PeriodSpacing::log, "log"}, {PeriodSpacing::linear, "lin"}, {PeriodSpacing::linear, "linear"}};
+};
+
+template <>
+struct EnumTable<Hysteresis> {
+  static constexpr EnumName<Hysteresis> entries[] = {{Hysteresis::elastic_perfectly_plastic, "epp"}, {Hysteresis::bilinear, "bilinear"}};
+};
+
+template <>
+struct EnumTable<SuiteScaling> {
+  static constexpr EnumName<SuiteScaling> entries[] = {{SuiteScaling::fit, "fit"}, {SuiteScaling::uniform, "uniform"}};
 };
 
 template <>
