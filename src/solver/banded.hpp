@@ -48,12 +48,16 @@ class Banded {
       add_after(x, p);
       return;
     }
-    p.setZero();
-    for (const Entry& e : before_) p[e.i] += e.value * x[e.j];
-    if (n > 1) p.tail(n - 1) += sub_.cwiseProduct(x.head(n - 1));
-    p += diag_.cwiseProduct(x);
-    if (n > 1) p.head(n - 1) += sup_.cwiseProduct(x.tail(n - 1));
-    for (const Entry& e : after_) p[e.i] += e.value * x[e.j];
+    // (Plain loops: for one or two floors Eigen's dynamic-size set-up would be most of the
+    // work. Each row is summed in column order, as above.)
+    double* pd = p.data();
+    const double* xd = x.data();
+    for (Eigen::Index i = 0; i < n; ++i) pd[i] = 0.0;
+    for (const Entry& e : before_) pd[e.i] += e.value * xd[e.j];
+    for (Eigen::Index i = 1; i < n; ++i) pd[i] += sub_[i - 1] * xd[i - 1];
+    for (Eigen::Index i = 0; i < n; ++i) pd[i] += diag_[i] * xd[i];
+    for (Eigen::Index i = 0; i + 1 < n; ++i) pd[i] += sup_[i] * xd[i + 1];
+    for (const Entry& e : after_) pd[e.i] += e.value * xd[e.j];
   }
   // (K x)_k alone, summed as apply() sums it; it reads x at columns() of k.
   double row(int k, const Eigen::VectorXd& x) const {

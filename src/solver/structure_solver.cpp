@@ -144,10 +144,12 @@ class StructureStepper {
         for (int i : m.k_eff.after_rows())
           ws.rhs[i] = m.mass[i] * now.v[i] + 0.5 * m.h * ((((m.mass[i] * s_ag - ws.cv_now[i]) - ws.internal[i]) - ws.p1[i]) - ws.off_dof[i]);
       }
-    } else {
-      ws.x1 = now.x + 0.5 * m.h * now.v;
+    } else {  // (plain loops, not Eigen expressions, whose dynamic-size set-up outweighs two floors' sums)
+      const double c = 0.5 * m.h, s_ag = now.ag + next.ag;
+      for (int i = 0; i < m.n; ++i) ws.x1[i] = now.x[i] + c * now.v[i];
       m.k_eff.apply(ws.x1, ws.p1);
-      ws.rhs = m.mass.cwiseProduct(now.v) + 0.5 * m.h * (m.mass * (now.ag + next.ag) - ws.cv_now - ws.internal - ws.p1 - ws.off_dof);
+      for (int i = 0; i < m.n; ++i)
+        ws.rhs[i] = m.mass[i] * now.v[i] + c * ((((m.mass[i] * s_ag - ws.cv_now[i]) - ws.internal[i]) - ws.p1[i]) - ws.off_dof[i]);
     }
     // v_free = A^-1 rhs and its damping forces C v_free: the step's only O(n^2) work (with
     // dense C).
