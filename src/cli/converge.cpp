@@ -119,7 +119,7 @@ std::vector<HistoryEngine> engines_of(const ConvergeArgs& args, std::vector<Hist
   std::vector<HistoryEngine> engines;
   for (const auto& name : args.engines) {
     HistoryEngine e;
-    if (!parse_history_engine(name, &e)) throw InputError("--history: " + escaped_excerpt(name) + " must be direct or fft");
+    if (!parse_enum(name, &e)) throw InputError("--history: " + escaped_excerpt(name) + " must be " + join_names(names<HistoryEngine>(), "", ", ", " or "));
     engines.push_back(e);
   }
   return engines;
@@ -171,7 +171,7 @@ int converge_command(const ConvergeArgs& args) {
     options.schemes.clear();
     for (const auto& name : args.schemes) {
       Scheme s;
-      if (!parse_scheme(name, &s)) throw InputError("--schemes: " + escaped_excerpt(name) + " is not a scheme; expected " + scheme_names());
+      if (!parse_enum(name, &s)) throw InputError("--schemes: " + escaped_excerpt(name) + " is not a scheme; expected " + scheme_names());
       options.schemes.push_back(s);
     }
   }

@@ -125,9 +125,9 @@ std::vector<double> parse_range(const std::string& text) {
   PeriodSpacing spacing = PeriodSpacing::log;
   if (parts.size() == 4) {
     const std::string s = trim(parts[3]);
-    if (s == "log") spacing = PeriodSpacing::log;
-    else if (s == "lin" || s == "linear") spacing = PeriodSpacing::linear;
-    else throw InputError("--range " + text_excerpt(text) + ": unknown spacing " + escaped_excerpt(s) + " (expected log or lin)");
+    if (!parse_enum(s, &spacing))
+      throw InputError("--range " + text_excerpt(text) + ": unknown spacing " + escaped_excerpt(s) + " (expected " +
+                       join_names(names<PeriodSpacing>(), "", ", ", " or ") + ")");
   }
   if (!(first >= 0.0 && first < last) || count < 2.0 || count != std::floor(count) || count > 1e6 ||
       (spacing == PeriodSpacing::log && first <= 0.0))
@@ -423,12 +423,12 @@ int inelastic_command(const SpectrumArgs& args, const SpectrumOptions& elastic, 
   options.periods = elastic.periods;
   options.dampings = elastic.dampings;
   options.threads = elastic.threads;
-  if (args.hysteresis.empty() || args.hysteresis == "epp") {
-    options.hysteresis = Hysteresis::elastic_perfectly_plastic;
+  if (!args.hysteresis.empty() && !parse_enum(args.hysteresis, &options.hysteresis))
+    throw InputError("--hysteresis " + text_excerpt(args.hysteresis) + ": expected " + join_names(names<Hysteresis>(), "", ", ", " or "));
+  if (options.hysteresis == Hysteresis::elastic_perfectly_plastic) {
     if (!args.hardening.empty())
       throw InputError("--hardening " + text_excerpt(args.hardening) + ": for --hysteresis bilinear (epp has no hardening)");
-  } else if (args.hysteresis == "bilinear") {
-    options.hysteresis = Hysteresis::bilinear;
+  } else {
     options.hardening = 0.05;
     if (!args.hardening.empty()) {
       double alpha = 0.0;
@@ -436,8 +436,6 @@ int inelastic_command(const SpectrumArgs& args, const SpectrumOptions& elastic, 
         throw InputError("--hardening " + text_excerpt(args.hardening) + ": expected the post-yield stiffness ratio in [0, 1), e.g. 0.05");
       options.hardening = alpha;
     }
-  } else {
-    throw InputError("--hysteresis " + text_excerpt(args.hysteresis) + ": expected epp or bilinear");
   }
   std::vector<double> strengths;
   StrengthMeasure measure = StrengthMeasure::reduction_factor;
@@ -517,9 +515,8 @@ int suite_spectra(const SpectrumArgs& args, const SpectrumOptions& elastic, Plot
     if (!parse_number(args.t1, &scaling.t1) || !(scaling.t1 > 0.0 && scaling.t1 <= 1e4))
       throw InputError("--t1 " + text_excerpt(args.t1) + ": expected the fundamental period T1 in s, 0 < T1 <= 1e4");
     if (!target) throw InputError("--t1 " + text_excerpt(args.t1) + ": scales the suite to a target: give --target too");
-    if (args.scaling == "uniform") scaling.rule = SuiteScaling::uniform;
-    else if (!args.scaling.empty() && args.scaling != "fit")
-      throw InputError("--scaling " + text_excerpt(args.scaling) + ": expected fit or uniform");
+    if (!args.scaling.empty() && !parse_enum(args.scaling, &scaling.rule))
+      throw InputError("--scaling " + text_excerpt(args.scaling) + ": expected " + join_names(names<SuiteScaling>(), "", ", ", " or "));
     request.scaling = scaling;
   } else if (!args.scaling.empty()) {
     throw InputError("--scaling " + text_excerpt(args.scaling) + ": chooses how --t1 scales the suite (give --t1 and --target)");

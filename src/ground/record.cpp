@@ -40,28 +40,9 @@ bool parse_accel_unit(const std::string& name, AccelUnit* unit) {
   replace_all(s, "^2", "2");
   replace_all(s, "/s/s", "/s2");
   AccelUnit found;
-  if (s == "g")
-    found = AccelUnit::g;
-  else if (s == "m/s2")
-    found = AccelUnit::m_s2;
-  else if (s == "cm/s2" || s == "gal")
-    found = AccelUnit::cm_s2;
-  else if (s == "mm/s2")
-    found = AccelUnit::mm_s2;
-  else
-    return false;
+  if (!parse_enum(s, &found)) return false;
   if (unit) *unit = found;
   return true;
-}
-
-std::string to_string(AccelUnit unit) {
-  switch (unit) {
-    case AccelUnit::g: return "g";
-    case AccelUnit::m_s2: return "m/s2";
-    case AccelUnit::cm_s2: return "cm/s2";
-    case AccelUnit::mm_s2: return "mm/s2";
-  }
-  return "?";
 }
 
 }  // namespace adjoin

@@ -42,48 +42,9 @@ bool fail(std::string* error, const std::string& message) {
 
 }  // namespace
 
-bool parse_spectrum_model(const std::string& name, SpectrumModel* model) {
-  const std::string n = normalise(name);
-  if (n == "kanai-tajimi" || n == "kt") {
-    *model = SpectrumModel::kanai_tajimi;
-    return true;
-  }
-  if (n == "clough-penzien" || n == "cp") {
-    *model = SpectrumModel::clough_penzien;
-    return true;
-  }
-  return false;
-}
+bool parse_spectrum_model(const std::string& name, SpectrumModel* model) { return parse_enum(normalise(name), model); }
 
-bool parse_envelope_kind(const std::string& name, EnvelopeKind* kind) {
-  const std::string n = normalise(name);
-  if (n == "none") {
-    *kind = EnvelopeKind::none;
-    return true;
-  }
-  if (n == "jennings-housner-tsai" || n == "jht") {
-    *kind = EnvelopeKind::jennings_housner_tsai;
-    return true;
-  }
-  if (n == "saragoni-hart" || n == "sh") {
-    *kind = EnvelopeKind::saragoni_hart;
-    return true;
-  }
-  return false;
-}
-
-std::string to_string(SpectrumModel model) {
-  return model == SpectrumModel::kanai_tajimi ? "kanai-tajimi" : "clough-penzien";
-}
-
-std::string to_string(EnvelopeKind kind) {
-  switch (kind) {
-    case EnvelopeKind::none: return "none";
-    case EnvelopeKind::jennings_housner_tsai: return "jennings-housner-tsai";
-    case EnvelopeKind::saragoni_hart: return "saragoni-hart";
-  }
-  return "none";
-}
+bool parse_envelope_kind(const std::string& name, EnvelopeKind* kind) { return parse_enum(normalise(name), kind); }
 
 Envelope resolve_envelope(const Envelope& envelope, double duration) {
   Envelope e = envelope;

@@ -228,7 +228,7 @@ structure::ContactLaw read_contact(const SceneReader& r, const Scales& scales) {
   structure::ContactModel model = structure::ContactModel::none;
   if (r.has("model.contact.model")) {
     const std::string word = r.string("model.contact.model", "");
-    if (!structure::parse_contact_model(word, &model))
+    if (!parse_enum(word, &model))
       r.fail("model.contact.model", "model.contact.model = " + escaped_excerpt(word) + " must be one of \"none\", \"linear\", \"hertz\", "
                                     "\"hertzdamp\", \"jankowski\" or \"impact\"");
   }
@@ -436,10 +436,10 @@ void read_solver(const SceneReader& r, Scene& scene) {
   std::string error, key;
   StructureSolverOptions& o = scene.solver;
   const std::string scheme = r.string("solver.scheme", to_string(o.scheme));
-  if (!parse_scheme(scheme, &o.scheme))
+  if (!parse_enum(scheme, &o.scheme))
     r.fail("solver.scheme", "solver.scheme = " + escaped_excerpt(scheme) + " is not a scheme; expected one of " + scheme_names());
   const std::string history = r.string("solver.history", to_string(o.history));
-  if (!parse_history_engine(history, &o.history))
+  if (!parse_enum(history, &o.history))
     r.fail("solver.history", "solver.history = " + escaped_excerpt(history) + " must be \"direct\" or \"fft\"");
   o.locate_switches = r.boolean("solver.locate_switches", o.locate_switches);
   read_step_and_horizon(r, scene);
@@ -626,7 +626,7 @@ std::vector<std::string> implied_unsets(const std::string& key, const std::strin
   if (key == "model.contact.restitution") out.push_back("model.contact.damping");
   if (key == "model.contact.damping") out.push_back("model.contact.restitution");
   structure::ContactModel model;
-  if (key == "model.contact.model" && structure::parse_contact_model(unquoted(value), &model))
+  if (key == "model.contact.model" && parse_enum(unquoted(value), &model))
     for (const auto& k : structure::contact_keys_refused(model)) out.push_back("model.contact." + k);
   return out;
 }

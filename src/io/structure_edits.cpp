@@ -126,7 +126,7 @@ void set(toml::table& root, const std::string& text, std::map<std::string, std::
     if (parts.back() == "damping") dropped = {"restitution"};
     structure::ContactModel model;
     if (parts.back() == "model")
-      if (const auto word = holder["v"].value<std::string>(); word && structure::parse_contact_model(*word, &model))
+      if (const auto word = holder["v"].value<std::string>(); word && parse_enum(*word, &model))
         dropped = structure::contact_keys_refused(model);
     for (const auto& other : dropped)
       if (!origins.count(parent.path + "." + other)) table->erase(other);

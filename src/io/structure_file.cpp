@@ -125,6 +125,14 @@ class TableReader {
     if (!v || !allowed.count(*v)) fail(key, "expected one of " + list);
     return *v;
   }
+  // One of E's names (core/enum_names.hpp), as text() checks it.
+  template <NamedEnum E>
+  E choice(const std::string& key) const {
+    const std::vector<std::string> list = names<E>();
+    E value{};
+    parse_enum(text(key, {list.begin(), list.end()}), &value);
+    return value;
+  }
   std::vector<double> numbers(const std::string& key, std::size_t size) const {
     const toml::array* a = table_.get_as<toml::array>(key);
     if (!a) fail(key, "expected a list of numbers");
@@ -230,11 +238,11 @@ Building read_building(const toml::table& root, const std::string& name, const T
     if (!d) r.fail("damping", "expected a table: { model = \"modal\", ratio = 0.05 }");
     const TableReader dr = r.inner(*d, r.path() + ".damping");
     dr.only({"model", "ratio", "modes"});
-    const std::string model = dr.text("model", {"none", "modal", "rayleigh"});
+    b.damping.model = dr.choice<DampingModel>("model");
     // The keys each model takes: one it ignores would be a setting silently lost.
-    if (model == "none") dr.only_with({"model"}, "the model \"none\" (no inherent damping)");
-    if (model == "modal") dr.only_with({"model", "ratio"}, "the model \"modal\" (one ratio for every mode; modes is Rayleigh's)");
-    b.damping.model = model == "none" ? DampingModel::none : (model == "modal" ? DampingModel::modal : DampingModel::rayleigh);
+    if (b.damping.model == DampingModel::none) dr.only_with({"model"}, "the model \"none\" (no inherent damping)");
+    if (b.damping.model == DampingModel::modal)
+      dr.only_with({"model", "ratio"}, "the model \"modal\" (one ratio for every mode; modes is Rayleigh's)");
     if (b.damping.model != DampingModel::none) {
       b.damping.ratio = dr.number("ratio");
       if (const std::string problem = structure::damping_ratio_problem(b.damping.ratio); !problem.empty()) dr.fail("ratio", problem);
@@ -257,19 +265,16 @@ Building read_building(const toml::table& root, const std::string& name, const T
       if (!dt) r.fail("device", "expected [[building." + name + ".device]] tables");
       const TableReader dr = r.inner(*dt, r.path() + ".device[" + std::to_string(index) + "]");
       structure::StoreyDevice dev;
-      const std::string type = dr.text("type", {"zener", "dashpot", "spring"});
+      dev.type = dr.choice<DeviceType>("type");
       dev.storeys = dr.storeys("storeys", n);
-      if (type == "spring") {
+      if (dev.type == DeviceType::spring) {
         dr.only({"type", "storeys", "stiffness"});
-        dev.type = DeviceType::spring;
         dev.k = dr.bounded("stiffness", kStiffnessRange);
-      } else if (type == "dashpot") {
+      } else if (dev.type == DeviceType::dashpot) {
         dr.only({"type", "storeys", "c"});
-        dev.type = DeviceType::dashpot;
         dev.c = dr.bounded("c", kDashpotRange);
       } else {
         dr.only({"type", "storeys", "stiffness", "order", "tau_x", "tau_f"});
-        dev.type = DeviceType::zener;
         dev.zener = read_zener(dr);
       }
       b.devices.push_back(dev);
@@ -293,8 +298,8 @@ structure::ContactLaw read_contact_law(const TableReader& r) {
   if (r.has("model")) {
     const toml::node* n = r.table().get("model");
     const auto word = n->value_exact<std::string>();
-    if (!word || !structure::parse_contact_model(*word, &model))
-      r.fail("model", "expected one of \"none\", \"linear\", \"hertz\", \"hertzdamp\", \"jankowski\", \"impact\"");
+    if (!word || !parse_enum(*word, &model))
+      r.fail("model", "expected one of " + join_names(names<structure::ContactModel>(), "\"", ", ", ", "));
   }
   structure::ContactTable t;
   t.where = r.path();
@@ -379,10 +384,9 @@ structure::Structure detail::structure_from_tree(toml::table& root, const std::s
       const auto f = floors_of(r);
       l.floor_a = f[0];
       l.floor_b = f[1];
-      const std::string type = r.text("type", {"friction", "dashpot", "spring", "zener"});
-      if (type == "friction") {
+      l.type = r.choice<LinkType>("type");
+      if (l.type == LinkType::friction) {
         r.only({"floors", "type", "slip_force", "slip_ratio", "of"});
-        l.type = LinkType::friction;
         if (r.has("slip_force") == r.has("slip_ratio")) r.fail("", "give slip_force [N] or slip_ratio with of = \"A\" or \"B\", one of them");
         if (r.has("slip_force")) {
           if (r.has("of")) r.fail("of", "of names the building whose weight slip_ratio is a fraction of; slip_force is in N: remove of, or give slip_ratio");
@@ -392,17 +396,14 @@ structure::Structure detail::structure_from_tree(toml::table& root, const std::s
           const std::string of = r.text("of", {"A", "B"});
           l.slip_force = structure::slip_force_from_ratio(ratio, of == "A" ? s.a : *s.b);
         }
-      } else if (type == "dashpot") {
+      } else if (l.type == LinkType::dashpot) {
         r.only({"floors", "type", "c"});
-        l.type = LinkType::dashpot;
         l.c = r.bounded("c", kDashpotRange);
-      } else if (type == "spring") {
+      } else if (l.type == LinkType::spring) {
         r.only({"floors", "type", "stiffness"});
-        l.type = LinkType::spring;
         l.k = r.bounded("stiffness", kStiffnessRange);
       } else {
         r.only({"floors", "type", "stiffness", "order", "tau_x", "tau_f"});
-        l.type = LinkType::zener;
         l.zener = read_zener(r);
       }
       s.links.push_back(l);

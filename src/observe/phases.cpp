@@ -4,15 +4,6 @@
 
 namespace adjoin {
 
-const char* to_string(Phase phase) {
-  switch (phase) {
-    case Phase::stick: return "stick";
-    case Phase::slip_right: return "slip_right";
-    case Phase::slip_left: return "slip_left";
-  }
-  return "?";
-}
-
 void PhaseObserver::observe(const State& s) {
   if (intervals_.empty() || intervals_.back().state != s.phase) {
     const double t = std::isnan(s.t_switch) || intervals_.empty() ? s.t : s.t_switch;

@@ -5,46 +5,15 @@
 
 namespace adjoin {
 
-namespace {
-
-// Every scheme and its name, in one place.
-struct SchemeName {
-  Scheme scheme;
-  const char* name;
-  int order;
-};
-constexpr SchemeName kSchemes[] = {
-    {Scheme::implicit, "implicit", 2},
-    {Scheme::implicit_damped, "implicit-damped", 2},
-    {Scheme::implicit_gl, "implicit-gl", 1},
-    {Scheme::paper, "paper", 1},
-};
-
-}  // namespace
-
 int scheme_order(Scheme scheme) {
-  for (const auto& s : kSchemes)
-    if (s.scheme == scheme) return s.order;
-  return 1;
-}
-
-std::string to_string(Scheme scheme) {
-  for (const auto& s : kSchemes)
-    if (s.scheme == scheme) return s.name;
-  return "?";
-}
-
-bool parse_scheme(const std::string& name, Scheme* scheme) {
-  for (const auto& s : kSchemes)
-    if (name == s.name) { *scheme = s.scheme; return true; }
-  return false;
+  return scheme == Scheme::implicit || scheme == Scheme::implicit_damped ? 2 : 1;
 }
 
 std::string scheme_names() {
   std::string out;
-  for (const auto& s : kSchemes) {
-    out += (out.empty() ? "\"" : ", \"") + std::string(s.name) + "\"";
-    if (s.scheme == SolverOptions{}.scheme) out += " (default)";
+  for (const std::string& name : names<Scheme>()) {
+    out += (out.empty() ? "\"" : ", \"") + name + "\"";
+    if (name == to_string(SolverOptions{}.scheme)) out += " (default)";
   }
   return out;
 }

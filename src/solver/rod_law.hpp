@@ -28,9 +28,17 @@ class RodLaw {
     const double hg = std::pow(h, -rod.order);
     const double w0 = weights.empty() ? 1.0 : weights[0];
     denominator_ = 1.0 + tau_f_ * w0 * hg;
-    stiffness_ = k * (1.0 + tau_x_ * w0 * hg) / denominator_;
+    stiffness_ = effective_stiffness(rod, k, h, w0);
     history_scale_ = hg / denominator_;
     history_ = make_history(engine, std::move(weights));
+  }
+
+  // The stiffness() of a law with these parameters, whose weights begin with w0 (a model's
+  // assembly needs it before the laws, which hold the run's history, exist).
+  static double effective_stiffness(const Rod& rod, double k, double h, double w0) {
+    if (rod.elastic) return k;
+    const double hg = std::pow(h, -rod.order);
+    return k * (1.0 + rod.tau_x * w0 * hg) / (1.0 + rod.tau_f * w0 * hg);
   }
 
   bool elastic() const { return elastic_; }

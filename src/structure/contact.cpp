@@ -1,41 +1,7 @@
 #include "adjoin/structure/contact.hpp"
 
-#include <array>
-#include <utility>
 
 namespace adjoin::structure {
-namespace {
-
-constexpr std::array<std::pair<ContactModel, const char*>, 6> kNames{{{ContactModel::none, "none"},
-                                                                      {ContactModel::linear, "linear"},
-                                                                      {ContactModel::hertz, "hertz"},
-                                                                      {ContactModel::hertzdamp, "hertzdamp"},
-                                                                      {ContactModel::jankowski, "jankowski"},
-                                                                      {ContactModel::impact, "impact"}}};
-
-}  // namespace
-
-const char* to_string(ContactModel model) {
-  for (const auto& [m, name] : kNames)
-    if (m == model) return name;
-  return "none";
-}
-
-bool parse_contact_model(const std::string& word, ContactModel* model) {
-  for (const auto& [m, name] : kNames)
-    if (word == name) {
-      *model = m;
-      return true;
-    }
-  return false;
-}
-
-std::string contact_model_names() {
-  std::string out;
-  for (const auto& [m, name] : kNames) out += (out.empty() ? "" : ", ") + std::string(name);
-  return out;
-}
-
 double linear_damping_ratio(double e) {
   const double l = std::log(e);
   return -l / std::sqrt(M_PI * M_PI + l * l);

@@ -50,10 +50,13 @@ ContactLaw contact_law_from(const ContactTable& t, ContactModel model) {
 
   // Keys the model does not take.
   if (model == ContactModel::none) {
+    std::vector<std::string> with_law;  // the models but "none"
+    for (const std::string& other : names<ContactModel>())
+      if (other != to_string(ContactModel::none)) with_law.push_back(other);
+    const std::string laws = join_names(with_law, "\"", ", ", " or ");
     for (const auto& key : contact_law_keys())
       if (t.has(key))
-        fail(key, "a key of a contact law, but the contact has no model: set " + t.where + ".model = \"linear\", \"hertz\", "
-                  "\"hertzdamp\", \"jankowski\" or \"impact\" (or remove " + key + ")");
+        fail(key, "a key of a contact law, but the contact has no model: set " + t.where + ".model = " + laws + " (or remove " + key + ")");
     return law;
   }
   if (model == ContactModel::impact) {

@@ -37,7 +37,7 @@ namespace adjoin {
 Record remove_baseline(const Record& record, int order = 0);
 
 struct ButterworthFilter {
-  enum class Type { lowpass, highpass, bandpass };
+  using Type = FilterType;  // lowpass, highpass, bandpass (core/enum_names.hpp)
   Type type = Type::bandpass;
   double f_low = 0.0;   // Hz: high-pass corner, or band-pass lower corner
   double f_high = 0.0;  // Hz: low-pass corner, or band-pass upper corner

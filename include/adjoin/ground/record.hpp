@@ -7,15 +7,14 @@
 #include <string>
 #include <vector>
 
-namespace adjoin {
+#include "adjoin/core/enum_names.hpp"  // AccelUnit, its names (to_string: "g", "m/s2", ...)
 
-enum class AccelUnit { g, m_s2, cm_s2, mm_s2 };
+namespace adjoin {
 
 // Factor that converts a value in `unit` to m/s^2.
 double to_m_s2(AccelUnit unit);
 // "g", "m/s2", "cm/s2" (also "gal"), "mm/s2"; false on an unknown name.
 bool parse_accel_unit(const std::string& name, AccelUnit* unit);
-std::string to_string(AccelUnit unit);
 
 struct Record {
   std::string source;       // file it came from (or "synthetic ...")

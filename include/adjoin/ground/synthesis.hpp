@@ -63,15 +63,11 @@
 
 namespace adjoin {
 
-enum class SpectrumModel { kanai_tajimi, clough_penzien };
-enum class EnvelopeKind { none, jennings_housner_tsai, saragoni_hart };
-
+// SpectrumModel and EnvelopeKind, with their names: core/enum_names.hpp.
 // "kanai-tajimi" (also "kt"), "clough-penzien" ("cp"); "none", "jennings-housner-tsai"
 // ("jht"), "saragoni-hart" ("sh"). Underscores are accepted for hyphens. False if unknown.
 bool parse_spectrum_model(const std::string& name, SpectrumModel* model);
 bool parse_envelope_kind(const std::string& name, EnvelopeKind* kind);
-std::string to_string(SpectrumModel model);  // "kanai-tajimi", "clough-penzien"
-std::string to_string(EnvelopeKind kind);    // "none", "jennings-housner-tsai", "saragoni-hart"
 
 struct Envelope {
   EnvelopeKind kind = EnvelopeKind::jennings_housner_tsai;

@@ -35,9 +35,11 @@
 #include <string>
 #include <vector>
 
+#include "adjoin/core/enum_names.hpp"
+
 namespace adjoin {
 
-enum class Hysteresis { elastic_perfectly_plastic, bilinear };
+// Hysteresis (elastic_perfectly_plastic "epp", bilinear): core/enum_names.hpp.
 
 struct InelasticOptions {
   // Periods [s], each in [1e-4, 1e4]. Empty: default_spectrum_periods() without 0.

@@ -57,7 +57,7 @@ struct SpectrumOptions {
   bool IsValid(std::string* error) const;
 };
 
-enum class PeriodSpacing { linear, log };
+// PeriodSpacing (linear, log): core/enum_names.hpp.
 
 // `count` periods from `first` to `last` inclusive [s]. Log spacing needs first > 0.
 // Throws InputError on first > last, count == 0, or count == 1 with first != last.

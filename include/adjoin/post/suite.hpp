@@ -47,7 +47,7 @@ struct SuiteStatistics {
 SuiteStatistics suite_statistics(std::span<const ResponseSpectrum> spectra, std::span<const std::string> names = {},
                                  std::span<const double> factors = {});
 
-enum class SuiteScaling { fit, uniform };
+// SuiteScaling (fit, uniform): core/enum_names.hpp.
 
 struct SuiteScalingOptions {
   double t1 = 0.0;          // s, the structure's fundamental period, > 0

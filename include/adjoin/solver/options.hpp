@@ -3,35 +3,17 @@
 #include <cstddef>
 #include <string>
 
+#include "adjoin/core/enum_names.hpp"
 #include "adjoin/fractional/history.hpp"
 
 namespace adjoin {
 
-enum class Scheme {
-  // The paper's algorithm (3.1)/(3.2): explicit central differences, Grünwald–Letnikov
-  // history, stick/slip switching on the grid. First order, conditionally stable. The
-  // regression baseline.
-  paper,
-  // The robust default: trapezoidal (Newmark average acceleration) mechanics at velocity
-  // level, rods implicit through their current convolution weight, second-order convolution
-  // quadrature (BDF2) for the fractional terms, and the damper resolved each step as a relay
-  // problem in closed form (stick holds exactly, no chatter, no regularisation). Second
-  // order away from switching instants, stable for any h.
-  implicit,
-  // The same with first-order Grünwald–Letnikov weights for the rods.
-  implicit_gl,
-  // "implicit" with a backward-Euler step after every switch, which damps the stiff modes a
-  // switch excites (the default scheme does this only when the stiffest mode is unresolved by
-  // the step). Second order; error constants near switches about ten times larger.
-  implicit_damped,
-};
+// Scheme and its names ("implicit", "implicit-damped", "implicit-gl", "paper"): core/enum_names.hpp.
 
-std::string to_string(Scheme scheme);
 // The order of convergence of a scheme's reported values: 2 for "implicit" and
 // "implicit-damped", 1 for "implicit-gl" and "paper".
 int scheme_order(Scheme scheme);
-bool parse_scheme(const std::string& name, Scheme* scheme);
-// Names accepted by parse_scheme, for error messages.
+// The schemes' names for error messages: "implicit" (default), "implicit-damped", ...
 std::string scheme_names();
 
 struct SolverOptions {

@@ -32,6 +32,12 @@
 // processor has it, with the same results bit for bit. The two-block scenes' implicit schemes
 // ("implicit", "implicit-damped", "implicit-gl") are this stepper on the 1 + 1 structure
 // (solver/simulate.hpp); only the paper's explicit scheme has a stepper of its own.
+//
+// Inside (src/solver/): structure_model.hpp holds what is constant through a run (the
+// assembly, the factorised step matrices, the indexing, the restart rule), structure_workspace
+// .hpp what a step changes (the state, the Zener histories, the work vectors), and
+// structure_solver.cpp the step in its phases (predict, the dampers' and contacts' local
+// solve, correct, locate the switches, report).
 #include <Eigen/Dense>
 #include <cstddef>
 #include <limits>

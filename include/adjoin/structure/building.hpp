@@ -22,8 +22,7 @@ struct Zener {
   double k = 0.0, order = 0.5, tau_x = 0.0, tau_f = 0.0;
 };
 
-enum class DeviceType { spring, dashpot, zener };
-
+// DeviceType (spring, dashpot, zener): core/enum_names.hpp.
 // A device in parallel with the spring of each listed storey (1-based).
 struct StoreyDevice {
   DeviceType type = DeviceType::spring;
@@ -34,7 +33,7 @@ struct StoreyDevice {
 };
 
 // Classical damping from the building's mass and elastic (static) stiffness.
-enum class DampingModel { none, modal, rayleigh };
+// DampingModel (none, modal, rayleigh): core/enum_names.hpp.
 struct InherentDamping {
   DampingModel model = DampingModel::none;
   double ratio = 0.0;          // modal: every mode; rayleigh: at the two modes below
@@ -53,8 +52,7 @@ struct Building {
   Eigen::VectorXd static_stiffness() const;
 };
 
-enum class LinkType { friction, dashpot, spring, zener };
-
+// LinkType (friction, dashpot, spring, zener): core/enum_names.hpp.
 // Between floor_a of A and floor_b of B; its force acts as -q on A's floor and +q on B's.
 struct Link {
   LinkType type = LinkType::friction;

@@ -24,14 +24,11 @@
 #include <limits>
 #include <string>
 
+// ContactModel, with the scene words "none", "linear", "hertz", "hertzdamp", "jankowski",
+// "impact" (to_string, parse_enum).
+#include "adjoin/core/enum_names.hpp"
+
 namespace adjoin::structure {
-
-enum class ContactModel { none, linear, hertz, hertzdamp, jankowski, impact };
-
-// The scene words: "none", "linear", "hertz", "hertzdamp", "jankowski", "impact".
-const char* to_string(ContactModel model);
-bool parse_contact_model(const std::string& word, ContactModel* model);
-std::string contact_model_names();  // for messages: "linear, hertz, ..."
 
 struct ContactLaw {
   ContactModel model = ContactModel::none;

@@ -8,12 +8,9 @@
 
 #include <Eigen/Dense>
 
+#include "adjoin/core/enum_names.hpp"  // Phase: "stick", "slip_right", "slip_left" (the words of SPEC §3)
+
 namespace adjoin {
-
-enum class Phase { stick, slip_right, slip_left };
-
-// "stick", "slip_right", "slip_left" (the words of SPEC §3).
-const char* to_string(Phase phase);
 
 struct State {
   double t = 0.0;

@@ -45,7 +45,7 @@ std::shared_ptr<const GroundMotion> read_filtered_noise(const SceneReader& r, co
   if (r.has("ground.spectrum")) {
     const std::string name = r.string("ground.spectrum", "");
     if (!parse_spectrum_model(name, &o.spectrum))
-      r.fail("ground.spectrum", "ground.spectrum = " + escaped_excerpt(name) + " must be \"kanai-tajimi\" or \"clough-penzien\"");
+      r.fail("ground.spectrum", "ground.spectrum = " + escaped_excerpt(name) + " must be " + join_names(names<SpectrumModel>(), "\"", ", ", " or "));
   }
   o.omega_g = r.number("ground.omega_g", o.omega_g);
   o.zeta_g = r.number("ground.zeta_g", o.zeta_g);
@@ -56,19 +56,19 @@ std::shared_ptr<const GroundMotion> read_filtered_noise(const SceneReader& r, co
   if (r.has("ground.envelope")) {
     const std::string name = r.string("ground.envelope", "");
     if (!parse_envelope_kind(name, &o.envelope.kind))
-      r.fail("ground.envelope", "ground.envelope = " + escaped_excerpt(name) + " must be \"none\", \"jennings-housner-tsai\" or \"saragoni-hart\"");
+      r.fail("ground.envelope", "ground.envelope = " + escaped_excerpt(name) + " must be " + join_names(names<EnvelopeKind>(), "\"", ", ", " or "));
   }
   // Keys of another spectrum or envelope than the one chosen would be ignored.
   if (o.spectrum != SpectrumModel::clough_penzien)
     for (const char* key : {"ground.omega_f", "ground.zeta_f"})
-      if (r.has(key)) r.fail(key, std::string(key) + " belongs to ground.spectrum = \"clough-penzien\" (its high-pass filter)");
-  const auto envelope_keys = [&](EnvelopeKind kind, std::initializer_list<const char*> keys, const char* name) {
+      if (r.has(key)) r.fail(key, std::string(key) + " belongs to ground.spectrum = \"" + to_string(SpectrumModel::clough_penzien) + "\" (its high-pass filter)");
+  const auto envelope_keys = [&](EnvelopeKind kind, std::initializer_list<const char*> keys) {
     if (o.envelope.kind == kind) return;
     for (const char* key : keys)
-      if (r.has(key)) r.fail(key, std::string(key) + " belongs to ground.envelope = \"" + name + "\"");
+      if (r.has(key)) r.fail(key, std::string(key) + " belongs to ground.envelope = \"" + to_string(kind) + "\"");
   };
-  envelope_keys(EnvelopeKind::jennings_housner_tsai, {"ground.t1", "ground.t2", "ground.decay"}, "jennings-housner-tsai");
-  envelope_keys(EnvelopeKind::saragoni_hart, {"ground.eps", "ground.eta", "ground.t_n"}, "saragoni-hart");
+  envelope_keys(EnvelopeKind::jennings_housner_tsai, {"ground.t1", "ground.t2", "ground.decay"});
+  envelope_keys(EnvelopeKind::saragoni_hart, {"ground.eps", "ground.eta", "ground.t_n"});
   for (auto [key, field] : {std::pair{"ground.t1", &o.envelope.t1}, {"ground.t2", &o.envelope.t2}, {"ground.decay", &o.envelope.decay},
                             {"ground.eps", &o.envelope.eps}, {"ground.eta", &o.envelope.eta}, {"ground.t_n", &o.envelope.t_n}})
     if (r.has(key)) *field = r.number(key);

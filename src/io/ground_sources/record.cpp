@@ -76,17 +76,16 @@ std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, con
   processing.pad_after = r.number("ground.pad_after", 0.0);
   for (const char* key : {"ground.f_low", "ground.f_high", "ground.filter_order"})
     if (r.has(key) && !r.has("ground.filter"))
-      r.fail(key, std::string(key) + " belongs to ground.filter (\"bandpass\", \"highpass\" or \"lowpass\"); without it no filter runs");
+      r.fail(key, std::string(key) + " belongs to ground.filter (" + join_names(names<FilterType>(), "\"", ", ", " or ") +
+                      "); without it no filter runs");
   if (r.has("ground.filter")) {
     ButterworthFilter filter;
     const std::string type = r.string("ground.filter", "");
-    if (type == "bandpass") filter.type = ButterworthFilter::Type::bandpass;
-    else if (type == "highpass") filter.type = ButterworthFilter::Type::highpass;
-    else if (type == "lowpass") filter.type = ButterworthFilter::Type::lowpass;
-    else r.fail("ground.filter", "ground.filter = " + escaped_excerpt(type) + " must be \"bandpass\", \"highpass\" or \"lowpass\"");
+    if (!parse_enum(type, &filter.type))
+      r.fail("ground.filter", "ground.filter = " + escaped_excerpt(type) + " must be " + join_names(names<FilterType>(), "\"", ", ", " or "));
     // A low-pass filter has no lower corner, a high-pass one no upper corner.
-    if (type == "lowpass" && r.has("ground.f_low")) r.fail("ground.f_low", "ground.f_low does not apply to a low-pass filter (its corner is ground.f_high)");
-    if (type == "highpass" && r.has("ground.f_high")) r.fail("ground.f_high", "ground.f_high does not apply to a high-pass filter (its corner is ground.f_low)");
+    if (filter.type == FilterType::lowpass && r.has("ground.f_low")) r.fail("ground.f_low", "ground.f_low does not apply to a low-pass filter (its corner is ground.f_high)");
+    if (filter.type == FilterType::highpass && r.has("ground.f_high")) r.fail("ground.f_high", "ground.f_high does not apply to a high-pass filter (its corner is ground.f_low)");
     filter.f_low = r.number("ground.f_low", 0.0);
     filter.f_high = r.number("ground.f_high", 0.0);
     const auto order = r.integer("ground.filter_order", 4);

@@ -1,0 +1,57 @@
+#include "structure_workspace.hpp"
+
+#include <cmath>
+
+namespace adjoin::detail {
+
+StepWorkspace::StepWorkspace(const StructureModel& m) {
+  const int n = m.n, nf = m.nf, nc = m.nc;
+  for (const ZenerElement& e : m.zener)
+    laws.push_back(std::make_unique<RodLaw>(e.rod, e.k, m.h, m.options.history, m.weights_of(e)));
+  zener_force.assign(m.zener.size(), 0.0);
+  contact_memory.resize(static_cast<std::size_t>(nc));
+  box_qp_trapezoidal = std::make_unique<BoxQp>(m.trapezoidal->delassus);
+  if (m.backward) box_qp_backward = std::make_unique<BoxQp>(m.backward->delassus);
+  sm = m.trapezoidal.get();
+  box_qp = box_qp_trapezoidal.get();
+  // The stuck dampers' systems (B_s M^-1 B_s'), inverted per stuck set (a product with the
+  // inverse of this small, well conditioned matrix is as accurate as a solve and much faster
+  // than a dynamic-size LDLT solve).
+  stuck_systems = SubsetInverses(m.g_all);
+
+  // The contact pairs' vectors.
+  contact_impulse = contact_moment = contact_end_force = Eigen::VectorXd::Zero(nc);
+  contact_bt_now = contact_bt = total_now = Eigen::VectorXd::Zero(n);
+  total_next.resize(n);
+  contact_work.assign(static_cast<std::size_t>(nc), 0.0);
+  step_work.assign(static_cast<std::size_t>(nc), 0.0);
+  v_free0.resize(n);
+  cv_free0.resize(n);
+  step_impacts.reserve(16);
+
+  // The step's work vectors and the state carried from step to step.
+  trial_change.resize(m.nt + m.nd);
+  btq_dampers.resize(m.nd);
+  offsets.resize(static_cast<Eigen::Index>(m.zener.size()));
+  response_q.resize(2 * n);
+  off_dof = Eigen::VectorXd::Zero(n);
+  for (Eigen::VectorXd* v : {&rhs, &v_free, &cv_free, &v1, &x1, &p1, &cv1, &p_next, &cv_next, &v_pre, &bq}) v->resize(n);
+  for (Eigen::VectorXd* v : {&w_free, &w_end, &q_step, &q_trial, &q1, &stick1, &w1, &fixed, &fixed2, &q_grid, &stick_grid, &others})
+    v->resize(nf);
+  for (std::vector<double>* v : {&onset, &crossing, &kink_theta, &kink_jump}) v->resize(nf);
+  decided.resize(nf);
+  hold.resize(nf);
+  hold2.resize(nf);
+  touched.reserve(2 * static_cast<std::size_t>(nf));
+  touched_flag.assign(m.damper_dofs.size(), 0);
+  states.assign(nf, DamperState::stick);
+  internal = Eigen::VectorXd::Zero(n);
+  friction_now = stick_force_now = stick_force_prev = Eigen::VectorXd::Zero(nf);
+  prev_stuck.assign(nf, false);
+  prev_same_slip.assign(nf, false);
+  w_prev.assign(nf, 0.0);
+  stick_start_t.assign(nf, -INFINITY);
+  stick_start_q.assign(nf, 0.0);
+}
+
+}  // namespace adjoin::detail

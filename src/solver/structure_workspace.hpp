@@ -1,0 +1,78 @@
+#pragma once
+// The structure stepper's per-run part (internal to the solver; the Data of Pinocchio's
+// Model/Data split): what changes from step to step — the Zener elements' laws with their
+// histories, the dampers' and contact pairs' states, the forces carried from t_n to t_n+1,
+// the two grid states — and the step's work vectors, all sized once from the model, so that a
+// step allocates nothing (but the box QP's small systems when a stuck set is first met).
+#include <Eigen/Dense>
+#include <memory>
+#include <vector>
+
+#include "adjoin/structure/state.hpp"
+#include "box_qp.hpp"
+#include "contact_step.hpp"
+#include "rod_law.hpp"
+#include "structure_model.hpp"
+
+namespace adjoin::detail {
+
+struct StepWorkspace {
+  explicit StepWorkspace(const StructureModel& m);
+
+  // ---- the elements' and dampers' memory ----
+  std::vector<std::unique_ptr<RodLaw>> laws;  // per Zener element of the model, its history
+  std::vector<double> zener_force;            // ... and its force at t_n+1 (then t_n)
+  std::vector<ContactMemory> contact_memory, memory_before;  // per contact pair with a law; before the step
+  std::unique_ptr<BoxQp> box_qp_trapezoidal, box_qp_backward;  // the dampers' QP of each step matrix
+  SubsetInverses stuck_systems;  // B_s M^-1 B_s' per stuck set, inverted when first met
+
+  // ---- this step ----
+  bool restart = false;            // backward Euler
+  int restart_left = 0;            // backward-Euler steps still to take
+  const StepMatrices* sm = nullptr;  // this step's matrices
+  BoxQp* box_qp = nullptr;         // ... and their QP
+  bool any_contact = false;        // a contact pair touched in the step
+
+  // ---- the state carried from step to step ----
+  std::vector<DamperState> states;
+  Eigen::VectorXd internal;  // storey and link forces (not friction) at t_n
+  Eigen::VectorXd cv_now;    // C v at t_n
+  Eigen::VectorXd friction_now;
+  Eigen::VectorXd stick_force_now;  // the force that keeps each damper stuck
+  Eigen::VectorXd stick_force_prev;
+  std::vector<char> prev_stuck;      // the grid point before `now` was stuck
+  std::vector<char> prev_same_slip;  // ... slipped as `now` does, with velocity:
+  std::vector<double> w_prev;
+  std::vector<double> stick_start_t, stick_start_q;  // the last stick's start
+  std::vector<double> contact_work;                  // per contact pair with a law: its work so far
+  Eigen::VectorXd contact_bt_now, total_now;         // B_c' p and all forces at t_n (with contacts)
+
+  // ---- the step's work vectors (char, not the bit-packed vector<bool>: read in every step) ----
+  Eigen::VectorXd offsets;  // each Zener element's f - k_eff d
+  Eigen::VectorXd response_q, off_dof, rhs, v_free, cv_free, v1, x1, p1, cv1, p_next, cv_next, v_pre;
+  Eigen::VectorXd bq, w_free, w_end, q_step, q_trial, q1, stick1, w1;
+  Eigen::VectorXd fixed, fixed2, q_grid, stick_grid, others;
+  std::vector<double> onset, crossing, kink_theta, kink_jump;
+  std::vector<DamperState> decided;
+  std::vector<char> hold, hold2;
+  std::vector<int> touched;
+  std::vector<char> touched_flag;  // per damper_dofs entry
+  std::vector<int> stuck;
+  Eigen::VectorXd trial_change;  // A^-1 B' q at trial_dofs, then C A^-1 B' q at damper_dofs
+  // B' q at the dampers' floors (damper_dofs), in btq_dampers: only there is it read by the
+  // dampers' forces (each damper acts -q on A's floor and +q on B's).
+  Eigen::VectorXd btq_dampers;
+  Eigen::VectorXd contact_impulse, contact_moment, contact_end_force;
+  Eigen::VectorXd contact_bt, total_next;  // B_c' p and all forces at t_n+1
+  std::vector<double> step_work;
+  Eigen::VectorXd v_free0, cv_free0;  // the free step before the contact impulses
+  std::vector<Impact> step_impacts;
+
+  // The grid points t_n (`now`) and t_n+1 (`next`): two states whose vectors every step reuses,
+  // their roles swapped after each step.
+  StructureState first, second;
+  StructureState* now_p = nullptr;
+  StructureState* next_p = nullptr;
+};
+
+}  // namespace adjoin::detail
