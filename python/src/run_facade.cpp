@@ -1,0 +1,178 @@
+// The run pipeline as the Python bindings see it (run_facade.hpp): today's two scene kinds and
+// their file writers, wrapped so that a merge with the unified RunSpec / run / Report changes
+// this file only.
+#include "run_facade.hpp"
+
+#include <unistd.h>
+
+#include <atomic>
+#include <cstdio>
+#include <sstream>
+#include <system_error>
+#include <variant>
+
+#include <toml++/toml.h>
+
+#include "adjoin/core/errors.hpp"
+#include "adjoin/io/building_files.hpp"
+#include "adjoin/io/building_scene.hpp"
+#include "adjoin/io/run_files.hpp"
+#include "adjoin/io/scene.hpp"
+#include "adjoin/io/structure_file.hpp"
+#include "adjoin/io/summary.hpp"
+#include "adjoin/structure/modal.hpp"
+#include "adjoin/study/building_run.hpp"
+
+namespace adjoin::python {
+
+namespace fs = std::filesystem;
+
+struct LoadedScene::Impl {
+  std::variant<Scene, BuildingScene> spec;
+};
+
+bool LoadedScene::building() const { return std::holds_alternative<BuildingScene>(impl_->spec); }
+
+const std::string& LoadedScene::name() const {
+  return std::visit([](const auto& s) -> const std::string& { return s.name; }, impl_->spec);
+}
+
+const std::vector<std::string>& LoadedScene::warnings() const {
+  return std::visit([](const auto& s) -> const std::vector<std::string>& { return s.warnings; }, impl_->spec);
+}
+
+namespace {
+
+LoadedScene wrap(Scene s) { return LoadedScene(std::make_shared<const LoadedScene::Impl>(LoadedScene::Impl{std::move(s)})); }
+LoadedScene wrap(BuildingScene s) {
+  return LoadedScene(std::make_shared<const LoadedScene::Impl>(LoadedScene::Impl{std::move(s)}));
+}
+
+// A building scene is one with a [building] table: the rule of io/structure_file.cpp
+// is_building_scene, applied to text. A text that is not TOML goes to the two-block reader,
+// which reports the syntax error with its line.
+bool text_is_building_scene(const std::string& text, const fs::path& file) {
+  try {
+    return toml::parse(text, file.string()).contains("building");
+  } catch (const toml::parse_error&) {
+    return false;
+  }
+}
+
+std::string read_if_there(const fs::path& file) {
+  std::string text;
+  std::FILE* f = std::fopen(file.c_str(), "rb");
+  if (!f) return text;
+  char buffer[1 << 16];
+  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) text.append(buffer, n);
+  std::fclose(f);
+  return text;
+}
+
+// A folder of its own for one run, removed when the run is over (whatever happens).
+class PrivateFolder {
+ public:
+  PrivateFolder() {
+    static std::atomic<unsigned long> counter{0};
+    path_ = fs::temp_directory_path() /
+            ("adjoin-python-" + std::to_string(::getpid()) + "-" + std::to_string(counter++)) / "out";
+  }
+  ~PrivateFolder() {
+    std::error_code ignored;
+    fs::remove_all(path_.parent_path(), ignored);
+  }
+  PrivateFolder(const PrivateFolder&) = delete;
+  PrivateFolder& operator=(const PrivateFolder&) = delete;
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+RunTexts run_two_block(Scene scene, const RunRequest& request) {
+  scene.output.timeseries = scene.output.timeseries && request.timeseries;
+  if (request.every > 0) scene.output.every = request.every;
+  PrivateFolder dir;
+  const RunFiles files = run_to_folder(scene, dir.path());
+  RunTexts texts;
+  texts.summary_json = read_if_there(dir.path() / "summary.json");
+  texts.timeseries_csv = read_if_there(dir.path() / "timeseries.csv");
+  texts.impacts_csv = read_if_there(dir.path() / "impacts.csv");
+  texts.spectra_csv = read_if_there(dir.path() / "spectra.csv");
+  texts.energy_csv = read_if_there(dir.path() / "energy.csv");
+  texts.brief = brief_report(scene, files.report, files.estimate ? &*files.estimate : nullptr,
+                             files.tolerant ? &*files.tolerant : nullptr);
+  return texts;
+}
+
+RunTexts run_building_scene(BuildingScene scene, const RunRequest& request) {
+  scene.base.output.timeseries = scene.base.output.timeseries && request.timeseries;
+  if (request.every > 0) scene.base.output.every = request.every;
+  check_building_memory(scene);
+  PrivateFolder dir;
+  const BuildingFiles files = run_building_to_folder(scene, dir.path());
+  RunTexts texts;
+  texts.summary_json = read_if_there(dir.path() / "summary.json");
+  texts.timeseries_csv = read_if_there(dir.path() / "timeseries.csv");
+  texts.impacts_csv = read_if_there(dir.path() / "impacts.csv");
+  texts.spectra_csv = read_if_there(dir.path() / "spectra.csv");
+  texts.energy_csv = read_if_there(dir.path() / "energy.csv");
+  texts.brief = building_brief_report(scene, files.report, files.estimate ? &*files.estimate : nullptr,
+                                      files.tolerant ? &*files.tolerant : nullptr);
+  return texts;
+}
+
+std::vector<double> as_vector(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+
+BuildingModesOut modes_of(const structure::Building& b) {
+  const structure::Modes m = structure::building_modes(b);
+  BuildingModesOut out;
+  out.name = b.name;
+  out.periods = as_vector(m.periods);
+  out.omega = as_vector(m.omega);
+  out.total_ratio = as_vector(m.total_ratio);
+  out.inherent_ratio = as_vector(m.inherent_ratio);
+  out.device_ratio = as_vector(m.device_ratio);
+  out.participation = as_vector(m.participation);
+  out.effective_mass = as_vector(m.effective_mass);
+  out.floors = static_cast<std::size_t>(m.shapes.rows());
+  for (Eigen::Index i = 0; i < m.shapes.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.shapes.cols(); ++j) out.shapes.push_back(m.shapes(i, j));
+  return out;
+}
+
+}  // namespace
+
+LoadedScene load_scene_file(const fs::path& file, const std::vector<std::string>& overrides,
+                            const std::vector<std::string>& unsets) {
+  if (is_building_scene(file)) return wrap(load_building_scene(file, overrides, unsets));
+  return wrap(load_scene(file, overrides, unsets));
+}
+
+LoadedScene parse_scene_text(const std::string& text, const fs::path& file, const std::vector<std::string>& overrides,
+                             const std::vector<std::string>& unsets) {
+  if (text_is_building_scene(text, file)) return wrap(parse_building_scene(text, file, overrides, unsets));
+  return wrap(parse_scene(text, file.string(), overrides, unsets));
+}
+
+RunTexts run(const LoadedScene& scene, const RunRequest& request) {
+  if (scene.building()) return run_building_scene(std::get<BuildingScene>(scene.impl().spec), request);
+  return run_two_block(std::get<Scene>(scene.impl().spec), request);
+}
+
+ModesOut modes(const LoadedScene& scene) {
+  if (!scene.building())
+    throw InputError("adjoin.modes: '" + scene.name() + "' is a two-block scene; modes are computed for building scenes");
+  const structure::Structure& s = std::get<BuildingScene>(scene.impl().spec).structure;
+  ModesOut out;
+  out.buildings.push_back(modes_of(s.a));
+  if (s.b) {
+    out.buildings.push_back(modes_of(*s.b));
+    const structure::CoupledModes c = structure::coupled_modes(s);
+    out.coupled_free = as_vector(c.periods_free);
+    out.coupled_locked = as_vector(c.periods_locked);
+  }
+  return out;
+}
+
+}  // namespace adjoin::python

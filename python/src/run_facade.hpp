@@ -1,0 +1,78 @@
+#pragma once
+// The one place the Python bindings touch the run pipeline (reading a scene, running it, turning
+// its report into summary.json, timeseries.csv and impacts.csv). Everything else in python/src
+// binds stable, typed parts of the library (records, spectra, modes).
+//
+// Today a scene is either a two-block scene (io/scene.hpp, study/run.hpp) or a building scene
+// (io/building_scene.hpp, study/building_run.hpp), and the texts `adjoin run` writes are made by
+// io/run_files.hpp and io/building_files.hpp while their files are written. To give Python the
+// very texts `adjoin run` writes (bit for bit), run() has those functions write into a private
+// temporary folder, reads the texts back and removes the folder. When the run pipeline is one
+// RunSpec / run / Report, only run_facade.cpp changes: the texts then come from the report.
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace adjoin::python {
+
+// A scene read and checked by the library's own scene readers (opaque: either kind of scene).
+class LoadedScene {
+ public:
+  struct Impl;
+  explicit LoadedScene(std::shared_ptr<const Impl> impl) : impl_(std::move(impl)) {}
+  const Impl& impl() const { return *impl_; }
+  bool building() const;
+  const std::string& name() const;
+  // Valid but probably unintended choices the reader noticed ("warning: ..." on the CLI).
+  const std::vector<std::string>& warnings() const;
+
+ private:
+  std::shared_ptr<const Impl> impl_;
+};
+
+// Reads a scene file as `adjoin run FILE --set ... --unset ...` does (either kind).
+LoadedScene load_scene_file(const std::filesystem::path& file, const std::vector<std::string>& overrides,
+                            const std::vector<std::string>& unsets);
+// The same from TOML text; `file` names it in messages and its folder is where the scene's
+// relative paths (ground.file) start.
+LoadedScene parse_scene_text(const std::string& text, const std::filesystem::path& file,
+                             const std::vector<std::string>& overrides, const std::vector<std::string>& unsets);
+
+// What `adjoin run` would write, as text ("" for a file it would not write).
+struct RunTexts {
+  std::string summary_json;
+  std::string timeseries_csv;
+  std::string impacts_csv;
+  std::string spectra_csv;
+  std::string energy_csv;
+  std::string brief;  // what `adjoin run` prints on stdout (without the "wrote ..." line)
+};
+
+// Options of one run from Python. `every` 0 keeps the scene's output.every.
+struct RunRequest {
+  bool timeseries = true;
+  std::size_t every = 0;
+};
+
+// Runs the scene as `adjoin run` does (the same step choice, error estimate and files).
+// Throws InputError / NumericalError as the library does. Safe to call from several threads at
+// once (each run has its own folder).
+RunTexts run(const LoadedScene& scene, const RunRequest& request);
+
+// The scene's storey modes (building scenes; InputError for a two-block scene), one entry per
+// building: name, periods [s], shapes (floors x modes), damping ratios, participation,
+// effective masses [kg].
+struct BuildingModesOut {
+  std::string name;
+  std::vector<double> periods, omega, total_ratio, inherent_ratio, device_ratio, participation, effective_mass;
+  std::vector<double> shapes;  // row-major floors x modes
+  std::size_t floors = 0;
+};
+struct ModesOut {
+  std::vector<BuildingModesOut> buildings;
+  std::vector<double> coupled_free, coupled_locked;  // periods [s] of the coupled structure
+};
+ModesOut modes(const LoadedScene& scene);
+
+}  // namespace adjoin::python

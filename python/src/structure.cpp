@@ -1,0 +1,173 @@
+// structure/builder.hpp and structure/modal.hpp in Python: adjoin.StructureBuilder (the typed
+// builder: buildings, storey devices, links, contact pairs, each problem an InputError naming
+// its field) and adjoin.modes (each building's modes, of a built structure or a scene).
+#include "adjoin/core/errors.hpp"
+#include "adjoin/structure/builder.hpp"
+#include "adjoin/structure/modal.hpp"
+#include "bindings.hpp"
+#include "run_facade.hpp"
+#include "scene_object.hpp"
+
+namespace adjoin::python {
+
+namespace {
+
+using structure::BuildingBuilder;
+using structure::ContactBuilder;
+using structure::StructureBuilder;
+
+py::array_t<double> matrix_of(std::vector<double>&& row_major, std::size_t rows) {
+  const std::size_t cols = rows ? row_major.size() / rows : 0;
+  py::array_t<double> flat = to_array(std::move(row_major));
+  return flat.reshape({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
+}
+
+py::dict modes_dict(BuildingModesOut&& b) {
+  py::dict d;
+  d["name"] = b.name;
+  d["periods"] = to_array(std::move(b.periods));
+  d["omega"] = to_array(std::move(b.omega));
+  d["shapes"] = matrix_of(std::move(b.shapes), b.floors);
+  d["damping"] = to_array(std::move(b.total_ratio));
+  d["inherent_damping"] = to_array(std::move(b.inherent_ratio));
+  d["device_damping"] = to_array(std::move(b.device_ratio));
+  d["participation"] = to_array(std::move(b.participation));
+  d["effective_mass"] = to_array(std::move(b.effective_mass));
+  return d;
+}
+
+std::vector<double> copy_of(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+
+BuildingModesOut modes_out(const structure::Building& b) {
+  const structure::Modes m = structure::building_modes(b);
+  BuildingModesOut out{b.name,
+                       copy_of(m.periods),
+                       copy_of(m.omega),
+                       copy_of(m.total_ratio),
+                       copy_of(m.inherent_ratio),
+                       copy_of(m.device_ratio),
+                       copy_of(m.participation),
+                       copy_of(m.effective_mass),
+                       {},
+                       static_cast<std::size_t>(m.shapes.rows())};
+  for (Eigen::Index i = 0; i < m.shapes.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.shapes.cols(); ++j) out.shapes.push_back(m.shapes(i, j));
+  return out;
+}
+
+py::dict modes_py(ModesOut&& m) {
+  py::dict out;
+  for (auto& b : m.buildings) {
+    const std::string name = b.name;
+    out[py::str(name)] = modes_dict(std::move(b));
+  }
+  if (!m.coupled_free.empty()) {
+    py::dict coupled;
+    coupled["periods_free"] = to_array(std::move(m.coupled_free));
+    coupled["periods_locked"] = to_array(std::move(m.coupled_locked));
+    out["coupled"] = coupled;
+  }
+  return out;
+}
+
+py::dict structure_modes(const structure::Structure& s) {
+  ModesOut m;
+  m.buildings.push_back(modes_out(s.a));
+  if (s.b) {
+    m.buildings.push_back(modes_out(*s.b));
+    const structure::CoupledModes c = structure::coupled_modes(s);
+    m.coupled_free = copy_of(c.periods_free);
+    m.coupled_locked = copy_of(c.periods_locked);
+  }
+  return modes_py(std::move(m));
+}
+
+char building_name(const std::string& name) {
+  if (name != "A" && name != "B") throw InputError("building '" + name + "': expected 'A' or 'B'", "building");
+  return name[0];
+}
+
+structure::Zener zener_of(double stiffness, double order, double tau_x, double tau_f) {
+  return structure::Zener{stiffness, order, tau_x, tau_f};
+}
+
+}  // namespace
+
+void bind_structure(py::module_& m) {
+  py::class_<structure::Structure>(m, "Structure", "A structure built in code (StructureBuilder.build()).")
+      .def_property_readonly("dofs", &structure::Structure::dofs, "The number of floors of both buildings.")
+      .def("modes", &structure_modes, "Each building's modes (see adjoin.modes).");
+
+  py::class_<BuildingBuilder>(m, "BuildingBuilder", "One building of a StructureBuilder (SI units).")
+      .def("mass", &BuildingBuilder::mass, py::arg("kg"), py::return_value_policy::reference_internal)
+      .def("masses", &BuildingBuilder::masses, py::arg("kg"), py::return_value_policy::reference_internal)
+      .def("stiffness", &BuildingBuilder::stiffness, py::arg("n_per_m"), py::return_value_policy::reference_internal)
+      .def("stiffnesses", &BuildingBuilder::stiffnesses, py::arg("n_per_m"), py::return_value_policy::reference_internal)
+      .def("period", &BuildingBuilder::period, py::arg("seconds"), py::return_value_policy::reference_internal)
+      .def("no_damping", &BuildingBuilder::no_damping, py::return_value_policy::reference_internal)
+      .def("modal_damping", &BuildingBuilder::modal_damping, py::arg("ratio"), py::return_value_policy::reference_internal)
+      .def("rayleigh_damping", &BuildingBuilder::rayleigh_damping, py::arg("ratio"), py::arg("mode_i") = 1,
+           py::arg("mode_j") = 2, py::return_value_policy::reference_internal)
+      .def("spring", &BuildingBuilder::spring, py::arg("storeys"), py::arg("k"), py::return_value_policy::reference_internal)
+      .def("dashpot", &BuildingBuilder::dashpot, py::arg("storeys"), py::arg("c"), py::return_value_policy::reference_internal)
+      .def(
+          "zener",
+          [](BuildingBuilder& b, const std::vector<int>& storeys, double stiffness, double order, double tau_x,
+             double tau_f) -> BuildingBuilder& { return b.zener(storeys, zener_of(stiffness, order, tau_x, tau_f)); },
+          py::arg("storeys"), py::kw_only(), py::arg("stiffness"), py::arg("order"), py::arg("tau_x"), py::arg("tau_f"),
+          py::return_value_policy::reference_internal)
+      .def_property_readonly("path", &BuildingBuilder::path)
+      .def_property_readonly("storeys", &BuildingBuilder::storeys);
+
+  py::class_<ContactBuilder>(m, "ContactBuilder", "A contact pair of a StructureBuilder.")
+      .def(
+          "model",
+          [](ContactBuilder& c, const std::string& word) -> ContactBuilder& {
+            structure::ContactModel model{};
+            if (!structure::parse_contact_model(word, &model))
+              throw InputError("model = '" + word + "': expected none, linear, hertz, hertzdamp, jankowski or impact",
+                               "model");
+            return c.model(model);
+          },
+          py::arg("model"), py::return_value_policy::reference_internal)
+      .def("stiffness", &ContactBuilder::stiffness, py::arg("k"), py::return_value_policy::reference_internal)
+      .def("restitution", &ContactBuilder::restitution, py::arg("e"), py::return_value_policy::reference_internal)
+      .def("damping", &ContactBuilder::damping, py::arg("value"), py::return_value_policy::reference_internal)
+      .def("tension_cut", &ContactBuilder::tension_cut, py::arg("cut"), py::return_value_policy::reference_internal);
+
+  py::class_<StructureBuilder>(m, "StructureBuilder")
+      .def(py::init<>())
+      .def(
+          "building",
+          [](StructureBuilder& s, const std::string& name, int storeys) -> BuildingBuilder& {
+            return s.building(building_name(name), storeys);
+          },
+          py::arg("name"), py::arg("storeys"), py::return_value_policy::reference_internal)
+      .def("friction_link", &StructureBuilder::friction_link, py::arg("floor_a"), py::arg("floor_b"),
+           py::arg("slip_force"), py::return_value_policy::reference_internal)
+      .def(
+          "friction_link_ratio",
+          [](StructureBuilder& s, int a, int b, double ratio, const std::string& of) -> StructureBuilder& {
+            return s.friction_link_ratio(a, b, ratio, building_name(of));
+          },
+          py::arg("floor_a"), py::arg("floor_b"), py::arg("slip_ratio"), py::arg("of") = "B",
+          py::return_value_policy::reference_internal)
+      .def("dashpot_link", &StructureBuilder::dashpot_link, py::arg("floor_a"), py::arg("floor_b"), py::arg("c"),
+           py::return_value_policy::reference_internal)
+      .def("spring_link", &StructureBuilder::spring_link, py::arg("floor_a"), py::arg("floor_b"), py::arg("k"),
+           py::return_value_policy::reference_internal)
+      .def(
+          "zener_link",
+          [](StructureBuilder& s, int a, int b, double stiffness, double order, double tau_x, double tau_f)
+              -> StructureBuilder& { return s.zener_link(a, b, zener_of(stiffness, order, tau_x, tau_f)); },
+          py::arg("floor_a"), py::arg("floor_b"), py::kw_only(), py::arg("stiffness"), py::arg("order"),
+          py::arg("tau_x"), py::arg("tau_f"), py::return_value_policy::reference_internal)
+      .def("contact", &StructureBuilder::contact, py::arg("floor_a"), py::arg("floor_b"), py::arg("gap"),
+           py::return_value_policy::reference_internal)
+      .def("build", &StructureBuilder::build);
+
+  m.def("modes", [](const SceneObject& scene) { return modes_py(python::modes(scene.loaded)); }, py::arg("scene"));
+  m.def("modes", &structure_modes, py::arg("structure"));
+}
+
+}  // namespace adjoin::python
