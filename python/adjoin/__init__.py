@@ -229,7 +229,7 @@ def _rows(columns: dict) -> list:
 
 
 def run(scene: "Scene | Mapping[str, Any] | str | os.PathLike[str]", *, timeseries: bool = True,
-        every: "int | None" = None) -> Result:
+        every: "int | None" = None, allow_long: bool = False) -> Result:
     """Runs one scene as ``adjoin run`` does and returns its results in memory.
 
     The step, horizon, error estimate and outputs are the scene's (``[solver]``,
@@ -243,29 +243,31 @@ def run(scene: "Scene | Mapping[str, Any] | str | os.PathLike[str]", *, timeseri
             False drops it (faster, less memory). It never adds one the scene does not ask.
         every: keep every n-th grid point in the time series (``output.every``); None keeps
             the scene's rule.
+        allow_long: run even when the run is estimated (from its first steps) at more than
+            2 hours; refused otherwise, as ``adjoin run`` refuses it without ``--allow-long``.
 
     Returns:
         Result: ``.summary`` (summary.json as a dict), ``.timeseries`` (numpy arrays by
         column), ``.impacts``, ``.channels``, ``.brief()``.
 
     Raises:
-        InputError: the scene is refused when run (e.g. the run would need more memory than
-            the machine has); ``.field`` names the key when one is at fault.
+        InputError: the scene is refused when run (the run would need more memory than the
+            machine has, or more than 2 hours); ``.field`` names the key when one is at fault.
         NumericalError: the computation failed; ``.time`` says when.
     """
     s = _as_scene(scene)
-    return Result(_adjoin.run(s._scene, timeseries=timeseries, every=_every(every)))
+    return Result(_adjoin.run(s._scene, timeseries=timeseries, every=_every(every), allow_long=allow_long))
 
 
 def run_many(scenes: "Sequence[Scene | Mapping[str, Any] | str | os.PathLike[str]]", jobs: int = 0, *,
-             timeseries: bool = True, every: "int | None" = None) -> list:
+             timeseries: bool = True, every: "int | None" = None, allow_long: bool = False) -> list:
     """Runs many scenes in native threads (the GIL released) and returns their results in
     the order of ``scenes``: each result equals ``run(scene)``'s.
 
     Args:
         scenes: scenes, dicts or paths (all read first, so a bad scene fails before any run).
         jobs: threads; 0 uses one per core.
-        timeseries, every: as in ``run``.
+        timeseries, every, allow_long: as in ``run``.
 
     Raises:
         InputError, NumericalError: of the first scene (in input order) that failed; the
@@ -274,7 +276,8 @@ def run_many(scenes: "Sequence[Scene | Mapping[str, Any] | str | os.PathLike[str
     loaded = [_as_scene(s) for s in scenes]
     if jobs < 0:
         raise InputError(f"jobs = {jobs}: expected 0 (one per core) or a positive number of threads")
-    raw = _adjoin.run_many([s._scene for s in loaded], jobs=jobs, timeseries=timeseries, every=_every(every))
+    raw = _adjoin.run_many([s._scene for s in loaded], jobs=jobs, timeseries=timeseries, every=_every(every),
+                            allow_long=allow_long)
     return [Result(r) for r in raw]
 
 

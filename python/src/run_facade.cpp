@@ -22,6 +22,7 @@
 #include "adjoin/io/summary.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run_watch.hpp"
 
 namespace adjoin::python {
 
@@ -89,9 +90,22 @@ class PrivateFolder {
   fs::path path_;
 };
 
+// The watch `adjoin run` gives every run: it refuses a run estimated at more than 2 hours
+// (unless allowed) and shows nothing.
+RunWatch::Options watching(const RunRequest& request) {
+  RunWatch::Options o;
+  if (request.allow_long) o.refuse_seconds = 0.0;
+  return o;
+}
+
 RunTexts run_two_block(Scene scene, const RunRequest& request) {
   scene.output.timeseries = scene.output.timeseries && request.timeseries;
   if (request.every > 0) scene.output.every = request.every;
+  RunWatch::Options o = watching(request);
+  o.time_scale = scene.scales.time;
+  o.h_unit = scene.scales.si ? " s" : " (dimensionless)";
+  RunWatch watch(std::move(o));
+  scene.watch = &watch;
   PrivateFolder dir;
   const RunFiles files = run_to_folder(scene, dir.path());
   RunTexts texts;
@@ -109,6 +123,8 @@ RunTexts run_building_scene(BuildingScene scene, const RunRequest& request) {
   scene.base.output.timeseries = scene.base.output.timeseries && request.timeseries;
   if (request.every > 0) scene.base.output.every = request.every;
   check_building_memory(scene);
+  RunWatch watch(watching(request));
+  scene.watch = &watch;
   PrivateFolder dir;
   const BuildingFiles files = run_building_to_folder(scene, dir.path());
   RunTexts texts;

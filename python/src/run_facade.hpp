@@ -53,6 +53,9 @@ struct RunTexts {
 struct RunRequest {
   bool timeseries = true;
   std::size_t every = 0;
+  // As `adjoin run --allow-long`: run even when the run is estimated at more than 2 hours
+  // (refused otherwise, InputError, from the run's first steps: study/run_watch.hpp).
+  bool allow_long = false;
 };
 
 // Runs the scene as `adjoin run` does (the same step choice, error estimate and files).

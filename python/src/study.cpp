@@ -96,13 +96,13 @@ py::dict result_of(RunTexts&& texts) {
   return r;
 }
 
-RunRequest request_of(bool timeseries, std::size_t every) { return RunRequest{timeseries, every}; }
+RunRequest request_of(bool timeseries, std::size_t every, bool allow_long) { return RunRequest{timeseries, every, allow_long}; }
 
-py::dict run_py(const SceneObject& scene, bool timeseries, std::size_t every) {
+py::dict run_py(const SceneObject& scene, bool timeseries, std::size_t every, bool allow_long) {
   RunTexts texts;
   {
     py::gil_scoped_release unlocked;
-    texts = run(scene.loaded, request_of(timeseries, every));
+    texts = run(scene.loaded, request_of(timeseries, every, allow_long));
   }
   return result_of(std::move(texts));
 }
@@ -124,7 +124,8 @@ py::dict run_py(const SceneObject& scene, bool timeseries, std::size_t every) {
   }
 }
 
-py::list run_many_py(const std::vector<const SceneObject*>& scenes, unsigned jobs, bool timeseries, std::size_t every) {
+py::list run_many_py(const std::vector<const SceneObject*>& scenes, unsigned jobs, bool timeseries, std::size_t every,
+                     bool allow_long) {
   std::vector<LoadedScene> loaded;
   for (const SceneObject* s : scenes) loaded.push_back(s->loaded);
   std::vector<RunTexts> results(loaded.size());
@@ -137,7 +138,7 @@ py::list run_many_py(const std::vector<const SceneObject*>& scenes, unsigned job
     const auto work = [&] {
       for (std::size_t i = next++; i < loaded.size(); i = next++) {
         try {
-          results[i] = run(loaded[i], request_of(timeseries, every));
+          results[i] = run(loaded[i], request_of(timeseries, every, allow_long));
         } catch (...) {
           failures[i] = std::current_exception();
         }
@@ -158,9 +159,10 @@ py::list run_many_py(const std::vector<const SceneObject*>& scenes, unsigned job
 }  // namespace
 
 void bind_study(py::module_& m) {
-  m.def("run", &run_py, py::arg("scene"), py::kw_only(), py::arg("timeseries") = true, py::arg("every") = 0u);
+  m.def("run", &run_py, py::arg("scene"), py::kw_only(), py::arg("timeseries") = true, py::arg("every") = 0u,
+        py::arg("allow_long") = false);
   m.def("run_many", &run_many_py, py::arg("scenes"), py::kw_only(), py::arg("jobs") = 0u,
-        py::arg("timeseries") = true, py::arg("every") = 0u);
+        py::arg("timeseries") = true, py::arg("every") = 0u, py::arg("allow_long") = false);
   m.def("_columns_of", [](const std::string& csv) { return columns_of(csv, "csv"); },
         "A CSV text as {column: array or list} (for tests).");
 }
