@@ -96,28 +96,28 @@ structure::Zener zener_of(double stiffness, double order, double tau_x, double t
 void bind_structure(py::module_& m) {
   py::class_<structure::Structure>(m, "Structure", "A structure built in code (StructureBuilder.build()).")
       .def_property_readonly("dofs", &structure::Structure::dofs, "The number of floors of both buildings.")
-      .def("modes", &structure_modes, "Each building's modes (see adjoin.modes).");
+      .def("modes", &structure_modes, "Each building's modes (see adjoin.modes): periods [s], shapes, damping ratios.");
 
   py::class_<BuildingBuilder>(m, "BuildingBuilder", "One building of a StructureBuilder (SI units).")
-      .def("mass", &BuildingBuilder::mass, py::arg("kg"), py::return_value_policy::reference_internal)
-      .def("masses", &BuildingBuilder::masses, py::arg("kg"), py::return_value_policy::reference_internal)
-      .def("stiffness", &BuildingBuilder::stiffness, py::arg("n_per_m"), py::return_value_policy::reference_internal)
-      .def("stiffnesses", &BuildingBuilder::stiffnesses, py::arg("n_per_m"), py::return_value_policy::reference_internal)
-      .def("period", &BuildingBuilder::period, py::arg("seconds"), py::return_value_policy::reference_internal)
-      .def("no_damping", &BuildingBuilder::no_damping, py::return_value_policy::reference_internal)
-      .def("modal_damping", &BuildingBuilder::modal_damping, py::arg("ratio"), py::return_value_policy::reference_internal)
+      .def("mass", &BuildingBuilder::mass, py::arg("kg"), py::return_value_policy::reference_internal, "Every floor's mass [kg].")
+      .def("masses", &BuildingBuilder::masses, py::arg("kg"), py::return_value_policy::reference_internal, "Each floor's mass [kg], floor 1 first.")
+      .def("stiffness", &BuildingBuilder::stiffness, py::arg("n_per_m"), py::return_value_policy::reference_internal, "Every storey's spring stiffness [N/m].")
+      .def("stiffnesses", &BuildingBuilder::stiffnesses, py::arg("n_per_m"), py::return_value_policy::reference_internal, "Each storey's spring stiffness [N/m], storey 1 first.")
+      .def("period", &BuildingBuilder::period, py::arg("seconds"), py::return_value_policy::reference_internal, "The fundamental period [s]: a uniform storey stiffness is found for it.")
+      .def("no_damping", &BuildingBuilder::no_damping, py::return_value_policy::reference_internal, "No inherent damping.")
+      .def("modal_damping", &BuildingBuilder::modal_damping, py::arg("ratio"), py::return_value_policy::reference_internal, "The same damping ratio [-] (0.05 is 5 %) in every mode.")
       .def("rayleigh_damping", &BuildingBuilder::rayleigh_damping, py::arg("ratio"), py::arg("mode_i") = 1,
-           py::arg("mode_j") = 2, py::return_value_policy::reference_internal)
-      .def("spring", &BuildingBuilder::spring, py::arg("storeys"), py::arg("k"), py::return_value_policy::reference_internal)
-      .def("dashpot", &BuildingBuilder::dashpot, py::arg("storeys"), py::arg("c"), py::return_value_policy::reference_internal)
+           py::arg("mode_j") = 2, py::return_value_policy::reference_internal, "Rayleigh damping with the ratio [-] in modes mode_i and mode_j.")
+      .def("spring", &BuildingBuilder::spring, py::arg("storeys"), py::arg("k"), py::return_value_policy::reference_internal, "A spring device of stiffness k [N/m] in each listed storey (1-based).")
+      .def("dashpot", &BuildingBuilder::dashpot, py::arg("storeys"), py::arg("c"), py::return_value_policy::reference_internal, "A dashpot of c [N s/m] in each listed storey (1-based).")
       .def(
           "zener",
           [](BuildingBuilder& b, const std::vector<int>& storeys, double stiffness, double order, double tau_x,
              double tau_f) -> BuildingBuilder& { return b.zener(storeys, zener_of(stiffness, order, tau_x, tau_f)); },
           py::arg("storeys"), py::kw_only(), py::arg("stiffness"), py::arg("order"), py::arg("tau_x"), py::arg("tau_f"),
-          py::return_value_policy::reference_internal)
-      .def_property_readonly("path", &BuildingBuilder::path)
-      .def_property_readonly("storeys", &BuildingBuilder::storeys);
+          py::return_value_policy::reference_internal, "A fractional Zener device in each listed storey: relaxed stiffness [N/m], order alpha in (0, 1), tau_x and tau_f [s^order].")
+      .def_property_readonly("path", &BuildingBuilder::path, "The building's field path, \"building.A\".")
+      .def_property_readonly("storeys", &BuildingBuilder::storeys, "The number of storeys.");
 
   py::class_<ContactBuilder>(m, "ContactBuilder", "A contact pair of a StructureBuilder.")
       .def(
@@ -129,42 +129,44 @@ void bind_structure(py::module_& m) {
                                "model");
             return c.model(model);
           },
-          py::arg("model"), py::return_value_policy::reference_internal)
-      .def("stiffness", &ContactBuilder::stiffness, py::arg("k"), py::return_value_policy::reference_internal)
-      .def("restitution", &ContactBuilder::restitution, py::arg("e"), py::return_value_policy::reference_internal)
-      .def("damping", &ContactBuilder::damping, py::arg("value"), py::return_value_policy::reference_internal)
-      .def("tension_cut", &ContactBuilder::tension_cut, py::arg("cut"), py::return_value_policy::reference_internal);
+          py::arg("model"), py::return_value_policy::reference_internal, "The contact law: none, linear, hertz, hertzdamp, jankowski or impact.")
+      .def("stiffness", &ContactBuilder::stiffness, py::arg("k"), py::return_value_policy::reference_internal, "The contact stiffness [N/m, linear; N/m^1.5, Hertz].")
+      .def("restitution", &ContactBuilder::restitution, py::arg("e"), py::return_value_policy::reference_internal, "The coefficient of restitution (0 < e <= 1), for the damping.")
+      .def("damping", &ContactBuilder::damping, py::arg("value"), py::return_value_policy::reference_internal, "The damping parameter directly, instead of restitution.")
+      .def("tension_cut", &ContactBuilder::tension_cut, py::arg("cut"), py::return_value_policy::reference_internal, "Linear law only: no tensile force.");
 
-  py::class_<StructureBuilder>(m, "StructureBuilder")
+  py::class_<StructureBuilder>(m, "StructureBuilder",
+                              "The typed structure builder (structure/builder.hpp): two buildings, storey devices, links and "
+                              "contact pairs, in SI units; each setter returns its builder, so calls chain.")
       .def(py::init<>())
       .def(
           "building",
           [](StructureBuilder& s, const std::string& name, int storeys) -> BuildingBuilder& {
             return s.building(building_name(name), storeys);
           },
-          py::arg("name"), py::arg("storeys"), py::return_value_policy::reference_internal)
+          py::arg("name"), py::arg("storeys"), py::return_value_policy::reference_internal, "Building 'A' (left) or 'B' (right) with `storeys` floors, made on the first call.")
       .def("friction_link", &StructureBuilder::friction_link, py::arg("floor_a"), py::arg("floor_b"),
-           py::arg("slip_force"), py::return_value_policy::reference_internal)
+           py::arg("slip_force"), py::return_value_policy::reference_internal, "A friction link between floor_a of A and floor_b of B, slipping at slip_force [N].")
       .def(
           "friction_link_ratio",
           [](StructureBuilder& s, int a, int b, double ratio, const std::string& of) -> StructureBuilder& {
             return s.friction_link_ratio(a, b, ratio, building_name(of));
           },
           py::arg("floor_a"), py::arg("floor_b"), py::arg("slip_ratio"), py::arg("of") = "B",
-          py::return_value_policy::reference_internal)
+          py::return_value_policy::reference_internal, "A friction link slipping at slip_ratio [-] of building `of`'s weight.")
       .def("dashpot_link", &StructureBuilder::dashpot_link, py::arg("floor_a"), py::arg("floor_b"), py::arg("c"),
-           py::return_value_policy::reference_internal)
+           py::return_value_policy::reference_internal, "A viscous link of c [N s/m] between floor_a of A and floor_b of B.")
       .def("spring_link", &StructureBuilder::spring_link, py::arg("floor_a"), py::arg("floor_b"), py::arg("k"),
-           py::return_value_policy::reference_internal)
+           py::return_value_policy::reference_internal, "A spring link of k [N/m] between floor_a of A and floor_b of B.")
       .def(
           "zener_link",
           [](StructureBuilder& s, int a, int b, double stiffness, double order, double tau_x, double tau_f)
               -> StructureBuilder& { return s.zener_link(a, b, zener_of(stiffness, order, tau_x, tau_f)); },
           py::arg("floor_a"), py::arg("floor_b"), py::kw_only(), py::arg("stiffness"), py::arg("order"),
-          py::arg("tau_x"), py::arg("tau_f"), py::return_value_policy::reference_internal)
+          py::arg("tau_x"), py::arg("tau_f"), py::return_value_policy::reference_internal, "A fractional Zener link: relaxed stiffness [N/m], order in (0, 1), tau_x and tau_f [s^order].")
       .def("contact", &StructureBuilder::contact, py::arg("floor_a"), py::arg("floor_b"), py::arg("gap"),
-           py::return_value_policy::reference_internal)
-      .def("build", &StructureBuilder::build);
+           py::return_value_policy::reference_internal, "A pounding pair at floor_a of A and floor_b of B with a clear gap [m] >= 0; set its law on the ContactBuilder returned (none: the floors pass through).")
+      .def("build", &StructureBuilder::build, "The Structure (InputError naming the field, e.g. building.A.masses[3], if a value is wrong).");
 
   m.def("modes", [](const SceneObject& scene) { return modes_py(python::modes(scene.loaded)); }, py::arg("scene"));
   m.def("modes", &structure_modes, py::arg("structure"));
