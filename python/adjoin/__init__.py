@@ -14,7 +14,7 @@ Scenes (SPEC §3, §5): ``load_scene``, ``Scene.from_dict``, ``Scene.to_dict``, 
 Runs: ``run``, ``run_many`` (native threads, the GIL released), ``Result``.
 Ground motions and spectra: ``read_record``, ``Record``, ``spectrum``, ``rotd``,
 ``ductility_spectrum``, ``default_periods``.
-Structures: ``modes``, ``StructureBuilder``.
+Structures: ``modes``, ``joint`` (the minimum seismic joint), ``StructureBuilder``.
 Errors: ``InputError`` (a ValueError, with ``.field``), ``NumericalError`` (an
 ArithmeticError, with ``.time``).
 Plots (matplotlib, when installed): ``adjoin.plot``.
@@ -41,7 +41,7 @@ from ._adjoin import (  # noqa: F401  (re-exported)
 __all__ = [
     "InputError", "NumericalError", "Scene", "load_scene", "run", "run_many", "Result",
     "Record", "read_record", "spectrum", "rotd", "ductility_spectrum", "default_periods",
-    "modes", "Structure", "StructureBuilder", "BuildingBuilder", "ContactBuilder",
+    "modes", "joint", "Structure", "StructureBuilder", "BuildingBuilder", "ContactBuilder",
 ]
 
 PathLike = "str | os.PathLike[str]"
@@ -428,6 +428,33 @@ def modes(scene: "Scene | Structure | Mapping[str, Any] | str | os.PathLike[str]
     if isinstance(scene, Structure):
         return _adjoin.modes(scene)
     return _adjoin.modes(_as_scene(scene)._scene)
+
+
+def joint(scene: "Scene | Mapping[str, Any] | str | os.PathLike[str]", *, contact: int = 1,
+          tol: "float | None" = None, allow_long: bool = False) -> dict:
+    """The minimum seismic joint: the smallest clear gap at rest with which the floors of a
+    contact pair never touch (study/seismic_joint.hpp), as ``adjoin joint`` finds it.
+
+    Two answers that agree to the tolerance: a bisection over runs on the gap, and the
+    largest relative displacement s_max of one run without contact; beside them the codes'
+    rules (SRSS, ASCE 7-16 12.12.3, and the absolute sum) from the floors' own peaks.
+
+    Args:
+        scene: a Scene, dict or path; a building scene's pair ``contact`` (1-based) or a
+            two-block scene's ``model.gap0`` (contact 1).
+        contact: the contact pair whose gap is the joint.
+        tol: the bisection's tolerance in the scene's length unit (m for SI and building
+            scenes); None: 1e-6 of s_max.
+        allow_long: as in ``run``.
+
+    Returns:
+        dict: ``joint`` (the gap found that does not touch) [m], ``touching_below`` [m],
+        ``tolerance`` [m], ``runs``, ``s_max`` [m], ``t_critical`` [s], ``difference``
+        (joint - s_max) [m], ``agree``, ``peak_a``, ``peak_b`` (the floors' peak
+        displacements) [m] and their times [s], ``srss``, ``abs_sum`` [m], ``floors``,
+        ``gap_key``, ``length_unit``, ``time_unit``, ``notes``, ``wall_seconds``.
+    """
+    return _adjoin.joint(_as_scene(scene)._scene, contact=contact, tol=tol, allow_long=allow_long)
 
 
 def _list_or_none(values):

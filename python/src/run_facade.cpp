@@ -23,6 +23,7 @@
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/study/building_run.hpp"
 #include "adjoin/study/run_watch.hpp"
+#include "adjoin/study/seismic_joint.hpp"
 
 namespace adjoin::python {
 
@@ -189,6 +190,33 @@ ModesOut modes(const LoadedScene& scene) {
     out.coupled_locked = as_vector(c.periods_locked);
   }
   return out;
+}
+
+JointOut joint(const LoadedScene& scene, int contact, double tol, bool allow_long) {
+  SeismicJointOptions options;
+  options.contact = contact;
+  options.tol = tol;
+  RunWatch watch(watching(RunRequest{true, 0, allow_long}));
+  SeismicJoint j;
+  if (scene.building()) {
+    BuildingScene s = std::get<BuildingScene>(scene.impl().spec);
+    check_building_memory(s);
+    const std::size_t n = s.structure.contacts.size();
+    if (n == 0) throw InputError(s.name + ": no contact pair: the joint is the gap of a [[contact]] with floors = [i, j]", "contact");
+    if (contact < 1 || static_cast<std::size_t>(contact) > n)
+      throw InputError("contact = " + std::to_string(contact) + ": the scene has " + std::to_string(n) +
+                           " contact pair(s) (expected 1.." + std::to_string(n) + ")", "contact");
+    s.watch = &watch;
+    j = seismic_joint(s, options);
+  } else {
+    if (contact != 1)
+      throw InputError("contact = " + std::to_string(contact) + ": a two-block scene has one contact pair, the blocks' "
+                       "(its gap is model.gap0; expected 1)", "contact");
+    j = seismic_joint(std::get<Scene>(scene.impl().spec), options);
+  }
+  return JointOut{j.scene, j.gap_key, j.length_unit, j.time_unit, j.contact, j.floor_a, j.floor_b, j.joint,
+                  j.joint_low, j.tol, j.bracket_top, j.runs, j.widenings, j.s_max, j.t_critical, j.difference,
+                  j.agree, j.peak_a, j.t_peak_a, j.peak_b, j.t_peak_b, j.srss, j.abs_sum, j.wall_seconds, j.notes};
 }
 
 }  // namespace adjoin::python

@@ -78,4 +78,19 @@ struct ModesOut {
 };
 ModesOut modes(const LoadedScene& scene);
 
+// The minimum seismic joint of the scene (study/seismic_joint.hpp), as `adjoin joint` finds it:
+// of contact pair `contact` (1-based; two-block scenes: 1, the blocks' model.gap0), to the
+// bisection tolerance `tol` in the scene's length unit (NaN: 1e-6 of s_max).
+struct JointOut {
+  std::string scene, gap_key, length_unit, time_unit;
+  int contact = 1, floor_a = 1, floor_b = 1;
+  double joint = 0.0, joint_low = 0.0, tol = 0.0, bracket_top = 0.0;
+  std::size_t runs = 0, widenings = 0;
+  double s_max = 0.0, t_critical = 0.0, difference = 0.0;
+  bool agree = false;
+  double peak_a = 0.0, t_peak_a = 0.0, peak_b = 0.0, t_peak_b = 0.0, srss = 0.0, abs_sum = 0.0, wall_seconds = 0.0;
+  std::vector<std::string> notes;
+};
+JointOut joint(const LoadedScene& scene, int contact, double tol, bool allow_long);
+
 }  // namespace adjoin::python

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <atomic>
 #include <charconv>
+#include <cmath>
+#include <limits>
+#include <optional>
 #include <exception>
 #include <stdexcept>
 #include <thread>
@@ -156,6 +159,42 @@ py::list run_many_py(const std::vector<const SceneObject*>& scenes, unsigned job
   return out;
 }
 
+py::dict joint_py(const SceneObject& scene, int contact, std::optional<double> tol, bool allow_long) {
+  if (tol && !(*tol > 0.0 && std::isfinite(*tol)))
+    throw InputError("tol = " + std::to_string(*tol) + ": expected a positive length (the scene's length unit)", "tol");
+  JointOut j;
+  {
+    py::gil_scoped_release unlocked;
+    j = joint(scene.loaded, contact, tol.value_or(std::numeric_limits<double>::quiet_NaN()), allow_long);
+  }
+  py::dict d;
+  d["scene"] = j.scene;
+  d["gap_key"] = j.gap_key;
+  d["length_unit"] = j.length_unit;
+  d["time_unit"] = j.time_unit;
+  d["contact"] = j.contact;
+  d["floors"] = py::make_tuple(j.floor_a, j.floor_b);
+  d["joint"] = j.joint;
+  d["touching_below"] = j.joint_low;
+  d["tolerance"] = j.tol;
+  d["runs"] = j.runs;
+  d["widenings"] = j.widenings;
+  d["bracket_top"] = j.bracket_top;
+  d["s_max"] = j.s_max;
+  d["t_critical"] = j.t_critical;
+  d["difference"] = j.difference;
+  d["agree"] = j.agree;
+  d["peak_a"] = j.peak_a;
+  d["t_peak_a"] = j.t_peak_a;
+  d["peak_b"] = j.peak_b;
+  d["t_peak_b"] = j.t_peak_b;
+  d["srss"] = j.srss;
+  d["abs_sum"] = j.abs_sum;
+  d["wall_seconds"] = j.wall_seconds;
+  d["notes"] = j.notes;
+  return d;
+}
+
 }  // namespace
 
 void bind_study(py::module_& m) {
@@ -163,6 +202,8 @@ void bind_study(py::module_& m) {
         py::arg("allow_long") = false);
   m.def("run_many", &run_many_py, py::arg("scenes"), py::kw_only(), py::arg("jobs") = 0u,
         py::arg("timeseries") = true, py::arg("every") = 0u, py::arg("allow_long") = false);
+  m.def("joint", &joint_py, py::arg("scene"), py::kw_only(), py::arg("contact") = 1, py::arg("tol") = py::none(),
+        py::arg("allow_long") = false);
   m.def("_columns_of", [](const std::string& csv) { return columns_of(csv, "csv"); },
         "A CSV text as {column: array or list} (for tests).");
 }

@@ -12,7 +12,7 @@ import adjoin
 from conftest import SOURCE
 
 PUBLIC_FUNCTIONS = ["load_scene", "run", "run_many", "read_record", "spectrum", "rotd", "ductility_spectrum",
-                    "default_periods", "modes"]
+                    "default_periods", "modes", "joint"]
 
 
 def test_import_from_the_build_tree_in_a_fresh_interpreter():

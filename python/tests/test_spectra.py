@@ -99,3 +99,21 @@ def test_modes_of_a_scene_and_of_a_built_structure():
     with pytest.raises(adjoin.InputError) as caught:
         adjoin.StructureBuilder().building("A", 3).mass(-1.0)
     assert caught.value.field.startswith("building.A")
+
+
+def test_joint_equals_adjoin_joint(adjoin_cli, tmp_path):
+    import json
+    from conftest import SCENES
+
+    scene = SCENES / "buildings" / "two-frames.toml"
+    subprocess.run([adjoin_cli, "joint", str(scene), "--set", "solver.t_end=6", "--out", str(tmp_path), "--quiet"],
+                   check=True)
+    expected = json.loads((tmp_path / "joint.json").read_text())
+    j = adjoin.joint(adjoin.load_scene(scene, set={"solver.t_end": 6.0}))
+    assert j["joint"] == expected["joint"] and j["runs"] == expected["bisection"]["runs"]
+    assert j["s_max"] == expected["direct"]["s_max"] and j["agree"] == expected["direct"]["agree"]
+    assert j["srss"] == expected["code_rules"]["srss"]
+    assert 0.0 <= j["joint"] - j["s_max"] <= j["tolerance"]
+    with pytest.raises(adjoin.InputError) as caught:
+        adjoin.joint(scene, contact=2)
+    assert caught.value.field == "contact"
