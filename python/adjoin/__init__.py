@@ -176,8 +176,8 @@ class Result:
         timeseries (dict[str, numpy.ndarray]): each column of timeseries.csv by name
             (two-block: ``t, x1, x2, v1, v2, f1, f2, q, ag, gap, phase``; building: ``t, ag``
             and a column per channel, ``A.x3`` [m], ``A.a3_abs`` [g], ``link1.force`` [N] ...);
-            numbers as float64 arrays holding exactly the CSV's values, ``phase`` a list of
-            words. Empty when the run wrote no time series (``timeseries=False``).
+            numbers as float64 arrays holding exactly the CSV's values, words (``phase``)
+            as an array of str. Empty when the run wrote no time series (``timeseries=False``).
         impacts (list[dict]): the rows of impacts.csv (a contact law's impacts, in the order
             they started): ``t_start`` [s], ``duration``, ``force_max`` [N],
             ``penetration_max`` [m], ``impulse`` [N s], ``complete`` (bool) ...; building
@@ -191,7 +191,7 @@ class Result:
 
     def __init__(self, raw: dict):
         self.summary = json.loads(raw["summary_json"])
-        self.timeseries = dict(raw["timeseries"])
+        self.timeseries = _arrays(raw["timeseries"])
         self.impacts = _rows(raw["impacts"])
         self.spectra = dict(raw["spectra"])
         self.energy_history = dict(raw["energy"])
@@ -205,6 +205,13 @@ class Result:
 
     def __repr__(self) -> str:
         return f"<adjoin.Result of '{self.summary.get('scene')}': {len(self.channels)} channels>"
+
+
+def _arrays(columns: dict) -> dict:
+    """Columns as numpy arrays: numbers as they come (float64, owning their buffer), words as
+    arrays of str."""
+    return {name: values if isinstance(values, np.ndarray) else np.array(values, dtype=str)
+            for name, values in columns.items()}
 
 
 def _rows(columns: dict) -> list:

@@ -34,7 +34,7 @@ def load_scene(path: _Path, set: Mapping[str, Any] | None = ..., unset: Iterable
 
 class Result:
     summary: dict[str, Any]
-    timeseries: dict[str, npt.NDArray[np.float64] | list[str]]
+    timeseries: dict[str, npt.NDArray[np.float64] | npt.NDArray[np.str_]]
     impacts: list[dict[str, Any]]
     spectra: dict[str, npt.NDArray[np.float64] | list[str]]
     energy_history: dict[str, npt.NDArray[np.float64] | list[str]]

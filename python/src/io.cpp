@@ -202,10 +202,10 @@ toml::table edited_tree(const SceneObject& s) {
 
 SceneObject load_scene_py(const std::string& path, const std::optional<py::dict>& set,
                           const std::optional<std::vector<std::string>>& unset) {
-  SceneObject s{load_scene_file(path, overrides_of(set), unset.value_or(std::vector<std::string>{})),
-                read_text_file(path, "scene"), fs::path(path), overrides_of(set),
-                unset.value_or(std::vector<std::string>{})};
-  return s;
+  const std::vector<std::string> overrides = overrides_of(set);
+  const std::vector<std::string> unsets = unset.value_or(std::vector<std::string>{});
+  LoadedScene loaded = load_scene_file(path, overrides, unsets);  // first: its errors are the reader's
+  return SceneObject{std::move(loaded), read_text_file(path, "scene"), fs::path(path), overrides, unsets};
 }
 
 SceneObject from_dict(const py::dict& d, const std::optional<std::string>& folder, const std::string& name) {

@@ -56,12 +56,12 @@ def assert_same_columns(result_columns, csv_path):
     for name, cells in expected.items():
         got = result_columns[name]
         assert len(got) == len(cells), name
-        if isinstance(got, np.ndarray):
+        if got.dtype.kind == "U":
+            assert list(got) == cells, name
+        else:
             assert got.dtype == np.float64
             # float(cell) is the exact double the CSV's shortest text stands for.
             assert np.array_equal(got, np.array([float(c) for c in cells]), equal_nan=False), name
-        else:
-            assert got == cells, name
 
 
 @pytest.mark.parametrize("kind", list(CASES))
