@@ -15,7 +15,7 @@ from conftest import RECORDS, SCENES, SOURCE
 
 CATALOGUE = SOURCE / "tests" / "bad_inputs"
 # A dotted scene key as a case's expected message quotes it ("contact.1.restitution").
-KEY = re.compile(r"^(model|solver|ground|output|building|link|contact)(\.[A-Za-z0-9_]+)+$")
+KEY = re.compile(r"\b(?:model|solver|ground|output|building|link|contact)(?:\.[A-Za-z0-9_]+|\[[0-9]+\])+")
 
 
 def run_cases():
@@ -93,7 +93,19 @@ def _value(text):
 
 
 def named_keys(case):
-    return [s for s in case.get("stderr", []) if KEY.match(s)]
+    """The scene keys the case's expected message names (dotted, "link[1].x" as "link.1.x")."""
+    return [adjoin._adjoin._field_of(k) for text in case.get("stderr", []) for k in KEY.findall(text)]
+
+
+# Cases whose message names a key but whose InputError carries no field yet (the scene
+# readers' gap, not the binding's): listed so that the test says when that changes.
+KNOWN_WITHOUT_FIELD = {
+    'r3 inputs: a building scene refuses solver.scheme = "paper"',
+    "r3 inputs: a building scene refuses --set solver.scheme=implicit-gl",
+    "r3 inputs: a building scene's spectra signal listed twice",
+    "building: --set model.mu on a building scene says where the model lives",
+    "building: an in-structure spectrum of a floor the building lacks names the line and the floors",
+}
 
 
 def related(field, key):
@@ -104,15 +116,22 @@ def assert_field_named(case, error, sets, unsets):
     """The error's .field is a key the catalogue's message names, or the key of one of the
     case's own edits (an unknown key is the field; the message suggests the known one)."""
     keys = named_keys(case)
-    if error.field is None or not keys:
+    if case["name"] in KNOWN_WITHOUT_FIELD:
+        assert error.field is None, f"the library names the field now ({error.field}): take the case off the list"
         return
+    if not keys:
+        return
+    assert error.field is not None, f"no .field; the catalogue names {keys}"
     edited = list(sets) + list(unsets)
     assert any(related(error.field, k) for k in keys + edited), \
         f"field {error.field!r}; the catalogue names {keys}, the case edits {edited}"
 
 
 @pytest.mark.parametrize("case", list(run_cases()))
-def test_catalogue_scene_raises_the_right_exception(case, tmp_path):
+def test_catalogue_scene_raises_the_right_exception(case, tmp_path, monkeypatch):
+    cwd = pathlib.Path(placeholders(case.get("cwd", "{tmp}"), tmp_path))
+    cwd.mkdir(parents=True, exist_ok=True)
+    monkeypatch.chdir(cwd)  # relative paths of the case start where the program would run
     make_files(case, tmp_path)
     scene_file, sets, unsets = scene_call(case, tmp_path)
     expected = {0: None, 2: adjoin.InputError, 3: adjoin.NumericalError}[case["exit"]]
@@ -139,8 +158,8 @@ def test_catalogue_scene_raises_the_right_exception(case, tmp_path):
         return
     with pytest.raises(expected) as caught:
         adjoin.run(scene, timeseries=False)
-    if expected is adjoin.InputError:
-        assert_field_named(case, caught.value, sets, unsets)
+    # (A refusal of the run as a whole, memory or time, names the keys to change as advice:
+    # it is about no one field.)
     if expected is adjoin.NumericalError:
         assert isinstance(caught.value, ArithmeticError)
         assert caught.value.time is not None
