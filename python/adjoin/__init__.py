@@ -424,7 +424,7 @@ def modes(scene: "Scene | Structure | Mapping[str, Any] | str | os.PathLike[str]
     Returns:
         dict: ``{"A": {...}, "B": {...}, "coupled": {...}}``; per building ``periods`` [s],
         ``omega`` [rad/s], ``shapes`` (floors x modes, mass-normalised, floor 1 first),
-        ``damping`` (total ratio), ``inherent_damping``, ``device_damping``,
+        ``damping`` (total ratio), ``inherent_damping``, ``device_damping``, ``zener_stiffening``,
         ``participation`` (of the shape scaled to 1 at the roof), ``effective_mass`` [kg];
         ``coupled``: ``periods_free`` and ``periods_locked`` [s] of both buildings with the
         links' friction dampers free or locked.

@@ -20,7 +20,6 @@
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/io/summary.hpp"
-#include "adjoin/structure/modal.hpp"
 #include "adjoin/study/building_run.hpp"
 #include "adjoin/study/run_watch.hpp"
 #include "adjoin/study/seismic_joint.hpp"
@@ -91,6 +90,17 @@ class PrivateFolder {
   fs::path path_;
 };
 
+// The texts a run left in its folder.
+RunTexts texts_in(const fs::path& dir) {
+  RunTexts texts;
+  texts.summary_json = read_if_there(dir / "summary.json");
+  texts.timeseries_csv = read_if_there(dir / "timeseries.csv");
+  texts.impacts_csv = read_if_there(dir / "impacts.csv");
+  texts.spectra_csv = read_if_there(dir / "spectra.csv");
+  texts.energy_csv = read_if_there(dir / "energy.csv");
+  return texts;
+}
+
 // The watch `adjoin run` gives every run: it refuses a run estimated at more than 2 hours
 // (unless allowed) and shows nothing.
 RunWatch::Options watching(const RunRequest& request) {
@@ -109,12 +119,7 @@ RunTexts run_two_block(Scene scene, const RunRequest& request) {
   scene.watch = &watch;
   PrivateFolder dir;
   const RunFiles files = run_to_folder(scene, dir.path());
-  RunTexts texts;
-  texts.summary_json = read_if_there(dir.path() / "summary.json");
-  texts.timeseries_csv = read_if_there(dir.path() / "timeseries.csv");
-  texts.impacts_csv = read_if_there(dir.path() / "impacts.csv");
-  texts.spectra_csv = read_if_there(dir.path() / "spectra.csv");
-  texts.energy_csv = read_if_there(dir.path() / "energy.csv");
+  RunTexts texts = texts_in(dir.path());
   texts.brief = brief_report(scene, files.report, files.estimate ? &*files.estimate : nullptr,
                              files.tolerant ? &*files.tolerant : nullptr);
   return texts;
@@ -128,34 +133,10 @@ RunTexts run_building_scene(BuildingScene scene, const RunRequest& request) {
   scene.watch = &watch;
   PrivateFolder dir;
   const BuildingFiles files = run_building_to_folder(scene, dir.path());
-  RunTexts texts;
-  texts.summary_json = read_if_there(dir.path() / "summary.json");
-  texts.timeseries_csv = read_if_there(dir.path() / "timeseries.csv");
-  texts.impacts_csv = read_if_there(dir.path() / "impacts.csv");
-  texts.spectra_csv = read_if_there(dir.path() / "spectra.csv");
-  texts.energy_csv = read_if_there(dir.path() / "energy.csv");
+  RunTexts texts = texts_in(dir.path());
   texts.brief = building_brief_report(scene, files.report, files.estimate ? &*files.estimate : nullptr,
                                       files.tolerant ? &*files.tolerant : nullptr);
   return texts;
-}
-
-std::vector<double> as_vector(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
-
-BuildingModesOut modes_of(const structure::Building& b) {
-  const structure::Modes m = structure::building_modes(b);
-  BuildingModesOut out;
-  out.name = b.name;
-  out.periods = as_vector(m.periods);
-  out.omega = as_vector(m.omega);
-  out.total_ratio = as_vector(m.total_ratio);
-  out.inherent_ratio = as_vector(m.inherent_ratio);
-  out.device_ratio = as_vector(m.device_ratio);
-  out.participation = as_vector(m.participation);
-  out.effective_mass = as_vector(m.effective_mass);
-  out.floors = static_cast<std::size_t>(m.shapes.rows());
-  for (Eigen::Index i = 0; i < m.shapes.rows(); ++i)
-    for (Eigen::Index j = 0; j < m.shapes.cols(); ++j) out.shapes.push_back(m.shapes(i, j));
-  return out;
 }
 
 }  // namespace
@@ -177,19 +158,8 @@ RunTexts run(const LoadedScene& scene, const RunRequest& request) {
   return run_two_block(std::get<Scene>(scene.impl().spec), request);
 }
 
-ModesOut modes(const LoadedScene& scene) {
-  if (!scene.building())
-    throw InputError("adjoin.modes: '" + scene.name() + "' is a two-block scene; modes are computed for building scenes");
-  const structure::Structure& s = std::get<BuildingScene>(scene.impl().spec).structure;
-  ModesOut out;
-  out.buildings.push_back(modes_of(s.a));
-  if (s.b) {
-    out.buildings.push_back(modes_of(*s.b));
-    const structure::CoupledModes c = structure::coupled_modes(s);
-    out.coupled_free = as_vector(c.periods_free);
-    out.coupled_locked = as_vector(c.periods_locked);
-  }
-  return out;
+const structure::Structure* structure_of(const LoadedScene& scene) {
+  return scene.building() ? &std::get<BuildingScene>(scene.impl().spec).structure : nullptr;
 }
 
 JointOut joint(const LoadedScene& scene, int contact, double tol, bool allow_long) {

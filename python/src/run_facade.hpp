@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "adjoin/structure/building.hpp"
+
 namespace adjoin::python {
 
 // A scene read and checked by the library's own scene readers (opaque: either kind of scene).
@@ -63,20 +65,9 @@ struct RunRequest {
 // once (each run has its own folder).
 RunTexts run(const LoadedScene& scene, const RunRequest& request);
 
-// The scene's storey modes (building scenes; InputError for a two-block scene), one entry per
-// building: name, periods [s], shapes (floors x modes), damping ratios, participation,
-// effective masses [kg].
-struct BuildingModesOut {
-  std::string name;
-  std::vector<double> periods, omega, total_ratio, inherent_ratio, device_ratio, participation, effective_mass;
-  std::vector<double> shapes;  // row-major floors x modes
-  std::size_t floors = 0;
-};
-struct ModesOut {
-  std::vector<BuildingModesOut> buildings;
-  std::vector<double> coupled_free, coupled_locked;  // periods [s] of the coupled structure
-};
-ModesOut modes(const LoadedScene& scene);
+// The structure of a building scene (its buildings, links, contact pairs); null for a
+// two-block scene. Valid as long as `scene` is.
+const structure::Structure* structure_of(const LoadedScene& scene);
 
 // The minimum seismic joint of the scene (study/seismic_joint.hpp), as `adjoin joint` finds it:
 // of contact pair `contact` (1-based; two-block scenes: 1, the blocks' model.gap0), to the

@@ -16,70 +16,56 @@ using structure::BuildingBuilder;
 using structure::ContactBuilder;
 using structure::StructureBuilder;
 
-py::array_t<double> matrix_of(std::vector<double>&& row_major, std::size_t rows) {
-  const std::size_t cols = rows ? row_major.size() / rows : 0;
-  py::array_t<double> flat = to_array(std::move(row_major));
-  return flat.reshape({static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(cols)});
+py::array_t<double> vector_of(const Eigen::VectorXd& v) {
+  return to_array(std::vector<double>(v.data(), v.data() + v.size()));
 }
 
-py::dict modes_dict(BuildingModesOut&& b) {
+// An Eigen matrix as a (rows x cols) numpy array owning a row-major copy.
+py::array_t<double> matrix_of(const Eigen::MatrixXd& m) {
+  std::vector<double> row_major;
+  row_major.reserve(static_cast<std::size_t>(m.size()));
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j) row_major.push_back(m(i, j));
+  return to_array(std::move(row_major)).reshape({static_cast<py::ssize_t>(m.rows()), static_cast<py::ssize_t>(m.cols())});
+}
+
+py::dict modes_dict(const structure::Building& b) {
+  const structure::Modes m = structure::building_modes(b);
   py::dict d;
   d["name"] = b.name;
-  d["periods"] = to_array(std::move(b.periods));
-  d["omega"] = to_array(std::move(b.omega));
-  d["shapes"] = matrix_of(std::move(b.shapes), b.floors);
-  d["damping"] = to_array(std::move(b.total_ratio));
-  d["inherent_damping"] = to_array(std::move(b.inherent_ratio));
-  d["device_damping"] = to_array(std::move(b.device_ratio));
-  d["participation"] = to_array(std::move(b.participation));
-  d["effective_mass"] = to_array(std::move(b.effective_mass));
+  d["periods"] = vector_of(m.periods);
+  d["omega"] = vector_of(m.omega);
+  d["shapes"] = matrix_of(m.shapes);
+  d["damping"] = vector_of(m.total_ratio);
+  d["inherent_damping"] = vector_of(m.inherent_ratio);
+  d["device_damping"] = vector_of(m.device_ratio);
+  d["zener_stiffening"] = vector_of(m.zener_stiffening);
+  d["participation"] = vector_of(m.participation);
+  d["effective_mass"] = vector_of(m.effective_mass);
   return d;
 }
 
-std::vector<double> copy_of(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
-
-BuildingModesOut modes_out(const structure::Building& b) {
-  const structure::Modes m = structure::building_modes(b);
-  BuildingModesOut out{b.name,
-                       copy_of(m.periods),
-                       copy_of(m.omega),
-                       copy_of(m.total_ratio),
-                       copy_of(m.inherent_ratio),
-                       copy_of(m.device_ratio),
-                       copy_of(m.participation),
-                       copy_of(m.effective_mass),
-                       {},
-                       static_cast<std::size_t>(m.shapes.rows())};
-  for (Eigen::Index i = 0; i < m.shapes.rows(); ++i)
-    for (Eigen::Index j = 0; j < m.shapes.cols(); ++j) out.shapes.push_back(m.shapes(i, j));
-  return out;
-}
-
-py::dict modes_py(ModesOut&& m) {
+// Each building's modes and, with two buildings, the coupled periods (structure/modal.hpp).
+py::dict structure_modes(const structure::Structure& s) {
   py::dict out;
-  for (auto& b : m.buildings) {
-    const std::string name = b.name;
-    out[py::str(name)] = modes_dict(std::move(b));
-  }
-  if (!m.coupled_free.empty()) {
+  out["A"] = modes_dict(s.a);
+  if (s.b) {
+    out["B"] = modes_dict(*s.b);
+    const structure::CoupledModes c = structure::coupled_modes(s);
     py::dict coupled;
-    coupled["periods_free"] = to_array(std::move(m.coupled_free));
-    coupled["periods_locked"] = to_array(std::move(m.coupled_locked));
+    coupled["periods_free"] = vector_of(c.periods_free);
+    coupled["periods_locked"] = vector_of(c.periods_locked);
     out["coupled"] = coupled;
   }
   return out;
 }
 
-py::dict structure_modes(const structure::Structure& s) {
-  ModesOut m;
-  m.buildings.push_back(modes_out(s.a));
-  if (s.b) {
-    m.buildings.push_back(modes_out(*s.b));
-    const structure::CoupledModes c = structure::coupled_modes(s);
-    m.coupled_free = copy_of(c.periods_free);
-    m.coupled_locked = copy_of(c.periods_locked);
-  }
-  return modes_py(std::move(m));
+py::dict scene_modes(const SceneObject& scene) {
+  const structure::Structure* s = structure_of(scene.loaded);
+  if (!s)
+    throw InputError("adjoin.modes: '" + scene.loaded.name() + "' is a two-block scene; modes are computed for "
+                     "building scenes");
+  return structure_modes(*s);
 }
 
 char building_name(const std::string& name) {
@@ -168,7 +154,7 @@ void bind_structure(py::module_& m) {
            py::return_value_policy::reference_internal, "A pounding pair at floor_a of A and floor_b of B with a clear gap [m] >= 0; set its law on the ContactBuilder returned (none: the floors pass through).")
       .def("build", &StructureBuilder::build, "The Structure (InputError naming the field, e.g. building.A.masses[3], if a value is wrong).");
 
-  m.def("modes", [](const SceneObject& scene) { return modes_py(python::modes(scene.loaded)); }, py::arg("scene"));
+  m.def("modes", &scene_modes, py::arg("scene"));
   m.def("modes", &structure_modes, py::arg("structure"));
 }
 
