@@ -21,7 +21,7 @@ AccelUnit unit_named(const std::string& name, const char* argument) {
 // A read-only numpy view of a vector held by `owner` (the array keeps the owner alive).
 py::array_t<double> view_of(const std::vector<double>& values, py::handle owner) {
   py::array_t<double> a(static_cast<py::ssize_t>(values.size()), values.data(), owner);
-  py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  a.attr("setflags")(py::arg("write") = false);
   return a;
 }
 
