@@ -56,3 +56,21 @@ def test_the_package_source_is_what_the_build_tree_holds():
     for source in (SOURCE / "python" / "adjoin").iterdir():
         if source.suffix in (".py", ".pyi"):
             assert (built / source.name).read_text() == source.read_text(), f"rebuild: {source.name} changed"
+
+
+def test_reference_page_is_current(tmp_path):
+    """docs/reference/python.md is what scripts/python_reference.py writes from the docstrings
+    (ADJOIN_UPDATE_DOCS=1 rewrites it)."""
+    import importlib.util
+    import os
+
+    spec = importlib.util.spec_from_file_location("python_reference", SOURCE / "scripts" / "python_reference.py")
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    page = module.page()
+    target = SOURCE / "docs" / "reference" / "python.md"
+    if os.environ.get("ADJOIN_UPDATE_DOCS") == "1":
+        target.write_text(page)
+    assert target.read_text() == page, "docs/reference/python.md is stale: run scripts/python_reference.py"
+    for name in adjoin.__all__:
+        assert f"## adjoin.{name}" in page
