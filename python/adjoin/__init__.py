@@ -44,8 +44,6 @@ __all__ = [
     "modes", "joint", "Structure", "StructureBuilder", "BuildingBuilder", "ContactBuilder",
 ]
 
-PathLike = "str | os.PathLike[str]"
-
 
 class Scene:
     """A scene the library's scene readers accepted: a two-block scene (SPEC §3) or a

@@ -6,7 +6,6 @@ missing optional dependency is visible instead of counted as a pass.
 """
 import os
 import pathlib
-import shutil
 
 import pytest
 

@@ -5,7 +5,6 @@ NumericalError, an ArithmeticError), naming the key the catalogue names."""
 import os
 import pathlib
 import re
-import shutil
 import tomllib
 
 import pytest
