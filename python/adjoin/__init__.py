@@ -93,12 +93,10 @@ class Scene:
 
     def to_dict(self) -> dict:
         """The scene as a dict (the structure of the TOML file), with the ``set``/``unset``
-        edits of ``load_scene`` applied and relative record paths made absolute, so that
-        ``Scene.from_dict(scene.to_dict())`` is the same scene. Edits are applied by dotted
-        path with the ground-source rule of ``--set`` (a new ``ground.source`` drops the old
-        source's keys); an edit that replaces an alternative key of a building
-        (``building.A.period`` for ``stiffness``) is not mirrored here: give the dict the key
-        you mean."""
+        edits of ``load_scene`` applied by the rules of ``--set``/``--unset`` (a key replaces
+        its alternative, ``building.A.period`` for ``stiffness``; a new ``ground.source`` or
+        contact ``model`` drops the keys it does not take) and relative record paths made
+        absolute, so that ``Scene.from_dict(scene.to_dict())`` is the same scene."""
         return self._scene.to_dict()
 
     def to_toml(self) -> str:

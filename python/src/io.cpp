@@ -187,13 +187,21 @@ void absolute_paths(toml::table& root, const fs::path& folder) {
       *s = (fs::absolute(folder) / s->get()).lexically_normal().string();
 }
 
+// The scene's tree with load_scene's edits: a building scene's structure keys by io's own
+// rules (run_facade.hpp), the others as --set and --unset make them (dotted paths, and the
+// keys a new ground source or contact law drops: implied_unsets).
 toml::table edited_tree(const SceneObject& s) {
   toml::table root = toml::parse(s.text, s.file.string());
   absolute_paths(root, s.file.parent_path());
-  for (const auto& key : s.unsets) remove_path(root, key);
+  const bool building = s.loaded.building();
+  const auto by_io = [&](const std::string& key) { return building && is_structure_edit(key); };
+  if (building) edit_structure_keys(root, s.overrides, s.unsets);
+  for (const auto& key : s.unsets)
+    if (!by_io(key)) remove_path(root, key);
   for (const auto& o : s.overrides) {
     const std::size_t eq = o.find('=');
     const std::string key = o.substr(0, eq), value = o.substr(eq + 1);
+    if (by_io(key)) continue;
     for (const auto& k : implied_unsets(key, value, source_of(root))) remove_path(root, k);
     set_path(root, key, value);
   }

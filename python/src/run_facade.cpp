@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <cstdio>
+#include <map>
 #include <sstream>
 #include <system_error>
 #include <variant>
@@ -23,6 +24,8 @@
 #include "adjoin/study/building_run.hpp"
 #include "adjoin/study/run_watch.hpp"
 #include "adjoin/study/seismic_joint.hpp"
+// The rules of structure edits are private to io (src/io/structure_edits.hpp).
+#include "../../src/io/structure_edits.hpp"
 
 namespace adjoin::python {
 
@@ -151,6 +154,14 @@ LoadedScene parse_scene_text(const std::string& text, const fs::path& file, cons
                              const std::vector<std::string>& unsets) {
   if (text_is_building_scene(text, file)) return wrap(parse_building_scene(text, file, overrides, unsets));
   return wrap(parse_scene(text, file.string(), overrides, unsets));
+}
+
+bool is_structure_edit(const std::string& key) { return detail::is_structure_key(key); }
+
+void edit_structure_keys(toml::table& root, const std::vector<std::string>& overrides,
+                         const std::vector<std::string>& unsets) {
+  std::map<std::string, std::string> origins;  // (for the reader's messages; not needed here)
+  detail::edit_structure(root, overrides, unsets, origins);
 }
 
 RunTexts run(const LoadedScene& scene, const RunRequest& request) {

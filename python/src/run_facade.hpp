@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include <toml++/toml.h>
+
 #include "adjoin/structure/building.hpp"
 
 namespace adjoin::python {
@@ -40,6 +42,14 @@ LoadedScene load_scene_file(const std::filesystem::path& file, const std::vector
 // relative paths (ground.file) start.
 LoadedScene parse_scene_text(const std::string& text, const std::filesystem::path& file,
                              const std::vector<std::string>& overrides, const std::vector<std::string>& unsets);
+
+// The --set/--unset edits of a building scene's structure keys (building.*, link.*, contact.*)
+// made on its TOML tree by io's own rules (a key replacing its alternative: `period` for
+// `stiffness`, a contact model dropping the keys it does not take); the other edits are left
+// to the caller. For Scene.to_dict().
+bool is_structure_edit(const std::string& key);
+void edit_structure_keys(toml::table& root, const std::vector<std::string>& overrides,
+                         const std::vector<std::string>& unsets);
 
 // What `adjoin run` would write, as text ("" for a file it would not write).
 struct RunTexts {

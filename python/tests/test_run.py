@@ -179,3 +179,19 @@ def test_building_scene_from_a_dict_runs():
     assert result.summary["solver"]["t_end"] == 2.0
     assert "A.x5" in result.timeseries and "link1.force" in result.timeseries
     assert pathlib.Path(d["ground"]["file"]).is_absolute()
+
+
+def test_to_dict_applies_the_edits_as_load_scene_does():
+    """A building key that replaces its alternative (period for stiffness), a removed link and
+    a contact law: the dict is the scene load_scene read, so it runs to the same numbers."""
+    edits = {"building.A.period": 0.9, "contact.1.model": "linear", "contact.1.stiffness": 1e8,
+             "contact.1.restitution": 0.65, "solver.t_end": 3.0}
+    scene = adjoin.load_scene(SCENES / "buildings" / "two-frames.toml", set=edits, unset=["link.1"])
+    d = scene.to_dict()
+    assert d["building"]["A"]["period"] == 0.9 and "stiffness" not in d["building"]["A"]
+    assert "link" not in d or d["link"] == []
+    assert d["contact"][0]["model"] == "linear"
+    a, b = adjoin.run(scene), adjoin.run(adjoin.Scene.from_dict(d))
+    drop = lambda s: {k: v for k, v in without_wall_time(s).items() if k != "ground"}
+    assert drop(a.summary) == drop(b.summary)
+    assert np.array_equal(a.timeseries["A.x5"], b.timeseries["A.x5"])
