@@ -68,8 +68,8 @@ class Scene:
         self._scene = _scene
 
     @classmethod
-    def from_dict(cls, d: Mapping[str, Any], *, folder: "str | os.PathLike[str] | None" = None,
-                  name: str = "<dict>") -> "Scene":
+    def from_dict(cls, d: Mapping[str, Any], *, folder: str | os.PathLike[str] | None = None,
+                  name: str = "<dict>") -> Scene:
         """A scene from a dict with the structure of the TOML file: nested dicts for tables
         (``{"solver": {"h": 0.002}}``), lists of dicts for arrays of tables
         (``"link": [{"floors": [3, 3], ...}]``), numbers, strings, bools and lists as values
@@ -86,8 +86,8 @@ class Scene:
         return cls(_adjoin.Scene.from_dict(dict(d), folder=_path_or_none(folder), name=name))
 
     @classmethod
-    def from_toml(cls, text: str, *, folder: "str | os.PathLike[str] | None" = None,
-                  name: str = "<text>") -> "Scene":
+    def from_toml(cls, text: str, *, folder: str | os.PathLike[str] | None = None,
+                  name: str = "<text>") -> Scene:
         """A scene from TOML text (what a scene file holds); ``folder`` as in ``from_dict``."""
         return cls(_adjoin.Scene.from_toml(text, folder=_path_or_none(folder), name=name))
 
@@ -127,8 +127,8 @@ def _path_or_none(p):
     return None if p is None else os.fspath(p)
 
 
-def load_scene(path: "str | os.PathLike[str]", set: "Mapping[str, Any] | None" = None,
-               unset: "Iterable[str] | None" = None) -> Scene:
+def load_scene(path: str | os.PathLike[str], set: Mapping[str, Any] | None = None,
+               unset: Iterable[str] | None = None) -> Scene:
     """Reads and checks a scene file (TOML), as ``adjoin run PATH --set K=V --unset K`` does.
 
     Args:
@@ -149,7 +149,7 @@ def load_scene(path: "str | os.PathLike[str]", set: "Mapping[str, Any] | None" =
                                     unset=None if unset is None else [str(k) for k in unset]))
 
 
-def _as_scene(scene: "Scene | Mapping[str, Any] | str | os.PathLike[str]") -> Scene:
+def _as_scene(scene: Scene | Mapping[str, Any] | str | os.PathLike[str]) -> Scene:
     if isinstance(scene, Scene):
         return scene
     if isinstance(scene, Mapping):
@@ -231,8 +231,8 @@ def _rows(columns: dict) -> list:
     return rows
 
 
-def run(scene: "Scene | Mapping[str, Any] | str | os.PathLike[str]", *, timeseries: bool = True,
-        every: "int | None" = None, allow_long: bool = False) -> Result:
+def run(scene: Scene | Mapping[str, Any] | str | os.PathLike[str], *, timeseries: bool = True,
+        every: int | None = None, allow_long: bool = False) -> Result:
     """Runs one scene as ``adjoin run`` does and returns its results in memory.
 
     The step, horizon, error estimate and outputs are the scene's (``[solver]``,
@@ -262,8 +262,8 @@ def run(scene: "Scene | Mapping[str, Any] | str | os.PathLike[str]", *, timeseri
     return Result(_adjoin.run(s._scene, timeseries=timeseries, every=_every(every), allow_long=allow_long))
 
 
-def run_many(scenes: "Sequence[Scene | Mapping[str, Any] | str | os.PathLike[str]]", jobs: int = 0, *,
-             timeseries: bool = True, every: "int | None" = None, allow_long: bool = False) -> list:
+def run_many(scenes: Sequence[Scene | Mapping[str, Any] | str | os.PathLike[str]], jobs: int = 0, *,
+             timeseries: bool = True, every: int | None = None, allow_long: bool = False) -> list:
     """Runs many scenes in native threads (the GIL released) and returns their results in
     the order of ``scenes``: each result equals ``run(scene)``'s.
 
@@ -292,8 +292,8 @@ def _every(every):
     return int(every)
 
 
-def read_record(path: "str | os.PathLike[str]", *, format: str = "auto", units: "str | None" = None,
-                dt: "float | None" = None, time_column: str = "", accel_column: str = "",
+def read_record(path: str | os.PathLike[str], *, format: str = "auto", units: str | None = None,
+                dt: float | None = None, time_column: str = "", accel_column: str = "",
                 delimiter: str = "", channel: int = 0) -> Record:
     """Reads an accelerogram file, as ``adjoin record`` and a scene's ``[ground]`` do.
 
@@ -322,8 +322,8 @@ def read_record(path: "str | os.PathLike[str]", *, format: str = "auto", units: 
                                accel_column=accel_column, delimiter=delimiter, channel=channel)
 
 
-def spectrum(accel: "Record | np.ndarray", dt: "float | None" = None, periods: "Sequence[float] | None" = None,
-             damping: "float | Sequence[float]" = 0.05, *, units: str = "g", peaks: str = "exact",
+def spectrum(accel: Record | np.ndarray, dt: float | None = None, periods: Sequence[float] | None = None,
+             damping: float | Sequence[float] = 0.05, *, units: str = "g", peaks: str = "exact",
              free_vibration: bool = False, threads: int = 0) -> dict:
     """Elastic response spectra (post/spectrum.hpp), the numbers of ``adjoin spectrum``.
 
@@ -352,8 +352,8 @@ def spectrum(accel: "Record | np.ndarray", dt: "float | None" = None, periods: "
                             peaks=peaks, free_vibration=free_vibration, threads=threads)
 
 
-def rotd(h1: "Record | np.ndarray", h2: "Record | np.ndarray", dt: "float | None" = None,
-         periods: "Sequence[float] | None" = None, damping: "float | Sequence[float]" = 0.05, *,
+def rotd(h1: Record | np.ndarray, h2: Record | np.ndarray, dt: float | None = None,
+         periods: Sequence[float] | None = None, damping: float | Sequence[float] = 0.05, *,
          percentiles: Sequence[float] = (50, 100), angle_step: float = 1.0, units: str = "g",
          peaks: str = "exact", threads: int = 0) -> dict:
     """Orientation-independent spectra of two horizontal components (post/rotd.hpp):
@@ -378,9 +378,9 @@ def rotd(h1: "Record | np.ndarray", h2: "Record | np.ndarray", dt: "float | None
                         threads=threads)
 
 
-def ductility_spectrum(accel: "Record | np.ndarray", dt: "float | None" = None,
-                       periods: "Sequence[float] | None" = None,
-                       ductility: "float | Sequence[float]" = (1, 2, 4, 6), damping: "float | Sequence[float]" = 0.05,
+def ductility_spectrum(accel: Record | np.ndarray, dt: float | None = None,
+                       periods: Sequence[float] | None = None,
+                       ductility: float | Sequence[float] = (1, 2, 4, 6), damping: float | Sequence[float] = 0.05,
                        *, hysteresis: str = "epp", hardening: float = 0.0, units: str = "g", tolerance: float = 1e-4,
                        threads: int = 0) -> dict:
     """Constant-ductility (inelastic) spectra (post/inelastic.hpp), the numbers of
@@ -411,7 +411,7 @@ def default_periods() -> np.ndarray:
     return np.asarray(_adjoin.default_periods())
 
 
-def modes(scene: "Scene | Structure | Mapping[str, Any] | str | os.PathLike[str]") -> dict:
+def modes(scene: Scene | Structure | Mapping[str, Any] | str | os.PathLike[str]) -> dict:
     """Each building's undamped modes (structure/modal.hpp), as ``adjoin modes`` prints them.
 
     Args:
@@ -433,8 +433,8 @@ def modes(scene: "Scene | Structure | Mapping[str, Any] | str | os.PathLike[str]
     return _adjoin.modes(_as_scene(scene)._scene)
 
 
-def joint(scene: "Scene | Mapping[str, Any] | str | os.PathLike[str]", *, contact: int = 1,
-          tol: "float | None" = None, allow_long: bool = False) -> dict:
+def joint(scene: Scene | Mapping[str, Any] | str | os.PathLike[str], *, contact: int = 1,
+          tol: float | None = None, allow_long: bool = False) -> dict:
     """The minimum seismic joint: the smallest clear gap at rest with which the floors of a
     contact pair never touch (study/seismic_joint.hpp), as ``adjoin joint`` finds it.
 
