@@ -1,0 +1,468 @@
+"""adjoin: the earthquake response of adjacent structures joined by dampers, from Python.
+
+``import adjoin`` gives the library, not the command line: scenes from files or dicts, runs
+whose results come back in memory (numpy arrays), records, spectra and modes, and errors as
+exceptions. The numbers are those of ``adjoin run`` on the same scene, bit for bit.
+
+    >>> import adjoin
+    >>> scene = adjoin.load_scene("records/scenes/paper-strong.toml", set={"solver.h": 0.001})
+    >>> result = adjoin.run(scene)
+    >>> result.summary["peaks"]["x1"]["max_abs"]        # as in summary.json
+    >>> result.timeseries["x1"]                          # numpy array, as in timeseries.csv
+
+Scenes (SPEC §3, §5): ``load_scene``, ``Scene.from_dict``, ``Scene.to_dict``, ``Scene.to_toml``.
+Runs: ``run``, ``run_many`` (native threads, the GIL released), ``Result``.
+Ground motions and spectra: ``read_record``, ``Record``, ``spectrum``, ``rotd``,
+``ductility_spectrum``, ``default_periods``.
+Structures: ``modes``, ``joint`` (the minimum seismic joint), ``StructureBuilder``.
+Errors: ``InputError`` (a ValueError, with ``.field``), ``NumericalError`` (an
+ArithmeticError, with ``.time``).
+Plots (matplotlib, when installed): ``adjoin.plot``.
+"""
+from __future__ import annotations
+
+import json
+import os
+from typing import Any, Iterable, Mapping, Sequence
+
+import numpy as np
+
+from . import _adjoin
+from ._adjoin import (  # noqa: F401  (re-exported)
+    BuildingBuilder,
+    ContactBuilder,
+    InputError,
+    NumericalError,
+    Record,
+    Structure,
+    StructureBuilder,
+)
+
+__all__ = [
+    "InputError", "NumericalError", "Scene", "load_scene", "run", "run_many", "Result",
+    "Record", "read_record", "spectrum", "rotd", "ductility_spectrum", "default_periods",
+    "modes", "joint", "Structure", "StructureBuilder", "BuildingBuilder", "ContactBuilder",
+]
+
+
+class Scene:
+    """A scene the library's scene readers accepted: a two-block scene (SPEC §3) or a
+    building scene (SPEC §5).
+
+    Made by ``load_scene(path)``, ``Scene.from_dict(d)`` or ``Scene.from_toml(text)``; every
+    check of a scene file applies (unknown keys, types, ranges), and a problem raises
+    ``InputError`` whose ``.field`` is the dotted key (``"solver.h"``, ``"link.1.slip_force"``).
+    Values are in the scene's units: SI (m, kg, N, s) or the paper's dimensionless units.
+
+    Attributes:
+        name (str): the scene's ``name``.
+        building (bool): a building scene (``[building.A]`` ...) rather than a two-block one.
+        warnings (list[str]): valid but probably unintended choices (``adjoin run`` prints
+            them as ``warning: ...``).
+        file (str): the file it was read from (``<folder>/<dict>`` for a dict).
+    """
+
+    __slots__ = ("_scene",)
+
+    def __init__(self, _scene: Any):
+        self._scene = _scene
+
+    @classmethod
+    def from_dict(cls, d: Mapping[str, Any], *, folder: str | os.PathLike[str] | None = None,
+                  name: str = "<dict>") -> Scene:
+        """A scene from a dict with the structure of the TOML file: nested dicts for tables
+        (``{"solver": {"h": 0.002}}``), lists of dicts for arrays of tables
+        (``"link": [{"floors": [3, 3], ...}]``), numbers, strings, bools and lists as values
+        (numpy scalars and arrays are accepted).
+
+        The dict is written as TOML (toml++) and read by the scene reader itself, so it is
+        checked exactly as a file: ``InputError`` with ``.field`` naming the key.
+
+        Args:
+            d: the scene.
+            folder: where relative paths (``ground.file``) start; default the working folder.
+            name: the scene's stand-in file name in messages.
+        """
+        return cls(_adjoin.Scene.from_dict(dict(d), folder=_path_or_none(folder), name=name))
+
+    @classmethod
+    def from_toml(cls, text: str, *, folder: str | os.PathLike[str] | None = None,
+                  name: str = "<text>") -> Scene:
+        """A scene from TOML text (what a scene file holds); ``folder`` as in ``from_dict``."""
+        return cls(_adjoin.Scene.from_toml(text, folder=_path_or_none(folder), name=name))
+
+    def to_dict(self) -> dict:
+        """The scene as a dict (the structure of the TOML file), with the ``set``/``unset``
+        edits of ``load_scene`` applied by the rules of ``--set``/``--unset`` (a key replaces
+        its alternative, ``building.A.period`` for ``stiffness``; a new ``ground.source`` or
+        contact ``model`` drops the keys it does not take) and relative record paths made
+        absolute, so that ``Scene.from_dict(scene.to_dict())`` is the same scene."""
+        return self._scene.to_dict()
+
+    def to_toml(self) -> str:
+        """The scene as TOML text (``to_dict()`` written by toml++), readable by ``adjoin run``."""
+        return self._scene.to_toml()
+
+    @property
+    def name(self) -> str:
+        return self._scene.name
+
+    @property
+    def building(self) -> bool:
+        return self._scene.building
+
+    @property
+    def warnings(self) -> list:
+        return list(self._scene.warnings)
+
+    @property
+    def file(self) -> str:
+        return self._scene.file
+
+    def __repr__(self) -> str:
+        return repr(self._scene)
+
+
+def _path_or_none(p):
+    return None if p is None else os.fspath(p)
+
+
+def load_scene(path: str | os.PathLike[str], set: Mapping[str, Any] | None = None,
+               unset: Iterable[str] | None = None) -> Scene:
+    """Reads and checks a scene file (TOML), as ``adjoin run PATH --set K=V --unset K`` does.
+
+    Args:
+        path: the scene file: a two-block scene (``[model]``, SPEC §3) or a building scene
+            (``[building.A]``, SPEC §5). Relative paths inside it start at its folder.
+        set: edits by dotted key, ``{"solver.h": 0.001, "link.1.slip_ratio": 0.1}``; values
+            are Python values (numbers in the scene's units, strings, bools, lists), lists
+            counted from 1 as the scene's ``[[link]]`` tables are.
+        unset: dotted keys or sections removed first (``["ground.scale_pga"]``).
+
+    Returns:
+        Scene
+
+    Raises:
+        InputError: the file cannot be read or a key is wrong; ``.field`` names the key.
+    """
+    return Scene(_adjoin.load_scene(os.fspath(path), set=None if set is None else dict(set),
+                                    unset=None if unset is None else [str(k) for k in unset]))
+
+
+def _as_scene(scene: Scene | Mapping[str, Any] | str | os.PathLike[str]) -> Scene:
+    if isinstance(scene, Scene):
+        return scene
+    if isinstance(scene, Mapping):
+        return Scene.from_dict(scene)
+    if isinstance(scene, (str, os.PathLike)):
+        return load_scene(scene)
+    raise TypeError(f"expected an adjoin.Scene, a dict or a scene file's path, got {type(scene).__name__}")
+
+
+class Result:
+    """What one run gives, in memory: the same values ``adjoin run`` writes into its folder.
+
+    Attributes:
+        summary (dict): summary.json, parsed (``json.loads`` of the same text): ``scene``,
+            ``units``, ``solver`` (``h``, ``steps``, ``wall_seconds`` ...), ``peaks``
+            (``{name: {"max_abs", "t"}}``), ``final``, ``pounding``, ``energy`` for a
+            two-block scene; ``structure`` (periods, damping ratios, mode shapes), ``peaks``
+            by channel (``"A.drift2"``), ``links``, ``contacts`` for a building scene. Values
+            in the scene's units (SI: m, N, s, J; dimensionless otherwise).
+        timeseries (dict[str, numpy.ndarray]): each column of timeseries.csv by name
+            (two-block: ``t, x1, x2, v1, v2, f1, f2, q, ag, gap, phase``; building: ``t, ag``
+            and a column per channel, ``A.x3`` [m], ``A.a3_abs`` [g], ``link1.force`` [N] ...);
+            numbers as float64 arrays holding exactly the CSV's values, words (``phase``)
+            as an array of str. Empty when the run wrote no time series (``timeseries=False``).
+        impacts (list[dict]): the rows of impacts.csv (a contact law's impacts, in the order
+            they started): ``t_start`` [s], ``duration``, ``force_max`` [N],
+            ``penetration_max`` [m], ``impulse`` [N s], ``complete`` (bool) ...; building
+            scenes also ``contact`` (1-based). Empty without a contact law.
+        spectra (dict[str, numpy.ndarray | list]): spectra.csv's columns (``[output.spectra]``).
+        energy_history (dict[str, numpy.ndarray]): energy.csv's columns (``output.energy_history``).
+        channels (list[str]): the names of the time-series columns other than ``t``.
+    """
+
+    __slots__ = ("summary", "timeseries", "impacts", "spectra", "energy_history", "channels", "_brief")
+
+    def __init__(self, raw: dict):
+        self.summary = json.loads(raw["summary_json"])
+        self.timeseries = _arrays(raw["timeseries"])
+        self.impacts = _rows(raw["impacts"])
+        self.spectra = dict(raw["spectra"])
+        self.energy_history = dict(raw["energy"])
+        self.channels = [name for name in self.timeseries if name != "t"]
+        self._brief = raw["brief"]
+
+    def brief(self) -> str:
+        """The short report ``adjoin run`` prints: scene, solver, phases, peaks, pounding
+        margin, energy, error estimate."""
+        return self._brief
+
+    def __repr__(self) -> str:
+        return f"<adjoin.Result of '{self.summary.get('scene')}': {len(self.channels)} channels>"
+
+
+def _arrays(columns: dict) -> dict:
+    """Columns as numpy arrays: numbers as they come (float64, owning their buffer), words as
+    arrays of str."""
+    return {name: values if isinstance(values, np.ndarray) else np.array(values, dtype=str)
+            for name, values in columns.items()}
+
+
+def _rows(columns: dict) -> list:
+    if not columns:
+        return []
+    names = list(columns)
+    count = len(columns[names[0]])
+    rows = []
+    for i in range(count):
+        row = {}
+        for name in names:
+            value = columns[name][i]
+            if name == "complete":
+                value = value == "true"
+            elif name == "contact":
+                value = int(value)
+            else:
+                value = float(value) if not isinstance(value, str) else value
+            row[name] = value
+        rows.append(row)
+    return rows
+
+
+def run(scene: Scene | Mapping[str, Any] | str | os.PathLike[str], *, timeseries: bool = True,
+        every: int | None = None, allow_long: bool = False) -> Result:
+    """Runs one scene as ``adjoin run`` does and returns its results in memory.
+
+    The step, horizon, error estimate and outputs are the scene's (``[solver]``,
+    ``[output]``); the numbers are those ``adjoin run`` writes, bit for bit (the same
+    library calls make the same texts, read back exactly). The GIL is released while the
+    run computes.
+
+    Args:
+        scene: an ``adjoin.Scene``, a dict (``Scene.from_dict``) or a scene file's path.
+        timeseries: keep the time series the scene asks for (``output.timeseries``);
+            False drops it (faster, less memory). It never adds one the scene does not ask.
+        every: keep every n-th grid point in the time series (``output.every``); None keeps
+            the scene's rule.
+        allow_long: run even when the run is estimated (from its first steps) at more than
+            2 hours; refused otherwise, as ``adjoin run`` refuses it without ``--allow-long``.
+
+    Returns:
+        Result: ``.summary`` (summary.json as a dict), ``.timeseries`` (numpy arrays by
+        column), ``.impacts``, ``.channels``, ``.brief()``.
+
+    Raises:
+        InputError: the scene is refused when run (the run would need more memory than the
+            machine has, or more than 2 hours); ``.field`` names the key when one is at fault.
+        NumericalError: the computation failed; ``.time`` says when.
+    """
+    s = _as_scene(scene)
+    return Result(_adjoin.run(s._scene, timeseries=timeseries, every=_every(every), allow_long=allow_long))
+
+
+def run_many(scenes: Sequence[Scene | Mapping[str, Any] | str | os.PathLike[str]], jobs: int = 0, *,
+             timeseries: bool = True, every: int | None = None, allow_long: bool = False) -> list:
+    """Runs many scenes in native threads (the GIL released) and returns their results in
+    the order of ``scenes``: each result equals ``run(scene)``'s.
+
+    Args:
+        scenes: scenes, dicts or paths (all read first, so a bad scene fails before any run).
+        jobs: threads; 0 uses one per core.
+        timeseries, every, allow_long: as in ``run``.
+
+    Raises:
+        InputError, NumericalError: of the first scene (in input order) that failed; the
+            message starts with ``scenes[i]:``, and ``.field`` / ``.time`` are that run's.
+    """
+    loaded = [_as_scene(s) for s in scenes]
+    if jobs < 0:
+        raise InputError(f"jobs = {jobs}: expected 0 (one per core) or a positive number of threads")
+    raw = _adjoin.run_many([s._scene for s in loaded], jobs=jobs, timeseries=timeseries, every=_every(every),
+                            allow_long=allow_long)
+    return [Result(r) for r in raw]
+
+
+def _every(every):
+    if every is None:
+        return 0
+    if int(every) < 1:
+        raise InputError(f"every = {every}: expected a whole number >= 1 (or None: the scene's rule)")
+    return int(every)
+
+
+def read_record(path: str | os.PathLike[str], *, format: str = "auto", units: str | None = None,
+                dt: float | None = None, time_column: str = "", accel_column: str = "",
+                delimiter: str = "", channel: int = 0) -> Record:
+    """Reads an accelerogram file, as ``adjoin record`` and a scene's ``[ground]`` do.
+
+    Formats: PEER AT2, one-column, two-column, delimited (CSV with a header), USGS SMC,
+    COSMOS V1/V2, K-NET/KiK-net, ESM/ITACA, CSMIP/DMG V2; ``format="auto"`` finds it from
+    the file's header (docs/reference/records.md).
+
+    Args:
+        path: the file.
+        format: ``auto``, ``at2``, ``one-column``, ``two-column``, ``delimited`` (``csv``),
+            ``smc``, ``cosmos``, ``knet``, ``esm``, ``dmg``.
+        units: the file's acceleration unit when it does not say: ``g``, ``m/s2``,
+            ``cm/s2`` (``gal``), ``mm/s2``.
+        dt: the step [s] of a one-column file (or a delimited one without a time column).
+        time_column, accel_column: delimited files: a column's name or 1-based index.
+        delimiter: delimited and two-column files: one character; "" guesses.
+        channel: multi-channel COSMOS or DMG files: which channel (1-based).
+
+    Returns:
+        Record: ``.dt`` [s], ``.accel`` [g] (numpy), ``.units``, ``.header``, ``.source``.
+
+    Raises:
+        InputError: the file cannot be read or is malformed (the message names its line).
+    """
+    return _adjoin.read_record(os.fspath(path), format=format, units=units, dt=dt, time_column=time_column,
+                               accel_column=accel_column, delimiter=delimiter, channel=channel)
+
+
+def spectrum(accel: Record | np.ndarray, dt: float | None = None, periods: Sequence[float] | None = None,
+             damping: float | Sequence[float] = 0.05, *, units: str = "g", peaks: str = "exact",
+             free_vibration: bool = False, threads: int = 0) -> dict:
+    """Elastic response spectra (post/spectrum.hpp), the numbers of ``adjoin spectrum``.
+
+    The oscillator u'' + 2 zeta omega u' + omega^2 u = -a_g(t) is advanced exactly for a_g
+    linear between samples, and its peaks are located between samples exactly.
+
+    Args:
+        accel: an ``adjoin.Record`` (its own samples and step: the CLI's numbers bit for bit)
+            or a one-dimensional array of accelerations in ``units``.
+        dt: the step [s] (arrays only).
+        periods: oscillator periods [s] (>= 0; 0 is the rigid oscillator, the PGA); None:
+            100 log-spaced from 0.01 s to 10 s (``default_periods()``).
+        damping: a damping ratio (0.05 is 5 %) or a list of them.
+        units: the unit of an array's samples: ``g``, ``m/s2``, ``cm/s2``, ``mm/s2``.
+        peaks: ``"exact"`` (located between sub-steps) or ``"samples"``.
+        free_vibration: also scan one damped period of free vibration after the record.
+        threads: worker threads; 0 one per core (the numbers do not depend on it).
+
+    Returns:
+        dict of numpy arrays, one element per (damping, period), damping-major as the CSV of
+        ``adjoin spectrum``: ``period`` [s], ``damping``, ``sd`` [m], ``sv`` [m/s] (true
+        relative velocity), ``sa`` [g] (true absolute acceleration), ``psv`` [m/s],
+        ``psa`` [g].
+    """
+    return _adjoin.spectrum(accel, dt, periods=_list_or_none(periods), damping=_floats(damping), units=units,
+                            peaks=peaks, free_vibration=free_vibration, threads=threads)
+
+
+def rotd(h1: Record | np.ndarray, h2: Record | np.ndarray, dt: float | None = None,
+         periods: Sequence[float] | None = None, damping: float | Sequence[float] = 0.05, *,
+         percentiles: Sequence[float] = (50, 100), angle_step: float = 1.0, units: str = "g",
+         peaks: str = "exact", threads: int = 0) -> dict:
+    """Orientation-independent spectra of two horizontal components (post/rotd.hpp):
+    RotD00, RotD50, RotD100 (Boore 2010) and GMRotI50 (Boore et al. 2006), the numbers of
+    ``adjoin spectrum H1 H2 --rotd``.
+
+    Args:
+        h1, h2: Records, or arrays in ``units`` sampled at ``dt`` [s], of the same length.
+        periods, damping, units, peaks, threads: as in ``spectrum``.
+        percentiles: RotD percentiles wanted; those other than 0, 50 and 100 (always given)
+            add columns ``rotdNN``.
+        angle_step: the rotation step [degrees]; 90 / angle_step a whole number.
+
+    Returns:
+        dict of numpy arrays per (damping, period): ``period`` [s], ``damping``, ``rotd00``,
+        ``rotd50``, ``rotd100``, ``gmroti50`` (PSA in g), ``angle00``, ``angle100``
+        [degrees from h1's direction], ``psa_h1``, ``psa_h2`` [g], and ``gmroti50_angle``
+        (one per damping) [degrees].
+    """
+    return _adjoin.rotd(h1, h2, dt, periods=_list_or_none(periods), damping=_floats(damping),
+                        percentiles=[float(p) for p in percentiles], angle_step=angle_step, units=units, peaks=peaks,
+                        threads=threads)
+
+
+def ductility_spectrum(accel: Record | np.ndarray, dt: float | None = None,
+                       periods: Sequence[float] | None = None,
+                       ductility: float | Sequence[float] = (1, 2, 4, 6), damping: float | Sequence[float] = 0.05,
+                       *, hysteresis: str = "epp", hardening: float = 0.0, units: str = "g", tolerance: float = 1e-4,
+                       threads: int = 0) -> dict:
+    """Constant-ductility (inelastic) spectra (post/inelastic.hpp), the numbers of
+    ``adjoin spectrum RECORD --ductility ...``: for each period the largest yield strength
+    with which the oscillator reaches the target ductility.
+
+    Args:
+        accel, dt, units, threads: as in ``spectrum``.
+        periods: periods [s], each in [1e-4, 1e4]; None: the default periods without 0.
+        ductility: target ductilities mu = max|u| / u_y, each in [1, 100].
+        damping: damping ratio(s) on the initial stiffness.
+        hysteresis: ``"epp"`` (elastic-perfectly-plastic) or ``"bilinear"``.
+        hardening: the post-yield stiffness ratio (bilinear), in [0, 1).
+        tolerance: relative tolerance on the ductility reached.
+
+    Returns:
+        dict of numpy arrays per (damping, period, ductility): ``period`` [s], ``damping``,
+        ``ductility`` (the target), ``cy`` = f_y / (m g), ``uy`` [m], ``R`` = f_e / f_y,
+        ``ductility_reached``, ``peak_displacement`` [m].
+    """
+    return _adjoin.ductility_spectrum(accel, dt, periods=_list_or_none(periods), ductility=_floats(ductility),
+                                      damping=_floats(damping), hysteresis=hysteresis, hardening=hardening,
+                                      units=units, tolerance=tolerance, threads=threads)
+
+
+def default_periods() -> np.ndarray:
+    """The default spectrum periods [s]: 100 log-spaced from 0.01 s to 10 s."""
+    return np.asarray(_adjoin.default_periods())
+
+
+def modes(scene: Scene | Structure | Mapping[str, Any] | str | os.PathLike[str]) -> dict:
+    """Each building's undamped modes (structure/modal.hpp), as ``adjoin modes`` prints them.
+
+    Args:
+        scene: a building scene (Scene, dict or path) or a ``Structure`` built in code.
+
+    Returns:
+        dict: ``{"A": {...}, "B": {...}, "coupled": {...}}``; per building ``periods`` [s],
+        ``omega`` [rad/s], ``shapes`` (floors x modes, mass-normalised, floor 1 first),
+        ``damping`` (total ratio), ``inherent_damping``, ``device_damping``, ``zener_stiffening``,
+        ``participation`` (of the shape scaled to 1 at the roof), ``effective_mass`` [kg];
+        ``coupled``: ``periods_free`` and ``periods_locked`` [s] of both buildings with the
+        links' friction dampers free or locked.
+
+    Raises:
+        InputError: a two-block scene (its modes are the two blocks' own).
+    """
+    if isinstance(scene, Structure):
+        return _adjoin.modes(scene)
+    return _adjoin.modes(_as_scene(scene)._scene)
+
+
+def joint(scene: Scene | Mapping[str, Any] | str | os.PathLike[str], *, contact: int = 1,
+          tol: float | None = None, allow_long: bool = False) -> dict:
+    """The minimum seismic joint: the smallest clear gap at rest with which the floors of a
+    contact pair never touch (study/seismic_joint.hpp), as ``adjoin joint`` finds it.
+
+    Two answers that agree to the tolerance: a bisection over runs on the gap, and the
+    largest relative displacement s_max of one run without contact; beside them the codes'
+    rules (SRSS, ASCE 7-16 12.12.3, and the absolute sum) from the floors' own peaks.
+
+    Args:
+        scene: a Scene, dict or path; a building scene's pair ``contact`` (1-based) or a
+            two-block scene's ``model.gap0`` (contact 1).
+        contact: the contact pair whose gap is the joint.
+        tol: the bisection's tolerance in the scene's length unit (m for SI and building
+            scenes); None: 1e-6 of s_max.
+        allow_long: as in ``run``.
+
+    Returns:
+        dict: ``joint`` (the gap found that does not touch) [m], ``touching_below`` [m],
+        ``tolerance`` [m], ``runs``, ``s_max`` [m], ``t_critical`` [s], ``difference``
+        (joint - s_max) [m], ``agree``, ``peak_a``, ``peak_b`` (the floors' peak
+        displacements) [m] and their times [s], ``srss``, ``abs_sum`` [m], ``floors``,
+        ``gap_key``, ``length_unit``, ``time_unit``, ``notes``, ``wall_seconds``.
+    """
+    return _adjoin.joint(_as_scene(scene)._scene, contact=contact, tol=tol, allow_long=allow_long)
+
+
+def _list_or_none(values):
+    return None if values is None else [float(v) for v in np.atleast_1d(np.asarray(values, dtype=float))]
+
+
+def _floats(values):
+    return [float(v) for v in np.atleast_1d(np.asarray(values, dtype=float))]

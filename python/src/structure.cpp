@@ -1,0 +1,161 @@
+// structure/builder.hpp and structure/modal.hpp in Python: adjoin.StructureBuilder (the typed
+// builder: buildings, storey devices, links, contact pairs, each problem an InputError naming
+// its field) and adjoin.modes (each building's modes, of a built structure or a scene).
+#include "adjoin/core/errors.hpp"
+#include "adjoin/structure/builder.hpp"
+#include "adjoin/structure/modal.hpp"
+#include "bindings.hpp"
+#include "run_facade.hpp"
+#include "scene_object.hpp"
+
+namespace adjoin::python {
+
+namespace {
+
+using structure::BuildingBuilder;
+using structure::ContactBuilder;
+using structure::StructureBuilder;
+
+py::array_t<double> vector_of(const Eigen::VectorXd& v) {
+  return to_array(std::vector<double>(v.data(), v.data() + v.size()));
+}
+
+// An Eigen matrix as a (rows x cols) numpy array owning a row-major copy.
+py::array_t<double> matrix_of(const Eigen::MatrixXd& m) {
+  std::vector<double> row_major;
+  row_major.reserve(static_cast<std::size_t>(m.size()));
+  for (Eigen::Index i = 0; i < m.rows(); ++i)
+    for (Eigen::Index j = 0; j < m.cols(); ++j) row_major.push_back(m(i, j));
+  return to_array(std::move(row_major)).reshape({static_cast<py::ssize_t>(m.rows()), static_cast<py::ssize_t>(m.cols())});
+}
+
+py::dict modes_dict(const structure::Building& b) {
+  const structure::Modes m = structure::building_modes(b);
+  py::dict d;
+  d["name"] = b.name;
+  d["periods"] = vector_of(m.periods);
+  d["omega"] = vector_of(m.omega);
+  d["shapes"] = matrix_of(m.shapes);
+  d["damping"] = vector_of(m.total_ratio);
+  d["inherent_damping"] = vector_of(m.inherent_ratio);
+  d["device_damping"] = vector_of(m.device_ratio);
+  d["zener_stiffening"] = vector_of(m.zener_stiffening);
+  d["participation"] = vector_of(m.participation);
+  d["effective_mass"] = vector_of(m.effective_mass);
+  return d;
+}
+
+// Each building's modes and, with two buildings, the coupled periods (structure/modal.hpp).
+py::dict structure_modes(const structure::Structure& s) {
+  py::dict out;
+  out["A"] = modes_dict(s.a);
+  if (s.b) {
+    out["B"] = modes_dict(*s.b);
+    const structure::CoupledModes c = structure::coupled_modes(s);
+    py::dict coupled;
+    coupled["periods_free"] = vector_of(c.periods_free);
+    coupled["periods_locked"] = vector_of(c.periods_locked);
+    out["coupled"] = coupled;
+  }
+  return out;
+}
+
+py::dict scene_modes(const SceneObject& scene) {
+  const structure::Structure* s = structure_of(scene.loaded);
+  if (!s)
+    throw InputError("adjoin.modes: '" + scene.loaded.name() + "' is a two-block scene; modes are computed for "
+                     "building scenes");
+  return structure_modes(*s);
+}
+
+char building_name(const std::string& name) {
+  if (name != "A" && name != "B") throw InputError("building '" + name + "': expected 'A' or 'B'", "building");
+  return name[0];
+}
+
+structure::Zener zener_of(double stiffness, double order, double tau_x, double tau_f) {
+  return structure::Zener{stiffness, order, tau_x, tau_f};
+}
+
+}  // namespace
+
+void bind_structure(py::module_& m) {
+  py::class_<structure::Structure>(m, "Structure", "A structure built in code (StructureBuilder.build()).")
+      .def_property_readonly("dofs", &structure::Structure::dofs, "The number of floors of both buildings.")
+      .def("modes", &structure_modes, "Each building's modes (see adjoin.modes): periods [s], shapes, damping ratios.");
+
+  py::class_<BuildingBuilder>(m, "BuildingBuilder", "One building of a StructureBuilder (SI units).")
+      .def("mass", &BuildingBuilder::mass, py::arg("kg"), py::return_value_policy::reference_internal, "Every floor's mass [kg].")
+      .def("masses", &BuildingBuilder::masses, py::arg("kg"), py::return_value_policy::reference_internal, "Each floor's mass [kg], floor 1 first.")
+      .def("stiffness", &BuildingBuilder::stiffness, py::arg("n_per_m"), py::return_value_policy::reference_internal, "Every storey's spring stiffness [N/m].")
+      .def("stiffnesses", &BuildingBuilder::stiffnesses, py::arg("n_per_m"), py::return_value_policy::reference_internal, "Each storey's spring stiffness [N/m], storey 1 first.")
+      .def("period", &BuildingBuilder::period, py::arg("seconds"), py::return_value_policy::reference_internal, "The fundamental period [s]: a uniform storey stiffness is found for it.")
+      .def("no_damping", &BuildingBuilder::no_damping, py::return_value_policy::reference_internal, "No inherent damping.")
+      .def("modal_damping", &BuildingBuilder::modal_damping, py::arg("ratio"), py::return_value_policy::reference_internal, "The same damping ratio [-] (0.05 is 5 %) in every mode.")
+      .def("rayleigh_damping", &BuildingBuilder::rayleigh_damping, py::arg("ratio"), py::arg("mode_i") = 1,
+           py::arg("mode_j") = 2, py::return_value_policy::reference_internal, "Rayleigh damping with the ratio [-] in modes mode_i and mode_j.")
+      .def("spring", &BuildingBuilder::spring, py::arg("storeys"), py::arg("k"), py::return_value_policy::reference_internal, "A spring device of stiffness k [N/m] in each listed storey (1-based).")
+      .def("dashpot", &BuildingBuilder::dashpot, py::arg("storeys"), py::arg("c"), py::return_value_policy::reference_internal, "A dashpot of c [N s/m] in each listed storey (1-based).")
+      .def(
+          "zener",
+          [](BuildingBuilder& b, const std::vector<int>& storeys, double stiffness, double order, double tau_x,
+             double tau_f) -> BuildingBuilder& { return b.zener(storeys, zener_of(stiffness, order, tau_x, tau_f)); },
+          py::arg("storeys"), py::kw_only(), py::arg("stiffness"), py::arg("order"), py::arg("tau_x"), py::arg("tau_f"),
+          py::return_value_policy::reference_internal, "A fractional Zener device in each listed storey: relaxed stiffness [N/m], order alpha in (0, 1), tau_x and tau_f [s^order].")
+      .def_property_readonly("path", &BuildingBuilder::path, "The building's field path, \"building.A\".")
+      .def_property_readonly("storeys", &BuildingBuilder::storeys, "The number of storeys.");
+
+  py::class_<ContactBuilder>(m, "ContactBuilder", "A contact pair of a StructureBuilder.")
+      .def(
+          "model",
+          [](ContactBuilder& c, const std::string& word) -> ContactBuilder& {
+            structure::ContactModel model{};
+            if (!structure::parse_contact_model(word, &model))
+              throw InputError("model = '" + word + "': expected none, linear, hertz, hertzdamp, jankowski or impact",
+                               "model");
+            return c.model(model);
+          },
+          py::arg("model"), py::return_value_policy::reference_internal, "The contact law: none, linear, hertz, hertzdamp, jankowski or impact.")
+      .def("stiffness", &ContactBuilder::stiffness, py::arg("k"), py::return_value_policy::reference_internal, "The contact stiffness [N/m, linear; N/m^1.5, Hertz].")
+      .def("restitution", &ContactBuilder::restitution, py::arg("e"), py::return_value_policy::reference_internal, "The coefficient of restitution (0 < e <= 1), for the damping.")
+      .def("damping", &ContactBuilder::damping, py::arg("value"), py::return_value_policy::reference_internal, "The damping parameter directly, instead of restitution.")
+      .def("tension_cut", &ContactBuilder::tension_cut, py::arg("cut"), py::return_value_policy::reference_internal, "Linear law only: no tensile force.");
+
+  py::class_<StructureBuilder>(m, "StructureBuilder",
+                              "The typed structure builder (structure/builder.hpp): two buildings, storey devices, links and "
+                              "contact pairs, in SI units; each setter returns its builder, so calls chain.")
+      .def(py::init<>())
+      .def(
+          "building",
+          [](StructureBuilder& s, const std::string& name, int storeys) -> BuildingBuilder& {
+            return s.building(building_name(name), storeys);
+          },
+          py::arg("name"), py::arg("storeys"), py::return_value_policy::reference_internal, "Building 'A' (left) or 'B' (right) with `storeys` floors, made on the first call.")
+      .def("friction_link", &StructureBuilder::friction_link, py::arg("floor_a"), py::arg("floor_b"),
+           py::arg("slip_force"), py::return_value_policy::reference_internal, "A friction link between floor_a of A and floor_b of B, slipping at slip_force [N].")
+      .def(
+          "friction_link_ratio",
+          [](StructureBuilder& s, int a, int b, double ratio, const std::string& of) -> StructureBuilder& {
+            return s.friction_link_ratio(a, b, ratio, building_name(of));
+          },
+          py::arg("floor_a"), py::arg("floor_b"), py::arg("slip_ratio"), py::arg("of") = "B",
+          py::return_value_policy::reference_internal, "A friction link slipping at slip_ratio [-] of building `of`'s weight.")
+      .def("dashpot_link", &StructureBuilder::dashpot_link, py::arg("floor_a"), py::arg("floor_b"), py::arg("c"),
+           py::return_value_policy::reference_internal, "A viscous link of c [N s/m] between floor_a of A and floor_b of B.")
+      .def("spring_link", &StructureBuilder::spring_link, py::arg("floor_a"), py::arg("floor_b"), py::arg("k"),
+           py::return_value_policy::reference_internal, "A spring link of k [N/m] between floor_a of A and floor_b of B.")
+      .def(
+          "zener_link",
+          [](StructureBuilder& s, int a, int b, double stiffness, double order, double tau_x, double tau_f)
+              -> StructureBuilder& { return s.zener_link(a, b, zener_of(stiffness, order, tau_x, tau_f)); },
+          py::arg("floor_a"), py::arg("floor_b"), py::kw_only(), py::arg("stiffness"), py::arg("order"),
+          py::arg("tau_x"), py::arg("tau_f"), py::return_value_policy::reference_internal, "A fractional Zener link: relaxed stiffness [N/m], order in (0, 1), tau_x and tau_f [s^order].")
+      .def("contact", &StructureBuilder::contact, py::arg("floor_a"), py::arg("floor_b"), py::arg("gap"),
+           py::return_value_policy::reference_internal, "A pounding pair at floor_a of A and floor_b of B with a clear gap [m] >= 0; set its law on the ContactBuilder returned (none: the floors pass through).")
+      .def("build", &StructureBuilder::build, "The Structure (InputError naming the field, e.g. building.A.masses[3], if a value is wrong).");
+
+  m.def("modes", &scene_modes, py::arg("scene"));
+  m.def("modes", &structure_modes, py::arg("structure"));
+}
+
+}  // namespace adjoin::python
