@@ -10,7 +10,6 @@
 #include <map>
 #include <sstream>
 #include <system_error>
-#include <variant>
 
 #include <toml++/toml.h>
 
@@ -21,7 +20,7 @@
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/io/summary.hpp"
-#include "adjoin/study/building_run.hpp"
+#include "adjoin/study/run.hpp"
 #include "adjoin/study/run_watch.hpp"
 #include "adjoin/study/seismic_joint.hpp"
 // The rules of structure edits are private to io (src/io/structure_edits.hpp).
@@ -32,25 +31,18 @@ namespace adjoin::python {
 namespace fs = std::filesystem;
 
 struct LoadedScene::Impl {
-  std::variant<Scene, BuildingScene> spec;
+  Scene spec;
 };
 
-bool LoadedScene::building() const { return std::holds_alternative<BuildingScene>(impl_->spec); }
+bool LoadedScene::building() const { return !impl_->spec.two_block(); }
 
-const std::string& LoadedScene::name() const {
-  return std::visit([](const auto& s) -> const std::string& { return s.name; }, impl_->spec);
-}
+const std::string& LoadedScene::name() const { return impl_->spec.name; }
 
-const std::vector<std::string>& LoadedScene::warnings() const {
-  return std::visit([](const auto& s) -> const std::vector<std::string>& { return s.warnings; }, impl_->spec);
-}
+const std::vector<std::string>& LoadedScene::warnings() const { return impl_->spec.warnings; }
 
 namespace {
 
 LoadedScene wrap(Scene s) { return LoadedScene(std::make_shared<const LoadedScene::Impl>(LoadedScene::Impl{std::move(s)})); }
-LoadedScene wrap(BuildingScene s) {
-  return LoadedScene(std::make_shared<const LoadedScene::Impl>(LoadedScene::Impl{std::move(s)}));
-}
 
 // A building scene is one with a [building] table: the rule of io/structure_file.cpp
 // is_building_scene, applied to text. A text that is not TOML goes to the two-block reader,
@@ -112,9 +104,11 @@ RunWatch::Options watching(const RunRequest& request) {
   return o;
 }
 
-RunTexts run_two_block(Scene scene, const RunRequest& request) {
+// One run as `adjoin run` makes it (io/run_files.hpp), its files read back as texts.
+RunTexts run_scene(Scene scene, const RunRequest& request) {
   scene.output.timeseries = scene.output.timeseries && request.timeseries;
   if (request.every > 0) scene.output.every = request.every;
+  check_memory(scene);
   RunWatch::Options o = watching(request);
   o.time_scale = scene.scales.time;
   o.h_unit = scene.scales.si ? " s" : " (dimensionless)";
@@ -128,25 +122,10 @@ RunTexts run_two_block(Scene scene, const RunRequest& request) {
   return texts;
 }
 
-RunTexts run_building_scene(BuildingScene scene, const RunRequest& request) {
-  scene.base.output.timeseries = scene.base.output.timeseries && request.timeseries;
-  if (request.every > 0) scene.base.output.every = request.every;
-  check_building_memory(scene);
-  RunWatch watch(watching(request));
-  scene.watch = &watch;
-  PrivateFolder dir;
-  const BuildingFiles files = run_building_to_folder(scene, dir.path());
-  RunTexts texts = texts_in(dir.path());
-  texts.brief = building_brief_report(scene, files.report, files.estimate ? &*files.estimate : nullptr,
-                                      files.tolerant ? &*files.tolerant : nullptr);
-  return texts;
-}
-
 }  // namespace
 
 LoadedScene load_scene_file(const fs::path& file, const std::vector<std::string>& overrides,
                             const std::vector<std::string>& unsets) {
-  if (is_building_scene(file)) return wrap(load_building_scene(file, overrides, unsets));
   return wrap(load_scene(file, overrides, unsets));
 }
 
@@ -164,13 +143,10 @@ void edit_structure_keys(toml::table& root, const std::vector<std::string>& over
   detail::edit_structure(root, overrides, unsets, origins);
 }
 
-RunTexts run(const LoadedScene& scene, const RunRequest& request) {
-  if (scene.building()) return run_building_scene(std::get<BuildingScene>(scene.impl().spec), request);
-  return run_two_block(std::get<Scene>(scene.impl().spec), request);
-}
+RunTexts run(const LoadedScene& scene, const RunRequest& request) { return run_scene(scene.impl().spec, request); }
 
 const structure::Structure* structure_of(const LoadedScene& scene) {
-  return scene.building() ? &std::get<BuildingScene>(scene.impl().spec).structure : nullptr;
+  return scene.building() ? &scene.impl().spec.structure : nullptr;
 }
 
 JointOut joint(const LoadedScene& scene, int contact, double tol, bool allow_long) {
@@ -180,8 +156,8 @@ JointOut joint(const LoadedScene& scene, int contact, double tol, bool allow_lon
   RunWatch watch(watching(RunRequest{true, 0, allow_long}));
   SeismicJoint j;
   if (scene.building()) {
-    BuildingScene s = std::get<BuildingScene>(scene.impl().spec);
-    check_building_memory(s);
+    Scene s = scene.impl().spec;
+    check_memory(s);
     const std::size_t n = s.structure.contacts.size();
     if (n == 0) throw InputError(s.name + ": no contact pair: the joint is the gap of a [[contact]] with floors = [i, j]", "contact");
     if (contact < 1 || static_cast<std::size_t>(contact) > n)
@@ -193,7 +169,7 @@ JointOut joint(const LoadedScene& scene, int contact, double tol, bool allow_lon
     if (contact != 1)
       throw InputError("contact = " + std::to_string(contact) + ": a two-block scene has one contact pair, the blocks' "
                        "(its gap is model.gap0; expected 1)", "contact");
-    j = seismic_joint(std::get<Scene>(scene.impl().spec), options);
+    j = seismic_joint(scene.impl().spec, options);
   }
   return JointOut{j.scene, j.gap_key, j.length_unit, j.time_unit, j.contact, j.floor_a, j.floor_b, j.joint,
                   j.joint_low, j.tol, j.bracket_top, j.runs, j.widenings, j.s_max, j.t_critical, j.difference,

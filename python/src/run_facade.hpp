@@ -3,12 +3,12 @@
 // its report into summary.json, timeseries.csv and impacts.csv). Everything else in python/src
 // binds stable, typed parts of the library (records, spectra, modes).
 //
-// Today a scene is either a two-block scene (io/scene.hpp, study/run.hpp) or a building scene
-// (io/building_scene.hpp, study/building_run.hpp), and the texts `adjoin run` writes are made by
-// io/run_files.hpp and io/building_files.hpp while their files are written. To give Python the
-// very texts `adjoin run` writes (bit for bit), run() has those functions write into a private
-// temporary folder, reads the texts back and removes the folder. When the run pipeline is one
-// RunSpec / run / Report, only run_facade.cpp changes: the texts then come from the report.
+// A scene is one RunSpec (study/run_spec.hpp: a building, or the paper's two blocks), read by
+// io/scene.hpp load_scene and run by study/run.hpp run(). The texts `adjoin run` writes are made
+// by io/run_files.hpp while its files are written; to give Python the very texts `adjoin run`
+// writes (bit for bit), run() has run_to_folder write into a private temporary folder, reads the
+// texts back and removes the folder. (The summary could be made from the Report in memory;
+// timeseries.csv is streamed by its writer, which writes to a stream.)
 #include <filesystem>
 #include <memory>
 #include <string>

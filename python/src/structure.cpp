@@ -110,7 +110,7 @@ void bind_structure(py::module_& m) {
           "model",
           [](ContactBuilder& c, const std::string& word) -> ContactBuilder& {
             structure::ContactModel model{};
-            if (!structure::parse_contact_model(word, &model))
+            if (!parse_enum(word, &model))
               throw InputError("model = '" + word + "': expected none, linear, hertz, hertzdamp, jankowski or impact",
                                "model");
             return c.model(model);

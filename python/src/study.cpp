@@ -1,4 +1,4 @@
-// study/run.hpp and study/building_run.hpp in Python (through run_facade.hpp): adjoin.run and
+// study/run.hpp in Python (through run_facade.hpp): adjoin.run and
 // adjoin.run_many. A run gives back what `adjoin run` writes, in memory: the summary.json text
 // (the package parses it with json), each CSV's columns as numpy arrays (numbers) or lists
 // (words: the phase, an impact's `complete`), and the terminal report.
