@@ -10,7 +10,7 @@
 #include <fstream>
 
 #include "adjoin/io/building_scene.hpp"
-#include "adjoin/study/building_convergence.hpp"
+#include "adjoin/study/convergence.hpp"
 #include "cli_helpers.hpp"
 
 using namespace adjoin;
@@ -32,9 +32,9 @@ const QuantityError* find(const ConvergenceRow& row, const std::string& name) {
 TEST_CASE("a linear building converges at order 2 in its trajectory and in every refined peak", "[building_convergence]") {
   // No damper, no contact pair: springs, Zener storeys and classical damping, linear.
   const BuildingScene scene = load_building_scene(kScene, {"solver.t_end=6"}, {"link", "contact"});
-  BuildingConvergenceOptions options;
+  ConvergenceOptions options;
   options.steps = {0.008, 0.004, 0.002, 0.001};
-  const ConvergenceResult result = run_building_convergence(scene, options);
+  const ConvergenceResult result = run_convergence(scene, options);
   REQUIRE(result.rows.size() == 4);
   CHECK(result.reference.find("h = 0.000125 s") != std::string::npos);
   for (std::size_t i = 1; i < result.rows.size(); ++i) {
@@ -65,9 +65,9 @@ TEST_CASE("a linear building converges at order 2 in its trajectory and in every
 TEST_CASE("a building with a friction damper: displacements converge, and switches are compared when they match",
           "[building_convergence]") {
   const BuildingScene scene = load_building_scene(kScene, {"solver.t_end=6"}, {"contact"});
-  BuildingConvergenceOptions options;
+  ConvergenceOptions options;
   options.steps = {0.004, 0.002, 0.001, 0.0005};
-  const ConvergenceResult result = run_building_convergence(scene, options);
+  const ConvergenceResult result = run_convergence(scene, options);
   REQUIRE(result.rows.size() == 4);
   // Locating each switch inside its step (a slip's end on the parabola of the grid velocities)
   // keeps the trajectory, the roof's peak and the switching instants at order 2.

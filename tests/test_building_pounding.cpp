@@ -325,7 +325,7 @@ TEST_CASE("building sweeps: the pounding columns of a row are the single run's s
     INFO("run " << run);
     const SweepRow row = run_building_sweep_point(spec, run);
     REQUIRE(row.error.empty());
-    const BuildingScene scene = building_sweep_scene(spec, run);
+    const BuildingScene scene = sweep_scene(spec, run);
     const fs::path dir = scratch("sweep-" + std::to_string(run));
     run_to_folder(scene, dir);
     const auto c = summary(dir)["contacts"][0];

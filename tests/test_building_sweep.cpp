@@ -178,7 +178,7 @@ values = [{name = "both"},
           {name = "upper", unset = ["link.2"]}]
 )");
   const SweepSpec spec = load_sweep(file);
-  CHECK_NOTHROW(building_sweep_scene(spec, 0));
+  CHECK_NOTHROW(sweep_scene(spec, 0));
   try {
     building_sweep_scene(spec, 1);
     FAIL("expected an InputError");
@@ -228,7 +228,7 @@ values = [{name = "ok", set = {"link.1.slip_ratio" = 0.05, "building.A.period" =
     std::string got = "no error";
     std::optional<BuildingScene> swept;
     try {
-      swept = spec.scenes->building_scene(spec, i);
+      swept = spec.scenes->scene(spec, i);
     } catch (const InputError& e) {
       got = e.what();
       // "tree.toml:LINE: run i (edit=..., motion=base): " + the scene's own message
@@ -256,8 +256,8 @@ values = [{name = "ok", set = {"link.1.slip_ratio" = 0.05, "building.A.period" =
     }
   }
   CHECK(compared == 2);
-  CHECK(spec.scenes->building_scene(spec, 0).name == "swept");
-  CHECK(spec.scenes->building_scene(spec, 0).structure.links[0].slip_force != spec.scenes->building_scene(spec, 10).structure.links[0].slip_force);
+  CHECK(spec.scenes->scene(spec, 0).name == "swept");
+  CHECK(spec.scenes->scene(spec, 0).structure.links[0].slip_force != spec.scenes->scene(spec, 10).structure.links[0].slip_force);
   // Those messages cite the base file's lines: a shifted [[link]], [building.A], [ground].
   CHECK(base_lines >= 3);
 }
@@ -369,6 +369,6 @@ TEST_CASE("building sweeps: the optimum slip-force example parses, one column pe
   CHECK(std::count(n.begin(), n.end(), "B.drift_max") == 1);
   CHECK(std::count(n.begin(), n.end(), "sa_1.9") == 1);
   // Its "0" point has no link.
-  CHECK(building_sweep_scene(spec, 0).structure.links.empty());
+  CHECK(sweep_scene(spec, 0).structure.links.empty());
   CHECK(building_sweep_scene(spec, 3).structure.links.size() == 1);
 }

@@ -16,10 +16,8 @@
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/output_place.hpp"
 #include "adjoin/io/table_plots.hpp"
-#include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/structure_file.hpp"
-#include "adjoin/study/building_convergence.hpp"
 #include "adjoin/study/convergence.hpp"
 #include "adjoin/study/run_watch.hpp"
 #include "command.hpp"
@@ -131,26 +129,24 @@ void check_steps(const ConvergeArgs& args, double scene_h, double t_end, const s
 
 // A building scene (SPEC §5): the structure step's ladder; --schemes may name one of the two
 // restart rules the structure step takes (as solver.scheme does), instead of the scene's.
-int converge_building(const ConvergeArgs& args) {
-  BuildingScene scene = load_building_scene(args.scene, args.overrides, args.unsets);
-  for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
+int converge_building(const ConvergeArgs& args, Scene scene) {
   RunWatch watch(watch_options(false, args.allow_long));  // each run of the ladder: estimated, shown
   scene.watch = &watch;
   if (args.schemes.size() > 1) throw InputError("--schemes: building scenes take one scheme, implicit or implicit-damped");
+  ConvergenceOptions options;
   for (const auto& name : args.schemes) {
     if (name != "implicit" && name != "implicit-damped")
       throw InputError("--schemes: " + escaped_excerpt(name) + ": building scenes run the structure step, implicit or "
                        "implicit-damped; the other schemes are the two-block system's");
-    scene.solver.restart = name == "implicit" ? StructureSolverOptions::Restart::automatic : StructureSolverOptions::Restart::always;
+    options.schemes.push_back(name == "implicit" ? Scheme::implicit : Scheme::implicit_damped);
   }
-  BuildingConvergenceOptions options;
-  options.engines = engines_of(args, options.engines);
+  options.engines = engines_of(args, {HistoryEngine::fft});
   options.steps = args.steps;
   std::string error;
   if (!options.IsValid(&error)) throw InputError("--steps/--history: " + error);
   check_steps(args, scene.solver.h, scene.solver.t_end, " s");
   check_output_folder(output_folder(args, scene.name));  // before the ladder runs
-  return write_and_print(args, run_building_convergence(scene, options), scene.name, 1.0);
+  return write_and_print(args, run_convergence(scene, options), scene.name, 1.0);
 }
 
 int converge_command(const ConvergeArgs& args) {
@@ -158,9 +154,9 @@ int converge_command(const ConvergeArgs& args) {
     PlotStyle style;
     plot_target(args.plot, {}, "", &style, "--plot");
   }
-  if (is_building_scene(args.scene)) return converge_building(args);
   Scene scene = load_scene(args.scene, args.overrides, args.unsets);
   for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
+  if (!scene.two_block()) return converge_building(args, std::move(scene));
   RunWatch::Options watching = watch_options(false, args.allow_long);  // each run of the ladder: estimated, shown
   watching.time_scale = scene.scales.time;
   watching.h_unit = scene.scales.si ? " s" : " (dimensionless)";
@@ -168,14 +164,13 @@ int converge_command(const ConvergeArgs& args) {
   scene.watch = &watch;
   ConvergenceOptions options;
   if (!args.schemes.empty()) {
-    options.schemes.clear();
     for (const auto& name : args.schemes) {
       Scheme s;
       if (!parse_enum(name, &s)) throw InputError("--schemes: " + escaped_excerpt(name) + " is not a scheme; expected " + scheme_names());
       options.schemes.push_back(s);
     }
   }
-  options.engines = engines_of(args, options.engines);
+  options.engines = engines_of(args, {HistoryEngine::direct});
   for (double h : args.steps) options.steps.push_back(h / scene.scales.time);
   std::string error;
   if (!options.IsValid(&error)) throw InputError("--steps/--schemes/--history: " + error);

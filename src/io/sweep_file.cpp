@@ -420,7 +420,7 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   spec.scenes = scenes;
   if (scenes->building()) {
     // Checked whole, as `adjoin run` would read it (its own errors name its file and line).
-    prepare_building_sweep(spec, scenes->building_base().structure);
+    prepare_building_sweep(spec, scenes->base().structure);
     for (const auto& axis : spec.axes)
       for (const auto& c : spec.channel_columns)
         if (axis.name == c.name)

@@ -95,13 +95,13 @@ SceneSweepScenes::~SceneSweepScenes() = default;
 
 bool SceneSweepScenes::building() const { return base_->building; }
 
-RunSpec SceneSweepScenes::base() const { return detail::scene_from_tree(base_->tree, base_->name, {}, {}, &base_->tree); }
-
-RunSpec SceneSweepScenes::building_base() const {
-  return detail::building_scene_from_tree(base_->tree, base_->file, {}, {});
+RunSpec SceneSweepScenes::base() const {
+  if (base_->building) return detail::building_scene_from_tree(base_->tree, base_->file, {}, {});
+  return detail::scene_from_tree(base_->tree, base_->name, {}, {}, &base_->tree);
 }
 
 RunSpec SceneSweepScenes::scene(const SweepSpec& spec, std::size_t index) const {
+  if (base_->building) return building_scene(spec, index);
   const auto settings = spec.settings(index);
   std::vector<std::string> overrides, unset;
   gather_edits(base_->source, settings, overrides, unset);

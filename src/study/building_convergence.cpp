@@ -1,4 +1,4 @@
-#include "adjoin/study/building_convergence.hpp"
+#include "building_convergence.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -86,21 +86,17 @@ bool is_switch(const std::string& name) { return name.find(" switch ") != std::s
 
 }  // namespace
 
-bool BuildingConvergenceOptions::IsValid(std::string* error) const {
-  auto fail = [&](const std::string& m) {
-    if (error) *error = m;
-    return false;
-  };
-  if (engines.empty()) return fail("no history engines to compare");
-  for (double h : steps)
-    if (!(std::isfinite(h) && h > 0.0)) return fail("every step must be a positive number of seconds (got " + number(h) + ")");
-  if (!(reference_factor >= 2.0)) return fail("the reference run must be at least 2 times finer");
-  return true;
-}
-
-ConvergenceResult run_building_convergence(const RunSpec& spec, const BuildingConvergenceOptions& options) {
-  std::string error;
-  if (!options.IsValid(&error)) throw InputError(error);
+ConvergenceResult detail::building_convergence(const RunSpec& given, const ConvergenceOptions& options) {
+  if (options.schemes.size() > 1) throw InputError("a building takes one scheme, implicit or implicit-damped");
+  RunSpec spec = given;
+  for (Scheme scheme : options.schemes) {
+    if (scheme != Scheme::implicit && scheme != Scheme::implicit_damped)
+      throw InputError(to_string(scheme) + ": a building runs the structure step, implicit or implicit-damped; the other "
+                       "schemes are the two-block system's");
+    spec.solver = with_scheme(spec.solver, scheme);
+    spec.solver.restart = scheme == Scheme::implicit ? StructureSolverOptions::Restart::automatic
+                                                      : StructureSolverOptions::Restart::always;
+  }
   std::vector<double> steps = options.steps;
   if (steps.empty())
     for (double f : {4.0, 2.0, 1.0, 0.5, 0.25}) steps.push_back(spec.solver.h * f);

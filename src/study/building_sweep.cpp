@@ -227,7 +227,7 @@ void prepare_building_sweep(SweepSpec& spec, const structure::Structure& base) {
 RunSpec building_sweep_scene(const SweepSpec& spec, std::size_t index) {
   if (!spec.scenes)
     throw std::logic_error("building_sweep_scene: the sweep has no SweepScenes (read it with load_sweep or parse_sweep)");
-  RunSpec scene = spec.scenes->building_scene(spec, index);
+  RunSpec scene = spec.scenes->scene(spec, index);
   check_groups(spec, index, spec.settings(index), scene.structure);
   return scene;
 }

@@ -1,5 +1,7 @@
 #include "adjoin/study/convergence.hpp"
 
+#include "building_convergence.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -98,17 +100,19 @@ std::string number(double v) {
 
 bool ConvergenceOptions::IsValid(std::string* error) const {
   auto fail = [&](const std::string& m) { if (error) *error = m; return false; };
-  if (schemes.empty()) return fail("no schemes to compare");
-  if (engines.empty()) return fail("no history engines to compare");
   for (double h : steps)
     if (!(std::isfinite(h) && h > 0.0)) return fail("every step must be a positive number (got " + number(h) + ")");
   if (!(reference_factor >= 2.0)) return fail("the reference run must be at least 2 times finer");
   return true;
 }
 
-ConvergenceResult run_convergence(const RunSpec& scene, const ConvergenceOptions& options) {
+ConvergenceResult run_convergence(const RunSpec& scene, const ConvergenceOptions& asked) {
   std::string error;
-  if (!options.IsValid(&error)) throw InputError(error);
+  if (!asked.IsValid(&error)) throw InputError(error);
+  ConvergenceOptions options = asked;
+  if (options.engines.empty()) options.engines = {scene.two_block() ? HistoryEngine::direct : HistoryEngine::fft};
+  if (!scene.two_block()) return detail::building_convergence(scene, options);
+  if (options.schemes.empty()) options.schemes = {Scheme::paper, Scheme::implicit_gl, Scheme::implicit};
   std::vector<double> steps = options.steps;
   if (steps.empty())
     for (double f : {4.0, 2.0, 1.0, 0.5, 0.25}) steps.push_back(scene.solver.h * f);

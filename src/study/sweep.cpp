@@ -163,6 +163,7 @@ void check_sweep_memory(const SweepSpec& spec, std::size_t runs) {
 }
 
 RunSpec sweep_scene(const SweepSpec& spec, std::size_t index) {
+  if (spec.building()) return building_sweep_scene(spec, index);  // (its edits' counts checked too)
   if (!spec.scenes) throw std::logic_error("sweep_scene: the sweep has no SweepScenes (read it with load_sweep or parse_sweep)");
   return spec.scenes->scene(spec, index);
 }

@@ -19,14 +19,13 @@ class SceneSweepScenes final : public SweepScenes {
   ~SceneSweepScenes() override;
   // True if the base is a building scene (SPEC §5: it has a [building] table).
   bool building() const;
-  // The base scene without edits (a two-block base), checked as `adjoin run BASE` checks it.
+  // The base scene without edits, checked as `adjoin run BASE` checks it.
   RunSpec base() const;
-  // The base without edits (a building base), checked as `adjoin run BASE` checks it.
-  RunSpec building_base() const;
   RunSpec scene(const SweepSpec& spec, std::size_t index) const override;
-  RunSpec building_scene(const SweepSpec& spec, std::size_t index) const override;
 
  private:
+  // A building base's run: its edits made as --set makes them (io/structure_edits.hpp).
+  RunSpec building_scene(const SweepSpec& spec, std::size_t index) const;
   struct Base;
   std::unique_ptr<const Base> base_;
 };

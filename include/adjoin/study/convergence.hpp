@@ -1,6 +1,6 @@
 #pragma once
 // Convergence and work-precision: error against run time for each scheme and history engine
-// on a ladder of steps.
+// on a ladder of steps, for any spec (a building's ladder: src/study/building_convergence.cpp).
 //
 //     ConvergenceResult result = run_convergence(scene, options);
 //
@@ -31,9 +31,15 @@
 namespace adjoin {
 
 struct ConvergenceOptions {
-  std::vector<Scheme> schemes = {Scheme::paper, Scheme::implicit_gl, Scheme::implicit};
-  std::vector<HistoryEngine> engines = {HistoryEngine::direct};
-  std::vector<double> steps;  // dimensionless h; empty: the scene's h times 4, 2, 1, 1/2, 1/4
+  // The schemes compared. Empty: a two-block spec's paper, implicit-gl and implicit; a
+  // building's own scheme. A building takes one, implicit or implicit-damped (the structure
+  // step's two restart rules).
+  std::vector<Scheme> schemes;
+  // The history engines compared. Empty: direct for a two-block spec, fft for a building.
+  std::vector<HistoryEngine> engines;
+  // In the spec's time unit (dimensionless for a two-block spec, s for a building); empty: the
+  // spec's h times 4, 2, 1, 1/2, 1/4.
+  std::vector<double> steps;
   double reference_factor = 8.0;
   bool IsValid(std::string* error) const;
 };
@@ -64,6 +70,8 @@ struct ConvergenceResult {
   std::vector<ConvergenceRow> rows;
 };
 
+// A building's ladder is study/building_convergence.cpp's (its header comment says what it
+// compares); a two-block spec's is the one above.
 ConvergenceResult run_convergence(const RunSpec& scene, const ConvergenceOptions& options);
 
 }  // namespace adjoin

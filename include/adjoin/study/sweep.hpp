@@ -87,10 +87,9 @@ struct SweepRow;
 class SweepScenes {
  public:
   virtual ~SweepScenes() = default;
-  // The description of run `index` of a two-block sweep, of a building sweep (InputError
-  // prefixed with the sweep file, the line of the edit that caused it and the run).
+  // The description of run `index` (InputError prefixed with the sweep file, the line of the
+  // edit that caused it and the run).
   virtual RunSpec scene(const SweepSpec& spec, std::size_t index) const = 0;
-  virtual RunSpec building_scene(const SweepSpec& spec, std::size_t index) const = 0;
 };
 
 // Where finished rows go (io's journal, io/sweep_files.hpp, writes them as they come, so that

@@ -1,9 +1,8 @@
 #pragma once
 // Convergence of a building run (SPEC §5) on a ladder of steps: every reported quantity's error
 // against a much finer run, with its observed order, in the table `adjoin converge` prints
-// and writes for two-block scenes (study/convergence.hpp's ConvergenceResult).
-//
-//     ConvergenceResult result = run_building_convergence(spec, options);
+// and writes for two-block scenes (study/convergence.hpp's ConvergenceResult); run_convergence
+// calls it for a building.
 //
 // The ladder is the spec's h times 4, 2, 1, 1/2, 1/4 unless steps are given (each must divide
 // the largest an integer number of times); the reference is the structure step at
@@ -24,15 +23,9 @@
 #include "adjoin/study/convergence.hpp"
 #include "adjoin/study/run_spec.hpp"
 
-namespace adjoin {
+namespace adjoin::detail {
 
-struct BuildingConvergenceOptions {
-  std::vector<HistoryEngine> engines = {HistoryEngine::fft};
-  std::vector<double> steps;  // s; empty: the spec's h times 4, 2, 1, 1/2, 1/4
-  double reference_factor = 8.0;
-  bool IsValid(std::string* error) const;
-};
+// `options` valid, its schemes and engines given (run_convergence fills the defaults).
+ConvergenceResult building_convergence(const RunSpec& spec, const ConvergenceOptions& options);
 
-ConvergenceResult run_building_convergence(const RunSpec& spec, const BuildingConvergenceOptions& options);
-
-}  // namespace adjoin
+}  // namespace adjoin::detail
