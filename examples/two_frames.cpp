@@ -6,7 +6,7 @@
 //
 //     two_frames [RECORD.AT2]     (default records/real/peer/RSN1044_DirRot2.AT2)
 #include <adjoin/core/errors.hpp>
-#include <adjoin/io/building_files.hpp>
+#include <adjoin/io/summary.hpp>
 #include <adjoin/observe/channel_recorder.hpp>
 #include <adjoin/structure/builder.hpp>
 #include <adjoin/study/builder.hpp>
@@ -33,7 +33,7 @@ int main(int argc, char** argv) {
     adjoin::ChannelRecorder recorder({"A.x5", "link1.force"});
     const adjoin::Report report = adjoin::run(spec, {&recorder});
     const adjoin::ErrorEstimate estimate = adjoin::estimate_error(spec, report);  // as `adjoin run` does
-    std::cout << adjoin::building_brief_report(spec, report, &estimate);
+    std::cout << adjoin::brief_report(spec, report, &estimate);
     std::printf("recorded %zu rows of %zu channels; A.x5 at t = %.1f s: %+.5f m\n", static_cast<std::size_t>(recorder.times().size()),
                 recorder.names().size(), recorder.times()[5000], recorder.values()(5000, 0));
     return 0;

@@ -1,4 +1,4 @@
-// Convergence of building runs (study/building_convergence.hpp, `adjoin converge` on a
+// Convergence of building runs (study/convergence.hpp run_convergence, `adjoin converge` on a
 // building scene): every reported quantity's error against a finer run with its observed
 // order. The structure step is trapezoidal: on a linear structure every smooth quantity
 // converges at order 2; with a friction damper the displacements and the switching instants still do,

@@ -7,7 +7,7 @@
 //     BuildingRunOptions o;
 //     o.h = 0.002;                                         // or leave it: chosen for a tolerance
 //     RunSpec spec = building_run_spec(std::move(s), record_ground("RSN1044.AT2"), o);
-//     Report report = run(spec);          // study/building_run.hpp
+//     Report report = run(spec);          // study/run.hpp
 //
 // Errors are FieldError (adjoin/core/errors.hpp) naming the field: "ground.scale_pga", "solver.h".
 // Every value in SI units (s, m, g for the ground's a_g).

@@ -17,7 +17,7 @@
 // ground-motion intensity measures of the forcing the solver actually saw (PGA; Sa(T, damping)
 // at the sweep's im_periods). A NumericalError is recorded in the row's `error`; an InputError
 // stops the sweep with the sweep file, the run and the key. A building scene as the base
-// (SPEC §5) runs as `adjoin run` runs it (study/building_run.hpp), its columns generated from its
+// (SPEC §5) runs as `adjoin run` runs it (study/run.hpp), its columns generated from its
 // structure's channels (study/building_sweep.hpp). Finished rows go to a SweepRowSink (io's
 // journal, io/sweep_files.hpp, is the one a resumed sweep reads back).
 //
