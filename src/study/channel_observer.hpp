@@ -92,60 +92,80 @@ class ChannelObserver final : public StructureObserver {
       contacts_[static_cast<std::size_t>(e.contact)].impact_list.push_back(e);
   }
 
-  // Powers at a grid point, integrated by the trapezoidal rule between grid points.
+  // Powers at a grid point, integrated by the trapezoidal rule between grid points: per
+  // building its input, its inherent damping and each storey, then each link. Everything is
+  // kept in arrays sized at the first grid point, so a step allocates nothing.
   void energy_step(const StructureState& st) {
-    std::vector<double> power;
+    std::size_t k = 0;
+    std::size_t part = 0;
     auto building = [&](const structure::Building& b, int offset, const Eigen::MatrixXd& c) {
       const int n = b.floors();
-      const Eigen::VectorXd v = st.v.segment(offset, n);
-      power.push_back(st.ag * b.masses.dot(v));        // input
-      power.push_back(v.dot(c * v));                   // inherent damping
-      for (int i = 0; i < n; ++i) power.push_back(st.storey_force[offset + i] * (v[i] - (i > 0 ? v[i - 1] : 0.0)));
+      Eigen::VectorXd& v = v_[part];
+      v = st.v.segment(offset, n);
+      cv_[part].noalias() = c * v;
+      power_[k++] = st.ag * b.masses.dot(v);  // input
+      power_[k++] = v.dot(cv_[part]);         // inherent damping
+      for (int i = 0; i < n; ++i) power_[k++] = st.storey_force[offset + i] * (v[i] - (i > 0 ? v[i - 1] : 0.0));
+      kinetic_[part++] = 0.5 * v.dot(b.masses.cwiseProduct(v));
     };
+    if (first_) {
+      std::size_t count = 2 + static_cast<std::size_t>(s_.a.floors()) + s_.links.size();
+      if (s_.b) count += 2 + static_cast<std::size_t>(s_.b->floors());
+      power_.assign(count, 0.0);
+      last_powers_.assign(count, 0.0);
+      work_.assign(count, 0.0);
+      kinetic_.assign(s_.b ? 2 : 1, 0.0);
+      v_.assign(kinetic_.size(), Eigen::VectorXd());
+      cv_.assign(kinetic_.size(), Eigen::VectorXd());
+    }
     building(s_.a, 0, c_[0]);
     if (s_.b) building(*s_.b, s_.a.floors(), c_[1]);
-    for (std::size_t l = 0; l < s_.links.size(); ++l) power.push_back(st.link_force[l] * st.link_velocity[l]);
+    for (std::size_t l = 0; l < s_.links.size(); ++l) power_[k++] = st.link_force[l] * st.link_velocity[l];
     if (!first_) {
       const double dt = st.t - last_t_;
-      for (std::size_t k = 0; k < power.size(); ++k) work_[k] += 0.5 * dt * (power[k] + last_powers_[k]);
-    } else {
-      work_.assign(power.size(), 0.0);
+      for (std::size_t j = 0; j < power_.size(); ++j) work_[j] += 0.5 * dt * (power_[j] + last_powers_[j]);
     }
-    last_powers_ = power;
-    // Unpack into the report.
-    energy_ = BuildingEnergy{};
-    std::size_t k = 0;
-    auto unpack = [&](const structure::Building& b, int offset) {
-      BuildingEnergy::Part part;
-      part.input = work_[k++];
-      part.inherent = work_[k++];
-      for (int i = 0; i < b.floors(); ++i) part.storeys.push_back(work_[k++]);
-      const Eigen::VectorXd v = st.v.segment(offset, b.floors());
-      part.kinetic = 0.5 * v.dot(b.masses.cwiseProduct(v));
-      energy_.input += part.input;
-      energy_.buildings.push_back(part);
-    };
-    unpack(s_.a, 0);
-    if (s_.b) unpack(*s_.b, s_.a.floors());
-    for (std::size_t l = 0; l < s_.links.size(); ++l) energy_.links.push_back(work_[k++]);
-    double out = 0.0;
-    for (const auto& part : energy_.buildings) {
-      out += part.kinetic + part.inherent;
-      for (double w : part.storeys) out += w;
-    }
-    for (double w : energy_.links) out += w;
-    energy_.contacts = contact_work_;  // exact from the solver, not integrated here
-    for (double w : energy_.contacts) out += w;
-    energy_.residual = energy_.input - out;
+    std::swap(power_, last_powers_);
+    // The input so far (the contact check's scale), summed as energy() sums it.
+    input_ = 0.0;
+    input_ += work_[0];
+    if (s_.b) input_ += work_[2 + static_cast<std::size_t>(s_.a.floors())];
   }
-  const BuildingEnergy& energy() const { return energy_; }
+
+  // The balance at the last grid point (see BuildingEnergy).
+  BuildingEnergy energy() const {
+    BuildingEnergy e;
+    std::size_t k = 0, part = 0;
+    auto unpack = [&](const structure::Building& b) {
+      BuildingEnergy::Part p;
+      p.input = work_.at(k++);
+      p.inherent = work_.at(k++);
+      for (int i = 0; i < b.floors(); ++i) p.storeys.push_back(work_.at(k++));
+      p.kinetic = kinetic_.at(part++);
+      e.input += p.input;
+      e.buildings.push_back(p);
+    };
+    unpack(s_.a);
+    if (s_.b) unpack(*s_.b);
+    for (std::size_t l = 0; l < s_.links.size(); ++l) e.links.push_back(work_.at(k++));
+    double out = 0.0;
+    for (const auto& p : e.buildings) {
+      out += p.kinetic + p.inherent;
+      for (double w : p.storeys) out += w;
+    }
+    for (double w : e.links) out += w;
+    e.contacts = contact_work_;  // exact from the solver, not integrated here
+    for (double w : e.contacts) out += w;
+    e.residual = e.input - out;
+    return e;
+  }
 
   // Every contact law stores or dissipates the work done on it, never gives back more: a pair
   // whose dissipated energy falls below -1 % of the input so far has a step too long for its
   // stiffness (with a friction damper on the same floors the two are split within the step,
   // and a very stiff contact breaks that split). A wrong answer would follow: exit 3.
   void check_contact_energy(double t) {
-    input_scale_ = std::max(input_scale_, std::abs(energy_.input));
+    input_scale_ = std::max(input_scale_, std::abs(input_));
     for (std::size_t k = 0; k < contacts_.size(); ++k) {
       const double created = -contacts_[k].dissipated;
       if (!(created > 1e-2 * input_scale_)) continue;
@@ -200,8 +220,10 @@ class ChannelObserver final : public StructureObserver {
   std::vector<double> contact_work_;  // the solver's contact_work at the last grid point
   std::vector<Phase> last_phase_;
   std::vector<Eigen::MatrixXd> c_;  // inherent damping matrices
-  std::vector<double> work_, last_powers_;
-  BuildingEnergy energy_;
+  std::vector<double> power_, last_powers_, work_;  // per power term (energy_step)
+  std::vector<double> kinetic_;                      // per building, at the last grid point
+  std::vector<Eigen::VectorXd> v_, cv_;              // per building: its velocities, C v
+  double input_ = 0.0;                               // the input so far [J]
   std::vector<double> last_power_;
   double last_t_ = 0.0;
   double input_scale_ = 0.0;  // the largest |input energy| so far [J]
