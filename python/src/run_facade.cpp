@@ -3,9 +3,6 @@
 // this file only.
 #include "run_facade.hpp"
 
-#include <unistd.h>
-
-#include <atomic>
 #include <cstdio>
 #include <map>
 #include <sstream>
@@ -17,6 +14,7 @@
 #include "adjoin/io/building_files.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/run_files.hpp"
+#include "adjoin/io/run_outputs.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/io/summary.hpp"
@@ -55,44 +53,14 @@ bool text_is_building_scene(const std::string& text, const fs::path& file) {
   }
 }
 
-std::string read_if_there(const fs::path& file) {
-  std::string text;
-  std::FILE* f = std::fopen(file.c_str(), "rb");
-  if (!f) return text;
-  char buffer[1 << 16];
-  for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, f)) > 0;) text.append(buffer, n);
-  std::fclose(f);
-  return text;
-}
-
-// A folder of its own for one run, removed when the run is over (whatever happens).
-class PrivateFolder {
- public:
-  PrivateFolder() {
-    static std::atomic<unsigned long> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("adjoin-python-" + std::to_string(::getpid()) + "-" + std::to_string(counter++)) / "out";
-  }
-  ~PrivateFolder() {
-    std::error_code ignored;
-    fs::remove_all(path_.parent_path(), ignored);
-  }
-  PrivateFolder(const PrivateFolder&) = delete;
-  PrivateFolder& operator=(const PrivateFolder&) = delete;
-  const fs::path& path() const { return path_; }
-
- private:
-  fs::path path_;
-};
-
-// The texts a run left in its folder.
-RunTexts texts_in(const fs::path& dir) {
+// The texts a run wrote.
+RunTexts texts_in(const MemoryOutputs& out) {
   RunTexts texts;
-  texts.summary_json = read_if_there(dir / "summary.json");
-  texts.timeseries_csv = read_if_there(dir / "timeseries.csv");
-  texts.impacts_csv = read_if_there(dir / "impacts.csv");
-  texts.spectra_csv = read_if_there(dir / "spectra.csv");
-  texts.energy_csv = read_if_there(dir / "energy.csv");
+  texts.summary_json = out.text("summary.json");
+  texts.timeseries_csv = out.text("timeseries.csv");
+  texts.impacts_csv = out.text("impacts.csv");
+  texts.spectra_csv = out.text("spectra.csv");
+  texts.energy_csv = out.text("energy.csv");
   return texts;
 }
 
@@ -104,7 +72,7 @@ RunWatch::Options watching(const RunRequest& request) {
   return o;
 }
 
-// One run as `adjoin run` makes it (io/run_files.hpp), its files read back as texts.
+// One run as `adjoin run` makes it (io/run_files.hpp), its files' texts kept in memory.
 RunTexts run_scene(Scene scene, const RunRequest& request) {
   scene.output.timeseries = scene.output.timeseries && request.timeseries;
   if (request.every > 0) scene.output.every = request.every;
@@ -114,9 +82,9 @@ RunTexts run_scene(Scene scene, const RunRequest& request) {
   o.h_unit = scene.scales.si ? " s" : " (dimensionless)";
   RunWatch watch(std::move(o));
   scene.watch = &watch;
-  PrivateFolder dir;
-  const RunFiles files = run_to_folder(scene, dir.path());
-  RunTexts texts = texts_in(dir.path());
+  MemoryOutputs out;
+  const RunFiles files = run_to(scene, out);
+  RunTexts texts = texts_in(out);
   texts.brief = brief_report(scene, files.report, files.estimate ? &*files.estimate : nullptr,
                              files.tolerant ? &*files.tolerant : nullptr);
   return texts;

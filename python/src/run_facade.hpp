@@ -4,11 +4,9 @@
 // binds stable, typed parts of the library (records, spectra, modes).
 //
 // A scene is one RunSpec (study/run_spec.hpp: a building, or the paper's two blocks), read by
-// io/scene.hpp load_scene and run by study/run.hpp run(). The texts `adjoin run` writes are made
-// by io/run_files.hpp while its files are written; to give Python the very texts `adjoin run`
-// writes (bit for bit), run() has run_to_folder write into a private temporary folder, reads the
-// texts back and removes the folder. (The summary could be made from the Report in memory;
-// timeseries.csv is streamed by its writer, which writes to a stream.)
+// io/scene.hpp load_scene and run by study/run.hpp run(). The texts are the very ones `adjoin
+// run` writes (bit for bit): io/run_files.hpp run_to writes them into memory
+// (io/run_outputs.hpp MemoryOutputs) instead of a folder; no file is touched.
 #include <filesystem>
 #include <memory>
 #include <string>

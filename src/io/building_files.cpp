@@ -194,7 +194,7 @@ ordered_json building_error_json(const BuildingScene& scene, const ErrorEstimate
 // rung it tries into the same file, and the rung it keeps is the last one written.
 class RestartingWriter final : public StructureObserver {
  public:
-  RestartingWriter(FileSet& set, StructureObserver& writer) : set_(set), writer_(writer) {}
+  RestartingWriter(RunOutputs& set, StructureObserver& writer) : set_(set), writer_(writer) {}
   void begin(const structure::Structure& s, const StructureSolverOptions& o) override {
     if (started_) set_.restart();
     started_ = true;
@@ -205,7 +205,7 @@ class RestartingWriter final : public StructureObserver {
   void end() override { writer_.end(); }
 
  private:
-  FileSet& set_;
+  RunOutputs& set_;
   StructureObserver& writer_;
   bool started_ = false;
 };
@@ -421,10 +421,7 @@ std::string building_impacts_csv(const Report& r) {
   return out;
 }
 
-RunFiles run_building_to_folder(const BuildingScene& scene, const std::filesystem::path& dir,
-                                     const RunWarning& warn) {
-  check_output_folder(dir);  // before the run: the folder itself is made by the set's commit
-  FileSet set(dir, {"summary.json", "timeseries.csv", "energy.csv", "spectra.csv", "impacts.csv"});
+RunFiles run_building_to(const BuildingScene& scene, RunOutputs& set, const RunWarning& warn) {
   std::unique_ptr<BuildingCsvWriter> writer;
   std::unique_ptr<RestartingWriter> restarting;
   if (scene.output.timeseries) {

@@ -6,6 +6,7 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
+#include "adjoin/io/output_place.hpp"
 #include "adjoin/io/building_files.hpp"
 #include "adjoin/io/energy_csv.hpp"
 #include "adjoin/io/impacts_csv.hpp"
@@ -27,7 +28,7 @@ namespace {
 // (Cheaper than running the kept rung again with the writers attached.)
 class RestartingStreams final : public Observer {
  public:
-  RestartingStreams(FileSet& set, ObserverList& writers) : set_(set), writers_(writers) {}
+  RestartingStreams(RunOutputs& set, ObserverList& writers) : set_(set), writers_(writers) {}
   void begin(const RunInfo& info) override {
     if (started_) set_.restart();
     started_ = true;
@@ -38,7 +39,7 @@ class RestartingStreams final : public Observer {
   void end() override { writers_.end(); }
 
  private:
-  FileSet& set_;
+  RunOutputs& set_;
   ObserverList& writers_;
   bool started_ = false;
 };
@@ -46,10 +47,13 @@ class RestartingStreams final : public Observer {
 }  // namespace
 
 RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir, const RunWarning& warn) {
-  if (!scene.two_block()) return run_building_to_folder(scene, dir, warn);
   check_output_folder(dir);  // before the run: the folder itself is made by the set's commit
+  FolderOutputs set(dir, run_file_names());
+  return run_to(scene, set, warn);
+}
 
-  FileSet set(dir, run_file_names());
+RunFiles run_to(const Scene& scene, RunOutputs& set, const RunWarning& warn) {
+  if (!scene.two_block()) return run_building_to(scene, set, warn);
   // Streamed outputs: each writer sees the grid points as they are computed.
   std::vector<std::unique_ptr<Observer>> writers;
   ObserverList streams;

@@ -34,7 +34,8 @@ std::string building_brief_report(const BuildingScene& scene, const Report& repo
 std::string building_impacts_csv(const Report& report);
 // Told, before a run starts writing, what is valid but probably unintended ("timeseries.csv
 // will be about 504 MB ..."): the command line prints it on stderr as a warning.
-RunFiles run_building_to_folder(const BuildingScene& scene, const std::filesystem::path& dir, const RunWarning& warn = {});
+// A building scene's files (io/run_files.hpp run_to calls it).
+RunFiles run_building_to(const BuildingScene& scene, RunOutputs& outputs, const RunWarning& warn = {});
 
 // The rows of timeseries.csv: every output.every-th grid point when the scene gives it; else,
 // with a step the scene gives (solver.h), every grid point; else (a step chosen for a

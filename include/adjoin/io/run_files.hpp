@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "adjoin/io/scene.hpp"
+#include "adjoin/io/run_outputs.hpp"
 #include "adjoin/study/error_estimate.hpp"
 #include "adjoin/study/run.hpp"
 
@@ -42,5 +43,8 @@ const std::vector<std::string>& run_file_names();
 // writing, what is valid but probably unintended ("timeseries.csv will be about 504 MB ...").
 using RunWarning = std::function<void(const std::string&)>;
 RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir, const RunWarning& warn = {});
+// The same files written to `outputs` (io/run_outputs.hpp: a folder, or memory), committed at
+// the end; `written` then names them as the outputs do.
+RunFiles run_to(const Scene& scene, RunOutputs& outputs, const RunWarning& warn = {});
 
 }  // namespace adjoin
