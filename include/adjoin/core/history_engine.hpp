@@ -6,9 +6,9 @@
 
 namespace adjoin {
 
-enum class HistoryEngine { direct, fft };
+enum class HistoryEngine { direct, fft, soe };
 
-// "direct" / "fft"; parse returns false on an unknown name.
+// "direct" / "fft" / "soe"; parse returns false on an unknown name.
 std::string to_string(HistoryEngine engine);
 bool parse_history_engine(const std::string& name, HistoryEngine* engine);
 
