@@ -178,6 +178,7 @@ BuildingScene detail::building_scene_from_tree(const toml::table& parsed, const 
     b.t_end_rule = t_end.rule;
   }
   b.solver.history = b.base.solver.history;
+  b.solver.history_tolerance = b.base.solver.history_tolerance;
   b.solver.restart = restart_for_scheme(b.base.solver.scheme, parsed, file.string(), overrides);
   std::string error;
   if (!b.solver.IsValid(&error)) throw InputError(file.string() + ": " + error);

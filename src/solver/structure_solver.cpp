@@ -153,6 +153,8 @@ bool StructureSolverOptions::IsValid(std::string* error) const {
   if (!(std::isfinite(h) && h > 0.0)) return fail("solver.h must be a positive step (s)");
   if (!(std::isfinite(t_end) && t_end > 0.0)) return fail("solver.t_end must be a positive duration (s)");
   if (const std::string problem = step_count_problem(t_end, h); !problem.empty()) return fail(problem);
+  if (!(history_tolerance > 0.0 && history_tolerance < 1.0))
+    return fail("solver.history_tolerance must lie in (0, 1) (a relative error of the weights)");
   return true;
 }
 
@@ -236,6 +238,16 @@ class StructureStepper {
     std::size_t bytes = 0;
     for (const auto& e : zener) bytes += e.law->bytes();
     return bytes;
+  }
+  double history_error() const {
+    double error = 0.0;
+    for (const auto& e : zener) error = std::max(error, e.law->weight_error());
+    return error;
+  }
+  std::size_t history_modes() const {
+    std::size_t modes = 0;
+    for (const auto& e : zener) modes = std::max(modes, e.law->modes());
+    return modes;
   }
   // The impacts to report before the state advance() returned (time_loop.hpp's impacts()).
   const std::vector<Impact>& impacts() const { return step_impacts; }
@@ -660,11 +672,14 @@ class StructureStepper {
     c = Eigen::MatrixXd::Zero(n, n);
     a.k0_dense = Eigen::MatrixXd::Zero(n, n);
     std::map<double, std::vector<double>> weights;  // per order
+    const WeightRule rule = options.quadrature == StructureSolverOptions::Quadrature::bdf2 ? WeightRule::bdf2
+                                                                                          : WeightRule::grunwald_letnikov;
     auto zener_law = [&](const structure::Zener& z) {
+      if (options.history == HistoryEngine::soe)  // made from the rule and order, no weights kept
+        return std::make_unique<detail::RodLaw>(
+            detail::make_rod_law(rod_of(z), z.k, h, options.history, rule, n_steps + 2, options.history_tolerance));
       auto& w = weights[z.order];
-      if (w.empty())
-        w = options.quadrature == StructureSolverOptions::Quadrature::bdf2 ? bdf2_weights(z.order, n_steps + 2)
-                                                                            : grunwald_letnikov_weights(z.order, n_steps + 2);
+      if (w.empty()) w = convolution_weights(rule, z.order, n_steps + 2);
       return std::make_unique<detail::RodLaw>(rod_of(z), z.k, h, options.history, w);
     };
     auto add_building = [&](const structure::Building& b, int offset) {
@@ -1177,6 +1192,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   summary.steps = r.steps;
   summary.wall_seconds = r.wall_seconds;
   summary.history_bytes = r.history_bytes;
+  summary.history_error = r.history_error;
+  summary.history_modes = r.history_modes;
   return summary;
 }
 
