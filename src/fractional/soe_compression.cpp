@@ -108,7 +108,7 @@ Local local_e(const Delta& d, double x, std::size_t n0) {
   return {e1, at, a * at + b * e1};
 }
 
-void pad(std::vector<double>& v) { v.resize((v.size() + 7) / 8 * 8, 0.0); }
+void pad(std::vector<double>& v) { v.resize((v.size() + 3) / 4 * 4, 0.0); }
 
 // The quadrature nodes x_q and weights C_q of w_n = -(sin(pi a)/pi) int_0^inf x^a e_n(x) dx for
 // n in [n0, N], by the trapezoidal rule with step `step` in u, x = exp(u - exp(-(u - u_c))), the
@@ -204,6 +204,8 @@ Built build(WeightRule rule, double order, double tolerance, std::size_t design,
   c.tolerance = tolerance;
   c.window = kWindow;
   c.near = convolution_weights(rule, order, kWindow);
+  c.near_reversed.assign(kWindow, 0.0);
+  for (std::size_t j = 1; j < kWindow; ++j) c.near_reversed[kWindow - j] = c.near[j];
   c.design_length = design;
   std::vector<double> xs, cs;
   add_nodes(d, order, kWindow, design, step, cut, exact, &xs, &cs);
@@ -272,7 +274,7 @@ double SoeCompression::weight(std::size_t n) const {
 }
 
 std::size_t SoeCompression::bytes() const {
-  return sizeof(*this) + (near.capacity() + decay.capacity() + gain.capacity() + a.capacity() + b.capacity() +
+  return sizeof(*this) + (near.capacity() + near_reversed.capacity() + decay.capacity() + gain.capacity() + a.capacity() + b.capacity() +
                           p.capacity() + r.capacity()) * sizeof(double);
 }
 

@@ -11,34 +11,34 @@ namespace {
 
 constexpr std::size_t kShift = 1024;  // values kept past the window before the line is shifted back
 
-// One step of the one-term modes (n a multiple of 8): s <- s + (g y - d s); returns sum s. Eight
-// independent partial sums, as in detail/dot.cpp, so the loop runs in vector registers.
+// One step of the one-term modes (n a multiple of 4): s <- s + (g y - d s); returns sum s.
+// Independent partial sums, as in detail/dot.cpp, so the loop runs in vector registers.
 ADJOIN_SIMD_CLONES
 double step_single(double* __restrict s, const double* __restrict decay, const double* __restrict gain, std::size_t n,
                    double y) {
-  double sum[8] = {};
-  for (std::size_t q = 0; q < n; q += 8)
-    for (std::size_t k = 0; k < 8; ++k) {
+  double sum[4] = {};
+  for (std::size_t q = 0; q < n; q += 4)
+    for (std::size_t k = 0; k < 4; ++k) {
       const double v = s[q + k] + (gain[q + k] * y - decay[q + k] * s[q + k]);
       s[q + k] = v;
       sum[k] += v;
     }
-  return ((sum[0] + sum[1]) + (sum[2] + sum[3])) + ((sum[4] + sum[5]) + (sum[6] + sum[7]));
+  return (sum[0] + sum[1]) + (sum[2] + sum[3]);
 }
 
 // One step of the two-term modes: s <- a s1 + b s2 + p y + r y_before, s2 <- s1, s1 <- s.
 ADJOIN_SIMD_CLONES
 double step_paired(double* __restrict s1, double* __restrict s2, const double* __restrict a, const double* __restrict b,
                    const double* __restrict p, const double* __restrict r, std::size_t n, double y, double y_before) {
-  double sum[8] = {};
-  for (std::size_t q = 0; q < n; q += 8)
-    for (std::size_t k = 0; k < 8; ++k) {
+  double sum[4] = {};
+  for (std::size_t q = 0; q < n; q += 4)
+    for (std::size_t k = 0; k < 4; ++k) {
       const double v = (a[q + k] * s1[q + k] + b[q + k] * s2[q + k]) + (p[q + k] * y + r[q + k] * y_before);
       s2[q + k] = s1[q + k];
       s1[q + k] = v;
       sum[k] += v;
     }
-  return ((sum[0] + sum[1]) + (sum[2] + sum[3])) + ((sum[4] + sum[5]) + (sum[6] + sum[7]));
+  return (sum[0] + sum[1]) + (sum[2] + sum[3]);
 }
 
 }  // namespace
@@ -69,8 +69,9 @@ void SoeHistory::push(double y) {
   if (!s1_.empty())
     far += step_paired(s1_.data(), s2_.data(), c_->a.data(), c_->b.data(), c_->p.data(), c_->r.data(), s1_.size(), y_n0,
                        y_after);
-  const std::size_t lags = std::min(n0 - 1, m);
-  lag_sum_ = far + detail::dot_reversed(recent_.data() + end_ - lags, c_->near.data() + lags, lags);
+  // sum_{j=1}^{n0-1} w_j y_{m-j} as a forward product of y_{m-n0}..y_{m-1} with 0, w_{n0-1}..w_1
+  // (the zeros before y_0 stand in for the values not pushed yet).
+  lag_sum_ = far + detail::dot(recent_.data() + end_ - n0, c_->near_reversed.data(), n0);
 }
 
 std::size_t SoeHistory::bytes() const {

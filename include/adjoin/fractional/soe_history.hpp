@@ -51,7 +51,8 @@ struct SoeCompression {
   double tolerance = 0.0;
   std::size_t window = 0;     // n0: lags 1..n0-1 are summed directly
   std::vector<double> near;   // the exact w_0..w_{n0-1}
-  // One-term modes (count `single`, padded with zeros to a multiple of 8):
+  std::vector<double> near_reversed;  // 0, w_{n0-1}, ..., w_1: the window's sum runs forwards
+  // One-term modes (count `single`, padded with zeros to a multiple of 4):
   //     s <- s + (gain y_{m-n0} - decay s),
   // mode k's weight at lag n >= n0 being gain_k (1 - decay_k)^(n - n0).
   std::size_t single = 0;
