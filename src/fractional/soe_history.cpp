@@ -9,7 +9,7 @@
 namespace adjoin {
 namespace {
 
-constexpr std::size_t kShift = 1024;  // values kept past the window before the line is shifted back
+constexpr std::size_t kShift = 223;  // values kept past the window before the line is shifted back (n0 + 1 + this = 256)
 
 // One step of the one-term modes (n a multiple of 4): s <- s + (g y - d s); returns sum s.
 // Independent partial sums, as in detail/dot.cpp, so the loop runs in vector registers.
