@@ -119,7 +119,7 @@ std::vector<HistoryEngine> engines_of(const ConvergeArgs& args, std::vector<Hist
   std::vector<HistoryEngine> engines;
   for (const auto& name : args.engines) {
     HistoryEngine e;
-    if (!parse_history_engine(name, &e)) throw InputError("--history: " + escaped_excerpt(name) + " must be direct or fft");
+    if (!parse_history_engine(name, &e)) throw InputError("--history: " + escaped_excerpt(name) + " must be direct, fft or soe");
     engines.push_back(e);
   }
   return engines;
