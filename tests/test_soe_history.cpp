@@ -4,6 +4,8 @@
 // building with Zener storeys, a friction link and a contact) against direct; order 2 kept;
 // constant history memory; the scene keys and the summary's bound.
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+
 #include <cmath>
 #include <random>
 
@@ -11,6 +13,7 @@
 #include "adjoin/fractional/soe_history.hpp"
 #include "adjoin/fractional/weights.hpp"
 #include "adjoin/io/building_scene.hpp"
+#include "adjoin/io/summary.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/study/run.hpp"
 #include "scene_helpers.hpp"
@@ -201,8 +204,12 @@ TEST_CASE("soe's history memory does not grow with the number of steps", "[soe][
 }
 
 TEST_CASE("solver.history = soe and solver.history_tolerance from a scene, the bound in the summary", "[soe][scene]") {
-  const RunReport r = run_scene(paper_scene("strong", {"solver.history=soe", "solver.history_tolerance=1e-9"}));
+  const Scene scene = paper_scene("strong", {"solver.history=soe", "solver.history_tolerance=1e-9"});
+  const RunReport r = run_scene(scene);
   CHECK(r.solver.history == "soe");
+  const auto summary = nlohmann::json::parse(summary_json(scene, r));
+  CHECK(summary["solver"]["history_error"].get<double>() == r.solver.history_error);
+  CHECK(summary["solver"]["history_modes"].get<std::size_t>() == r.solver.history_modes);
   CHECK(r.solver.history_error > 0.0);
   CHECK(r.solver.history_error <= 1e-9);
   CHECK(r.solver.history_modes > 10);
@@ -210,6 +217,7 @@ TEST_CASE("solver.history = soe and solver.history_tolerance from a scene, the b
   const RunReport exact = run_scene(paper_scene("strong", {"solver.history=fft"}));
   CHECK(exact.solver.history_error == 0.0);
   CHECK(exact.solver.history_modes == 0);
+  CHECK_FALSE(nlohmann::json::parse(summary_json(paper_scene("strong", {"solver.history=fft"}), exact))["solver"].contains("history_error"));
   CHECK_THROWS_WITH(paper_scene("strong", {"solver.history_tolerance=0"}), Catch::Contains("solver.history_tolerance"));
   CHECK_THROWS_WITH(paper_scene("strong", {"solver.history=sum"}), Catch::Contains("\"soe\""));
 }
