@@ -164,7 +164,7 @@ struct FftHistory::Spectra {
     std::size_t block = 0;  // L: y block length and weight partition length
     std::size_t parts = 0;  // P: partitions p = 1..P, lags [pL, (p+1)L), with pL <= N
     std::size_t windows = 0;  // windows k = 0..windows-1 (steps (k+1) L <= N)
-    PlanPair plans;         // length 2L
+    PlanPair plans;         // length 2L, planned on first use
     // weights[p-1]: spectrum of w_{pL}..w_{pL+L-1} (zero past N), zero-padded to 2L and scaled
     // by 1/(2L); made on first use.
     std::vector<FftwArray<fftw_complex>> weights;
@@ -213,7 +213,6 @@ FftHistory::FftHistory(std::vector<double> weights)
     level.block = block;
     level.windows = n_max / block;
     level.parts = std::min(kRatio - 1, level.windows);
-    level.plans = plan_cache().get(2 * block);
     level.weights.resize(level.parts);
     level.ring.resize(level.parts);
     level.ring_block.assign(level.parts, static_cast<std::size_t>(-1));
@@ -285,6 +284,9 @@ void FftHistory::add_window(std::size_t index, std::size_t m) {
   }
 
   const std::size_t half = block + 1;  // complex values of a length-2L real spectrum
+  // The level's transforms, planned on its first full window: a level whose windows are all
+  // formed directly or truncated (the last level of many runs) plans nothing.
+  if (level.plans.forward == nullptr) level.plans = plan_cache().get(2 * block);
   // Weight spectra, on first use (in place: reals in, spectrum out).
   for (std::size_t p = 1; p <= tiles; ++p) {
     auto& spectrum = level.weights[p - 1];
