@@ -23,9 +23,14 @@
 // every e_n with n <= N is nearly constant): for each n the integrand is analytic in a strip
 // about the real u axis and the rule converges geometrically, uniformly in n in relative
 // terms. The step and the ends of the range follow from the tolerance; the compression is
-// then VERIFIED against the exact weights (at every n up to 4096 and 64 n per octave beyond,
-// up to N), the step is refined until the largest relative error is within the tolerance,
-// and that largest error is reported as the bound (SoeCompression::error).
+// then VERIFIED against the exact weights (long double: Miller's recurrence at every n up to
+// 1024, Stirling's series for the Gamma ratio at 64 n per octave beyond, up to N), the step
+// is refined until the largest relative error is within the tolerance, and that largest
+// error is reported as the bound (SoeCompression::error; sampled, so a bound in practice:
+// tests/test_soe_history.cpp checks it at every lag below 8192). At 1e-12: Q = 85 to 90
+// recurrences for orders 0.05 to 0.95, errors 1e-14 to 1e-13, about 10M instructions to make.
+// Lags 1..n0-1 (n0 = 32) use the exact weights: the window keeps the right tail of the
+// integral (large x, where e_n decays like x^(-n/2)) short.
 //
 // Precision: a mode whose decay 1 - lambda is tiny (x ~ 1/N) is stored and stepped as
 // s <- s + (g y - d s) with d = 1 - lambda held to full relative precision, so its effective
