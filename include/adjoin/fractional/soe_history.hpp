@@ -28,7 +28,7 @@
 // is refined until the largest relative error is within the tolerance, and that largest
 // error is reported as the bound (SoeCompression::error; sampled, so a bound in practice:
 // tests/test_soe_history.cpp checks it at every lag below 8192). At 1e-12: Q = 85 to 90
-// recurrences for orders 0.05 to 0.95, errors 1e-14 to 1e-13, about 10M instructions to make.
+// recurrences for orders 0.05 to 0.95, errors 1e-14 to 1e-13, about 5M instructions to make.
 // Lags 1..n0-1 (n0 = 32) use the exact weights: the window keeps the right tail of the
 // integral (large x, where e_n decays like x^(-n/2)) short.
 //
