@@ -95,7 +95,11 @@ TEST_CASE("a looser soe tolerance takes fewer modes and keeps its bound", "[soe]
   CHECK(loose->error <= 1e-6);
   CHECK(largest_weight_error(*loose, std::size_t{1} << 20) < 1e-6);
   CHECK_THROWS_AS(soe_compression(WeightRule::bdf2, 1.0, 1e-12, 1000), std::invalid_argument);
-  CHECK_THROWS_AS(soe_compression(WeightRule::bdf2, 0.5, 0.0, 1000), std::invalid_argument);
+  CHECK_THROWS_AS(soe_compression(WeightRule::bdf2, 0.5, 1e-16, 1000), std::invalid_argument);
+  // At the smallest tolerance accepted the bound is still reported as found.
+  const auto finest = soe_compression(WeightRule::bdf2, 0.5, 1e-15, 1000);
+  CHECK(finest->error < 1e-13);
+  CHECK(finest->modes() < 200);
 }
 
 TEST_CASE("soe lag sums equal the direct engine's within the weights' bound", "[soe]") {
@@ -243,5 +247,6 @@ TEST_CASE("solver.history = soe and solver.history_tolerance from a scene, the b
   CHECK(exact.solver.history_modes == 0);
   CHECK_FALSE(nlohmann::json::parse(summary_json(paper_scene("strong", {"solver.history=fft"}), exact))["solver"].contains("history_error"));
   CHECK_THROWS_WITH(paper_scene("strong", {"solver.history_tolerance=0"}), Catch::Contains("solver.history_tolerance"));
+  CHECK_THROWS_WITH(paper_scene("strong", {"solver.history_tolerance=1e-16"}), Catch::Contains("[1e-15, 1)"));
   CHECK_THROWS_WITH(paper_scene("strong", {"solver.history=sum"}), Catch::Contains("\"soe\""));
 }

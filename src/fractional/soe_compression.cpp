@@ -20,6 +20,7 @@ constexpr std::size_t kDense = 1024;                     // verified at every la
 constexpr int kPerOctave = 64;                           // and at this many lags per octave above
 constexpr std::size_t kPairedLags = 400;  // two-term modes (|lambda| < 0.74) vanish beyond n0 + this
 constexpr double kPi = 3.14159265358979323846;
+constexpr int kMaxNodes = 2000;  // on either side of u_c (a tolerance of 1e-15 takes about 80)
 
 // delta(zeta) = d0 + d1 zeta + d2 zeta^2.
 struct Delta {
@@ -125,11 +126,11 @@ void add_nodes(const Delta& d, double order, std::size_t n0, std::size_t design,
     xs->push_back(x);
     cs->push_back(scale * step * std::pow(x, order) * x * (1.0 + grade));
   };
-  for (int k = 0;; --k) {  // towards x = 0: e_n(x) <= 1 there
+  for (int k = 0; k > -kMaxNodes; --k) {  // towards x = 0: e_n(x) <= 1 there
     node(uc + k * step);
     if (std::fabs(cs->back()) < cut * small_N) break;
   }
-  for (int k = 1;; ++k) {  // towards large x: e_n0 is the largest of those served
+  for (int k = 1; k < kMaxNodes; ++k) {  // towards large x: e_n0 is the largest of those served
     node(uc + k * step);
     const double x = xs->back();
     if (x > 1.0 && std::fabs(cs->back() * static_cast<double>(local_e(d, x, n0).at)) < cut * small_n) break;
@@ -151,8 +152,9 @@ void add_modes(const Delta& d, std::size_t n0, double x, double c, double neglig
     const double g1 = 2.0 * l1 * l1 * l2 / (l1 - l2), g2 = -2.0 * l1 * l2 * l2 / (l1 - l2);
     out->decay.push_back(t / (1.0 + t));
     out->gain.push_back(c * g1 * std::exp(-n0d * std::log1p(t)));
-    const double gain2 = c * g2 * std::pow(l2, n0d);  // l2 < 0.4: largest at lag n0, where w_n is
-    if (std::fabs(gain2) >= negligible) {              // the largest too; mostly 1e-13 of it
+    // l2 < 0.4: the second mode only matters at lags near n0; mostly below 1e-13 of w_n0 there.
+    const double gain2 = c * g2 * std::pow(l2, n0d);
+    if (std::fabs(gain2) >= negligible) {
       out->decay.push_back(1.0 - l2);
       out->gain.push_back(gain2);
     }
@@ -304,7 +306,8 @@ std::size_t SoeCompression::bytes() const {
 std::shared_ptr<const SoeCompression> soe_compression(WeightRule rule, double order, double tolerance,
                                                       std::size_t last_lag) {
   if (!(order > 0.0 && order < 1.0)) throw std::invalid_argument("soe history: the order must lie in (0, 1)");
-  if (!(tolerance > 0.0 && tolerance < 1.0)) throw std::invalid_argument("soe history: the tolerance must lie in (0, 1)");
+  if (!(tolerance >= 1e-15 && tolerance < 1.0))
+    throw std::invalid_argument("soe history: the tolerance must lie in [1e-15, 1)");
   static std::mutex mutex;
   static std::map<std::tuple<WeightRule, double, double>, std::shared_ptr<const SoeCompression>> cache;
   const std::lock_guard<std::mutex> lock(mutex);

@@ -153,8 +153,8 @@ bool StructureSolverOptions::IsValid(std::string* error) const {
   if (!(std::isfinite(h) && h > 0.0)) return fail("solver.h must be a positive step (s)");
   if (!(std::isfinite(t_end) && t_end > 0.0)) return fail("solver.t_end must be a positive duration (s)");
   if (const std::string problem = step_count_problem(t_end, h); !problem.empty()) return fail(problem);
-  if (!(history_tolerance > 0.0 && history_tolerance < 1.0))
-    return fail("solver.history_tolerance must lie in (0, 1) (a relative error of the weights)");
+  if (!(history_tolerance >= 1e-15 && history_tolerance < 1.0))
+    return fail("solver.history_tolerance must lie in [1e-15, 1) (a relative error of the weights)");
   return true;
 }
 

@@ -48,7 +48,8 @@ class ConvolutionHistory {
 std::unique_ptr<ConvolutionHistory> make_history(HistoryEngine engine, std::vector<double> weights);
 
 // A history for the weights w_0..w_{count-1} of `rule` at `order`; `tolerance` is soe's
-// relative weight error (the others are exact). soe needs 0 < order < 1.
+// relative weight error (the others are exact). soe needs 0 < order < 1 and a tolerance in
+// [1e-15, 1).
 std::unique_ptr<ConvolutionHistory> make_history(HistoryEngine engine, WeightRule rule, double order, std::size_t count,
                                                  double tolerance);
 

@@ -78,8 +78,9 @@ struct SoeCompression {
 };
 
 // The compression for lags up to at least `last_lag`, made on first use and cached per
-// (rule, order, tolerance) for the process (thread-safe). 0 < order < 1, tolerance > 0
-// (std::invalid_argument otherwise).
+// (rule, order, tolerance) for the process (thread-safe). 0 < order < 1, 1e-15 <= tolerance < 1
+// (std::invalid_argument otherwise; below about 1e-14 the reported error stays above the
+// tolerance: the weights are doubles).
 std::shared_ptr<const SoeCompression> soe_compression(WeightRule rule, double order, double tolerance,
                                                       std::size_t last_lag);
 
