@@ -4,7 +4,7 @@
 //
 // targets/: two 20-storey buildings, modal 5 % damping, a fractional Zener device in every
 // storey, three friction dampers, the 40 s Newhall record at h = 0.005 s (8,000 steps), with the
-// fft and the direct history, and with springs only (no history). storeys/N: the same with N
+// fft, the direct and the soe history, and with springs only (no history). storeys/N: the same with N
 // storeys each and the fft history, for the cost per step against the storey count;
 // storeys_springs/N: the same without the Zener devices (the mechanics alone).
 #include <benchmark/benchmark.h>
@@ -73,6 +73,7 @@ void run(benchmark::State& state, const Structure& s, HistoryEngine history) {
 
 void BM_zener_fft(benchmark::State& st) { run(st, pair_of(20, true), HistoryEngine::fft); }
 void BM_zener_direct(benchmark::State& st) { run(st, pair_of(20, true), HistoryEngine::direct); }
+void BM_zener_soe(benchmark::State& st) { run(st, pair_of(20, true), HistoryEngine::soe); }
 void BM_springs(benchmark::State& st) { run(st, pair_of(20, false), HistoryEngine::fft); }
 void BM_storeys(benchmark::State& st) { run(st, pair_of(static_cast<int>(st.range(0)), true), HistoryEngine::fft); }
 // The mechanics alone (no Zener devices, no history): with modal damping C is dense, so its
@@ -83,6 +84,7 @@ void BM_storeys_springs(benchmark::State& st) { run(st, pair_of(static_cast<int>
 
 BENCHMARK(BM_zener_fft)->Name("targets/2x20/zener/fft")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_zener_direct)->Name("targets/2x20/zener/direct")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_zener_soe)->Name("targets/2x20/zener/soe")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_springs)->Name("targets/2x20/springs")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_storeys)->Name("storeys")->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_storeys_springs)->Name("storeys_springs")->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);

@@ -1,8 +1,10 @@
 // History engines: a whole run of N + 1 steps (construction, then push and lag_sum each step)
-// for GL weights of order 0.53, direct against fft.
+// for GL weights of order 0.53, direct against fft against soe (tolerance 1e-12; its
+// compression is made once per process and shared, so it is made before the timing).
 //
 //   build/bench/bench_history                              all sizes (direct up to 2^17)
 //   build/bench/bench_history --benchmark_filter=fft       the fast engine only
+//   build/bench/bench_history --benchmark_filter='(fft|soe)/(16384|262144|4194304)$'   fft against soe
 //   build/bench/bench_history --benchmark_filter='fft/(1048576|1066667)$'   the solver's size
 //
 // Counters: time_per_step (s) = run time / N; bytes_per_step = bytes() / N. The direct engine
@@ -17,19 +19,23 @@
 #include <vector>
 
 #include "adjoin/fractional/history.hpp"
+#include "adjoin/fractional/soe_history.hpp"
 #include "adjoin/fractional/weights.hpp"
 
 namespace {
 
 void run(benchmark::State& state, adjoin::HistoryEngine engine) {
   const auto steps = static_cast<std::size_t>(state.range(0));
-  const std::vector<double> weights = adjoin::grunwald_letnikov_weights(0.53, steps + 1);
+  const bool soe = engine == adjoin::HistoryEngine::soe;
+  const std::vector<double> weights = soe ? std::vector<double>{} : adjoin::grunwald_letnikov_weights(0.53, steps + 1);
+  if (soe) adjoin::soe_compression(adjoin::WeightRule::grunwald_letnikov, 0.53, 1e-12, steps + 1);
   std::size_t bytes = 0;
   for (auto _ : state) {
     state.PauseTiming();
     std::vector<double> w = weights;  // the engine takes ownership; copying is not timed
     state.ResumeTiming();
-    auto history = adjoin::make_history(engine, std::move(w));
+    auto history = soe ? adjoin::make_history(engine, adjoin::WeightRule::grunwald_letnikov, 0.53, steps + 1, 1e-12)
+                       : adjoin::make_history(engine, std::move(w));
     // A feedback loop, like a rod: each value depends on the previous lag sum.
     double y = 0.0;
     for (std::size_t m = 0; m <= steps; ++m) {
@@ -51,6 +57,7 @@ void run(benchmark::State& state, adjoin::HistoryEngine engine) {
 
 void BM_direct(benchmark::State& state) { run(state, adjoin::HistoryEngine::direct); }
 void BM_fft(benchmark::State& state) { run(state, adjoin::HistoryEngine::fft); }
+void BM_soe(benchmark::State& state) { run(state, adjoin::HistoryEngine::soe); }
 
 }  // namespace
 
@@ -60,6 +67,7 @@ BENCHMARK(BM_fft)->RangeMultiplier(2)->Range(1 << 12, 1 << 22)->Unit(benchmark::
 // 0.000015, so 1,066,667 steps): not a power of two, so the last windows of each level are
 // cut short, as in most runs.
 BENCHMARK(BM_fft)->Arg(1066667)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_soe)->RangeMultiplier(2)->Range(1 << 12, 1 << 22)->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {
   if (const char* flag = std::getenv("ADJOIN_BENCH_DIRECT_2E20"); flag != nullptr && *flag == '1')

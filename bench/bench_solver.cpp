@@ -48,13 +48,16 @@ BENCHMARK(BM_strong_paper_accuracy)->Name("targets/strong/implicit/direct/h:0.00
 // Relative error <= 1e-4 in max|x1|, min gap and friction energy.
 void BM_strong_1e4(benchmark::State& st) { run(st, scene("strong", {"solver.scheme=implicit", "solver.h=0.004"})); }
 BENCHMARK(BM_strong_1e4)->Name("targets/strong/implicit/direct/h:0.004")->Unit(benchmark::kMillisecond);
-// 2^20 steps of the strong scene with the fft engine.
-void BM_strong_2e20(benchmark::State& st) {
+// 2^20 steps of the strong scene with the fft engine, and with soe.
+void strong_2e20(benchmark::State& st, const char* engine) {
   char h[32];
   std::snprintf(h, sizeof h, "%.17g", 16.0 / (1 << 20));  // exactly 2^20 steps
-  run(st, scene("strong", {"solver.scheme=implicit", "solver.history=\"fft\"", std::string("solver.h=") + h}));
+  run(st, scene("strong", {"solver.scheme=implicit", std::string("solver.history=\"") + engine + "\"", std::string("solver.h=") + h}));
 }
+void BM_strong_2e20(benchmark::State& st) { strong_2e20(st, "fft"); }
+void BM_strong_2e20_soe(benchmark::State& st) { strong_2e20(st, "soe"); }
 BENCHMARK(BM_strong_2e20)->Name("targets/strong/implicit/fft/steps:2^20")->Unit(benchmark::kMillisecond)->Iterations(3);
+BENCHMARK(BM_strong_2e20_soe)->Name("targets/strong/implicit/soe/steps:2^20")->Unit(benchmark::kMillisecond)->Iterations(3);
 // The weak scene to 1e-9 in x(16): h = 0.0008 (see tests/test_weak_exact.cpp).
 void BM_weak_1e9(benchmark::State& st) {
   run(st, scene("weak", {"solver.scheme=implicit", "solver.history=\"fft\"", "solver.h=0.0008"}));
@@ -72,6 +75,8 @@ BENCHMARK_CAPTURE(BM_ladder, implicit_direct, "implicit", "direct")->RangeMultip
 BENCHMARK_CAPTURE(BM_ladder, paper_fft, "paper", "fft")->RangeMultiplier(4)->Range(1 << 12, 1 << 20)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ladder, implicit_fft, "implicit", "fft")->RangeMultiplier(4)->Range(1 << 12, 1 << 20)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_ladder, implicit_gl_fft, "implicit-gl", "fft")->RangeMultiplier(4)->Range(1 << 12, 1 << 20)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ladder, paper_soe, "paper", "soe")->RangeMultiplier(4)->Range(1 << 12, 1 << 20)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_ladder, implicit_soe, "implicit", "soe")->RangeMultiplier(4)->Range(1 << 12, 1 << 20)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

@@ -178,7 +178,7 @@ TEST_CASE("unknown keys name the nearest known one, types and sections are check
   CHECK(error_of(kStrong, {"output.timeseries=1"}).find("output.timeseries must be true or false") != std::string::npos);
   CHECK(error_of(kStrong, {"output.every=1.5"}).find("output.every must be an integer") != std::string::npos);
   CHECK(error_of(replace(kStrong, "scheme = \"paper\"", "scheme = \"papr\"")).find("solver.scheme = \"papr\" is not a scheme") != std::string::npos);
-  CHECK(error_of(kStrong, {"solver.history=fast"}).find("solver.history = \"fast\" must be \"direct\" or \"fft\"") != std::string::npos);
+  CHECK(error_of(kStrong, {"solver.history=fast"}).find("solver.history = \"fast\" must be \"direct\", \"fft\" or \"soe\"") != std::string::npos);
   CHECK(error_of(kStrong, {"ground.source=sine"}).find("did you mean \"decaying-sine\"?") != std::string::npos);
   CHECK(error_of(kStrong, {"model.m1=1000"}).find("model.m1 belongs to SI scenes") != std::string::npos);
   CHECK(error_of(kStrong, {"model.units=imperial"}).find("model.units = \"imperial\" must be \"dimensionless\" or \"SI\"") != std::string::npos);

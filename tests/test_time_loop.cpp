@@ -36,6 +36,8 @@ class Decay {
   }
   std::size_t steps() const { return steps_; }
   std::size_t history_bytes() const { return 1234; }
+  double history_error() const { return 0.5; }
+  std::size_t history_modes() const { return 7; }
   const State& start() {
     ++starts;
     state_.t = 0.0;
@@ -116,6 +118,8 @@ TEST_CASE("time loop: every grid point observed once in order, between begin and
   CHECK(r.states.back().x1 == Approx(std::exp(-2.5)).epsilon(1e-13));
   CHECK(result.steps == n);
   CHECK(result.history_bytes == 1234);
+  CHECK(result.history_error == 0.5);  // the stepper's own, passed through
+  CHECK(result.history_modes == 7);
   // The loop's own clock: some time passed, and no more than the whole call took.
   CHECK(result.wall_seconds > 0.0);
   CHECK(result.wall_seconds <= outside);
@@ -152,6 +156,8 @@ struct Counter {
   std::tuple<int, double> info() const { return {7, 0.25}; }
   std::size_t steps() const { return steps_; }
   std::size_t history_bytes() const { return 0; }
+  double history_error() const { return 0.0; }
+  std::size_t history_modes() const { return 0; }
   const int& start() { return value_; }
   const int& advance(std::size_t n) {
     value_ = static_cast<int>(n + 1) * 2;

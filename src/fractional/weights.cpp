@@ -28,4 +28,8 @@ std::vector<double> bdf2_weights(double order, std::size_t count) {
   return w;
 }
 
+std::vector<double> convolution_weights(WeightRule rule, double order, std::size_t count) {
+  return rule == WeightRule::bdf2 ? bdf2_weights(order, count) : grunwald_letnikov_weights(order, count);
+}
+
 }  // namespace adjoin

@@ -241,6 +241,10 @@ std::string building_summary_json(const BuildingScene& scene, const Report& r, c
                  {"t_end", scene.solver.t_end},
                  {"h_rule", scene.accuracy.h_rule},
                  {"t_end_rule", scene.accuracy.t_end_rule}};
+  if (scene.solver.history == HistoryEngine::soe) {  // the compression's verified bound and size
+    j["solver"]["history_error"] = r.solver.history_error;
+    j["solver"]["history_modes"] = r.solver.history_modes;
+  }
   if (tolerant) {
     j["solver"]["tolerance"] = tolerant->tolerance;
     j["solver"]["steps_tried"] = tolerant->ladder;

@@ -60,6 +60,7 @@ const std::vector<KeySpec>& schema() {
           out.push_back(key);
     out.insert(out.end(), {
       {"solver.scheme", Kind::string},    {"solver.history", Kind::string},
+      {"solver.history_tolerance", Kind::number},
       {"solver.h", Kind::number},         {"solver.t_end", Kind::number},
       {"solver.locate_switches", Kind::boolean},
       {"solver.error_estimate", Kind::boolean}, {"solver.tolerance", Kind::number},
@@ -440,7 +441,8 @@ void read_solver(const SceneReader& r, Scene& scene) {
     r.fail("solver.scheme", "solver.scheme = " + escaped_excerpt(scheme) + " is not a scheme; expected one of " + scheme_names());
   const std::string history = r.string("solver.history", to_string(o.history));
   if (!parse_enum(history, &o.history))
-    r.fail("solver.history", "solver.history = " + escaped_excerpt(history) + " must be \"direct\" or \"fft\"");
+    r.fail("solver.history", "solver.history = " + escaped_excerpt(history) + " must be \"direct\", \"fft\" or \"soe\"");
+  o.history_tolerance = r.number("solver.history_tolerance", o.history_tolerance);
   o.locate_switches = r.boolean("solver.locate_switches", o.locate_switches);
   read_step_and_horizon(r, scene);
   if (!two_block_options(scene).IsValid(&error, &key)) r.fail(key, error);

@@ -86,6 +86,10 @@ std::string summary_json(const Scene& scene, const Report& r, const ErrorEstimat
                              {"steps", r.solver.steps},
                              {"wall_seconds", r.solver.wall_seconds},
                              {"t_end", static_cast<double>(r.solver.steps) * r.solver.h * k.time}};
+  if (r.solver.history == "soe") {  // the compression's verified bound and size (soe_history.hpp)
+    j["solver"]["history_error"] = r.solver.history_error;
+    j["solver"]["history_modes"] = r.solver.history_modes;
+  }
   if (!scene.accuracy.h_rule.empty()) j["solver"]["h_rule"] = scene.accuracy.h_rule;
   if (!scene.accuracy.t_end_rule.empty()) j["solver"]["t_end_rule"] = scene.accuracy.t_end_rule;
   if (tolerant) {

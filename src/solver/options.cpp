@@ -44,6 +44,10 @@ bool SolverOptions::IsValid(std::string* error, std::string* field) const {
   if (!(std::isfinite(t_end) && t_end > 0.0)) { s << "solver.t_end = " << t_end << " must be a positive number"; return fail("solver.t_end", s.str()); }
   if (const std::string problem = step_count_problem(t_end, h); !problem.empty()) return fail("solver.t_end", problem);
   if (t_end / h < 1.0) { s << "solver.h = " << h << " must not exceed solver.t_end = " << t_end; return fail("solver.h", s.str()); }
+  if (!(history_tolerance >= 1e-15 && history_tolerance < 1.0)) {
+    s << "solver.history_tolerance = " << history_tolerance << " must lie in [1e-15, 1) (a relative error of the weights)";
+    return fail("solver.history_tolerance", s.str());
+  }
   return true;
 }
 

@@ -74,14 +74,16 @@ class PaperStepper {
   PaperStepper(const SolverOptions& options, const Model& model, const GroundMotion& ground)
       : options_(options), model_(stable(options, model)), ground_(ground), h_(options.h), h2_(h_ * h_), n_(options.steps()),
         rho_(model.rho), mu_(model.mu), damper_(mu_ > 0.0),
-        rod1_(model.rod1, 1.0, h_, options.history,
-              model.rod1.elastic ? std::vector<double>{} : grunwald_letnikov_weights(model.rod1.order, n_ + 2)),
-        rod2_(model.rod2, model.eps, h_, options.history,
-              model.rod2.elastic ? std::vector<double>{} : grunwald_letnikov_weights(model.rod2.order, n_ + 2)) {}
+        rod1_(make_rod_law(model.rod1, 1.0, h_, options.history, WeightRule::grunwald_letnikov, n_ + 2,
+                           options.history_tolerance)),
+        rod2_(make_rod_law(model.rod2, model.eps, h_, options.history, WeightRule::grunwald_letnikov, n_ + 2,
+                           options.history_tolerance)) {}
 
   RunInfo info() const { return RunInfo{model_, h_, n_, options_.history}; }
   std::size_t steps() const { return n_; }
   std::size_t history_bytes() const { return rod1_.bytes() + rod2_.bytes(); }
+  double history_error() const { return std::max(rod1_.weight_error(), rod2_.weight_error()); }
+  std::size_t history_modes() const { return std::max(rod1_.modes(), rod2_.modes()); }
   const State& start() { return grid_point(0); }
   const State& advance(std::size_t n) { return grid_point(n + 1); }
 

@@ -23,14 +23,18 @@ class RodLaw {
  public:
   // `weights` w_0..w_N of the quadrature for this rod's order (ignored for elastic rods).
   RodLaw(const Rod& rod, double k, double h, HistoryEngine engine, std::vector<double> weights)
-      : k_(k), elastic_(rod.elastic), tau_x_(rod.tau_x), tau_f_(rod.tau_f) {
+      : RodLaw(rod, k, h, weights.empty() ? 1.0 : weights[0], nullptr) {
+    if (!elastic_) history_ = make_history(engine, std::move(weights));  // after w0 was read
+  }
+  // The same with the history made by the caller (the soe engine is made from the rule and
+  // order, not from the weights); w0 = the quadrature's first weight.
+  RodLaw(const Rod& rod, double k, double h, double w0, std::unique_ptr<ConvolutionHistory> history)
+      : k_(k), elastic_(rod.elastic), tau_x_(rod.tau_x), tau_f_(rod.tau_f), history_(std::move(history)) {
     if (elastic_) { stiffness_ = k; return; }
     const double hg = std::pow(h, -rod.order);
-    const double w0 = weights.empty() ? 1.0 : weights[0];
     denominator_ = 1.0 + tau_f_ * w0 * hg;
     stiffness_ = effective_stiffness(rod, k, h, w0);
     history_scale_ = hg / denominator_;
-    history_ = make_history(engine, std::move(weights));
   }
 
   // The stiffness() of a law with these parameters, whose weights begin with w0 (a model's
@@ -54,13 +58,25 @@ class RodLaw {
     if (!elastic_) history_->push(k_ * tau_x_ * x - tau_f_ * f);
   }
   std::size_t bytes() const { return elastic_ ? 0 : history_->bytes(); }
+  double weight_error() const { return elastic_ ? 0.0 : history_->weight_error(); }
+  std::size_t modes() const { return elastic_ ? 0 : history_->modes(); }
 
  private:
   double k_;
   bool elastic_;
   double tau_x_, tau_f_;
-  double stiffness_ = 0.0, denominator_ = 1.0, history_scale_ = 0.0;
   std::unique_ptr<ConvolutionHistory> history_;
+  double stiffness_ = 0.0, denominator_ = 1.0, history_scale_ = 0.0;
 };
+
+// A rod's law with its history over `count` lags of the weights of `rule` (tolerance: the soe
+// engine's, see soe_history.hpp).
+inline RodLaw make_rod_law(const Rod& rod, double k, double h, HistoryEngine engine, WeightRule rule, std::size_t count,
+                           double tolerance) {
+  if (rod.elastic) return RodLaw(rod, k, h, 1.0, nullptr);
+  if (engine == HistoryEngine::soe)
+    return RodLaw(rod, k, h, convolution_weights(rule, rod.order, 1)[0], make_history(engine, rule, rod.order, count, tolerance));
+  return RodLaw(rod, k, h, engine, convolution_weights(rule, rod.order, count));
+}
 
 }  // namespace adjoin::detail

@@ -14,8 +14,8 @@ namespace adjoin {
 double estimated_history_bytes(const SolverOptions& options, const Model& model) {
   // Per rod with memory and per step: direct sums keep the weights and the past values (2
   // doubles); the fft engine also keeps its blocks' spectra (measured about 57 bytes; 64
-  // allowed). Elastic rods keep nothing.
-  const double per_rod_step = options.history == HistoryEngine::fft ? 64.0 : 16.0;
+  // allowed). Elastic rods keep nothing; soe keeps a constant few kilobytes (in the 4096).
+  const double per_rod_step = options.history == HistoryEngine::fft ? 64.0 : options.history == HistoryEngine::soe ? 0.0 : 16.0;
   const int rods = (model.rod1.elastic ? 0 : 1) + (model.rod2.elastic ? 0 : 1);
   return rods * per_rod_step * (static_cast<double>(options.steps()) + 2.0) + 4096.0;
 }
@@ -56,6 +56,8 @@ SolverSummary simulate(const SolverOptions& options, const Model& model, const G
   summary.steps = options.steps();
   summary.wall_seconds = run.wall_seconds;
   summary.history_bytes = run.history_bytes;
+  summary.history_error = run.history_error;
+  summary.history_modes = run.history_modes;
   return summary;
 }
 

@@ -81,11 +81,11 @@ void StructureModel::assemble_elements(Assembly& a) {
   c = Eigen::MatrixXd::Zero(n, n);
   a.k0_dense = Eigen::MatrixXd::Zero(n, n);
   // A Zener element: its order's weights (computed once per order) and its effective stiffness.
+  // (The soe engine keeps no weights: its law is made from the rule and order, and only w_0 is
+  // needed here.)
   auto zener_element = [&](const Pair& p, int storey, const structure::Zener& z) {
     auto& w = weights[z.order];
-    if (w.empty())
-      w = options.quadrature == StructureSolverOptions::Quadrature::bdf2 ? bdf2_weights(z.order, n_steps + 2)
-                                                                          : grunwald_letnikov_weights(z.order, n_steps + 2);
+    if (w.empty()) w = convolution_weights(weight_rule(), z.order, options.history == HistoryEngine::soe ? 1 : n_steps + 2);
     const Rod rod = rod_of(z);
     return ZenerElement{p, storey, rod, z.k, RodLaw::effective_stiffness(rod, z.k, h, w.empty() ? 1.0 : w[0])};
   };

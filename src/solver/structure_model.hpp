@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "adjoin/fractional/weights.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/parameters.hpp"
 #include "banded.hpp"
@@ -88,7 +89,11 @@ class StructureModel {
 
   // The step after a damper's switch is backward Euler (the restart rule applies).
   bool restarts() const { return restart_steps > 0; }
-  // The quadrature weights of a Zener element's order (for its law).
+  // The Zener elements' quadrature rule: BDF2, or Grünwald–Letnikov (implicit-gl).
+  WeightRule weight_rule() const {
+    return options.quadrature == StructureSolverOptions::Quadrature::bdf2 ? WeightRule::bdf2 : WeightRule::grunwald_letnikov;
+  }
+  // The quadrature weights of a Zener element's order (for its law; w_0 only with soe).
   const std::vector<double>& weights_of(const ZenerElement& e) const { return weights.at(e.rod.order); }
 
   // ---- the run's inputs ----

@@ -29,6 +29,8 @@ bool StructureSolverOptions::IsValid(std::string* error) const {
   if (!(std::isfinite(h) && h > 0.0)) return fail("solver.h must be a positive step (s)");
   if (!(std::isfinite(t_end) && t_end > 0.0)) return fail("solver.t_end must be a positive duration (s)");
   if (const std::string problem = step_count_problem(t_end, h); !problem.empty()) return fail(problem);
+  if (!(history_tolerance >= 1e-15 && history_tolerance < 1.0))
+    return fail("solver.history_tolerance must lie in [1e-15, 1) (a relative error of the weights)");
   return true;
 }
 
@@ -58,6 +60,16 @@ class StructureStepper {
     std::size_t bytes = 0;
     for (const auto& law : ws.laws) bytes += law->bytes();
     return bytes;
+  }
+  double history_error() const {
+    double error = 0.0;
+    for (const auto& law : ws.laws) error = std::max(error, law->weight_error());
+    return error;
+  }
+  std::size_t history_modes() const {
+    std::size_t modes = 0;
+    for (const auto& law : ws.laws) modes = std::max(modes, law->modes());
+    return modes;
   }
   // The impacts to report before the state advance() returned (time_loop.hpp's impacts()).
   const std::vector<Impact>& impacts() const { return ws.step_impacts; }
@@ -678,6 +690,8 @@ StructureRunSummary simulate_structure(const StructureSolverOptions& options, co
   summary.steps = r.steps;
   summary.wall_seconds = r.wall_seconds;
   summary.history_bytes = r.history_bytes;
+  summary.history_error = r.history_error;
+  summary.history_modes = r.history_modes;
   return summary;
 }
 

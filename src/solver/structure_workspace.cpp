@@ -7,7 +7,10 @@ namespace adjoin::detail {
 StepWorkspace::StepWorkspace(const StructureModel& m) {
   const int n = m.n, nf = m.nf, nc = m.nc;
   for (const ZenerElement& e : m.zener)
-    laws.push_back(std::make_unique<RodLaw>(e.rod, e.k, m.h, m.options.history, m.weights_of(e)));
+    laws.push_back(m.options.history == HistoryEngine::soe
+                       ? std::make_unique<RodLaw>(make_rod_law(e.rod, e.k, m.h, m.options.history, m.weight_rule(),
+                                                               m.n_steps + 2, m.options.history_tolerance))
+                       : std::make_unique<RodLaw>(e.rod, e.k, m.h, m.options.history, m.weights_of(e)));
   zener_force.assign(m.zener.size(), 0.0);
   contact_memory.resize(static_cast<std::size_t>(nc));
   box_qp_trapezoidal = std::make_unique<BoxQp>(m.trapezoidal->delassus);

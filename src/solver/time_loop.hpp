@@ -21,6 +21,8 @@
 //                        inside advance, so it never reaches an observer; the loop adds no
 //                        check of its own (each scheme knows its scale and what to advise).
 //   - history_bytes()    after the run: the memory its history engines held.
+//   - history_error(), history_modes()  the largest relative weight error and number of
+//                        recurrences of its history engines (soe; 0 for exact engines).
 //   - impacts()          optional: after advance(n), the impacts to report before the state
 //                        at t_{n+1} (any range of Impact): those that ended in the step and,
 //                        after the last step, those still going on (complete = false).
@@ -58,6 +60,8 @@ concept Stepper = requires(S& s, const S& cs, std::size_t n) {
   s.advance(n);
   requires std::same_as<std::remove_cvref_t<decltype(s.start())>, std::remove_cvref_t<decltype(s.advance(n))>>;
   { cs.history_bytes() } -> std::convertible_to<std::size_t>;
+  { cs.history_error() } -> std::convertible_to<double>;
+  { cs.history_modes() } -> std::convertible_to<std::size_t>;
 };
 
 // A stepper that reports impacts (contact laws).
@@ -70,6 +74,8 @@ struct LoopResult {
   std::size_t steps = 0;
   double wall_seconds = 0.0;
   std::size_t history_bytes = 0;
+  double history_error = 0.0;
+  std::size_t history_modes = 0;
 };
 
 namespace loop_detail {
@@ -104,6 +110,8 @@ LoopResult integrate(Obs& observer, Setup&&... setup) {
   LoopResult result;
   result.steps = n_steps;
   result.history_bytes = stepper.history_bytes();
+  result.history_error = stepper.history_error();
+  result.history_modes = stepper.history_modes();
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

@@ -108,6 +108,7 @@ LoopResult run_two_block_on_structure(const SolverOptions& options, const Model&
   o.h = options.h;
   o.t_end = options.t_end;
   o.history = options.history;
+  o.history_tolerance = options.history_tolerance;
   if (options.scheme == Scheme::implicit_damped) o.restart = StructureSolverOptions::Restart::always;
   if (options.scheme == Scheme::implicit_gl) o.quadrature = StructureSolverOptions::Quadrature::grunwald_letnikov;
   RunInfo info;
@@ -122,6 +123,8 @@ LoopResult run_two_block_on_structure(const SolverOptions& options, const Model&
   result.steps = summary.steps;
   result.wall_seconds = summary.wall_seconds;
   result.history_bytes = summary.history_bytes;
+  result.history_error = summary.history_error;
+  result.history_modes = summary.history_modes;
   return result;
 }
 

@@ -24,6 +24,7 @@ SolverOptions two_block_options(const RunSpec& spec) {
   o.t_end = spec.solver.t_end;
   o.stability_check = spec.solver.stability_check;
   o.locate_switches = spec.solver.locate_switches;
+  o.history_tolerance = spec.solver.history_tolerance;
   return o;
 }
 
@@ -255,7 +256,10 @@ Report run_building(const RunSpec& spec, const RunObservers& extra) {
 double estimated_run_bytes(const RunSpec& spec) {
   const double steps = static_cast<double>(spec.solver.steps()) + 2.0;
   const auto [elements, orders] = zener_elements(spec.structure);
-  const double per_element_step = spec.solver.history == HistoryEngine::fft ? 64.0 : 16.0;
+  // (soe: a constant few kilobytes per element, in the last term.)
+  const double per_element_step = spec.solver.history == HistoryEngine::fft   ? 64.0
+                                  : spec.solver.history == HistoryEngine::soe ? 0.0
+                                                                               : 16.0;
   const double signals = spec.output.spectra ? static_cast<double>(spec.output.spectra->signals.size()) : 0.0;
   const double dofs = static_cast<double>(spec.structure.dofs());
   return steps * (static_cast<double>(elements) * per_element_step + 8.0 * static_cast<double>(orders) + 8.0 * signals) +
@@ -296,6 +300,8 @@ SolverSummary simulate_spec(const RunSpec& spec, const structure::Structure& s, 
   summary.steps = run.steps;
   summary.wall_seconds = run.wall_seconds;
   summary.history_bytes = run.history_bytes;
+  summary.history_error = run.history_error;
+  summary.history_modes = run.history_modes;
   return summary;
 }
 

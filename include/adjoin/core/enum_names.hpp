@@ -21,7 +21,7 @@ namespace adjoin {
 // ---- the enums ----
 
 // Which engine sums a fractional element's history (fractional/history.hpp).
-enum class HistoryEngine { direct, fft };
+enum class HistoryEngine { direct, fft, soe };
 
 // The two-block scenes' time-stepping schemes (solver/options.hpp).
 enum class Scheme {
@@ -89,7 +89,7 @@ concept NamedEnum = requires { EnumTable<E>::entries; };
 
 template <>
 struct EnumTable<HistoryEngine> {
-  static constexpr EnumName<HistoryEngine> entries[] = {{HistoryEngine::direct, "direct"}, {HistoryEngine::fft, "fft"}};
+  static constexpr EnumName<HistoryEngine> entries[] = {{HistoryEngine::direct, "direct"}, {HistoryEngine::fft, "fft"}, {HistoryEngine::soe, "soe"}};
 };
 
 template <>

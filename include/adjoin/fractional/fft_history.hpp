@@ -22,8 +22,9 @@
 // those outputs, or as usual. Memory: w, y and the accumulator (3 doubles a step) plus
 // about 4 to 5 doubles a step of spectra.
 //
-// FFTW plans are created once per transform length per process (under a global mutex, since
-// FFTW's planner is not thread-safe, with FFTW_ESTIMATE) and shared by all instances;
+// FFTW plans are created once per transform length per process, when a window first needs
+// them (under a global mutex, since FFTW's planner is not thread-safe, with FFTW_ESTIMATE and
+// FFTW_NO_BUFFERING: planning is most of a short run's cost) and shared by all instances;
 // executing them is thread-safe, so independent histories may run in parallel threads. One
 // instance must not be used from two threads at once.
 #include <cstddef>

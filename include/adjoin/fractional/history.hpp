@@ -14,12 +14,16 @@
 //  - direct: the sum as written, O(m) per step, O(N^2) in all. The reference.
 //  - fft: blocked FFT convolution after Hairer, Lubich and Schlichte (1985): the same sums,
 //    O(N log^2 N) in all and O(N) memory, equal to direct to rounding.
+//  - soe: a direct window of the first lags and a sum of exponentials beyond it
+//    (soe_history.hpp): O(1) work and memory per step, the weights within a stated relative
+//    error (the tolerance, 1e-12 by default) of the exact ones.
 #include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "adjoin/core/history_engine.hpp"
+#include "adjoin/fractional/weights.hpp"
 
 namespace adjoin {
 
@@ -33,9 +37,20 @@ class ConvolutionHistory {
   virtual std::size_t size() const = 0;
   // Bytes held by the engine (for the memory benchmarks).
   virtual std::size_t bytes() const = 0;
+  // The largest relative error of the weights the engine applies (0: exact to rounding), and
+  // the number of recurrences it steps per value (0 for the engines that keep the past).
+  virtual double weight_error() const { return 0.0; }
+  virtual std::size_t modes() const { return 0; }
 };
 
 // `weights` holds w_0..w_N; the history accepts N + 1 pushes.
+// (direct and fft only: soe needs to know the rule, below.)
 std::unique_ptr<ConvolutionHistory> make_history(HistoryEngine engine, std::vector<double> weights);
+
+// A history for the weights w_0..w_{count-1} of `rule` at `order`; `tolerance` is soe's
+// relative weight error (the others are exact). soe needs 0 < order < 1 and a tolerance in
+// [1e-15, 1).
+std::unique_ptr<ConvolutionHistory> make_history(HistoryEngine engine, WeightRule rule, double order, std::size_t count,
+                                                 double tolerance);
 
 }  // namespace adjoin

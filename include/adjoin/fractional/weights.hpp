@@ -21,4 +21,8 @@ std::vector<double> grunwald_letnikov_weights(double order, std::size_t count);
 // t = 0 is O(h^{1+p}) for a t^p leading term.
 std::vector<double> bdf2_weights(double order, std::size_t count);
 
+// The two rules by name, for code that chooses one at run time (the history engines).
+enum class WeightRule { grunwald_letnikov, bdf2 };
+std::vector<double> convolution_weights(WeightRule rule, double order, std::size_t count);
+
 }  // namespace adjoin

@@ -64,6 +64,7 @@ struct StructureSolverOptions {
   // scheme's stability check.
   bool locate_switches = true;
   bool stability_check = true;
+  double history_tolerance = 1e-12;  // soe: the largest relative error of the weights
   // The state at t = 0 (empty: at rest). Free vibration and impact tests start from these; an
   // initial displacement needs a structure without Zener elements and friction links (their
   // state at t = 0 is relaxed and stuck at zero deformation).
@@ -96,6 +97,8 @@ struct StructureRunSummary {
   std::size_t steps = 0;
   double wall_seconds = 0.0;
   std::size_t history_bytes = 0;
+  double history_error = 0.0;     // soe: the largest relative weight error (0: exact engines)
+  std::size_t history_modes = 0;  // soe: recurrences per element (Q)
 };
 
 // `ground` gives a_g in g against time in seconds (a scene's ground with unit scales).
