@@ -46,7 +46,8 @@ void check_spectra_signals(const std::vector<std::string>& signals, const struct
       const toml::node* n = parsed.at_path("output.spectra.signals").node();
       const std::string where = overridden(overrides, "output.spectra.signals") ? "--set output.spectra.signals"
                                 : n ? file + ":" + std::to_string(n->source().begin.line) : file;
-      throw InputError(where + ": output.spectra.signals: " + escaped_excerpt(signal) + " is listed twice; list each signal once");
+      throw InputError(where + ": output.spectra.signals: " + escaped_excerpt(signal) + " is listed twice; list each signal once",
+                       "output.spectra.signals");
     }
     if (signal == "ground") continue;
     const structure::Building* b = nullptr;
@@ -67,7 +68,8 @@ void check_spectra_signals(const std::vector<std::string>& signals, const struct
     }
     std::string expected = "\"ground\" or a floor's absolute acceleration A.aN_abs (N = 1.." + std::to_string(s.a.floors()) + ")";
     if (s.b) expected += " or B.aN_abs (N = 1.." + std::to_string(s.b->floors()) + ")";
-    throw InputError(where + ": output.spectra.signals: " + escaped_excerpt(signal) + " is not a signal of this structure; expected " + expected);
+    throw InputError(where + ": output.spectra.signals: " + escaped_excerpt(signal) + " is not a signal of this structure; expected " + expected,
+                     "output.spectra.signals");
   }
 }
 
@@ -88,7 +90,8 @@ StructureSolverOptions::Restart restart_for_scheme(Scheme scheme, const toml::ta
   throw InputError(where + ": solver.scheme = \"" + to_string(scheme) +
                    "\": a building scene runs the structure step, which takes \"implicit\" (the default) or "
                    "\"implicit-damped\" (backward Euler after every damper switch); \"paper\" and \"implicit-gl\" are the "
-                   "two-block system's");
+                   "two-block system's",
+                   "solver.scheme");
 }
 
 }  // namespace
@@ -131,7 +134,8 @@ BuildingScene detail::building_scene_from_tree(const toml::table& parsed, const 
     const std::string key = o.substr(0, o.find('='));
     if (key.rfind("model", 0) == 0 && (key.size() == 5 || key[5] == '.' || key[5] == ' '))
       throw InputError("--set " + text_excerpt(o) + ": a building scene's [model] holds only units = \"SI\"; the buildings, links "
-                       "and contacts carry the rest (building.A.period, link.1.slip_ratio, ...)");
+                       "and contacts carry the rest (building.A.period, link.1.slip_ratio, ...)",
+                       "model");
     if (!detail::is_structure_key(key)) base_overrides.push_back(o);
   }
   for (const auto& u : unsets)
