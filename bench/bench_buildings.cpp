@@ -6,7 +6,9 @@
 // storey, three friction dampers, the 40 s Newhall record at h = 0.005 s (8,000 steps), with the
 // fft, the direct and the soe history, and with springs only (no history). storeys/N: the same with N
 // storeys each and the fft history, for the cost per step against the storey count;
-// storeys_springs/N: the same without the Zener devices (the mechanics alone).
+// storeys_springs/N: the same without the Zener devices (the mechanics alone). viscous/: the
+// springs-only pair with three alpha = 0.4 viscous dampers instead of the friction dampers, and
+// beside them.
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -82,10 +84,29 @@ void BM_storeys_springs(benchmark::State& st) { run(st, pair_of(static_cast<int>
 
 }  // namespace
 
+// Nonlinear viscous dampers (alpha = 0.4) in place of the three friction dampers, and beside
+// them (the two local solves in turn): against targets/2x20/springs.
+Structure with_viscous(Structure s, bool keep_friction) {
+  if (!keep_friction) s.links.clear();
+  for (int floor : {7, 14, 20}) {
+    Link l;
+    l.type = LinkType::dashpot;
+    l.floor_a = l.floor_b = floor;
+    l.c = 1e6;
+    l.alpha = 0.4;
+    s.links.push_back(l);
+  }
+  return s;
+}
+void BM_viscous(benchmark::State& st) { run(st, with_viscous(pair_of(20, false), false), HistoryEngine::fft); }
+void BM_viscous_friction(benchmark::State& st) { run(st, with_viscous(pair_of(20, false), true), HistoryEngine::fft); }
+
 BENCHMARK(BM_zener_fft)->Name("targets/2x20/zener/fft")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_zener_direct)->Name("targets/2x20/zener/direct")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_zener_soe)->Name("targets/2x20/zener/soe")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_springs)->Name("targets/2x20/springs")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_viscous)->Name("viscous/2x20/alpha0.4")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_viscous_friction)->Name("viscous/2x20/alpha0.4+friction")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_storeys)->Name("storeys")->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_storeys_springs)->Name("storeys_springs")->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);
 

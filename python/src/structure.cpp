@@ -95,7 +95,8 @@ void bind_structure(py::module_& m) {
       .def("rayleigh_damping", &BuildingBuilder::rayleigh_damping, py::arg("ratio"), py::arg("mode_i") = 1,
            py::arg("mode_j") = 2, py::return_value_policy::reference_internal, "Rayleigh damping with the ratio [-] in modes mode_i and mode_j.")
       .def("spring", &BuildingBuilder::spring, py::arg("storeys"), py::arg("k"), py::return_value_policy::reference_internal, "A spring device of stiffness k [N/m] in each listed storey (1-based).")
-      .def("dashpot", &BuildingBuilder::dashpot, py::arg("storeys"), py::arg("c"), py::return_value_policy::reference_internal, "A dashpot of c [N s/m] in each listed storey (1-based).")
+      .def("dashpot", &BuildingBuilder::dashpot, py::arg("storeys"), py::arg("c"), py::arg("alpha") = 1.0, py::return_value_policy::reference_internal,
+           "A dashpot in each listed storey (1-based): F = c |v|^alpha sign v, c [N (s/m)^alpha], alpha in [0.05, 1] (1: linear).")
       .def(
           "zener",
           [](BuildingBuilder& b, const std::vector<int>& storeys, double stiffness, double order, double tau_x,
@@ -140,8 +141,9 @@ void bind_structure(py::module_& m) {
           },
           py::arg("floor_a"), py::arg("floor_b"), py::arg("slip_ratio"), py::arg("of") = "B",
           py::return_value_policy::reference_internal, "A friction link slipping at slip_ratio [-] of building `of`'s weight.")
-      .def("dashpot_link", &StructureBuilder::dashpot_link, py::arg("floor_a"), py::arg("floor_b"), py::arg("c"),
-           py::return_value_policy::reference_internal, "A viscous link of c [N s/m] between floor_a of A and floor_b of B.")
+      .def("dashpot_link", &StructureBuilder::dashpot_link, py::arg("floor_a"), py::arg("floor_b"), py::arg("c"), py::arg("alpha") = 1.0,
+           py::return_value_policy::reference_internal,
+           "A viscous link between floor_a of A and floor_b of B: F = c |v|^alpha sign v, c [N (s/m)^alpha], alpha in [0.05, 1].")
       .def("spring_link", &StructureBuilder::spring_link, py::arg("floor_a"), py::arg("floor_b"), py::arg("k"),
            py::return_value_policy::reference_internal, "A spring link of k [N/m] between floor_a of A and floor_b of B.")
       .def(

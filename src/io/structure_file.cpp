@@ -33,6 +33,7 @@ using structure::LinkType;
 using Origins = std::map<std::string, std::string>;
 
 using structure::bounded_problem;
+using structure::kAlphaRange;
 using structure::kDashpotRange;
 using structure::kForceRange;
 using structure::kMassRange;
@@ -271,8 +272,9 @@ Building read_building(const toml::table& root, const std::string& name, const T
         dr.only({"type", "storeys", "stiffness"});
         dev.k = dr.bounded("stiffness", kStiffnessRange);
       } else if (dev.type == DeviceType::dashpot) {
-        dr.only({"type", "storeys", "c"});
+        dr.only({"type", "storeys", "c", "alpha"});
         dev.c = dr.bounded("c", kDashpotRange);
+        if (dr.has("alpha")) dev.alpha = dr.bounded("alpha", kAlphaRange);
       } else {
         dr.only({"type", "storeys", "stiffness", "order", "tau_x", "tau_f"});
         dev.zener = read_zener(dr);
@@ -397,8 +399,9 @@ structure::Structure detail::structure_from_tree(toml::table& root, const std::s
           l.slip_force = structure::slip_force_from_ratio(ratio, of == "A" ? s.a : *s.b);
         }
       } else if (l.type == LinkType::dashpot) {
-        r.only({"floors", "type", "c"});
+        r.only({"floors", "type", "c", "alpha"});
         l.c = r.bounded("c", kDashpotRange);
+        if (r.has("alpha")) l.alpha = r.bounded("alpha", kAlphaRange);
       } else if (l.type == LinkType::spring) {
         r.only({"floors", "type", "stiffness"});
         l.k = r.bounded("stiffness", kStiffnessRange);

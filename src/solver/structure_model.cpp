@@ -51,7 +51,9 @@ StructureModel::StructureModel(const StructureSolverOptions& options_, const str
   else a.ranges = {{0, n}};
   trapezoidal = step_matrices(0.5, a);
   restart_steps = restart_rule(a);
-  if (restart_steps > 0) backward = step_matrices(1.0, a);
+  // A nonlinear viscous damper whose velocity turns restarts too (structure_solver.cpp).
+  viscous_restarts = nv > 0 && options.restart != StructureSolverOptions::Restart::never;
+  if (restart_steps > 0 || viscous_restarts) backward = step_matrices(1.0, a);
   index_blocks_and_dampers(a);
   prepare_trial();
   assemble_storeys();
@@ -73,6 +75,11 @@ void StructureModel::check_inputs() const {
     for (const auto& l : s.links) relaxed = relaxed || l.type == LinkType::zener || l.type == LinkType::friction;
     if (relaxed) throw InputError("initial displacements need a structure without Zener elements and friction links");
   }
+}
+
+void StructureModel::add_viscous(const Pair& p, int storey, int link, double c_, double alpha) {
+  viscous.push_back(ViscousElement{p, storey, link});
+  viscous_laws.push_back(ViscousLaw{c_, alpha});
 }
 
 void StructureModel::assemble_elements(Assembly& a) {
@@ -98,6 +105,7 @@ void StructureModel::assemble_elements(Assembly& a) {
       for (int st : d.storeys) {
         const Pair p{offset + st - 1, st > 1 ? offset + st - 2 : -1};
         if (d.type == DeviceType::spring) p.add(a.k0_dense, d.k);
+        if (d.type == DeviceType::dashpot && d.alpha != 1.0) add_viscous(p, offset + st - 1, -1, d.c, d.alpha);
         if (d.type == DeviceType::zener) zener.push_back(zener_element(p, offset + st - 1, d.zener));
       }
   };
@@ -109,6 +117,10 @@ void StructureModel::assemble_elements(Assembly& a) {
     const Pair p{s.dof('A', link.floor_a), s.dof('B', link.floor_b)};
     link_pair.push_back(p);
     if (link.type == LinkType::spring) p.add(a.k0_dense, link.k);
+    if (link.type == LinkType::dashpot && link.alpha != 1.0) {  // (a step force, as a damper's: A stays as it was)
+      add_viscous(p, -1, static_cast<int>(l), link.c, link.alpha);
+      continue;
+    }
     if (link.type == LinkType::dashpot) p.add(c, link.c);
     if (link.type == LinkType::zener) zener.push_back(zener_element(p, -1, link.zener));
     if (link.type == LinkType::friction) friction.push_back(static_cast<int>(l));
@@ -120,6 +132,13 @@ void StructureModel::assemble_elements(Assembly& a) {
     int z = static_cast<int>(zener.size());
     for (int l = static_cast<int>(s.links.size()) - 1; l >= 0; --l)
       if (s.links[l].type == LinkType::zener) link_zener[l] = --z;
+  }
+  nv = static_cast<int>(viscous.size());
+  a.bv = Eigen::MatrixXd::Zero(nv, n);
+  for (int k = 0; k < nv; ++k) {
+    const Pair& p = viscous[static_cast<std::size_t>(k)].pair;
+    if (p.i >= 0) a.bv(k, p.i) = 1.0;
+    if (p.j >= 0) a.bv(k, p.j) = -1.0;
   }
   a.k_eff_dense = a.k0_dense;
   for (const auto& e : zener) e.pair.add(a.k_eff_dense, e.stiffness);
@@ -198,6 +217,14 @@ std::unique_ptr<StepMatrices> StructureModel::step_matrices(double theta, const 
     for (int ci = 0; ci < nc; ++ci) m->kappa[ci] = a.bc.row(ci).dot(m->a_inv_bc.col(ci));
   }
   m->c_a_inv_bc = nc > 0 ? Eigen::MatrixXd(c * m->a_inv_bc) : Eigen::MatrixXd(n, 0);
+  if (nv > 0) {
+    m->a_inv_bv.resize(n, nv);
+    for (const StepBlock& b : m->blocks)
+      m->a_inv_bv.middleRows(b.offset, b.size) = b.a.solve(a.bv.transpose().middleRows(b.offset, b.size));
+    m->c_a_inv_bv = c * m->a_inv_bv;
+    m->viscous_g = h * a.bv * m->a_inv_bv;
+    m->viscous_friction = a.bv * m->a_inv_bt;
+  }
   m->contact_friction = Eigen::MatrixXd::Zero(nc, nf);
   for (int ci = 0; ci < nc; ++ci)
     for (int f = 0; f < nf; ++f) {
@@ -281,6 +308,12 @@ void StructureModel::prepare_trial() {
         if (d >= 0) trial_dofs.push_back(d);
     }
     damper_zener.push_back(std::move(touching));
+    std::vector<std::pair<int, double>> viscous_here;
+    for (std::size_t e = 0; e < viscous.size(); ++e) {
+      const Pair& pr = viscous[e].pair;
+      if (pr.i == k || pr.j == k) viscous_here.emplace_back(static_cast<int>(e), pr.i == k ? 1.0 : -1.0);
+    }
+    damper_viscous.push_back(std::move(viscous_here));
   }
   std::sort(trial_dofs.begin(), trial_dofs.end());
   trial_dofs.erase(std::unique(trial_dofs.begin(), trial_dofs.end()), trial_dofs.end());
@@ -312,7 +345,7 @@ void StructureModel::assemble_storeys() {
     for (const auto& d : b.devices)
       for (int st : d.storeys) {
         if (d.type == DeviceType::spring) storey_spring[offset + st - 1] += d.k;
-        if (d.type == DeviceType::dashpot) storey_dashpot[offset + st - 1] += d.c;
+        if (d.type == DeviceType::dashpot && d.alpha == 1.0) storey_dashpot[offset + st - 1] += d.c;
       }
   };
   storeys_of(s.a, 0);

@@ -16,6 +16,7 @@
 #include "banded.hpp"
 #include "contact_step.hpp"
 #include "dense_product.hpp"
+#include "viscous_step.hpp"
 
 namespace adjoin::detail {
 
@@ -47,6 +48,14 @@ struct ZenerElement {
   double stiffness = 0.0;  // df/dx at the step: RodLaw::stiffness()
 };
 
+// A nonlinear viscous damper (a dashpot device or link with alpha < 1; viscous_step.hpp): where
+// it acts and its law. Linear dashpots are in C.
+struct ViscousElement {
+  Pair pair;
+  int storey = -1;  // the storey it stands in, or -1 for a link
+  int link = -1;    // the link it is, or -1 for a storey device
+};
+
 // One diagonal block of the step matrix A (one per building when only friction links join
 // them, else the whole).
 struct StepBlock {
@@ -68,6 +77,8 @@ struct StepMatrices {
   Eigen::MatrixXd delassus;      // S = h B A^-1 B'
   Eigen::MatrixXd a_inv_bc, c_a_inv_bc, contact_friction;  // A^-1 B_c', C A^-1 B_c', B_c A^-1 B_f'
   Eigen::VectorXd kappa;                                   // B_c A^-1 B_c' per pair
+  // The nonlinear viscous dampers' A^-1 B_v', C A^-1 B_v', G = h B_v A^-1 B_v' and B_v A^-1 B_f'.
+  Eigen::MatrixXd a_inv_bv, c_a_inv_bv, viscous_g, viscous_friction;
   Eigen::MatrixXd trial_rows;  // the trial's rows of A^-1 B' and C A^-1 B' (structure_model.cpp)
 };
 
@@ -75,6 +86,7 @@ struct StepMatrices {
 struct Assembly {
   Eigen::MatrixXd k0_dense, k_eff_dense;    // K0, and K_eff (the Zener elements at their effective stiffness)
   Eigen::MatrixXd bf, bc;                   // B of the friction dampers, of the contact pairs with a law
+  Eigen::MatrixXd bv;                       // B of the nonlinear viscous dampers
   bool coupled = false;                     // a link other than friction enters A = M + h/2 C + h^2/4 K
   std::vector<std::pair<int, int>> ranges;  // A's diagonal blocks: (offset, size)
 };
@@ -115,6 +127,13 @@ class StructureModel {
   std::vector<double> storey_spring, storey_dashpot;  // per storey: springs and spring devices; dashpots
   bool dashpots_a = false, dashpots_b = false;        // a building has dashpot devices
 
+  // ---- the nonlinear viscous dampers ----
+  std::vector<ViscousElement> viscous;
+  std::vector<ViscousLaw> viscous_laws;  // (in the order of `viscous`)
+  int nv = 0;
+  // Per damper dof (damper_dofs), the viscous elements acting there: (element, sign).
+  std::vector<std::vector<std::pair<int, double>>> damper_viscous;
+
   // ---- the friction dampers ----
   int nf = 0;                 // how many
   Eigen::VectorXd limit;      // their slip forces
@@ -134,11 +153,13 @@ class StructureModel {
   // ---- the step ----
   std::unique_ptr<StepMatrices> trapezoidal, backward;  // theta = 1/2, and 1 for the restart
   int restart_steps = 0;                                // backward-Euler steps after a switch
+  bool viscous_restarts = false;                        // ... and one after a viscous damper turns
   std::vector<int> block_of;                            // each dof's block
 
  private:
   void check_inputs() const;
   void assemble_elements(Assembly& a);
+  void add_viscous(const Pair& p, int storey, int link, double c, double alpha);
   void assemble_dampers(Assembly& a);
   void assemble_contacts(Assembly& a);
   std::unique_ptr<StepMatrices> step_matrices(double theta, const Assembly& a) const;

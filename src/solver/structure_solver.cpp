@@ -93,11 +93,15 @@ class StructureStepper {
 
     first.a_abs = Eigen::VectorXd::Zero(m.n);
     m.k0.apply(first.x, ws.internal);
+    if (m.nv > 0) {
+      viscous_end_forces(first);
+      ws.total_now = ws.internal + ws.viscous_bt;
+    }
     fill_links(first, ws.friction_now);
     // At rest no storey, damper or link force acts yet, so no floor accelerates absolutely
     // (its relative acceleration is the ground's, a_g): exactly 0, as the formula gives it.
     if (!(first.x.isZero() && first.v.isZero()))
-      first.a_abs = (m.mass * first.ag - ws.cv_now - ws.internal).cwiseProduct(m.inv_mass) - Eigen::VectorXd::Constant(m.n, first.ag);
+      first.a_abs = (m.mass * first.ag - ws.cv_now - ws.internal - ws.viscous_bt).cwiseProduct(m.inv_mass) - Eigen::VectorXd::Constant(m.n, first.ag);
     ws.second = first;
     ws.now_p = &ws.first;
     ws.next_p = &ws.second;
@@ -112,7 +116,8 @@ class StructureStepper {
     // as both states began.)
     begin_step(step, next);
     predict(now, next);
-    local_solve(step, now);
+    if (m.nv > 0) viscous_step(step, now);
+    else local_solve(step, now);
     correct(step, now, next);
     locate_switches(step, now, next);
     report(step, next);
@@ -224,6 +229,131 @@ class StructureStepper {
     for (int ci = 0; ci < m.nc; ++ci) ws.contact_work[ci] += ws.step_work[ci];
   }
 
+  // The nonlinear viscous dampers' step forces (viscous_step.hpp) with the local solve's. Alone
+  // (no friction damper, no contact pair) their equation is solved once; with them, the two
+  // are solved in turn until the viscous forces settle (Gauss-Seidel: the local solve with the
+  // viscous forces fixed, then the viscous forces with the dampers' and pairs' fixed). (The
+  // step taken is the last pass's: the next forces differ from its by less than the tolerance.)
+  void viscous_step(std::size_t step, const StructureState& now) {
+    constexpr int kMaxPasses = 30;
+    const bool end_force = ws.restart;  // backward Euler: the end force
+    ws.v_base = ws.v_free;
+    ws.cv_base = ws.cv_free;
+    ws.viscous_w1 = ws.viscous_w0;
+    if (m.nf == 0 && m.nc == 0) {
+      for (int k = 0; k < m.nv; ++k) ws.viscous_wt[k] = m.viscous[static_cast<std::size_t>(k)].pair.of(ws.v_base);
+      if (!ws.viscous_solver->solve(ws.sm->viscous_g, ws.viscous_wt, ws.viscous_w0, end_force, ws.viscous_w1, ws.viscous_q))
+        viscous_failed(now.t);
+      fold_viscous();
+      local_solve(step, now);
+      return;
+    }
+    ws.states_before = ws.states;
+    ws.memory_saved = ws.contact_memory;
+    ws.contact_work_saved = ws.contact_work;
+    double last_change = std::numeric_limits<double>::infinity();
+    for (int pass = 0;; ++pass) {
+      if (pass > 0) {
+        ws.states = ws.states_before;
+        ws.contact_memory = ws.memory_saved;
+        ws.contact_work = ws.contact_work_saved;
+      }
+      fold_viscous();
+      local_solve(step, now);
+      // The elements' end velocities with these forces, less their own step forces' part, the
+      // stuck friction dampers' answer to them included: w_1 = w~ - G_eff Q with the set stuck.
+      const Eigen::MatrixXd& g_eff = viscous_g_held();
+      ws.viscous_wt.noalias() = g_eff * ws.viscous_q;
+      for (int k = 0; k < m.nv; ++k) {
+        ws.viscous_wt[k] += m.viscous[static_cast<std::size_t>(k)].pair.of(ws.v_free);
+        if (m.nf > 0) ws.viscous_wt[k] -= m.h * ws.sm->viscous_friction.row(k).dot(ws.q_step);
+      }
+      ws.viscous_w_pass = ws.viscous_w1;
+      if (!ws.viscous_solver->solve(g_eff, ws.viscous_wt, ws.viscous_w0, end_force, ws.viscous_w1, ws.viscous_q_new))
+        viscous_failed(now.t);
+      // Settled when the dampers' velocities are, to 1e-10 of the floors' velocities or where
+      // rounding stops their changes falling (below 1e-8). (Not the forces: near w = 0 the law
+      // magnifies a rounding change of w, 1e-16 m/s giving 1e-6 of c.)
+      const double change = pass == 0 ? INFINITY : (ws.viscous_w1 - ws.viscous_w_pass).cwiseAbs().maxCoeff();
+      const double scale = ws.v_base.cwiseAbs().maxCoeff() + ws.viscous_w1.cwiseAbs().maxCoeff();
+      if (change <= 1e-10 * scale || (change <= 1e-8 * scale && change >= 0.5 * last_change)) return;
+      last_change = change;
+      if (pass == kMaxPasses) {
+        // A friction damper beside a viscous one on the same floors, at its onset, can flip
+        // between two passes: stuck, the viscous force vanishes and it must slip; slipping at
+        // its free rate, the viscous force holds it. The joint answer (slipping slowly, the
+        // viscous force taking the excess) lies between: the step is taken with the mean of
+        // the two passes' viscous forces and the decision that gives (its error is that of
+        // the viscous force over one step, a few per onset; docs/explanation/numerics.md).
+        ws.viscous_q = 0.5 * (ws.viscous_q + ws.viscous_q_new);
+        ws.states = ws.states_before;
+        ws.contact_memory = ws.memory_saved;
+        ws.contact_work = ws.contact_work_saved;
+        fold_viscous();
+        local_solve(step, now);
+        ++ws.viscous_unsettled;
+        return;
+      }
+      ws.viscous_q.swap(ws.viscous_q_new);
+    }
+  }
+  // G_eff = G - G_vs S_ss^-1 G_sv for the friction dampers stuck now (s): their forces keep
+  // their velocities zero, q_s = S_ss^-1 (... - G_sv Q), and so answer the viscous dampers' Q,
+  // which then see the structure through G_eff (a Schur complement: positive semidefinite,
+  // singular where a viscous damper is locked by a stuck one). Formed when a stuck set is first
+  // met, then kept (a run meets few).
+  const Eigen::MatrixXd& viscous_g_held() {
+    ws.held_key.assign(static_cast<std::size_t>(m.nf) + 1, 0);
+    ws.held_key[0] = ws.restart ? 1 : 0;
+    bool any = false;
+    for (int f = 0; f < m.nf; ++f) any |= (ws.held_key[static_cast<std::size_t>(f) + 1] = ws.states[f] == DamperState::stick);
+    if (!any) return ws.sm->viscous_g;
+    for (const auto& [key, cached] : ws.held_g)
+      if (key == ws.held_key) return cached;
+    std::vector<int> held;
+    for (int f = 0; f < m.nf; ++f)
+      if (ws.held_key[static_cast<std::size_t>(f) + 1]) held.push_back(f);
+    const auto nh = static_cast<Eigen::Index>(held.size());
+    Eigen::MatrixXd s_hh(nh, nh), g_vh(m.nv, nh);
+    for (Eigen::Index a = 0; a < nh; ++a) {
+      for (Eigen::Index b = 0; b < nh; ++b) s_hh(a, b) = ws.sm->delassus(held[a], held[b]);
+      g_vh.col(a) = m.h * ws.sm->viscous_friction.col(held[a]);
+    }
+    Eigen::MatrixXd g_eff = ws.sm->viscous_g - g_vh * s_hh.ldlt().solve(g_vh.transpose());
+    g_eff = 0.5 * (g_eff + g_eff.transpose()).eval();
+    ws.held_g.emplace_back(ws.held_key, std::move(g_eff));
+    return ws.held_g.back().second;
+  }
+
+  // The free step with the viscous dampers' step forces Q: v_base - h A^-1 B_v' Q (and C v).
+  void fold_viscous() {
+    ws.v_free = ws.v_base;
+    ws.cv_free = ws.cv_base;
+    ws.v_free.noalias() -= m.h * (ws.sm->a_inv_bv * ws.viscous_q);
+    ws.cv_free.noalias() -= m.h * (ws.sm->c_a_inv_bv * ws.viscous_q);
+  }
+  [[noreturn]] void viscous_failed(double t) const {
+    std::ostringstream message;
+    message << "the nonlinear viscous dampers' step equation did not converge in the step from t = " << t
+            << " s; reduce solver.h (now " << m.h << " s)";
+    throw NumericalError(message.str(), t);
+  }
+  // The viscous dampers' forces at a grid point, F = c |w|^alpha sign w, and B_v' F; whether a
+  // damper's velocity turned since the last grid point.
+  bool viscous_end_forces(const StructureState& st) {
+    ws.viscous_bt.setZero();
+    bool turned = false;
+    for (int k = 0; k < m.nv; ++k) {
+      const auto& e = m.viscous[static_cast<std::size_t>(k)];
+      const double w = e.pair.of(st.v);
+      turned = turned || (w > 0.0 && ws.viscous_w0[k] < 0.0) || (w < 0.0 && ws.viscous_w0[k] > 0.0);
+      ws.viscous_w0[k] = w;  // (t_n of the next step)
+      ws.viscous_force[k] = m.viscous_laws[static_cast<std::size_t>(k)].force(ws.viscous_w0[k]);
+      e.pair.add(ws.viscous_bt, ws.viscous_force[k]);
+    }
+    return turned;
+  }
+
   // The dampers as they were: the stuck ones held, the slipping ones at their limits.
   void hold_as_phased(const StructureState& now) {
     ws.fixed.setZero();
@@ -322,6 +452,9 @@ class StructureStepper {
         const auto& el = m.zener[static_cast<std::size_t>(e)];
         ws.p1[k] += sign * (el.stiffness * el.pair.of(ws.x1) + ws.offsets[e]);
       }
+      // (the viscous dampers at their latest end velocities)
+      for (const auto& [e, sign] : m.damper_viscous[d])
+        ws.p1[k] += sign * m.viscous_laws[static_cast<std::size_t>(e)].force(ws.viscous_w1[e]);
     }
   }
 
@@ -371,7 +504,7 @@ class StructureStepper {
                          : (w_now != ws.w1[f] ? std::clamp(w_now / (w_now - ws.w1[f]), 0.0, 1.0) : 1.0);
     ws.crossing[f] = theta;
     // The force that would keep it stuck, at t_n and at the end of slipping on.
-    const double s0 = would_stick(ws.cv_now, m.nc > 0 ? ws.total_now : ws.internal, ws.friction_now, f);
+    const double s0 = would_stick(ws.cv_now, m.nc > 0 || m.nv > 0 ? ws.total_now : ws.internal, ws.friction_now, f);
     const double s1 = would_stick(ws.cv1, ws.p1, ws.q1, f);
     const double at = s0 + theta * (s1 - s0);
     ws.kink_theta[f] = theta;
@@ -511,8 +644,14 @@ class StructureStepper {
   void report(std::size_t step, StructureState& next) {
     // The grid point's forces with the contacts' (kept apart from `internal`: the trapezoidal
     // rule must not see the contact forces, whose impulse the contact step gives).
-    if (m.nc > 0) ws.total_next = ws.p_next + ws.contact_bt;
-    const Eigen::VectorXd& p_grid = m.nc > 0 ? ws.total_next : ws.p_next;
+    // A viscous damper whose velocity turned in the step: the next step is backward Euler.
+    // Trapezoidal mechanics would carry on a sawtooth of +-w about zero (its amplification of
+    // a step of the law near w = 0 is -1, as for any mode it does not resolve), where the
+    // damper and the structure are at rest; one backward-Euler step (first order, once per
+    // turn: the run stays second order) damps it as the law does.
+    if (m.nv > 0 && viscous_end_forces(next) && m.viscous_restarts) ws.restart_left = std::max(ws.restart_left, 1);
+    if (m.nc > 0 || m.nv > 0) ws.total_next = ws.p_next + ws.contact_bt + ws.viscous_bt;
+    const Eigen::VectorXd& p_grid = m.nc > 0 || m.nv > 0 ? ws.total_next : ws.p_next;
     grid_forces(ws.cv_next, p_grid, next.link_phase, &ws.q_grid, &ws.stick_grid);
     // Absolute accelerations at the grid point: x'' - a_g.
     // The dampers' forces B' q are added at their floors only.
@@ -556,8 +695,8 @@ class StructureStepper {
   // Ready for the next step (nothing here changes the state returned).
   void carry_over(std::size_t step, const StructureState& now, const StructureState& next) {
     ws.internal.swap(ws.p_next);
+    if (m.nc > 0 || m.nv > 0) ws.total_now.swap(ws.total_next);
     if (m.nc > 0) {
-      ws.total_now.swap(ws.total_next);
       ws.contact_bt_now.swap(ws.contact_bt);
     }
     ws.cv_now.swap(ws.cv_next);
@@ -653,6 +792,8 @@ class StructureStepper {
     if (m.s.b) building(*m.s.b, m.s.a.floors());
     for (std::size_t e = 0; e < m.zener.size(); ++e)
       if (m.zener[e].storey >= 0) st.storey_force[m.zener[e].storey] += ws.zener_force[e];
+    for (int k = 0; k < m.nv; ++k)
+      if (m.viscous[static_cast<std::size_t>(k)].storey >= 0) st.storey_force[m.viscous[static_cast<std::size_t>(k)].storey] += ws.viscous_force[k];
   }
   void fill_links(StructureState& st, const Eigen::VectorXd& q_friction) const {
     fill_storeys(st);
@@ -665,6 +806,8 @@ class StructureStepper {
       if (link.type == LinkType::dashpot) st.link_force[l] = link.c * st.link_velocity[l];
       if (link.type == LinkType::zener) st.link_force[l] = ws.zener_force[m.link_zener[l]];
     }
+    for (int k = 0; k < m.nv; ++k)
+      if (m.viscous[static_cast<std::size_t>(k)].link >= 0) st.link_force[m.viscous[static_cast<std::size_t>(k)].link] = ws.viscous_force[k];
     for (int f = 0; f < m.nf; ++f) st.link_force[m.friction[f]] = q_friction[f];
   }
   // ---- the model (constant), the workspace (the run's state), the ground ----

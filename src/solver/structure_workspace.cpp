@@ -49,6 +49,17 @@ StepWorkspace::StepWorkspace(const StructureModel& m) {
   touched_flag.assign(m.damper_dofs.size(), 0);
   states.assign(nf, DamperState::stick);
   internal = Eigen::VectorXd::Zero(n);
+  for (Eigen::VectorXd* v : {&viscous_q, &viscous_w_pass, &viscous_w0, &viscous_w1, &viscous_wt, &viscous_force, &viscous_q_new})
+    *v = Eigen::VectorXd::Zero(m.nv);
+  viscous_bt = Eigen::VectorXd::Zero(n);
+  if (m.nv > 0) {
+    viscous_solver = std::make_unique<ViscousSolver>(m.viscous_laws);
+    v_base.resize(n);
+    cv_base.resize(n);
+    states_before.resize(static_cast<std::size_t>(nf));
+    memory_saved.resize(static_cast<std::size_t>(nc));
+    contact_work_saved.resize(static_cast<std::size_t>(nc));
+  }
   friction_now = stick_force_now = stick_force_prev = Eigen::VectorXd::Zero(nf);
   prev_stuck.assign(nf, false);
   prev_same_slip.assign(nf, false);

@@ -5,6 +5,7 @@
 // the two grid states — and the step's work vectors, all sized once from the model, so that a
 // step allocates nothing (but the box QP's small systems when a stuck set is first met).
 #include <Eigen/Dense>
+#include <deque>
 #include <memory>
 #include <vector>
 
@@ -67,6 +68,20 @@ struct StepWorkspace {
   std::vector<double> step_work;
   Eigen::VectorXd v_free0, cv_free0;  // the free step before the contact impulses
   std::vector<Impact> step_impacts;
+
+  // The nonlinear viscous dampers: their step forces Q, relative velocities at t_n and t_n+1,
+  // their velocities without their own step forces, their forces at t_n+1 (then t_n) and those
+  // forces at the floors (B_v' F); the free step before their step forces; what the local
+  // solve changes, kept to take it again (viscous_step in structure_solver.cpp).
+  Eigen::VectorXd viscous_q, viscous_w_pass, viscous_w0, viscous_w1, viscous_wt, viscous_force, viscous_q_new, viscous_bt;
+  Eigen::VectorXd v_base, cv_base;
+  std::unique_ptr<ViscousSolver> viscous_solver;
+  std::size_t viscous_unsettled = 0;  // steps whose passes flipped (viscous_step)
+  std::vector<char> held_key;  // (restart, stuck per damper): viscous_g_held's cache
+  std::deque<std::pair<std::vector<char>, Eigen::MatrixXd>> held_g;
+  std::vector<DamperState> states_before;
+  std::vector<ContactMemory> memory_saved;
+  std::vector<double> contact_work_saved;
 
   // The grid points t_n (`now`) and t_n+1 (`next`): two states whose vectors every step reuses,
   // their roles swapped after each step.

@@ -114,11 +114,13 @@ BuildingBuilder& BuildingBuilder::spring(const std::vector<int>& storeys, double
   return *this;
 }
 
-BuildingBuilder& BuildingBuilder::dashpot(const std::vector<int>& storeys, double c) {
+BuildingBuilder& BuildingBuilder::dashpot(const std::vector<int>& storeys, double c, double alpha) {
   check(device_path() + ".c", bounded_problem(c, kDashpotRange));
+  check(device_path() + ".alpha", bounded_problem(alpha, kAlphaRange));
   StoreyDevice d;
   d.type = DeviceType::dashpot;
   d.c = c;
+  d.alpha = alpha;
   add_device(d, storeys);
   return *this;
 }
@@ -231,9 +233,10 @@ StructureBuilder& StructureBuilder::friction_link_ratio(int floor_a, int floor_b
   return *this;
 }
 
-StructureBuilder& StructureBuilder::dashpot_link(int floor_a, int floor_b, double c) {
+StructureBuilder& StructureBuilder::dashpot_link(int floor_a, int floor_b, double c, double alpha) {
   check(link_path() + ".c", bounded_problem(c, kDashpotRange));
-  return add_link({LinkType::dashpot, floor_a, floor_b, 0.0, c, 0.0, {}});
+  check(link_path() + ".alpha", bounded_problem(alpha, kAlphaRange));
+  return add_link({LinkType::dashpot, floor_a, floor_b, 0.0, c, 0.0, {}, alpha});
 }
 
 StructureBuilder& StructureBuilder::spring_link(int floor_a, int floor_b, double k) {

@@ -7,13 +7,14 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/structure/modal.hpp"
+#include "adjoin/structure/rules.hpp"
 
 namespace adjoin::structure {
 namespace {
 
 bool positive(double v) { return std::isfinite(v) && v > 0.0; }
 
-std::string zener_problem(const Zener& z) {
+std::string zener_check(const Zener& z) {
   if (!positive(z.k)) return "stiffness must be a positive number";
   if (!(z.order > 0.0 && z.order < 1.0)) return "order must lie in (0, 1)";
   if (!positive(z.tau_f)) return "tau_f must be positive";
@@ -42,8 +43,10 @@ bool building_valid(const Building& b, const std::string& path, std::string* err
       if (s < 1 || s > n) return fail(where + ".storeys: storey " + std::to_string(s) + " is not in 1.." + std::to_string(n));
     if (dev.type == DeviceType::spring && !positive(dev.k)) return fail(where + ".stiffness must be positive (N/m)");
     if (dev.type == DeviceType::dashpot && !positive(dev.c)) return fail(where + ".c must be positive (N s/m)");
+    if (dev.type == DeviceType::dashpot && !(dev.alpha >= kAlphaRange.lo && dev.alpha <= kAlphaRange.hi))
+      return fail(where + ".alpha must lie in [0.05, 1] (F = c |v|^alpha sign v)");
     if (dev.type == DeviceType::zener) {
-      const std::string p = zener_problem(dev.zener);
+      const std::string p = zener_check(dev.zener);
       if (!p.empty()) return fail(where + ": " + p);
     }
   }
@@ -90,9 +93,11 @@ bool Structure::IsValid(std::string* error) const {
                   std::to_string(a.floors()) + ") and of B (1.." + std::to_string(b->floors()) + ")");
     if (l.type == LinkType::friction && !positive(l.slip_force)) return fail(where + ".slip_force must be positive (N)");
     if (l.type == LinkType::dashpot && !positive(l.c)) return fail(where + ".c must be positive (N s/m)");
+    if (l.type == LinkType::dashpot && !(l.alpha >= kAlphaRange.lo && l.alpha <= kAlphaRange.hi))
+      return fail(where + ".alpha must lie in [0.05, 1] (F = c |v|^alpha sign v)");
     if (l.type == LinkType::spring && !positive(l.k)) return fail(where + ".stiffness must be positive (N/m)");
     if (l.type == LinkType::zener) {
-      const std::string p = zener_problem(l.zener);
+      const std::string p = zener_check(l.zener);
       if (!p.empty()) return fail(where + ": " + p);
     }
   }

@@ -54,7 +54,7 @@ Eigen::MatrixXd dashpot_matrix(const Building& b) {
   const int n = b.floors();
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n);
   for (const StoreyDevice& d : b.devices)
-    if (d.type == DeviceType::dashpot)
+    if (d.type == DeviceType::dashpot && d.alpha == 1.0)  // (a nonlinear one has no matrix)
       for (int s : d.storeys) add_between(c, s - 1, s - 2, d.c);
   return c;
 }

@@ -17,7 +17,7 @@ std::string number_text(double v) { return adjoin::number_text(v, 6); }
 std::string Range::problem(double v) const {
   if (v >= lo && v <= hi) return "";
   return number_text(v) + " is outside the supported " + number_text(lo) + " to " + number_text(hi) + " " + unit +
-         " (bounds that keep the step's matrices finite and well conditioned)";
+         " (" + why + ")";
 }
 
 std::string bounded_problem(double v, const Range& range) {

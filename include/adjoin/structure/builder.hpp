@@ -46,7 +46,8 @@ class BuildingBuilder {
   BuildingBuilder& rayleigh_damping(double ratio, int mode_i = 1, int mode_j = 2);
   // A device in parallel with the spring of each listed storey (1-based, each once).
   BuildingBuilder& spring(const std::vector<int>& storeys, double k);
-  BuildingBuilder& dashpot(const std::vector<int>& storeys, double c);
+  // alpha: F = c |v|^alpha sign v (1: the linear dashpot; c in N (s/m)^alpha).
+  BuildingBuilder& dashpot(const std::vector<int>& storeys, double c, double alpha = 1.0);
   BuildingBuilder& zener(const std::vector<int>& storeys, const Zener& z);
 
   const std::string& path() const { return path_; }  // "building.A"
@@ -93,7 +94,7 @@ class StructureBuilder {
   // they are added. A friction link's slip force [N], or a fraction of building `of`'s weight.
   StructureBuilder& friction_link(int floor_a, int floor_b, double slip_force);
   StructureBuilder& friction_link_ratio(int floor_a, int floor_b, double slip_ratio, char of);
-  StructureBuilder& dashpot_link(int floor_a, int floor_b, double c);
+  StructureBuilder& dashpot_link(int floor_a, int floor_b, double c, double alpha = 1.0);
   StructureBuilder& spring_link(int floor_a, int floor_b, double k);
   StructureBuilder& zener_link(int floor_a, int floor_b, const Zener& z);
   // A pounding pair with its clear gap at rest [m] >= 0; set its law on the builder returned

@@ -28,8 +28,9 @@ struct StoreyDevice {
   DeviceType type = DeviceType::spring;
   std::vector<int> storeys;
   double k = 0.0;  // spring [N/m]
-  double c = 0.0;  // dashpot [N s/m]
+  double c = 0.0;  // dashpot [N (s/m)^alpha]
   Zener zener;
+  double alpha = 1.0;  // dashpot: F = c |v|^alpha sign v, 0 < alpha <= 1 (1: linear)
 };
 
 // Classical damping from the building's mass and elastic (static) stiffness.
@@ -58,8 +59,9 @@ struct Link {
   LinkType type = LinkType::friction;
   int floor_a = 1, floor_b = 1;
   double slip_force = 0.0;  // friction [N]
-  double c = 0.0, k = 0.0;  // dashpot [N s/m], spring [N/m]
+  double c = 0.0, k = 0.0;  // dashpot [N (s/m)^alpha], spring [N/m]
   Zener zener;
+  double alpha = 1.0;       // dashpot: F = c |v|^alpha sign v, 0 < alpha <= 1 (1: linear)
 };
 
 // A pounding pair: clear gap at rest [m] between floor_a of A and floor_b of B, and what

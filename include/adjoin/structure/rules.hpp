@@ -23,12 +23,16 @@ namespace adjoin::structure {
 struct Range {
   double lo, hi;
   const char* unit;
+  const char* why = "bounds that keep the step's matrices finite and well conditioned";
   // "" inside the range, else the value and the supported range.
   std::string problem(double v) const;
 };
 inline constexpr Range kMassRange{1e-3, 1e12, "kg"};
 inline constexpr Range kStiffnessRange{1e-3, 1e15, "N/m"};
 inline constexpr Range kDashpotRange{1e-3, 1e15, "N s/m"};
+// A nonlinear viscous damper's exponent (F = c |v|^alpha sign v): fluid viscous dampers have
+// 0.2-1; below 0.05 the law is a friction damper's in all but name (use one).
+inline constexpr Range kAlphaRange{0.05, 1.0, "(exponent)", "F = c |v|^alpha sign v: 1 is the linear dashpot, fluid dampers 0.2-1"};
 inline constexpr Range kForceRange{1e-3, 1e18, "N"};
 inline constexpr Range kSlipRatioRange{1e-9, 1e6, "(slip force / weight)"};
 inline constexpr Range kTauRange{1e-9, kMaxRelaxationTime, "s^order"};
