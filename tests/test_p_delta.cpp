@@ -91,6 +91,27 @@ TEST_CASE("P-Delta lowers an SDOF's frequency to omega^2 = (k - m g / h) / m, in
   CHECK(worst > 0.5 * phase * x0);  // the scheme's own error, not a looser agreement
 }
 
+TEST_CASE("with P-Delta the storey force carries -P/h x drift and the energy balance closes at order 2", "[p_delta][energy]") {
+  // A 3-storey frame with P-Delta under a decaying sine: the storeys' work includes the
+  // gravity load's (negative) potential energy, so input = kinetic + storeys + inherent.
+  structure::StructureBuilder b;
+  b.building('A', 3).mass(2.0e4).stiffness(2.0e6).height(3.0).p_delta(true).modal_damping(0.05);
+  const structure::Structure s = b.build();
+  std::vector<double> residuals;
+  for (const double h : {0.004, 0.002}) {
+    BuildingRunOptions o;
+    o.h = h;
+    o.t_end = 8.0;
+    const Report r = run(building_run_spec(s, std::make_shared<DecayingSine>(0.01, 3.0, 0.3), o));
+    REQUIRE_FALSE(r.collapse);
+    REQUIRE(r.energy.input > 0.0);
+    residuals.push_back(std::abs(r.energy.residual) / r.energy.input);
+  }
+  INFO("relative residuals " << residuals[0] << " " << residuals[1]);
+  CHECK(residuals[1] < 1e-6);
+  CHECK(residuals[0] / residuals[1] == Approx(4.0).epsilon(0.25));
+}
+
 TEST_CASE("a negative P-Delta tangent diverges as x0 cosh(lambda t) and collapses at the located t*", "[p_delta][collapse]") {
   const double k = 2.0e4;  // m g / h = 32 688.8 N/m > k
   const double lambda = std::sqrt((kMass * kStandardGravity / kHeight - k) / kMass);
