@@ -378,6 +378,12 @@ std::string building_brief_report(const BuildingScene& scene, const Report& r, c
                 scene.solver.t_end, scene.accuracy.t_end_rule.c_str(), r.solver.steps, r.solver.wall_seconds);
   o << line;
   for (std::size_t b = 0; b < r.modes.size(); ++b) {
+    if (!std::isfinite(r.modes[b].periods[0])) {  // P-Delta made the first mode unstable
+      std::snprintf(line, sizeof line, "building %s: T1 unstable with P-Delta (a storey's tangent k - P/h is negative)\n",
+                    b == 0 ? "A" : "B");
+      o << line;
+      continue;
+    }
     std::snprintf(line, sizeof line, "building %s: T1 = %.4g s, modal damping %.3g (inherent %.3g, devices %.3g)%s\n",
                   b == 0 ? "A" : "B", r.modes[b].periods[0], r.modes[b].total_ratio[0], r.modes[b].inherent_ratio[0],
                   r.modes[b].device_ratio[0], r.modes[b].p_delta ? " with P-Delta" : "");
