@@ -8,6 +8,7 @@
 //    last row; the run stops at a collapse with exit 0.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -285,4 +286,62 @@ TEST_CASE("adjoin modes says what it shows with P-Delta", "[p_delta][cli]") {
   CHECK(r.out.find("with P-Delta: periods and shapes of K0 + K_G") != std::string::npos);
   // T = 2 pi / sqrt((k - m g / h) / m) = 2.42179 s.
   CHECK(r.out.find("2.42179") != std::string::npos);
+}
+
+TEST_CASE("a building sweep reports each row's collapse time and largest drift ratio", "[p_delta][collapse][sweep][cli]") {
+  namespace fs = std::filesystem;
+  // Storey 1 carries 2 x 1e4 kg: P/h = 65 378 N/m. k = 2e4 leans on and collapses; k = 1e5 stands.
+  const fs::path base = test::write_temp("sweep_base.toml", R"(name = "lean"
+[model]
+units = "SI"
+[building.A]
+storeys = 2
+mass = 1.0e4
+stiffness = 1.0e5
+height = 3.0
+p_delta = true
+collapse_drift_ratio = 0.05
+[ground]
+source = "decaying-sine"
+u0 = 0.01
+omega = 2.0
+k = 0.5
+[solver]
+h = 0.005
+t_end = 10.0
+)");
+  const fs::path file = test::write_temp("lean_sweep.toml", "base = \"" + base.string() +
+                                                              "\"\n[[axis]]\nkey = \"building.A.stiffness\"\nvalues = [2.0e4, 1.0e5]\n");
+  const fs::path out = fs::path(ADJOIN_TEST_TMP) / "lean_sweep";
+  fs::remove_all(out);
+  const auto r = test::run_cli("sweep '" + file.string() + "' --out '" + out.string() + "' --quiet --jobs 1");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  std::ifstream csv(out / "sweep.csv");
+  std::string line;
+  std::getline(csv, line);
+  const auto header = split(line);
+  auto at = [&](const std::string& name) {
+    return static_cast<std::size_t>(std::find(header.begin(), header.end(), name) - header.begin());
+  };
+  REQUIRE(at("collapse_t") < header.size());
+  REQUIRE(at("A.drift_ratio_max") < header.size());
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(csv, line)) {
+    auto cells = split(line);
+    cells.resize(header.size());  // (trailing empty cells)
+    rows.push_back(cells);
+  }
+  REQUIRE(rows.size() == 2);
+  // The leaning frame collapses: its time is the run's own (the same scene run alone).
+  CHECK_FALSE(rows[0][at("collapse_t")].empty());
+  CHECK(std::stod(rows[0][at("A.drift_ratio_max")]) > 0.05);
+  const auto alone = test::run_cli("run '" + base.string() + "' --set building.A.stiffness=2e4 --out '" + (out / "alone").string() +
+                                   "' --quiet");
+  REQUIRE(alone.status == 0);
+  const auto j = nlohmann::json::parse(test::slurp(out / "alone" / "summary.json"));
+  CHECK(std::stod(rows[0][at("collapse_t")]) == j["collapse"]["t"].get<double>());
+  // The stiff one stands: no collapse, a drift ratio below the limit.
+  CHECK(rows[1][at("collapse_t")].empty());
+  CHECK(std::stod(rows[1][at("A.drift_ratio_max")]) < 0.05);
 }
