@@ -226,7 +226,6 @@ k = 0.5
 [solver]
 h = 0.005
 t_end = 60.0
-error_estimate = false
 [output]
 timeseries = true
 every = 7
@@ -248,6 +247,14 @@ every = 7
   CHECK(j["structure"]["A"]["periods"][0].is_null());  // both storeys lean: the first mode is unstable
   const std::size_t steps = j["solver"]["steps"];
   CHECK(t < 60.0);
+  // The error estimate's companion at 2h collapses too: the located time's Richardson error
+  // is its actual error (against a run at h/4, whose own error is 1/16 of it).
+  REQUIRE(j["error_estimate"]["available"] == true);
+  REQUIRE(j["error_estimate"]["collapse_t"].is_number());
+  const fs::path fine_out = out / "fine";
+  REQUIRE(test::run_cli("run '" + scene.string() + "' --set solver.h=0.00125 --out '" + fine_out.string() + "' --quiet").status == 0);
+  const double t_fine = nlohmann::json::parse(test::slurp(fine_out / "summary.json"))["collapse"]["t"];
+  CHECK(j["error_estimate"]["collapse_t"].get<double>() == Approx(std::abs(t - t_fine) * 16.0 / 15.0).epsilon(0.05));
   CHECK(t <= steps * 0.005 + 1e-12);
   CHECK(t > (steps - 1) * 0.005 - 1e-12);
   // The time series ends at the last grid point (written although it is not every 7th), and

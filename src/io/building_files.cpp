@@ -197,7 +197,7 @@ std::string unmodelled_message(std::size_t k, const structure::Contact& c, doubl
 }
 
 // Estimated absolute errors of the reported values (SI), shaped as a two-block run's.
-ordered_json building_error_json(const BuildingScene& scene, const ErrorEstimate& e) {
+ordered_json building_error_json(const BuildingScene& scene, const ErrorEstimate& e, bool collapsed) {
   if (!e.available) return ordered_json{{"available", false}, {"reason", e.reason}};
   ordered_json peaks = ordered_json::object();
   for (const auto& p : e.peaks) peaks[p.channel] = {{"max_abs", p.error.max_abs}, {"t", p.error.t}};
@@ -214,7 +214,7 @@ ordered_json building_error_json(const BuildingScene& scene, const ErrorEstimate
   }
   ordered_json contacts = ordered_json::array();
   for (const auto& c : e.contacts) contacts.push_back({{"min_gap", c.min_gap}, {"t_min_gap", c.t_min_gap}});
-  return ordered_json{{"available", true},
+  ordered_json out{{"available", true},
                       {"method", "richardson"},
                       {"companion_h", e.companion_h},
                       {"order", e.order},
@@ -224,6 +224,9 @@ ordered_json building_error_json(const BuildingScene& scene, const ErrorEstimate
                       {"peaks", peaks},
                       {"links", links},
                       {"contacts", contacts}};
+  // A collapse's located time (null: the companion did not collapse in the same storey).
+  if (collapsed) out["collapse_t"] = e.collapse_t ? ordered_json(*e.collapse_t) : ordered_json(nullptr);
+  return out;
 }
 
 // The streamed writer, started afresh with each run it sees: a run to a tolerance streams every
@@ -359,7 +362,7 @@ std::string building_summary_json(const BuildingScene& scene, const Report& r, c
   for (const auto& v : r.residual) residual[v.channel] = v.value;
   j["residual"] = residual;
   if (r.collapse) j["collapse"] = collapse_json(*r.collapse);
-  if (estimate) j["error_estimate"] = building_error_json(scene, *estimate);
+  if (estimate) j["error_estimate"] = building_error_json(scene, *estimate, r.collapse.has_value());
   require_finite(j, "", scene.solver.t_end);
   return j.dump(2) + "\n";
 }
