@@ -352,3 +352,49 @@ t_end = 10.0
   CHECK(rows[1][at("collapse_t")].empty());
   CHECK(std::stod(rows[1][at("A.drift_ratio_max")]) < 0.05);
 }
+
+TEST_CASE("an unstable P-Delta building beside a stable one: null periods, the other's modes, exit 0",
+          "[p_delta][collapse][cli]") {
+  namespace fs = std::filesystem;
+  const fs::path scene = test::write_temp("lean_pair.toml", R"(name = "lean-pair"
+[model]
+units = "SI"
+[building.A]
+storeys = 2
+mass = 1.0e4
+stiffness = 2.0e4
+height = 3.0
+p_delta = true
+[building.B]
+storeys = 2
+mass = 1.0e4
+stiffness = 1.0e6
+[[link]]
+floors = [2, 2]
+type = "dashpot"
+c = 1e3
+[ground]
+source = "decaying-sine"
+u0 = 0.01
+omega = 2.0
+k = 0.5
+[solver]
+t_end = 20.0
+)");
+  const fs::path out = fs::path(ADJOIN_TEST_TMP) / "lean_pair";
+  fs::remove_all(out);
+  const auto r = test::run_cli("run '" + scene.string() + "' --out '" + out.string() + "' --quiet");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const auto j = nlohmann::json::parse(test::slurp(out / "summary.json"));
+  // The step was chosen from the elastic periods (P-Delta's are infinite here).
+  CHECK(j["solver"]["h"].get<double>() > 0.0);
+  CHECK(j["structure"]["A"]["periods"][0].is_null());
+  CHECK(j["structure"]["periods_free"][0].is_null());
+  structure::StructureBuilder b;
+  b.building('A', 2).mass(1e4).stiffness(1e6);
+  CHECK(j["structure"]["B"]["periods"][0].get<double>() == Approx(structure::building_modes(b.build().a).periods[0]).epsilon(1e-12));
+  CHECK(j["collapse"]["building"] == "A");
+  CHECK_FALSE(j["residual"].contains("B.drift_ratio1"));  // B has no heights
+  CHECK(j["residual"].contains("B.drift1"));
+}

@@ -294,8 +294,8 @@ std::string building_summary_json(const BuildingScene& scene, const Report& r, c
   st["A"] = modes_json(r.modes[0]);
   if (s.b) {
     st["B"] = modes_json(r.modes[1]);
-    st["periods_free"] = as_vector(r.coupled->periods_free);
-    st["periods_locked"] = as_vector(r.coupled->periods_locked);
+    st["periods_free"] = finite_or_null(r.coupled->periods_free);
+    st["periods_locked"] = finite_or_null(r.coupled->periods_locked);
   }
   j["structure"] = st;
   ordered_json peaks = ordered_json::object();
