@@ -237,6 +237,7 @@ every = 7
   REQUIRE(r.status == 0);
   CHECK(r.out.find("COLLAPSE: storey") != std::string::npos);
   CHECK(r.out.find("building A: T1 unstable with P-Delta") != std::string::npos);
+  CHECK(r.out.find("peak drift ratio A: ") != std::string::npos);
   const auto j = nlohmann::json::parse(test::slurp(out / "summary.json"));
   REQUIRE(j.contains("collapse"));
   CHECK(j["collapse"]["building"] == "A");

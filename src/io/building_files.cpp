@@ -409,6 +409,17 @@ std::string building_brief_report(const BuildingScene& scene, const Report& r, c
         o << line;
       }
     }
+  // The largest peak drift ratio of each building with storey heights (SPEC §7).
+  for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr}) {
+    if (!b || !b->has_heights()) continue;
+    const ChannelPeak* worst = nullptr;
+    for (const auto& p : r.peaks)
+      if (p.channel.rfind(b->name + ".drift_ratio", 0) == 0 && (!worst || p.peak.max_abs > worst->peak.max_abs)) worst = &p;
+    if (!worst) continue;
+    std::snprintf(line, sizeof line, "peak drift ratio %s: %.4g (%s) at t = %.4g s\n", b->name.c_str(), worst->peak.max_abs,
+                  worst->channel.c_str(), worst->peak.t);
+    o << line;
+  }
   for (std::size_t l = 0; l < s.links.size(); ++l) {
     std::snprintf(line, sizeof line, "link%zu (%s): force max %.4g N, stroke max %.4g m", l + 1, link_type(s.links[l].type),
                   r.links[l].force_max, r.links[l].stroke_max);
