@@ -127,18 +127,19 @@ TEST_CASE("building sweeps: the columns are the base structure's channels", "[bu
   const auto n = names(sweep_columns(spec));
   const std::vector<std::string> expected = {
       "index", "link.2.slip_ratio", "motion", "units",
-      "A.T1", "A.roof_max", "A.drift_max", "A.drift_storey", "A.accel_max", "A.base_shear_max", "A.share_inherent",
-      "B.T1", "B.roof_max", "B.drift_max", "B.drift_storey", "B.accel_max", "B.base_shear_max", "B.share_inherent",
+      "A.T1", "A.roof_max", "A.drift_max", "A.drift_storey", "A.drift_ratio_max", "A.accel_max", "A.base_shear_max", "A.share_inherent",
+      "B.T1", "B.roof_max", "B.drift_max", "B.drift_storey", "B.drift_ratio_max", "B.accel_max", "B.base_shear_max", "B.share_inherent",
       "link1.force_max", "link1.stroke_max", "link1.switches", "link1.energy_share",
       "link2.force_max", "link2.stroke_max", "link2.switches", "link2.energy_share",
       "contact1.min_gap", "contact1.contact", "contact1.impacts", "contact1.force_max", "contact1.penetration_max",
-      "contact1.energy_share", "contact1.outside_model", "energy_input", "share_residual", "pga_g", "wall_seconds", "error"};
+      "contact1.energy_share", "contact1.outside_model", "energy_input", "share_residual", "collapse_t", "pga_g", "wall_seconds", "error"};
   CHECK(n == expected);
   // One building, no links: its columns only.
   const auto single = building_channel_columns(
       load_building_scene(kOneDamper, {}, {"building.B", "link", "contact"}).structure);
-  CHECK(names(single) == std::vector<std::string>{"A.T1", "A.roof_max", "A.drift_max", "A.drift_storey", "A.accel_max",
-                                                  "A.base_shear_max", "A.share_inherent", "energy_input", "share_residual"});
+  CHECK(names(single) == std::vector<std::string>{"A.T1", "A.roof_max", "A.drift_max", "A.drift_storey", "A.drift_ratio_max",
+                                                  "A.accel_max", "A.base_shear_max", "A.share_inherent", "energy_input",
+                                                  "share_residual", "collapse_t"});
 }
 
 TEST_CASE("building sweeps: slip limits, a run without its links leaves their cells empty", "[building_sweep]") {

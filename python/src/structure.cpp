@@ -42,6 +42,7 @@ py::dict modes_dict(const structure::Building& b) {
   d["zener_stiffening"] = vector_of(m.zener_stiffening);
   d["participation"] = vector_of(m.participation);
   d["effective_mass"] = vector_of(m.effective_mass);
+  d["p_delta"] = m.p_delta;  // the periods are K0 + K_G's (inf: a mode P-Delta made unstable)
   return d;
 }
 
@@ -103,6 +104,10 @@ void bind_structure(py::module_& m) {
              double tau_f) -> BuildingBuilder& { return b.zener(storeys, zener_of(stiffness, order, tau_x, tau_f)); },
           py::arg("storeys"), py::kw_only(), py::arg("stiffness"), py::arg("order"), py::arg("tau_x"), py::arg("tau_f"),
           py::return_value_policy::reference_internal, "A fractional Zener device in each listed storey: relaxed stiffness [N/m], order alpha in (0, 1), tau_x and tau_f [s^order].")
+      .def("height", &BuildingBuilder::height, py::arg("m"), py::return_value_policy::reference_internal, "Every storey's height [m]: drift ratios, P-Delta and the collapse check need heights.")
+      .def("heights", &BuildingBuilder::heights, py::arg("m"), py::return_value_policy::reference_internal, "Each storey's height [m], storey 1 first.")
+      .def("p_delta", &BuildingBuilder::p_delta, py::arg("on"), py::return_value_policy::reference_internal, "P-Delta: each storey's geometric stiffness -P_i/h_i (needs heights).")
+      .def("collapse_drift_ratio", &BuildingBuilder::collapse_drift_ratio, py::arg("ratio"), py::return_value_policy::reference_internal, "The |drift| / height past which a run stops with a collapse (default 0.10; needs heights).")
       .def_property_readonly("path", &BuildingBuilder::path, "The building's field path, \"building.A\".")
       .def_property_readonly("storeys", &BuildingBuilder::storeys, "The number of storeys.");
 

@@ -42,15 +42,35 @@ const char* link_type(structure::LinkType t) {
   return "";
 }
 
+// Values that may be absent: an unstable mode's period and ratios under P-Delta are null.
+ordered_json finite_or_null(const Eigen::VectorXd& v) {
+  ordered_json out = ordered_json::array();
+  for (double x : as_vector(v)) out.push_back(std::isfinite(x) ? ordered_json(x) : ordered_json(nullptr));
+  return out;
+}
+
 ordered_json modes_json(const structure::Modes& m) {
   ordered_json shapes = ordered_json::array();
   for (int j = 0; j < m.shapes.cols(); ++j) shapes.push_back(as_vector(m.shapes.col(j)));
-  return {{"periods", as_vector(m.periods)},
-          {"damping_ratios", as_vector(m.total_ratio)},
-          {"inherent_ratios", as_vector(m.inherent_ratio)},
-          {"device_ratios", as_vector(m.device_ratio)},
-          {"zener_stiffening", as_vector(m.zener_stiffening)},
-          {"mode_shapes", shapes}};
+  ordered_json out = {{"periods", finite_or_null(m.periods)},
+                      {"damping_ratios", finite_or_null(m.total_ratio)},
+                      {"inherent_ratios", finite_or_null(m.inherent_ratio)},
+                      {"device_ratios", finite_or_null(m.device_ratio)},
+                      {"zener_stiffening", as_vector(m.zener_stiffening)},
+                      {"mode_shapes", shapes}};
+  // With P-Delta the periods are K0 + K_G's (null: a mode the geometric stiffness made unstable).
+  if (m.p_delta) out["p_delta"] = true;
+  return out;
+}
+
+// Collapse (SPEC §7): the storey, its drift-ratio channel and the located time.
+ordered_json collapse_json(const Collapse& c) {
+  const std::string building(1, c.building);
+  return {{"building", building},
+          {"storey", c.storey},
+          {"channel", building + ".drift_ratio" + std::to_string(c.storey)},
+          {"t", c.t},
+          {"drift_ratio_limit", c.drift_ratio}};
 }
 
 // A CSV value as to_chars writes it (about 17 digits, sign, exponent) and its comma: the
@@ -94,7 +114,23 @@ class BuildingCsvWriter final : public StructureObserver {
     const std::size_t index = count_++;
     for (const auto& gap : gaps_)
       if (channel_value(*s_, gap, st) <= 0.0) unmodelled_ = true;
-    if (index % every_ != 0 && index != steps_) return;
+    if (index % every_ != 0 && index != steps_) {
+      last_ = st;  // written at end() if the run ends here (a collapse stops it early)
+      pending_ = true;
+      return;
+    }
+    pending_ = false;
+    write_row(st);
+  }
+  void end() override {
+    if (pending_) write_row(last_);
+    pending_ = false;
+    out_ << buffer_;
+    buffer_.clear();
+  }
+
+ private:
+  void write_row(const StructureState& st) {
     values_.resize(2 + columns_.size());
     values_[0] = st.t;
     values_[1] = st.ag;
@@ -109,9 +145,7 @@ class BuildingCsvWriter final : public StructureObserver {
     }
     if (buffer_.size() > (1 << 16)) { out_ << buffer_; buffer_.clear(); }
   }
-  void end() override { out_ << buffer_; buffer_.clear(); }
 
- private:
   // Once per size: a run to a tolerance begins again with each rung.
   void warn_if_large(double h) {
     const double rows = static_cast<double>(steps_ / every_ + 2);
@@ -138,6 +172,8 @@ class BuildingCsvWriter final : public StructureObserver {
   std::vector<double> values_;
   std::string buffer_;
   bool flagged_ = false, unmodelled_ = false;
+  StructureState last_;   // the last grid point not written (the run's last, if it stops early)
+  bool pending_ = false;
 };
 
 std::string number_text(double v) {
@@ -161,7 +197,7 @@ std::string unmodelled_message(std::size_t k, const structure::Contact& c, doubl
 }
 
 // Estimated absolute errors of the reported values (SI), shaped as a two-block run's.
-ordered_json building_error_json(const BuildingScene& scene, const ErrorEstimate& e) {
+ordered_json building_error_json(const BuildingScene& scene, const ErrorEstimate& e, bool collapsed) {
   if (!e.available) return ordered_json{{"available", false}, {"reason", e.reason}};
   ordered_json peaks = ordered_json::object();
   for (const auto& p : e.peaks) peaks[p.channel] = {{"max_abs", p.error.max_abs}, {"t", p.error.t}};
@@ -178,7 +214,7 @@ ordered_json building_error_json(const BuildingScene& scene, const ErrorEstimate
   }
   ordered_json contacts = ordered_json::array();
   for (const auto& c : e.contacts) contacts.push_back({{"min_gap", c.min_gap}, {"t_min_gap", c.t_min_gap}});
-  return ordered_json{{"available", true},
+  ordered_json out{{"available", true},
                       {"method", "richardson"},
                       {"companion_h", e.companion_h},
                       {"order", e.order},
@@ -188,6 +224,9 @@ ordered_json building_error_json(const BuildingScene& scene, const ErrorEstimate
                       {"peaks", peaks},
                       {"links", links},
                       {"contacts", contacts}};
+  // A collapse's located time (null: the companion did not collapse in the same storey).
+  if (collapsed) out["collapse_t"] = e.collapse_t ? ordered_json(*e.collapse_t) : ordered_json(nullptr);
+  return out;
 }
 
 // The streamed writer, started afresh with each run it sees: a run to a tolerance streams every
@@ -255,8 +294,8 @@ std::string building_summary_json(const BuildingScene& scene, const Report& r, c
   st["A"] = modes_json(r.modes[0]);
   if (s.b) {
     st["B"] = modes_json(r.modes[1]);
-    st["periods_free"] = as_vector(r.coupled->periods_free);
-    st["periods_locked"] = as_vector(r.coupled->periods_locked);
+    st["periods_free"] = finite_or_null(r.coupled->periods_free);
+    st["periods_locked"] = finite_or_null(r.coupled->periods_locked);
   }
   j["structure"] = st;
   ordered_json peaks = ordered_json::object();
@@ -318,7 +357,12 @@ std::string building_summary_json(const BuildingScene& scene, const Report& r, c
   energy["input"] = r.energy.input;
   energy["residual"] = r.energy.residual;
   j["energy"] = energy;
-  if (estimate) j["error_estimate"] = building_error_json(scene, *estimate);
+  // SPEC §7: the drifts (and drift ratios) at the run's last grid point; the collapse, if any.
+  ordered_json residual = ordered_json::object();
+  for (const auto& v : r.residual) residual[v.channel] = v.value;
+  j["residual"] = residual;
+  if (r.collapse) j["collapse"] = collapse_json(*r.collapse);
+  if (estimate) j["error_estimate"] = building_error_json(scene, *estimate, r.collapse.has_value());
   require_finite(j, "", scene.solver.t_end);
   return j.dump(2) + "\n";
 }
@@ -337,9 +381,23 @@ std::string building_brief_report(const BuildingScene& scene, const Report& r, c
                 scene.solver.t_end, scene.accuracy.t_end_rule.c_str(), r.solver.steps, r.solver.wall_seconds);
   o << line;
   for (std::size_t b = 0; b < r.modes.size(); ++b) {
-    std::snprintf(line, sizeof line, "building %s: T1 = %.4g s, modal damping %.3g (inherent %.3g, devices %.3g)\n",
+    if (!std::isfinite(r.modes[b].periods[0])) {  // P-Delta made the first mode unstable
+      std::snprintf(line, sizeof line, "building %s: T1 unstable with P-Delta (a storey's tangent k - P/h is negative)\n",
+                    b == 0 ? "A" : "B");
+      o << line;
+      continue;
+    }
+    std::snprintf(line, sizeof line, "building %s: T1 = %.4g s, modal damping %.3g (inherent %.3g, devices %.3g)%s\n",
                   b == 0 ? "A" : "B", r.modes[b].periods[0], r.modes[b].total_ratio[0], r.modes[b].inherent_ratio[0],
-                  r.modes[b].device_ratio[0]);
+                  r.modes[b].device_ratio[0], r.modes[b].p_delta ? " with P-Delta" : "");
+    o << line;
+  }
+  if (r.collapse) {
+    std::snprintf(line, sizeof line,
+                  "COLLAPSE: storey %d of building %c passed the drift ratio %.4g at t = %.6g s; the run stopped there (outputs "
+                  "end at t = %.6g s)\n",
+                  r.collapse->storey, r.collapse->building, std::abs(r.collapse->drift_ratio), r.collapse->t,
+                  static_cast<double>(r.solver.steps) * r.solver.h);
     o << line;
   }
   for (const auto& p : r.peaks)
@@ -351,6 +409,17 @@ std::string building_brief_report(const BuildingScene& scene, const Report& r, c
         o << line;
       }
     }
+  // The largest peak drift ratio of each building with storey heights (SPEC §7).
+  for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr}) {
+    if (!b || !b->has_heights()) continue;
+    const ChannelPeak* worst = nullptr;
+    for (const auto& p : r.peaks)
+      if (p.channel.rfind(b->name + ".drift_ratio", 0) == 0 && (!worst || p.peak.max_abs > worst->peak.max_abs)) worst = &p;
+    if (!worst) continue;
+    std::snprintf(line, sizeof line, "peak drift ratio %s: %.4g (%s) at t = %.4g s\n", b->name.c_str(), worst->peak.max_abs,
+                  worst->channel.c_str(), worst->peak.t);
+    o << line;
+  }
   for (std::size_t l = 0; l < s.links.size(); ++l) {
     std::snprintf(line, sizeof line, "link%zu (%s): force max %.4g N, stroke max %.4g m", l + 1, link_type(s.links[l].type),
                   r.links[l].force_max, r.links[l].stroke_max);

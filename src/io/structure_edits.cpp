@@ -78,6 +78,8 @@ std::vector<std::string> alternatives(const std::string& key) {
   if (key == "period") return {"stiffness", "stiffnesses"};
   if (key == "mass") return {"masses"};
   if (key == "masses") return {"mass"};
+  if (key == "height") return {"heights"};
+  if (key == "heights") return {"height"};
   if (key == "slip_force") return {"slip_ratio", "of"};
   if (key == "slip_ratio") return {"slip_force"};
   return {};

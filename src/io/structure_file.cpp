@@ -202,10 +202,34 @@ double stiffness_for_period(const TableReader& r, const Eigen::VectorXd& masses)
   return k;
 }
 
+// Storey heights, P-Delta and the collapse drift ratio (SPEC §7).
+void read_heights(const TableReader& r, Building* b) {
+  const int n = b->floors();
+  if (r.has("height") && r.has("heights")) r.fail("", "give the storey heights as height (every storey) or heights (a list), one of them");
+  if (r.has("height")) b->heights = Eigen::VectorXd::Constant(n, r.bounded("height", structure::kHeightRange));
+  if (r.has("heights")) {
+    const auto h = r.numbers("heights", n);
+    for (int i = 0; i < n; ++i)
+      if (const std::string problem = structure::bounded_problem(h[i], structure::kHeightRange); !problem.empty())
+        r.fail("heights", "storey " + std::to_string(i + 1) + ": " + problem + " (a height in m)");
+    b->heights = Eigen::Map<const Eigen::VectorXd>(h.data(), n);
+  }
+  if (r.has("p_delta")) {
+    const auto v = r.table().get("p_delta")->value_exact<bool>();
+    if (!v) r.fail("p_delta", "expected true or false");
+    b->p_delta = *v;
+  }
+  if (r.has("collapse_drift_ratio")) b->collapse_drift_ratio = r.bounded("collapse_drift_ratio", structure::kDriftRatioRange);
+  std::string key;
+  if (const std::string problem = structure::heights_problem(*b, r.has("collapse_drift_ratio"), &key); !problem.empty())
+    r.fail(key, problem);
+}
+
 Building read_building(const toml::table& root, const std::string& name, const TableReader& top) {
   const toml::table* t = root["building"][name].as_table();
   const TableReader r = top.inner(*t, "building." + name);
-  r.only({"storeys", "mass", "masses", "stiffness", "stiffnesses", "period", "damping", "device"});
+  r.only({"storeys", "mass", "masses", "stiffness", "stiffnesses", "period", "damping", "device", "height", "heights", "p_delta",
+          "collapse_drift_ratio"});
   Building b;
   b.name = name;
   const int n = r.integer("storeys", 1, structure::kMaxStoreys);
@@ -290,6 +314,7 @@ Building read_building(const toml::table& root, const std::string& name, const T
     b.springs = Eigen::VectorXd::Constant(n, k);
   }
   if (const std::string problem = structure::storey_stiffness_problem(b); !problem.empty()) r.fail("", problem);
+  read_heights(r, &b);
   return b;
 }
 

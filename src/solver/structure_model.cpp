@@ -101,6 +101,11 @@ void StructureModel::assemble_elements(Assembly& a) {
     mass.segment(offset, nb) = b.masses;
     c.block(offset, offset, nb, nb) = structure::inherent_damping_matrix(b) + structure::dashpot_matrix(b);
     for (int st = 0; st < nb; ++st) Pair{offset + st, st > 0 ? offset + st - 1 : -1}.add(a.k0_dense, b.springs[st]);
+    // P-Delta (SPEC §7): each storey's geometric stiffness -P_i/h_i joins K0 (C above stays K0's without it).
+    if (b.p_delta) {
+      const Eigen::VectorXd kg = b.geometric_stiffness();
+      for (int st = 0; st < nb; ++st) Pair{offset + st, st > 0 ? offset + st - 1 : -1}.add(a.k0_dense, kg[st]);
+    }
     for (const auto& d : b.devices)
       for (int st : d.storeys) {
         const Pair p{offset + st - 1, st > 1 ? offset + st - 2 : -1};
@@ -342,6 +347,11 @@ void StructureModel::assemble_storeys() {
   storey_dashpot.assign(n, 0.0);
   auto storeys_of = [&](const structure::Building& b, int offset) {
     for (int st = 0; st < b.floors(); ++st) storey_spring[offset + st] += b.springs[st];
+    // The storey force includes P-Delta's -P_i/h_i x drift: the force the step integrates (the energy balance closes).
+    if (b.p_delta) {
+      const Eigen::VectorXd kg = b.geometric_stiffness();
+      for (int st = 0; st < b.floors(); ++st) storey_spring[offset + st] += kg[st];
+    }
     for (const auto& d : b.devices)
       for (int st : d.storeys) {
         if (d.type == DeviceType::spring) storey_spring[offset + st - 1] += d.k;

@@ -29,7 +29,8 @@
 //
 // integrate<S>(observer, setup...) constructs S(setup...), then calls observer.begin(info),
 // observer.observe(start()), and for each step advance(n), observer.impact(i) for each of
-// its impacts, observer.observe(state); then observer.end(). An exception from the stepper
+// its impacts, observer.observe(state) (and, for an observer with done(), stops after a state
+// it is done at: CanStop below); then observer.end(). An exception from the stepper
 // or an observer propagates at once: end() is not called (a run's files are then discarded
 // by whoever owns them). It returns the number of steps, the wall time from before the
 // stepper's construction to after end() (set-up included: it is part of a run's cost), and
@@ -70,6 +71,13 @@ concept ReportsImpacts = requires(S& s) {
   { s.impacts() };
 };
 
+// An observer that may end the run early (StructureObserver::done): after each observe() the
+// loop asks it, and on true calls end() at once; the result's steps are those taken.
+template <class O>
+concept CanStop = requires(const O& o) {
+  { o.done() } -> std::convertible_to<bool>;
+};
+
 struct LoopResult {
   std::size_t steps = 0;
   double wall_seconds = 0.0;
@@ -100,15 +108,21 @@ LoopResult integrate(Obs& observer, Setup&&... setup) {
   const std::size_t n_steps = stepper.steps();
   loop_detail::begin(observer, stepper.info());
   observer.observe(stepper.start());
+  std::size_t taken = n_steps;
   for (std::size_t n = 0; n < n_steps; ++n) {
     const auto& state = stepper.advance(n);
     if constexpr (ReportsImpacts<S>)
       for (const auto& impact : stepper.impacts()) observer.impact(impact);
     observer.observe(state);
+    if constexpr (CanStop<Obs>)
+      if (observer.done()) {  // an outcome ends the run here (a collapse), not an error
+        taken = n + 1;
+        break;
+      }
   }
   observer.end();
   LoopResult result;
-  result.steps = n_steps;
+  result.steps = taken;
   result.history_bytes = stepper.history_bytes();
   result.history_error = stepper.history_error();
   result.history_modes = stepper.history_modes();

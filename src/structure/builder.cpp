@@ -97,6 +97,32 @@ BuildingBuilder& BuildingBuilder::rayleigh_damping(double ratio, int mode_i, int
   return *this;
 }
 
+BuildingBuilder& BuildingBuilder::height(double m) {
+  check(path_ + ".height", bounded_problem(m, kHeightRange));
+  b_.heights = Eigen::VectorXd::Constant(b_.floors(), m);
+  return *this;
+}
+
+BuildingBuilder& BuildingBuilder::heights(const std::vector<double>& m) {
+  const auto n = static_cast<std::size_t>(b_.floors());
+  if (m.size() != n) throw FieldError(path_ + ".heights", "expected " + std::to_string(n) + " values, one per storey (bottom up)");
+  for (std::size_t i = 0; i < n; ++i) check(item(path_ + ".heights", i), bounded_problem(m[i], kHeightRange));
+  b_.heights = Eigen::Map<const Eigen::VectorXd>(m.data(), static_cast<Eigen::Index>(n));
+  return *this;
+}
+
+BuildingBuilder& BuildingBuilder::p_delta(bool on) {
+  b_.p_delta = on;
+  return *this;
+}
+
+BuildingBuilder& BuildingBuilder::collapse_drift_ratio(double ratio) {
+  check(path_ + ".collapse_drift_ratio", bounded_problem(ratio, kDriftRatioRange));
+  b_.collapse_drift_ratio = ratio;
+  collapse_given_ = true;
+  return *this;
+}
+
 std::string BuildingBuilder::device_path() const { return item(path_ + ".device", b_.devices.size()); }
 
 void BuildingBuilder::add_device(StoreyDevice device, const std::vector<int>& storeys) {
@@ -148,6 +174,9 @@ Building BuildingBuilder::build() const {
     }
   }
   check(path_, storey_stiffness_problem(b));
+  std::string key;
+  if (const std::string problem = heights_problem(b, collapse_given_, &key); !problem.empty())
+    throw FieldError(path_ + "." + key, problem);
   return b;
 }
 

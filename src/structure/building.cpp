@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/units.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/structure/rules.hpp"
 
@@ -54,6 +55,12 @@ bool building_valid(const Building& b, const std::string& path, std::string* err
   for (int i = 0; i < n; ++i)
     if (!(k[i] > 0.0))
       return fail(path + ": storey " + std::to_string(i + 1) + " has no stiffness (give a spring or a Zener device)");
+  if (b.has_heights() && b.heights.size() != n)
+    return fail(path + ".heights: expected " + std::to_string(n) + " values, one per storey");
+  for (int i = 0; i < b.heights.size(); ++i)
+    if (!positive(b.heights[i])) return fail(path + ".heights[" + std::to_string(i + 1) + "] must be a positive height (m)");
+  if (b.p_delta && !b.has_heights()) return fail(path + ".p_delta needs the storey heights (height or heights)");
+  if (!positive(b.collapse_drift_ratio)) return fail(path + ".collapse_drift_ratio must be a positive drift ratio");
   const InherentDamping& c = b.damping;
   if (c.model != DampingModel::none && !(c.ratio >= 0.0 && c.ratio < 1.0))
     return fail(path + ".damping.ratio must lie in [0, 1)");
@@ -73,6 +80,17 @@ Eigen::VectorXd Building::static_stiffness() const {
     const double add = d.type == DeviceType::spring ? d.k : (d.type == DeviceType::zener ? d.zener.k : 0.0);
     for (int s : d.storeys)
       if (s >= 1 && s <= k.size()) k[s - 1] += add;
+  }
+  return k;
+}
+
+Eigen::VectorXd Building::geometric_stiffness() const {
+  Eigen::VectorXd k = Eigen::VectorXd::Zero(floors());
+  if (!p_delta || heights.size() != floors()) return k;
+  double above = 0.0;  // the mass storey i carries: floors i..n
+  for (int i = floors() - 1; i >= 0; --i) {
+    above += masses[i];
+    k[i] = -above * kStandardGravity / heights[i];
   }
   return k;
 }

@@ -5,11 +5,13 @@
 namespace adjoin::structure {
 namespace {
 
-constexpr std::array<QuantityInfo, 9> kQuantities{{
+constexpr std::array<QuantityInfo, 10> kQuantities{{
     {Quantity::displacement, ChannelScope::floor, "x", "", "m", PeakRule::refined, true,
      "floor displacement relative to the ground"},
     {Quantity::drift, ChannelScope::storey, "drift", "", "m", PeakRule::refined, false,
      "storey drift x_i - x_(i-1)"},
+    {Quantity::drift_ratio, ChannelScope::storey, "drift_ratio", "", "-", PeakRule::refined, false,
+     "storey drift ratio (x_i - x_(i-1)) / h_i (buildings with storey heights)"},
     {Quantity::absolute_acceleration, ChannelScope::floor, "a", "_abs", "m/s^2", PeakRule::sampled, true,
      "floor absolute acceleration"},
     {Quantity::storey_shear, ChannelScope::storey, "shear", "", "N", PeakRule::sampled, false,
@@ -54,6 +56,7 @@ std::vector<Channel> channels(const Structure& s) {
     for (const auto& q : kQuantities) {
       if (q.scope == ChannelScope::building) out.push_back({element_name(q, name, 0), q.quantity, name, 0, -1});
       if (q.scope != ChannelScope::floor && q.scope != ChannelScope::storey) continue;
+      if (q.quantity == Quantity::drift_ratio && !b.has_heights()) continue;  // needs the storey heights
       for (int i = 1; i <= b.floors(); ++i) out.push_back({element_name(q, name, i), q.quantity, name, i, s.dof(name, i)});
     }
   };

@@ -1,6 +1,7 @@
 #include "adjoin/structure/modal.hpp"
 
 #include <cmath>
+#include <limits>
 
 #include <Eigen/Eigenvalues>
 
@@ -98,7 +99,11 @@ Eigen::MatrixXd inherent_damping_matrix(const Building& b) {
 Modes building_modes(const Building& b) {
   Modes out;
   const Eigen::MatrixXd m = mass_matrix(b), k = stiffness_matrix(b.static_stiffness());
-  solve(k, m, &out.omega, &out.shapes);
+  // With P-Delta the modes are those of the tangent K0 + K_G the run integrates about; a mode
+  // whose tangent is not positive has omega 0 and an infinite period (it diverges).
+  out.p_delta = b.p_delta;
+  solve(b.p_delta ? Eigen::MatrixXd(stiffness_matrix(b.static_stiffness() + b.geometric_stiffness())) : k, m, &out.omega,
+        &out.shapes);
   out.periods = periods_of(out.omega);
   const int n = b.floors();
   const Eigen::MatrixXd c_inherent = inherent_damping_matrix(b), c_devices = dashpot_matrix(b);
@@ -108,6 +113,11 @@ Modes building_modes(const Building& b) {
   for (int j = 0; j < n; ++j) {
     const Eigen::VectorXd phi = out.shapes.col(j);
     const double w = out.omega[j];
+    if (!(w > 0.0)) {  // P-Delta made the mode unstable: no ratio
+      out.inherent_ratio[j] = out.device_ratio[j] = std::numeric_limits<double>::quiet_NaN();
+      out.zener_stiffening[j] = 1.0;
+      continue;
+    }
     out.inherent_ratio[j] = phi.dot(c_inherent * phi) / (2.0 * w);
     const Eigen::MatrixXcd kc = complex_stiffness_matrix(b, w);
     const Eigen::VectorXcd phic = phi.cast<std::complex<double>>();
@@ -135,11 +145,11 @@ CoupledModes coupled_modes(const Structure& s) {
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n), k = Eigen::MatrixXd::Zero(n, n);
   const int na = s.a.floors();
   m.topLeftCorner(na, na) = mass_matrix(s.a);
-  k.topLeftCorner(na, na) = stiffness_matrix(s.a.static_stiffness());
+  k.topLeftCorner(na, na) = stiffness_matrix(s.a.static_stiffness() + s.a.geometric_stiffness());
   if (s.b) {
     const int nb = s.b->floors();
     m.bottomRightCorner(nb, nb) = mass_matrix(*s.b);
-    k.bottomRightCorner(nb, nb) = stiffness_matrix(s.b->static_stiffness());
+    k.bottomRightCorner(nb, nb) = stiffness_matrix(s.b->static_stiffness() + s.b->geometric_stiffness());
   }
   std::vector<std::pair<int, int>> locked;
   for (const Link& l : s.links) {

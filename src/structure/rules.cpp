@@ -121,4 +121,17 @@ std::string storey_stiffness_problem(const Building& b) {
   return "";
 }
 
+std::string heights_problem(const Building& b, bool collapse_given, std::string* key) {
+  if (b.has_heights()) return "";
+  if (b.p_delta) {
+    *key = "p_delta";
+    return "P-Delta needs the storey heights: give height (every storey) or heights (a list) [m]";
+  }
+  if (collapse_given) {
+    *key = "collapse_drift_ratio";
+    return "the collapse check needs the storey heights: give height (every storey) or heights (a list) [m]";
+  }
+  return "";
+}
+
 }  // namespace adjoin::structure

@@ -27,7 +27,11 @@ std::string number(double v, int precision = 6) {
 struct Periods {
   double shortest_fundamental = INFINITY, longest = 0.0;
 };
-Periods periods_of(const structure::Structure& s) {
+Periods periods_of(const structure::Structure& structure) {
+  // The elastic periods (K0): P-Delta can make a tangent's period infinite (a diverging storey).
+  structure::Structure s = structure;
+  s.a.p_delta = false;
+  if (s.b) s.b->p_delta = false;
   Periods p;
   for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr}) {
     if (!b) continue;

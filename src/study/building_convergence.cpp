@@ -73,6 +73,7 @@ std::vector<QuantityError> reported_quantities(const RunSpec& spec, const Report
     value(pair + " min gap", r.contacts[k].min_gap);
     instant(pair + " t min gap", r.contacts[k].t_min_gap);
   }
+  if (r.collapse) instant("collapse t", r.collapse->t);  // SPEC §7: the located crossing
   return out;
 }
 

@@ -143,8 +143,8 @@ const std::vector<SweepChannel>& building_sweep_channels() {
   using S = ChannelScope;
   using T = ColumnType;
   static const std::vector<SweepChannel> channels = {
-      {S::building, "X.T1", T::number, "s", "fundamental period of building X alone (static stiffness)",
-       [](const RunSpec&, const Report& r, std::size_t k) { return r.modes[k].periods[0]; }},
+      {S::building, "X.T1", T::number, "s", "fundamental period of building X alone (static stiffness; with P-Delta its tangent's, empty if unstable)",
+       [](const RunSpec&, const Report& r, std::size_t k) { return std::isfinite(r.modes[k].periods[0]) ? r.modes[k].periods[0] : kNaN; }},
       {S::building, "X.roof_max", T::number, "m", "peak roof displacement relative to the ground (peak of X.xN, N the top floor)",
        [](const RunSpec& s, const Report& r, std::size_t k) {
          const auto& b = building(s, k);
@@ -155,6 +155,10 @@ const std::vector<SweepChannel>& building_sweep_channels() {
       {S::building, "X.drift_storey", T::integer, "", "the storey where X.drift_max occurs (1 = ground storey)",
        [](const RunSpec& s, const Report& r, std::size_t k) {
          return static_cast<double>(largest(s, r, k, "drift").second);
+       }},
+      {S::building, "X.drift_ratio_max", T::number, "", "largest peak storey drift ratio |drift| / h (of X.drift_ratio1 ...; empty without storey heights)",
+       [](const RunSpec& s, const Report& r, std::size_t k) {
+         return building(s, k).has_heights() ? largest(s, r, k, "drift_ratio").first : kNaN;
        }},
       {S::building, "X.accel_max", T::number, "m/s^2", "largest peak absolute floor acceleration (of X.a1_abs ... X.aN_abs)",
        [](const RunSpec& s, const Report& r, std::size_t k) { return largest(s, r, k, "a", "_abs").first; }},
@@ -189,6 +193,9 @@ const std::vector<SweepChannel>& building_sweep_channels() {
        [](const RunSpec&, const Report& r, std::size_t) { return r.energy.input; }},
       {S::whole, "share_residual", T::number, "", "energy balance residual / input (closes at the scheme's order)",
        [](const RunSpec&, const Report& r, std::size_t) { return share(r.energy.residual, r); }},
+      {S::whole, "collapse_t", T::number, "s",
+       "the located time a storey's drift ratio passed its building's collapse_drift_ratio, where the run stopped (empty: no collapse)",
+       [](const RunSpec&, const Report& r, std::size_t) { return r.collapse ? r.collapse->t : kNaN; }},
   };
   return channels;
 }

@@ -184,6 +184,15 @@ class ChannelObserver final : public StructureObserver {
       out.push_back({values_.channels()[i].name, is_smooth_[i] ? smooth_[i].peak() : sampled_[i]});
     return out;
   }
+  // Each drift and drift-ratio channel at the last grid point observed (SPEC §7 `residual`).
+  std::vector<ChannelValue> residual() const {
+    std::vector<ChannelValue> out;
+    for (std::size_t i = 0; i < values_.size(); ++i) {
+      const structure::Quantity q = values_.channels()[i].quantity;
+      if (q == structure::Quantity::drift || q == structure::Quantity::drift_ratio) out.push_back({values_.channels()[i].name, row_[i]});
+    }
+    return out;
+  }
   const std::vector<LinkReport>& links() const { return links_; }
   // The contact pairs with their impacts' totals (in the order the impacts started).
   std::vector<ContactReport> contacts() const {

@@ -61,6 +61,8 @@ void compare_channels(const RunSpec& spec, const Report& fine, const Report& c, 
     const ContactReport& g = c.contacts.at(k);
     e->contacts.push_back({error(f.min_gap, g.min_gap), error(f.t_min_gap, g.t_min_gap)});
   }
+  if (fine.collapse && c.collapse && fine.collapse->building == c.collapse->building && fine.collapse->storey == c.collapse->storey)
+    e->collapse_t = error(fine.collapse->t, c.collapse->t);
 }
 
 // A two-block spec's values: the paper's peaks, the minimum gap, the friction energy, the
@@ -175,7 +177,8 @@ class Rungs final : public detail::StepLadder {
 ErrorEstimate estimate_error(const RunSpec& spec, const Report& fine) {
   ErrorEstimate e;
   e.order = scheme_order(spec.solver.scheme);
-  const std::size_t n = fine.solver.steps;
+  // (A run that collapsed stopped early: its companion keeps the whole horizon, to collapse too.)
+  const std::size_t n = fine.collapse ? spec.solver.steps() : fine.solver.steps;
   if (n < 8) {
     e.reason = "the run has fewer than 8 steps";
     return e;

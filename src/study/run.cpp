@@ -9,6 +9,7 @@
 #include "adjoin/structure/two_block.hpp"
 #include "adjoin/study/run_watch.hpp"
 #include "channel_observer.hpp"
+#include "collapse_observer.hpp"
 
 namespace adjoin {
 
@@ -187,6 +188,9 @@ class StructureObserverList final : public StructureObserver {
   void observe(const StructureState& st) override { for (auto* x : observers_) x->observe(st); }
   void impact(const Impact& e) override { for (auto* x : observers_) x->impact(e); }
   void end() override { for (auto* x : observers_) x->end(); }
+  bool done() const override {
+    return std::any_of(observers_.begin(), observers_.end(), [](const StructureObserver* x) { return x->done(); });
+  }
 
  private:
   std::vector<StructureObserver*> observers_;
@@ -236,7 +240,7 @@ Report run_building(const RunSpec& spec, const RunObservers& extra) {
   all.add(&observer);
   all.add(recorder.get());
   all.add(extra.structure);
-  r.solver = simulate_spec(spec, s, all);
+  r.solver = simulate_spec(spec, s, all, &r.collapse);
   if (recorder) {
     SpectrumOptions options;
     options.dampings = asked->damping;
@@ -248,6 +252,7 @@ Report run_building(const RunSpec& spec, const RunObservers& extra) {
   r.links = observer.links();
   r.contacts = observer.contacts();
   r.energy = observer.energy();
+  r.residual = observer.residual();
   return r;
 }
 
@@ -286,13 +291,17 @@ void check_memory(const RunSpec& spec) {
                             : "; set a coarser solver.h, loosen solver.tolerance or shorten solver.t_end"));
 }
 
-SolverSummary simulate_spec(const RunSpec& spec, const structure::Structure& s, StructureObserver& observer) {
+SolverSummary simulate_spec(const RunSpec& spec, const structure::Structure& s, StructureObserver& observer,
+                            std::optional<Collapse>* collapse) {
   check_memory(spec);
   StructureObserverList watched;
+  detail::CollapseObserver collapse_watch;  // first: the others see the state it stops at
+  if (detail::CollapseObserver::watches(s)) watched.add(&collapse_watch);
   watched.add(&observer);
   watched.add(spec.watch);
   const StructureSolverOptions options = with_scheme(spec.solver, spec.solver.scheme);
   const StructureRunSummary run = simulate_structure(options, s, *spec.ground, watched);
+  if (collapse) *collapse = collapse_watch.collapse();
   SolverSummary summary;
   summary.scheme = scheme_name(options);
   summary.history = to_string(options.history);

@@ -19,6 +19,10 @@ inline double channel_value(const structure::Structure& s, const structure::Chan
     case Quantity::displacement: return st.x[c.dof];
     case Quantity::absolute_acceleration: return st.a_abs[c.dof];
     case Quantity::drift: return st.x[c.dof] - (c.index > 1 ? st.x[c.dof - 1] : 0.0);
+    case Quantity::drift_ratio: {
+      const structure::Building& b = c.building == 'A' ? s.a : *s.b;
+      return (st.x[c.dof] - (c.index > 1 ? st.x[c.dof - 1] : 0.0)) / b.heights[c.index - 1];
+    }
     case Quantity::storey_shear: return st.storey_force[c.dof];
     case Quantity::base_shear: {
       // The sum of the floors' inertia forces.

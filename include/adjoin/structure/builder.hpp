@@ -49,6 +49,14 @@ class BuildingBuilder {
   // alpha: F = c |v|^alpha sign v (1: the linear dashpot; c in N (s/m)^alpha).
   BuildingBuilder& dashpot(const std::vector<int>& storeys, double c, double alpha = 1.0);
   BuildingBuilder& zener(const std::vector<int>& storeys, const Zener& z);
+  // Storey heights [m] (SPEC §7): one for every storey, or a list bottom up. With them the
+  // drift ratios are channels and a storey whose |drift / h| passes collapse_drift_ratio
+  // (default 0.10) stops the run (collapse, an outcome). P-Delta (each storey's geometric
+  // stiffness -P_i/h_i) and collapse_drift_ratio need the heights (checked by build()).
+  BuildingBuilder& height(double m);
+  BuildingBuilder& heights(const std::vector<double>& m);
+  BuildingBuilder& p_delta(bool on);
+  BuildingBuilder& collapse_drift_ratio(double ratio);
 
   const std::string& path() const { return path_; }  // "building.A"
   int storeys() const { return b_.floors(); }
@@ -64,6 +72,7 @@ class BuildingBuilder {
   bool mass_given_ = false;
   std::string stiffness_given_;  // "stiffness", "stiffnesses" or "period": the one given
   double period_ = 0.0;
+  bool collapse_given_ = false;
 };
 
 // A contact pair's law; the model's keys as a scene's [[contact]] takes them.

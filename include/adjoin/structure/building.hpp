@@ -47,10 +47,22 @@ struct Building {
   Eigen::VectorXd springs;        // storey springs [N/m], bottom up (0 where only devices stiffen)
   std::vector<StoreyDevice> devices;
   InherentDamping damping;
+  // Storey heights [m], bottom up; empty when not given (SPEC §7). With them: the drift ratios
+  // (channels X.drift_ratioN = drift / h_N), P-Delta and the collapse check.
+  Eigen::VectorXd heights;
+  // P-Delta: each storey i gets the linear geometric stiffness -P_i/h_i, P_i = g x the mass of
+  // floors i..n (constant). Needs heights. The inherent damping stays that of K0 without it.
+  bool p_delta = false;
+  // Collapse (an outcome, not an error): the run stops when a storey's |drift / h| exceeds this.
+  // Checked only with heights.
+  double collapse_drift_ratio = 0.10;
 
   int floors() const { return static_cast<int>(masses.size()); }
+  bool has_heights() const { return heights.size() > 0; }
   // Spring plus the relaxed stiffness of each storey's Zener devices and springs.
   Eigen::VectorXd static_stiffness() const;
+  // Per storey, the P-Delta geometric stiffness -P_i/h_i [N/m]; zeros without p_delta.
+  Eigen::VectorXd geometric_stiffness() const;
 };
 
 // LinkType (friction, dashpot, spring, zener): core/enum_names.hpp.

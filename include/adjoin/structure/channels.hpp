@@ -8,7 +8,8 @@
 // and one case where its value is read (observe/channel_values.hpp).
 //
 // Names: A.x3 (floor 3's displacement relative to the ground), A.a3_abs (its absolute
-// acceleration), A.drift2 (storey 2's drift x_2 - x_1), A.shear2 (storey 2's shear: spring +
+// acceleration), A.drift2 (storey 2's drift x_2 - x_1; A.drift_ratio2 = A.drift2 / h_2 when the
+// building has storey heights), A.shear2 (storey 2's shear: spring +
 // devices), A.base_shear (-sum m_i a_i,abs); link1.force, link1.stroke (x_A,i - x_B,j);
 // contact1.gap, contact1.force. B likewise; elements are numbered from 1.
 #include <optional>
@@ -27,6 +28,7 @@ enum class Quantity {
   displacement,           // floor: x [m]
   absolute_acceleration,  // floor: a_abs [m/s^2]
   drift,                  // storey: x_i - x_{i-1} [m]
+  drift_ratio,            // storey: drift / h_i [-] (a building with storey heights only)
   storey_shear,           // storey: spring + devices [N]
   base_shear,             // building: -sum m_i a_i,abs [N]
   link_force,             // link [N]

@@ -2,7 +2,8 @@
 // Modal analysis before a run (SPEC §5): each building's natural periods, mass-normalised mode
 // shapes and modal damping ratios, and the coupled system's periods with the links free and
 // locked. Eigen's generalized self-adjoint eigensolver on (K, M); K from the static storey
-// stiffnesses (springs plus the relaxed stiffness of Zener devices).
+// stiffnesses (springs plus the relaxed stiffness of Zener devices), plus the P-Delta geometric
+// stiffness of a building with p_delta (SPEC §7; coupled periods too).
 //
 // Damping ratios per mode n (mass-normalised shape phi_n, circular frequency w_n):
 //  - inherent: the ratio the building's classical damping gives the mode (modal: the ratio
@@ -33,6 +34,10 @@ struct Modes {
   Eigen::VectorXd zener_stiffening;  // phi' Re K*(w_n) phi / phi' K phi (1 without Zener devices)
   Eigen::VectorXd participation;     // Gamma_n of the shape scaled to 1 at the roof (dimensionless)
   Eigen::VectorXd effective_mass;    // kg (the building's mass unit), sums to the total mass
+  // P-Delta (SPEC §7): the periods and shapes are those of K0 + K_G (each storey's geometric
+  // stiffness -P_i/h_i added); the inherent damping is still built from K0. A mode with a
+  // non-positive tangent has omega 0, period +inf and NaN damping ratios.
+  bool p_delta = false;
 };
 
 // Shear-building matrices of one building: M (diagonal), K (tridiagonal, static stiffness),

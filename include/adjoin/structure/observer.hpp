@@ -60,6 +60,11 @@ class StructureObserver {
   // that is still going on at the end of the run (complete = false, before the last observe).
   virtual void impact(const Impact& /*impact*/) {}
   virtual void end() {}
+  // True when the run should end at the state just observed: an outcome, not an error (a
+  // collapse, SPEC §7). The loop then calls end() at once; a list is done when one of its
+  // observers is. Observers that write files write what they have seen (the run's last state
+  // is the one observed last).
+  virtual bool done() const { return false; }
 };
 
 }  // namespace adjoin

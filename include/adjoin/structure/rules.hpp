@@ -41,6 +41,9 @@ inline constexpr double kMaxContactStiffness = 1e20;  // N/m or N/m^1.5
 // tau_x / tau_f: the Zener element's unrelaxed stiffness over its relaxed one.
 inline constexpr double kMaxTauRatio = kMaxRatio;
 inline constexpr int kMaxStoreys = 200;
+// Storey heights (SPEC §7) and the collapse drift ratio (|drift| / height).
+inline constexpr Range kHeightRange{1e-3, 1e4, "m"};
+inline constexpr Range kDriftRatioRange{1e-9, 1e3, "(drift / height)"};
 
 // A number as messages show it (6 significant digits).
 std::string number_text(double v);
@@ -81,6 +84,10 @@ double spring_for_period_with_devices(const Building& building, double period, d
 // Slip ratio -> slip force: a fraction of a building's weight, ratio x (sum of its floor
 // masses) x g [N].
 double slip_force_from_ratio(double ratio, const Building& of);
+
+// Storey heights, drift ratios and P-Delta (SPEC §7) as a building's keys combine them: p_delta
+// and collapse_drift_ratio need the heights. "" or the problem, and the key to blame in *key.
+std::string heights_problem(const Building& b, bool collapse_given, std::string* key);
 
 // The storey that has no static stiffness (no spring and no spring or Zener device), as
 // "storey i has no stiffness: ...", or "".

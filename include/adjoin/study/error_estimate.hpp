@@ -39,6 +39,7 @@
 // chosen h, the rungs and the estimate reached.
 //
 // Values are in the report's units (SI for a building, dimensionless for a two-block spec).
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -80,6 +81,8 @@ struct ErrorEstimate {
   std::vector<LinkError> links;         // in the structure's order
   std::vector<ContactError> contacts;   // in the structure's order
   std::string worst_channel;            // where max_relative_peak is reached ("" if every peak is zero)
+  // The collapse time's error (SPEC §7), when both runs collapsed (the same storey); else empty.
+  std::optional<double> collapse_t;
   // A two-block spec's (Report::two_block):
   PeakError x1, x2, drift, f1, f2, q;
   double min_gap = 0.0, t_min_gap = 0.0;

@@ -90,6 +90,23 @@ struct BuildingEnergy {
   double input = 0.0, residual = 0.0;
 };
 
+// Collapse (SPEC §7): a storey's drift ratio passed its building's collapse_drift_ratio and the
+// run stopped there, an outcome (exit 0), the capacity event of incremental dynamic analysis.
+// The run's outputs end at the grid point that ends the step the crossing was located in.
+struct Collapse {
+  char building = 'A';
+  int storey = 1;
+  double t = 0.0;            // the located crossing [s], inside the run's last step
+  double drift_ratio = 0.0;  // the limit crossed, with the drift's sign
+};
+
+// A channel's value at the run's last grid point (`residual` in summary.json: the drifts and
+// drift ratios at t_end, or at the collapse).
+struct ChannelValue {
+  std::string channel;
+  double value = 0.0;
+};
+
 // The paper's values of a two-block run (SPEC §3), dimensionless. Parts the scene did not ask
 // for ([output]) are neither computed nor kept (their optionals are empty).
 struct TwoBlockReport {
@@ -113,6 +130,8 @@ struct Report {
   std::vector<LinkReport> links;
   std::vector<ContactReport> contacts;
   BuildingEnergy energy;
+  std::optional<Collapse> collapse;  // the run stopped at a collapse (SPEC §7)
+  std::vector<ChannelValue> residual;  // each drift and drift-ratio channel at the last grid point
   // In-structure spectra ([output.spectra]).
   std::vector<SignalSpectrum> spectra;
   // A two-block spec's values under the paper's names.

@@ -27,8 +27,11 @@ Report run(const RunSpec& spec, const RunObservers& extra = {});
 // Integrates `s` (the spec's structure or an edit of it of the same size) with the spec's
 // ground and solver options, the spec's memory checked first (check_memory) and its steps
 // shown to the spec's watch: a building run whose observers the caller chooses (the seismic
-// joint's bisection).
-SolverSummary simulate_spec(const RunSpec& spec, const structure::Structure& s, StructureObserver& observer);
+// joint's bisection). A building with storey heights is watched for collapse (SPEC §7): a
+// storey's |drift / h| past its collapse_drift_ratio ends the run there, an outcome, which
+// *collapse receives (when given; reset otherwise).
+SolverSummary simulate_spec(const RunSpec& spec, const structure::Structure& s, StructureObserver& observer,
+                            std::optional<Collapse>* collapse = nullptr);
 
 // Refuses (InputError, exit 2) before it starts a building run that could hold the step and
 // horizon it needs only by using more memory than the machine can give: every run's rule

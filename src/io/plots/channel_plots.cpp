@@ -70,6 +70,7 @@ ChannelText channel_text(const std::string& name) {
     static const std::map<Quantity, const char*> what{
         {Quantity::displacement, "displacement"},       {Quantity::absolute_acceleration, "absolute acceleration"},
         {Quantity::drift, "drift"},                     {Quantity::storey_shear, "shear"},
+        {Quantity::drift_ratio, "drift ratio"},
         {Quantity::base_shear, "base shear"},           {Quantity::link_force, "force"},
         {Quantity::link_stroke, "stroke"},              {Quantity::contact_gap, "gap"},
         {Quantity::contact_force, "force"}};
