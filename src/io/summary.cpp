@@ -1,6 +1,6 @@
 #include "adjoin/io/summary.hpp"
 
-#include "adjoin/io/building_files.hpp"
+#include "summary_presenters.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -75,7 +75,7 @@ ordered_json peak(const Peak& p, double scale, double time_scale) {
 
 std::string summary_json(const Scene& scene, const Report& r, const ErrorEstimate* estimate,
                          const TolerantRun* tolerant) {
-  if (!scene.two_block()) return building_summary_json(scene, r, estimate, tolerant);
+  if (!scene.two_block()) return detail::structure_summary_json(scene, r, estimate, tolerant);
   const Scales& k = scene.scales;
   ordered_json j;
   j["scene"] = scene.name;
@@ -196,7 +196,7 @@ std::string summary_json(const Scene& scene, const Report& r, const ErrorEstimat
 
 std::string brief_report(const Scene& scene, const Report& r, const ErrorEstimate* estimate,
                          const TolerantRun* tolerant) {
-  if (!scene.two_block()) return building_brief_report(scene, r, estimate, tolerant);
+  if (!scene.two_block()) return detail::structure_brief_report(scene, r, estimate, tolerant);
   const Scales& k = scene.scales;
   const bool si = k.si;
   auto u = [&](const char* unit) { return si ? std::string(" ") + unit : std::string(); };
