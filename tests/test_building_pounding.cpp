@@ -21,7 +21,7 @@
 #include "adjoin/io/plots.hpp"
 #include "adjoin/io/sweep_file.hpp"
 #include "adjoin/study/run.hpp"
-#include "adjoin/study/building_sweep.hpp"
+#include "adjoin/study/sweep_columns.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "cli_helpers.hpp"
 #include "needs_program.hpp"
@@ -325,7 +325,7 @@ TEST_CASE("building sweeps: the pounding columns of a row are the single run's s
   };
   for (std::size_t run = 0; run < 2; ++run) {
     INFO("run " << run);
-    const SweepRow row = run_building_sweep_point(spec, run);
+    const SweepRow row = run_sweep_point(spec, run);
     REQUIRE(row.error.empty());
     const BuildingScene scene = sweep_scene(spec, run);
     const fs::path dir = scratch("sweep-" + std::to_string(run));
