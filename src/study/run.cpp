@@ -292,17 +292,7 @@ SolverSummary simulate_spec(const RunSpec& spec, const structure::Structure& s, 
   watched.add(&observer);
   watched.add(spec.watch);
   const StructureSolverOptions options = with_scheme(spec.solver, spec.solver.scheme);
-  const StructureRunSummary run = simulate_structure(options, s, *spec.ground, watched);
-  SolverSummary summary;
-  summary.scheme = scheme_name(options);
-  summary.history = to_string(options.history);
-  summary.h = options.h;
-  summary.steps = run.steps;
-  summary.wall_seconds = run.wall_seconds;
-  summary.history_bytes = run.history_bytes;
-  summary.history_error = run.history_error;
-  summary.history_modes = run.history_modes;
-  return summary;
+  return simulate_structure(options, s, *spec.ground, watched);
 }
 
 Report run(const RunSpec& spec, const RunObservers& extra) {
