@@ -13,7 +13,9 @@
 #include <nlohmann/json.hpp>
 
 #include "adjoin/core/errors.hpp"
-#include "adjoin/io/building_files.hpp"
+#include "adjoin/io/run_files.hpp"
+#include "adjoin/io/summary.hpp"
+#include "adjoin/io/timeseries_csv.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/study/error_estimate.hpp"
 
@@ -212,7 +214,7 @@ TEST_CASE("a building run's files carry its error estimate, and a tolerance choo
   CHECK(section["peaks"]["A.x3"]["max_abs"].get<double>() > 0.0);
   CHECK(section["links"][0].contains("energy"));
   CHECK(section["worst_channel"].get<std::string>() == files.estimate->worst_channel);
-  const std::string brief = building_brief_report(given, files.report, &*files.estimate);
+  const std::string brief = brief_report(given, files.report, &*files.estimate);
   CHECK(brief.find("error estimate (companion h = 0.01 s): peaks") != std::string::npos);
   CHECK(brief.find(files.estimate->worst_channel) != std::string::npos);
 

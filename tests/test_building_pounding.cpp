@@ -14,12 +14,14 @@
 #include <nlohmann/json.hpp>
 
 #include "adjoin/core/errors.hpp"
-#include "adjoin/io/building_files.hpp"
+#include "adjoin/io/run_files.hpp"
+#include "adjoin/io/summary.hpp"
+#include "adjoin/io/timeseries_csv.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/plots.hpp"
 #include "adjoin/io/sweep_file.hpp"
 #include "adjoin/study/run.hpp"
-#include "adjoin/study/building_sweep.hpp"
+#include "adjoin/study/sweep_columns.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "cli_helpers.hpp"
 #include "needs_program.hpp"
@@ -168,7 +170,7 @@ TEST_CASE("pounding without a contact law: every value after the first overlap i
   CHECK(c["min_gap"].get<double>() == min_gap);
   CHECK(j["energy"]["contacts"][0].get<double>() == 0.0);
   // The terminal report says the results after t are not valid.
-  const std::string brief = building_brief_report(scene, files.report);
+  const std::string brief = brief_report(scene, files.report);
   CHECK(brief.find("pounding is not modelled (set contact[1].model)") != std::string::npos);
   CHECK(brief.find("not valid") != std::string::npos);
   // The sweep row's flag and values are the summary's.
@@ -198,7 +200,7 @@ TEST_CASE("a joint that never closes: no flag, no impacts file", "[building_run]
   const auto cells = sweep_cells(scene, files.report);
   CHECK(cells.at("contact1.outside_model") == "false");
   CHECK(cells.at("contact1.contact") == "false");
-  CHECK(building_brief_report(scene, files.report).find("not valid") == std::string::npos);
+  CHECK(brief_report(scene, files.report).find("not valid") == std::string::npos);
   // With a contact law and no contact: impacts.csv is written, header only, and no flag column.
   BuildingScene lawful = scene;
   set_linear_law(lawful);
@@ -282,7 +284,7 @@ TEST_CASE("pounding with a contact law: impacts.csv, summary and sweep cells are
   CHECK(cells.at("contact1.outside_model") == "false");
   CHECK(cells.at("contact1.contact") == "true");
   // The terminal line.
-  const std::string brief = building_brief_report(scene, files.report);
+  const std::string brief = brief_report(scene, files.report);
   CHECK(brief.find("contact1 (linear): " + std::to_string(events.size()) + " impact") != std::string::npos);
 }
 
@@ -323,7 +325,7 @@ TEST_CASE("building sweeps: the pounding columns of a row are the single run's s
   };
   for (std::size_t run = 0; run < 2; ++run) {
     INFO("run " << run);
-    const SweepRow row = run_building_sweep_point(spec, run);
+    const SweepRow row = run_sweep_point(spec, run);
     REQUIRE(row.error.empty());
     const BuildingScene scene = sweep_scene(spec, run);
     const fs::path dir = scratch("sweep-" + std::to_string(run));
@@ -383,7 +385,7 @@ TEST_CASE("the terminal line of a Newton-law pair gives its largest impulse, not
   const ContactReport& c = r.contacts.at(0);
   REQUIRE(c.impacts >= 2);
   REQUIRE(c.impulse_max > 0.0);
-  const std::string brief = building_brief_report(scene, r);
+  const std::string brief = brief_report(scene, r);
   INFO(brief);
   CHECK(brief.find("contact1 (impact): " + std::to_string(c.impacts) + " impacts,") != std::string::npos);
   CHECK(brief.find("peak force") == std::string::npos);
@@ -397,7 +399,7 @@ TEST_CASE("the terminal line of a Newton-law pair gives its largest impulse, not
   one.contacts.at(0).impacts = 1;
   REQUIRE_FALSE(one.links.empty());
   one.links.at(0).switches = 1;
-  const std::string single = building_brief_report(scene, one);
+  const std::string single = brief_report(scene, one);
   INFO(single);
   CHECK(single.find("contact1 (impact): 1 impact,") != std::string::npos);
   CHECK(single.find(", 1 switch\n") != std::string::npos);

@@ -11,7 +11,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "adjoin/io/building_files.hpp"
+#include "adjoin/io/run_files.hpp"
+#include "adjoin/io/summary.hpp"
+#include "adjoin/io/timeseries_csv.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/post/spectrum.hpp"
@@ -251,10 +253,10 @@ TEST_CASE("r3 defaults: a building scene without [solver] takes an engineer's to
   REQUIRE(scene.accuracy.tolerance);
   REQUIRE(*scene.accuracy.tolerance == 1e-3);  // before the run: 1e-6 would take minutes
   CHECK(scene.accuracy.h_rule.find("solver.tolerance = 0.001 (the default") != std::string::npos);
-  CHECK(building_output_interval(scene) == 1e-3);
-  CHECK(building_output_every(scene, 2.5e-4) == 4);
-  CHECK(building_output_every(scene, 3e-4) == 3);
-  CHECK(building_output_every(scene, 2.5e-3) == 1);
+  CHECK(output_interval(scene) == 1e-3);
+  CHECK(output_every(scene, 2.5e-4) == 4);
+  CHECK(output_every(scene, 3e-4) == 3);
+  CHECK(output_every(scene, 2.5e-3) == 1);
   const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "r3-defaults";
   std::filesystem::remove_all(dir);
   std::vector<std::string> warnings;
@@ -264,7 +266,7 @@ TEST_CASE("r3 defaults: a building scene without [solver] takes an engineer's to
   const double h = files.tolerant->h;
   CHECK(h >= 1e-3);  // 5e-5 with the old default
   CHECK(h == scene.solver.h);  // the first rung, T_B / 200 = 2.5e-3 s, meets 1e-3
-  const std::size_t every = building_output_every(scene, h);
+  const std::size_t every = output_every(scene, h);
   CHECK(every == std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(1e-3 / h * (1 + 1e-9)))));
   const std::size_t steps = files.report.solver.steps;
   CHECK(lines_of(dir / "timeseries.csv") == 1 + steps / every + 1 + (steps % every ? 1 : 0));
@@ -275,15 +277,15 @@ TEST_CASE("r3 defaults: a building scene without [solver] takes an engineer's to
 
 TEST_CASE("r3 defaults: without a contact law rows every 1/200 s, and a scene's own h or every is kept", "[building_run][defaults]") {
   const BuildingScene chosen = scene_without_solver("r3-defaults-200", {});
-  CHECK(building_output_interval(chosen) == 5e-3);
-  CHECK(building_output_every(chosen, 1e-3) == 5);
-  CHECK(building_output_every(chosen, 0.0025) == 2);
-  CHECK(building_output_every(chosen, 0.004) == 1);
+  CHECK(output_interval(chosen) == 5e-3);
+  CHECK(output_every(chosen, 1e-3) == 5);
+  CHECK(output_every(chosen, 0.0025) == 2);
+  CHECK(output_every(chosen, 0.004) == 1);
   const BuildingScene given_h = scene_without_solver("r3-defaults-h", {"solver.h=0.001"});
-  CHECK(building_output_interval(given_h) == 0.0);
-  CHECK(building_output_every(given_h, 0.001) == 1);  // as before: every grid point
+  CHECK(output_interval(given_h) == 0.0);
+  CHECK(output_every(given_h, 0.001) == 1);  // as before: every grid point
   const BuildingScene given_every = scene_without_solver("r3-defaults-every", {"output.every=7"});
-  CHECK(building_output_every(given_every, 1e-4) == 7);
+  CHECK(output_every(given_every, 1e-4) == 7);
   // A scene's own tolerance is kept.
   const BuildingScene given_tol = scene_without_solver("r3-defaults-tol", {"solver.tolerance=1e-5"});
   CHECK(*given_tol.accuracy.tolerance == 1e-5);

@@ -1,4 +1,4 @@
-// Sweeps whose base is a building scene (study/building_sweep.hpp): a row is the building run
+// Sweeps whose base is a building scene (study/sweep_columns.hpp): a row is the building run
 // of the same edits, the columns are the base structure's channels, and the journal, shards and
 // demand models work on them as on two-block sweeps.
 #include <catch2/catch.hpp>
@@ -14,7 +14,7 @@
 #include "adjoin/io/sweep_files.hpp"
 #include "adjoin/io/sweep_file.hpp"
 #include "adjoin/study/run.hpp"
-#include "adjoin/study/building_sweep.hpp"
+#include "adjoin/study/sweep_columns.hpp"
 #include "adjoin/study/demand.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "cli_helpers.hpp"
@@ -181,7 +181,7 @@ values = [{name = "both"},
   const SweepSpec spec = load_sweep(file);
   CHECK_NOTHROW(sweep_scene(spec, 0));
   try {
-    building_sweep_scene(spec, 1);
+    sweep_scene(spec, 1);
     FAIL("expected an InputError");
   } catch (const InputError& e) {
     const std::string m = e.what();
@@ -371,5 +371,5 @@ TEST_CASE("building sweeps: the optimum slip-force example parses, one column pe
   CHECK(std::count(n.begin(), n.end(), "sa_1.9") == 1);
   // Its "0" point has no link.
   CHECK(sweep_scene(spec, 0).structure.links.empty());
-  CHECK(building_sweep_scene(spec, 3).structure.links.size() == 1);
+  CHECK(sweep_scene(spec, 3).structure.links.size() == 1);
 }

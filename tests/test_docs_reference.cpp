@@ -30,7 +30,7 @@
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/sweep_file.hpp"
 #include "adjoin/structure/channels.hpp"
-#include "adjoin/study/building_sweep.hpp"
+#include "adjoin/study/sweep_columns.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "cli_helpers.hpp"
 

@@ -196,10 +196,8 @@ TEST_CASE("sweep rows say when their values are outside the model", "[pounding][
 
   const auto rows = run_sweep(spec, {});
   REQUIRE(rows.size() == 2);
-  CHECK_FALSE(rows[0].outside_model);
-  CHECK(rows[1].outside_model);
-  CHECK(rows[1].min_gap == Approx(-0.251885).epsilon(1e-5));
   const auto never = sweep_cells(spec, rows[0]), pounds = sweep_cells(spec, rows[1]);
+  CHECK(std::stod(pounds[index_of(names, "min_gap")]) == Approx(-0.251885).epsilon(1e-5));
   CHECK(never[contact] == "false");
   CHECK(never[contact + 1] == "false");
   CHECK(pounds[contact] == "true");

@@ -180,7 +180,7 @@ TEST_CASE("a building with Zener storeys, a friction link and a contact: soe fol
   auto run = [&](const char* engine) {
     const BuildingScene scene = load_building_scene(file, {std::string("solver.history=") + engine, "solver.t_end=15"});
     Recorder r;
-    const StructureRunSummary summary = simulate_structure(scene.solver, scene.structure, *scene.ground, r);
+    const SolverSummary summary = simulate_structure(scene.solver, scene.structure, *scene.ground, r);
     return std::pair{r.states, summary};
   };
   const auto [direct, direct_summary] = run("direct");

@@ -11,7 +11,8 @@
 #include <toml++/toml.h>
 
 #include "adjoin/core/errors.hpp"
-#include "adjoin/io/building_files.hpp"
+#include "adjoin/io/summary.hpp"
+#include "adjoin/io/timeseries_csv.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/run_files.hpp"
 #include "adjoin/io/run_outputs.hpp"

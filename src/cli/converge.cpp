@@ -127,26 +127,23 @@ int write_and_print(const ConvergeArgs& args, const ConvergenceResult& result, c
 std::filesystem::path output_folder(const ConvergeArgs& args, const std::string& name);
 void check_steps(const ConvergeArgs& args, double scene_h, double t_end, const std::string& unit);
 
-// A building scene (SPEC §5): the structure step's ladder; --schemes may name one of the two
-// restart rules the structure step takes (as solver.scheme does), instead of the scene's.
-int converge_building(const ConvergeArgs& args, Scene scene) {
-  RunWatch watch(watch_options(false, args.allow_long));  // each run of the ladder: estimated, shown
-  scene.watch = &watch;
-  if (args.schemes.size() > 1) throw InputError("--schemes: building scenes take one scheme, implicit or implicit-damped");
-  ConvergenceOptions options;
+// The schemes named by --schemes (none: run_convergence's defaults). A building scene (SPEC
+// §5) runs the structure step: --schemes may name one of its two restart rules (as
+// solver.scheme does), instead of the scene's.
+std::vector<Scheme> schemes_of(const ConvergeArgs& args, bool two_block) {
+  std::vector<Scheme> schemes;
+  if (!two_block && args.schemes.size() > 1)
+    throw InputError("--schemes: building scenes take one scheme, implicit or implicit-damped");
   for (const auto& name : args.schemes) {
-    if (name != "implicit" && name != "implicit-damped")
+    Scheme s;
+    const bool known = parse_enum(name, &s);
+    if (!two_block && !(known && (s == Scheme::implicit || s == Scheme::implicit_damped)))
       throw InputError("--schemes: " + escaped_excerpt(name) + ": building scenes run the structure step, implicit or "
                        "implicit-damped; the other schemes are the two-block system's");
-    options.schemes.push_back(name == "implicit" ? Scheme::implicit : Scheme::implicit_damped);
+    if (!known) throw InputError("--schemes: " + escaped_excerpt(name) + " is not a scheme; expected " + scheme_names());
+    schemes.push_back(s);
   }
-  options.engines = engines_of(args, {HistoryEngine::fft});
-  options.steps = args.steps;
-  std::string error;
-  if (!options.IsValid(&error)) throw InputError("--steps/--history: " + error);
-  check_steps(args, scene.solver.h, scene.solver.t_end, " s");
-  check_output_folder(output_folder(args, scene.name));  // before the ladder runs
-  return write_and_print(args, run_convergence(scene, options), scene.name, 1.0);
+  return schemes;
 }
 
 int converge_command(const ConvergeArgs& args) {
@@ -156,28 +153,23 @@ int converge_command(const ConvergeArgs& args) {
   }
   Scene scene = load_scene(args.scene, args.overrides, args.unsets);
   for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
-  if (!scene.two_block()) return converge_building(args, std::move(scene));
+  const bool two_block = scene.two_block();
+  // Steps and instants in the scene's time unit (seconds, or a dimensionless scene's).
+  const double time_unit = scene.scales.time;
   RunWatch::Options watching = watch_options(false, args.allow_long);  // each run of the ladder: estimated, shown
-  watching.time_scale = scene.scales.time;
+  watching.time_scale = time_unit;
   watching.h_unit = scene.scales.si ? " s" : " (dimensionless)";
   RunWatch watch(std::move(watching));
   scene.watch = &watch;
   ConvergenceOptions options;
-  if (!args.schemes.empty()) {
-    for (const auto& name : args.schemes) {
-      Scheme s;
-      if (!parse_enum(name, &s)) throw InputError("--schemes: " + escaped_excerpt(name) + " is not a scheme; expected " + scheme_names());
-      options.schemes.push_back(s);
-    }
-  }
-  options.engines = engines_of(args, {HistoryEngine::direct});
-  for (double h : args.steps) options.steps.push_back(h / scene.scales.time);
+  options.schemes = schemes_of(args, two_block);
+  options.engines = engines_of(args, {two_block ? HistoryEngine::direct : HistoryEngine::fft});
+  for (double h : args.steps) options.steps.push_back(h / time_unit);
   std::string error;
-  if (!options.IsValid(&error)) throw InputError("--steps/--schemes/--history: " + error);
-  check_steps(args, scene.solver.h * scene.scales.time, scene.solver.t_end * scene.scales.time, scene.scales.si ? " s" : "");
+  if (!options.IsValid(&error)) throw InputError((two_block ? "--steps/--schemes/--history: " : "--steps/--history: ") + error);
+  check_steps(args, scene.solver.h * time_unit, scene.solver.t_end * time_unit, scene.scales.si ? " s" : "");
   check_output_folder(output_folder(args, scene.name));  // before the ladder runs
-
-  return write_and_print(args, run_convergence(scene, options), scene.name, scene.scales.time);
+  return write_and_print(args, run_convergence(scene, options), scene.name, time_unit);
 }
 
 // The output folder: --out, or out/<scene name>/.

@@ -1,5 +1,6 @@
 #include "adjoin/io/impacts_csv.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <iterator>
 
@@ -33,5 +34,14 @@ std::string impact_csv_row(const Impact& i, const Scales& k) {
 void ImpactsCsvWriter::begin(const RunInfo& /*info*/) { out_ << kImpactsCsvHeader << '\n'; }
 
 void ImpactsCsvWriter::impact(const Impact& i) { out_ << impact_csv_row(i, scales_) << '\n'; }
+
+std::string impacts_csv(const Report& report) {
+  std::vector<Impact> all;
+  for (const auto& c : report.contacts) all.insert(all.end(), c.impact_list.begin(), c.impact_list.end());
+  std::stable_sort(all.begin(), all.end(), [](const Impact& a, const Impact& b) { return a.start < b.start; });
+  std::string out = std::string("contact,") + kImpactsCsvHeader + "\n";
+  for (const Impact& e : all) out += std::to_string(e.contact + 1) + "," + impact_csv_row(e, Scales{}) + "\n";
+  return out;
+}
 
 }  // namespace adjoin

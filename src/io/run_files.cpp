@@ -1,13 +1,13 @@
 #include "adjoin/io/run_files.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <system_error>
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/output_place.hpp"
-#include "adjoin/io/building_files.hpp"
 #include "adjoin/io/energy_csv.hpp"
 #include "adjoin/io/impacts_csv.hpp"
 #include "adjoin/io/summary.hpp"
@@ -25,24 +25,79 @@ namespace {
 
 // The streamed writers, started afresh with each run they see: a run to a tolerance streams
 // every rung it tries into the same files, and the rung it keeps is the last one written.
-// (Cheaper than running the kept rung again with the writers attached.)
-class RestartingStreams final : public Observer {
+// (Cheaper than running the kept rung again with the writers attached.) A structure run's
+// writer sees its StructureStates; a two-block scene's writers (SPEC §3's names) its States.
+class RestartingStreams final : public Observer, public StructureObserver {
  public:
-  RestartingStreams(RunOutputs& set, ObserverList& writers) : set_(set), writers_(writers) {}
+  explicit RestartingStreams(RunOutputs& set) : set_(set) {}
+  ObserverList two_block;                 // a two-block scene's writers
+  StructureObserver* structure = nullptr;  // a structure's writer
+
   void begin(const RunInfo& info) override {
-    if (started_) set_.restart();
-    started_ = true;
-    writers_.begin(info);
+    restart();
+    two_block.begin(info);
   }
-  void observe(const State& s) override { writers_.observe(s); }
-  void impact(const Impact& i) override { writers_.impact(i); }
-  void end() override { writers_.end(); }
+  void observe(const State& s) override { two_block.observe(s); }
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override {
+    restart();
+    structure->begin(s, o);
+  }
+  void observe(const StructureState& st) override { structure->observe(st); }
+  // (One of the two is watching: a run calls either interface, never both.)
+  void impact(const Impact& i) override {
+    two_block.impact(i);
+    if (structure) structure->impact(i);
+  }
+  void end() override {
+    two_block.end();
+    if (structure) structure->end();
+  }
 
  private:
+  void restart() {
+    if (started_) set_.restart();
+    started_ = true;
+  }
   RunOutputs& set_;
-  ObserverList& writers_;
   bool started_ = false;
 };
+
+bool has_contact_law(const Scene& scene) {
+  if (scene.two_block()) return scene.model->contact.model != structure::ContactModel::none;
+  const auto& contacts = scene.structure.contacts;
+  return std::any_of(contacts.begin(), contacts.end(),
+                     [](const structure::Contact& c) { return c.law.model != structure::ContactModel::none; });
+}
+
+// The streamed files a scene asks for, opened in `set`: a structure's timeseries.csv, or a
+// two-block scene's timeseries.csv, energy.csv and impacts.csv under SPEC §3's names.
+struct Streams {
+  std::unique_ptr<ChannelCsvWriter> channels;
+  std::vector<std::unique_ptr<Observer>> two_block;
+  TimeSeriesCsvWriter* timeseries = nullptr;  // the two-block one
+};
+
+Streams open_streams(const Scene& scene, RunOutputs& set, const RunWarning& warn, RestartingStreams& restarting) {
+  Streams streams;
+  const OutputOptions& asked = scene.output;
+  if (!scene.two_block()) {
+    if (asked.timeseries) {
+      streams.channels = std::make_unique<ChannelCsvWriter>(set.open("timeseries.csv"), scene, warn);
+      restarting.structure = streams.channels.get();
+    }
+    return streams;
+  }
+  if (asked.timeseries) {
+    auto writer = std::make_unique<TimeSeriesCsvWriter>(set.open("timeseries.csv"), scene.scales, asked.every);
+    streams.timeseries = writer.get();
+    streams.two_block.push_back(std::move(writer));
+  }
+  if (asked.energy_history)
+    streams.two_block.push_back(std::make_unique<EnergyCsvWriter>(set.open("energy.csv"), scene.scales, asked.every));
+  if (has_contact_law(scene)) streams.two_block.push_back(std::make_unique<ImpactsCsvWriter>(set.open("impacts.csv"), scene.scales));
+  for (const auto& w : streams.two_block) restarting.two_block.add(w.get());
+  return streams;
+}
 
 }  // namespace
 
@@ -53,28 +108,11 @@ RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir, con
 }
 
 RunFiles run_to(const Scene& scene, RunOutputs& set, const RunWarning& warn) {
-  if (!scene.two_block()) return run_building_to(scene, set, warn);
   // Streamed outputs: each writer sees the grid points as they are computed.
-  std::vector<std::unique_ptr<Observer>> writers;
-  ObserverList streams;
-  TimeSeriesCsvWriter* timeseries = nullptr;
-  if (scene.output.timeseries) {
-    auto writer = std::make_unique<TimeSeriesCsvWriter>(set.open("timeseries.csv"), scene.scales, scene.output.every);
-    timeseries = writer.get();
-    writers.push_back(std::move(writer));
-    streams.add(writers.back().get());
-  }
-  if (scene.output.energy_history) {
-    writers.push_back(std::make_unique<EnergyCsvWriter>(set.open("energy.csv"), scene.scales, scene.output.every));
-    streams.add(writers.back().get());
-  }
-  if (scene.model->contact.model != structure::ContactModel::none) {
-    writers.push_back(std::make_unique<ImpactsCsvWriter>(set.open("impacts.csv"), scene.scales));
-    streams.add(writers.back().get());
-  }
+  RestartingStreams restarting(set);
+  const Streams streams = open_streams(scene, set, warn, restarting);
+  const RunObservers extra{streams.channels ? &restarting : nullptr, streams.two_block.empty() ? nullptr : &restarting};
   RunFiles files;
-  RestartingStreams restarting(set, streams);
-  const RunObservers extra{nullptr, writers.empty() ? nullptr : &restarting};
   if (scene.accuracy.tolerance) {
     files.tolerant = run_to_tolerance(scene, *scene.accuracy.tolerance, extra);
     files.report = files.tolerant->report;
@@ -83,17 +121,19 @@ RunFiles run_to(const Scene& scene, RunOutputs& set, const RunWarning& warn) {
     files.report = run(scene, extra);
     if (scene.accuracy.error_estimate) files.estimate = estimate_error(scene, files.report);
   }
-  if (files.report.two_block->outside_model_from && timeseries) {
-    // No contact law and the gap closed: the time series gets its outside_model column. Its
-    // header was written before the contact was known, so the kept run is streamed again
-    // (same step, same grid: the same numbers) with the column; a run that never pounds keeps
-    // the SPEC header and pays nothing.
-    timeseries->set_flag_outside_model(true);
+  if (streams.timeseries && !std::isnan(files.report.unmodelled_from())) {
+    // A two-block scene without a contact law whose gap closed: its time series gets the
+    // outside_model column. The header was written before the contact was known, so the kept
+    // run is streamed again (same step, same grid: the same numbers) with the column; a run
+    // that never pounds keeps the SPEC header and pays nothing. (A structure's writer flags
+    // its rows as it goes.)
+    streams.timeseries->set_flag_outside_model(true);
     SolverOptions again = two_block_options(scene);
     again.h = files.report.solver.h;
     simulate(again, *scene.model, *scene.ground, restarting);
   }
   if (!files.report.spectra.empty()) set.open("spectra.csv") << spectra_csv(files.report);
+  if (!scene.two_block() && has_contact_law(scene)) set.open("impacts.csv") << impacts_csv(files.report);
   set.open("summary.json") << summary_json(scene, files.report, files.estimate ? &*files.estimate : nullptr,
                                            files.tolerant ? &*files.tolerant : nullptr);
   files.written = set.commit();

@@ -1,6 +1,6 @@
 #include "adjoin/io/summary.hpp"
 
-#include "adjoin/io/building_files.hpp"
+#include "summary_presenters.hpp"
 
 #include <algorithm>
 #include <cstdio>
@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "../detail/finite_output.hpp"
+#include "adjoin/structure/two_block.hpp"
 
 namespace adjoin {
 namespace {
@@ -32,6 +33,15 @@ ordered_json peak_error(const PeakError& e, double scale, double time_scale) {
 // Estimated absolute errors of the reported values, in the scene's units.
 ordered_json error_estimate_json(const ErrorEstimate& e, const Scales& k) {
   if (!e.available) return ordered_json{{"available", false}, {"reason", e.reason}};
+  // The refined peaks' errors under SPEC §3's names (the estimate names them by channel).
+  const std::pair<const char*, double> peaks[] = {{"x1", k.length}, {"x2", k.length}, {"drift", k.length},
+                                                  {"f1", k.force},  {"f2", k.force},  {"q", k.force}};
+  ordered_json peak_errors = ordered_json::object();
+  for (const auto& [name, scale] : peaks) {
+    const std::string channel = structure::two_block_channel(name);
+    for (const auto& p : e.peaks)
+      if (p.channel == channel) peak_errors[name] = peak_error(p.error, scale, k.time);
+  }
   ordered_json switches = nullptr;
   if (e.switches_matched) {
     switches = ordered_json::array();
@@ -44,12 +54,7 @@ ordered_json error_estimate_json(const ErrorEstimate& e, const Scales& k) {
       {"order", e.order},
       {"companion_wall_seconds", e.companion_wall_seconds},
       {"max_relative_peak", e.max_relative_peak},
-      {"peaks", ordered_json{{"x1", peak_error(e.x1, k.length, k.time)},
-                             {"x2", peak_error(e.x2, k.length, k.time)},
-                             {"drift", peak_error(e.drift, k.length, k.time)},
-                             {"f1", peak_error(e.f1, k.force, k.time)},
-                             {"f2", peak_error(e.f2, k.force, k.time)},
-                             {"q", peak_error(e.q, k.force, k.time)}}},
+      {"peaks", peak_errors},
       {"min_gap", e.min_gap * k.length},
       {"t_min_gap", e.t_min_gap * k.time},
       {"friction", e.friction * k.energy},
@@ -75,7 +80,7 @@ ordered_json peak(const Peak& p, double scale, double time_scale) {
 
 std::string summary_json(const Scene& scene, const Report& r, const ErrorEstimate* estimate,
                          const TolerantRun* tolerant) {
-  if (!scene.two_block()) return building_summary_json(scene, r, estimate, tolerant);
+  if (!scene.two_block()) return detail::structure_summary_json(scene, r, estimate, tolerant);
   const Scales& k = scene.scales;
   ordered_json j;
   j["scene"] = scene.name;
@@ -196,7 +201,7 @@ std::string summary_json(const Scene& scene, const Report& r, const ErrorEstimat
 
 std::string brief_report(const Scene& scene, const Report& r, const ErrorEstimate* estimate,
                          const TolerantRun* tolerant) {
-  if (!scene.two_block()) return building_brief_report(scene, r, estimate, tolerant);
+  if (!scene.two_block()) return detail::structure_brief_report(scene, r, estimate, tolerant);
   const Scales& k = scene.scales;
   const bool si = k.si;
   auto u = [&](const char* unit) { return si ? std::string(" ") + unit : std::string(); };

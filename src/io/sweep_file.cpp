@@ -17,7 +17,7 @@
 #include "adjoin/io/sweep_file.hpp"
 #include "adjoin/io/sweep_scenes.hpp"
 #include "adjoin/io/text_file.hpp"
-#include "adjoin/study/building_sweep.hpp"
+#include "adjoin/study/sweep_columns.hpp"
 #include "adjoin/study/sweep.hpp"
 
 namespace adjoin {

@@ -1,6 +1,9 @@
 #include "adjoin/io/timeseries_csv.hpp"
 
+#include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <cstdio>
 
 #include "../detail/finite_output.hpp"
 
@@ -61,6 +64,108 @@ void TimeSeriesCsvWriter::end() {
   out_ << buffer_;
   buffer_.clear();
   out_.flush();
+}
+
+// ---- any structure: the channel table's time-series channels ----
+
+namespace {
+
+// A CSV value as to_chars writes it (about 17 digits, sign, exponent) and its comma: the
+// size estimate of a time series before it is written.
+constexpr double kBytesPerCsvValue = 20.0;
+constexpr double kLargeCsvBytes = 50e6;  // warned before writing
+
+}  // namespace
+
+double output_interval(const RunSpec& scene) {
+  if (scene.output.every > 0 || scene.accuracy.h_rule == "given") return 0.0;
+  const auto& contacts = scene.structure.contacts;
+  const bool impacts = std::any_of(contacts.begin(), contacts.end(),
+                                   [](const structure::Contact& c) { return c.law.model != structure::ContactModel::none; });
+  return impacts ? 1e-3 : 5e-3;
+}
+
+std::size_t output_every(const RunSpec& scene, double h) {
+  if (scene.output.every > 0) return scene.output.every;
+  const double interval = output_interval(scene);
+  if (!(interval > 0.0 && h > 0.0)) return 1;
+  return std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(interval / h * (1.0 + 1e-9))));
+}
+
+void ChannelCsvWriter::begin(const structure::Structure& s, const StructureSolverOptions& o) {
+  s_ = &s;
+  steps_ = o.steps();
+  every_ = output_every(scene_, o.h);
+  count_ = 0;
+  std::vector<structure::Channel> columns;
+  for (auto& c : structure::channels(s))
+    if (structure::info(c.quantity).timeseries) columns.push_back(std::move(c));
+  columns_ = ChannelValues(s, std::move(columns));
+  unmodelled_ = false;
+  flagged_ = std::any_of(s.contacts.begin(), s.contacts.end(),
+                         [](const structure::Contact& c) { return c.law.model == structure::ContactModel::none; });
+  warn_if_large(o.h);
+  out_ << "t,ag";
+  for (const auto& c : columns_.channels()) out_ << "," << c.name;
+  if (flagged_) out_ << ",outside_model";
+  out_ << "\n";
+  // The gap of each pair without a law, read at every grid point (not only the written
+  // ones): its first overlap puts every later row outside the model.
+  gaps_.clear();
+  for (std::size_t k = 0; k < s.contacts.size(); ++k)
+    if (s.contacts[k].law.model == structure::ContactModel::none)
+      gaps_.push_back({"", structure::Quantity::contact_gap, 'A', static_cast<int>(k + 1), -1});
+}
+
+void ChannelCsvWriter::observe(const StructureState& st) {
+  const std::size_t index = count_++;
+  for (const auto& gap : gaps_)
+    if (channel_value(*s_, gap, st) <= 0.0) unmodelled_ = true;
+  if (index % every_ != 0 && index != steps_) {
+    last_ = st;  // written at end() if the run ends here (a collapse stops it early)
+    pending_ = true;
+    return;
+  }
+  pending_ = false;
+  write_row(st);
+}
+
+void ChannelCsvWriter::write_row(const StructureState& st) {
+  values_.resize(2 + columns_.size());
+  values_[0] = st.t;
+  values_[1] = st.ag;
+  columns_.read(st, values_.data() + 2);
+  if (flagged_) values_.push_back(unmodelled_ ? 1.0 : 0.0);
+  char number[32];
+  for (std::size_t i = 0; i < values_.size(); ++i) {
+    detail::require_finite_output(values_[i], "timeseries.csv", "a value", st.t, st.t);
+    auto [end, ec] = std::to_chars(number, number + sizeof number, values_[i]);
+    buffer_.append(number, end);
+    buffer_.push_back(i + 1 < values_.size() ? ',' : '\n');
+  }
+  if (buffer_.size() > (1 << 16)) { out_ << buffer_; buffer_.clear(); }
+}
+
+void ChannelCsvWriter::end() {
+  if (pending_) write_row(last_);
+  pending_ = false;
+  out_ << buffer_;
+  buffer_.clear();
+}
+
+// Once per size: a run to a tolerance begins again with each rung.
+void ChannelCsvWriter::warn_if_large(double h) {
+  const double rows = static_cast<double>(steps_ / every_ + 2);
+  const double columns = static_cast<double>(2 + columns_.size() + (flagged_ ? 1 : 0));
+  const double bytes = rows * columns * kBytesPerCsvValue;
+  if (!warn_ || bytes <= kLargeCsvBytes || bytes <= 2.0 * warned_bytes_) return;
+  warned_bytes_ = bytes;
+  char text[400];
+  std::snprintf(text, sizeof text,
+                "timeseries.csv will be about %.0f MB (%.0f rows of %.0f columns: a row every %zu steps of h = %.4g s); "
+                "set output.every (a row every output.every steps) to write fewer rows",
+                bytes / 1e6, rows, columns, every_, h);
+  warn_(text);
 }
 
 }  // namespace adjoin

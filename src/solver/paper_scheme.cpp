@@ -199,7 +199,7 @@ class PaperStepper {
 
 }  // namespace
 
-LoopResult run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+SolverSummary run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                             Observer& observer) {
   return integrate<PaperStepper>(observer, options, model, ground);
 }

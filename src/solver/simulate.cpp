@@ -45,19 +45,13 @@ SolverSummary simulate(const SolverOptions& options, const Model& model, const G
   // the run (set-up included).
   if (options.scheme == Scheme::paper && model.contact.model != structure::ContactModel::none)
     throw InputError("solver.scheme = \"paper\": a contact law (model.contact) runs on the implicit schemes only; use solver.scheme = \"implicit\"");
-  const detail::LoopResult run = options.scheme == Scheme::paper
-                                     ? detail::run_paper_scheme(options, model, ground, observer)
-                                     : detail::run_two_block_on_structure(options, model, ground, observer);
-
-  SolverSummary summary;
+  SolverSummary summary = options.scheme == Scheme::paper
+                              ? detail::run_paper_scheme(options, model, ground, observer)
+                              : detail::run_two_block_on_structure(options, model, ground, observer);
   summary.scheme = to_string(options.scheme);
   summary.history = to_string(options.history);
   summary.h = options.h;
   summary.steps = options.steps();
-  summary.wall_seconds = run.wall_seconds;
-  summary.history_bytes = run.history_bytes;
-  summary.history_error = run.history_error;
-  summary.history_modes = run.history_modes;
   return summary;
 }
 

@@ -826,15 +826,12 @@ bool takes_restarts(const StructureSolverOptions& options, const structure::Stru
   return detail::StructureModel(options, s).restarts();
 }
 
-StructureRunSummary simulate_structure(const StructureSolverOptions& options, const structure::Structure& s,
-                                       const GroundMotion& ground, StructureObserver& observer) {
-  const detail::LoopResult r = detail::integrate<StructureStepper>(observer, options, s, ground);
-  StructureRunSummary summary;
-  summary.steps = r.steps;
-  summary.wall_seconds = r.wall_seconds;
-  summary.history_bytes = r.history_bytes;
-  summary.history_error = r.history_error;
-  summary.history_modes = r.history_modes;
+SolverSummary simulate_structure(const StructureSolverOptions& options, const structure::Structure& s,
+                                 const GroundMotion& ground, StructureObserver& observer) {
+  SolverSummary summary = detail::integrate<StructureStepper>(observer, options, s, ground);
+  summary.scheme = scheme_name(options);
+  summary.history = to_string(options.history);
+  summary.h = options.h;
   return summary;
 }
 

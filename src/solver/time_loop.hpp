@@ -51,6 +51,8 @@
 #include <type_traits>
 #include <utility>
 
+#include "adjoin/solver/options.hpp"
+
 namespace adjoin::detail {
 
 template <class S>
@@ -78,13 +80,6 @@ concept CanStop = requires(const O& o) {
   { o.done() } -> std::convertible_to<bool>;
 };
 
-struct LoopResult {
-  std::size_t steps = 0;
-  double wall_seconds = 0.0;
-  std::size_t history_bytes = 0;
-  double history_error = 0.0;
-  std::size_t history_modes = 0;
-};
 
 namespace loop_detail {
 template <class T>
@@ -102,7 +97,7 @@ void begin(Obs& observer, Info&& info) {
 }  // namespace loop_detail
 
 template <Stepper S, class Obs, class... Setup>
-LoopResult integrate(Obs& observer, Setup&&... setup) {
+SolverSummary integrate(Obs& observer, Setup&&... setup) {
   const auto start = std::chrono::steady_clock::now();
   S stepper(std::forward<Setup>(setup)...);
   const std::size_t n_steps = stepper.steps();
@@ -121,7 +116,7 @@ LoopResult integrate(Obs& observer, Setup&&... setup) {
       }
   }
   observer.end();
-  LoopResult result;
+  SolverSummary result;  // (its names and step are the caller's)
   result.steps = taken;
   result.history_bytes = stepper.history_bytes();
   result.history_error = stepper.history_error();

@@ -98,7 +98,7 @@ class AsTwoBlock final : public StructureObserver {
 }  // namespace
 
 
-LoopResult run_two_block_on_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+SolverSummary run_two_block_on_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                                       Observer& observer) {
   const bool contact = model.contact.model != structure::ContactModel::none;
   if (contact && !(model.gap0 >= 0.0))
@@ -118,14 +118,7 @@ LoopResult run_two_block_on_structure(const SolverOptions& options, const Model&
   info.history = options.history;
   AsTwoBlock adapter(observer, info, model.mu > 0.0, options.locate_switches, s.a.masses[0], s.b->masses[0]);
   const ScaledGround g(ground, 1.0 / kStandardGravity);
-  const StructureRunSummary summary = simulate_structure(o, s, g, adapter);
-  LoopResult result;
-  result.steps = summary.steps;
-  result.wall_seconds = summary.wall_seconds;
-  result.history_bytes = summary.history_bytes;
-  result.history_error = summary.history_error;
-  result.history_modes = summary.history_modes;
-  return result;
+  return simulate_structure(o, s, g, adapter);
 }
 
 }  // namespace adjoin::detail

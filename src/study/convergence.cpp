@@ -1,14 +1,14 @@
 #include "adjoin/study/convergence.hpp"
 
-#include "building_convergence.hpp"
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
+#include "adjoin/structure/channels.hpp"
 #include "adjoin/study/linear_reference.hpp"
 #include "adjoin/study/run.hpp"
 
@@ -17,64 +17,111 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// Keeps the displacements at every `stride`-th grid point: the coarsest grid of the ladder.
-class CoarseGrid final : public Observer {
+// Every degree of freedom's displacement at every `stride`-th grid point: the coarsest grid of
+// the ladder (a two-block run's x1, x2; a structure's floors). A two-block run also says whether
+// its damper stuck throughout, and its largest |q| (the analytic reference's test).
+class CoarseGrid final : public Observer, public StructureObserver {
  public:
   explicit CoarseGrid(std::size_t stride) : stride_(stride) {}
-  void begin(const RunInfo&) override { count_ = 0; t.clear(); x1.clear(); x2.clear(); all_stuck = true; max_q = 0.0; }
+  void begin(const RunInfo&) override { start(); }
+  void begin(const structure::Structure&, const StructureSolverOptions&) override { start(); }
   void observe(const State& s) override {
     if (s.phase != Phase::stick) all_stuck = false;
     max_q = std::max(max_q, std::abs(s.q));
-    if (count_++ % stride_ != 0) return;
-    t.push_back(s.t);
-    x1.push_back(s.x1);
-    x2.push_back(s.x2);
+    if (count_++ % stride_ == 0) x.push_back(Eigen::Vector2d(s.x1, s.x2));
   }
-  std::vector<double> t, x1, x2;
+  void observe(const StructureState& s) override {
+    if (count_++ % stride_ == 0) x.push_back(s.x);
+  }
+  std::vector<Eigen::VectorXd> x;
   bool all_stuck = true;
   double max_q = 0.0;
 
  private:
+  void start() {
+    count_ = 0;
+    x.clear();
+    all_stuck = true;
+    max_q = 0.0;
+  }
   std::size_t stride_;
   std::size_t count_ = 0;
 };
 
-// Every reported quantity of a run, by name (see the header).
-std::vector<QuantityError> reported_quantities(const Report& r) {
+// ---- the reported quantities, by the scene's presentation ----
+
+// A two-block run's, under SPEC §3's names.
+std::vector<QuantityError> two_block_quantities(const Report& report) {
   std::vector<QuantityError> out;
   auto value = [&](const std::string& name, double v) { out.push_back({name, false, v, kNaN}); };
   auto instant = [&](const std::string& name, double t) { out.push_back({name, true, t, kNaN}); };
-  const std::pair<const char*, const Peak*> peaks[] = {{"x1", &r.two_block->peaks.x1},   {"x2", &r.two_block->peaks.x2}, {"stroke", &r.two_block->peaks.drift},
-                                                       {"f1", &r.two_block->peaks.f1},   {"f2", &r.two_block->peaks.f2}, {"q", &r.two_block->peaks.q}};
+  const TwoBlockReport& r = *report.two_block;
+  const std::pair<const char*, const Peak*> peaks[] = {{"x1", &r.peaks.x1}, {"x2", &r.peaks.x2}, {"stroke", &r.peaks.drift},
+                                                       {"f1", &r.peaks.f1}, {"f2", &r.peaks.f2}, {"q", &r.peaks.q}};
   for (const auto& [name, p] : peaks) {
     value(std::string("peak ") + name, p->max_abs);
     instant(std::string("t peak ") + name, p->t);
   }
-  if (r.two_block->pounding) {
-    value("min gap", r.two_block->pounding->min_gap);
-    instant("t min gap", r.two_block->pounding->t_min_gap);
+  if (r.pounding) {
+    value("min gap", r.pounding->min_gap);
+    instant("t min gap", r.pounding->t_min_gap);
   }
-  if (r.two_block->energy) value("friction", r.two_block->energy->friction);
-  value("final q", r.two_block->final.q);
-  for (std::size_t i = 1; i < r.two_block->phases.size(); ++i) instant("switch " + std::to_string(i), r.two_block->phases[i].t_start);
+  if (r.energy) value("friction", r.energy->friction);
+  value("final q", r.final.q);
+  for (std::size_t i = 1; i < r.phases.size(); ++i) instant("switch " + std::to_string(i), r.phases[i].t_start);
   return out;
 }
 
-bool same_phases(const Report& a, const Report& b) {
-  if (a.two_block->phases.size() != b.two_block->phases.size()) return false;
-  for (std::size_t i = 0; i < a.two_block->phases.size(); ++i)
-    if (a.two_block->phases[i].state != b.two_block->phases[i].state) return false;
-  return true;
+// A structure run's, by its channels, links and contact pairs.
+std::vector<QuantityError> structure_quantities(const RunSpec& spec, const Report& r) {
+  std::vector<QuantityError> out;
+  auto value = [&](const std::string& name, double v) { out.push_back({name, false, v, kNaN}); };
+  auto instant = [&](const std::string& name, double t) { out.push_back({name, true, t, kNaN}); };
+  for (const auto& p : r.peaks) {
+    value("peak " + p.channel, p.peak.max_abs);
+    const auto channel = structure::find_channel(spec.structure, p.channel);
+    if (channel && structure::info(channel->quantity).peak == structure::PeakRule::refined)
+      instant("t peak " + p.channel, p.peak.t);
+  }
+  for (std::size_t l = 0; l < r.links.size(); ++l) {
+    const std::string link = "link" + std::to_string(l + 1);
+    value(link + " force_max", r.links[l].force_max);
+    value(link + " stroke_max", r.links[l].stroke_max);
+    if (spec.structure.links[l].type == structure::LinkType::friction) {
+      value(link + " energy", r.links[l].friction_energy);
+      for (std::size_t i = 0; i < r.links[l].switch_times.size(); ++i)
+        instant(link + " switch " + std::to_string(i + 1), r.links[l].switch_times[i]);
+    }
+  }
+  for (std::size_t k = 0; k < r.contacts.size(); ++k) {
+    const std::string pair = "contact" + std::to_string(k + 1);
+    value(pair + " min gap", r.contacts[k].min_gap);
+    instant(pair + " t min gap", r.contacts[k].t_min_gap);
+  }
+  if (r.collapse) instant("collapse t", r.collapse->t);  // SPEC §7: the located crossing
+  return out;
 }
 
-struct Reference {
-  std::string description;
-  std::vector<double> x1, x2;  // on the coarsest grid
-  double scale = 1.0;          // max |x_ref|
-  bool has_summary = false;
-  double peak_x1 = 0.0, min_gap = 0.0, friction = 0.0;
-  Report report;  // the finer run (has_summary)
-};
+std::vector<QuantityError> reported_quantities(const RunSpec& spec, const Report& r) {
+  return spec.two_block() ? two_block_quantities(r) : structure_quantities(spec, r);
+}
+
+bool is_switch(const std::string& name) { return name.rfind("switch ", 0) == 0 || name.find(" switch ") != std::string::npos; }
+
+// Whether a run switched as the reference did: a two-block run's sequence of phases, each
+// friction link's number of switches.
+bool same_switches(const Report& a, const Report& b) {
+  if (a.two_block) {
+    const auto &pa = a.two_block->phases, &pb = b.two_block->phases;
+    if (pa.size() != pb.size()) return false;
+    for (std::size_t i = 0; i < pa.size(); ++i)
+      if (pa[i].state != pb[i].state) return false;
+    return true;
+  }
+  for (std::size_t l = 0; l < a.links.size() && l < b.links.size(); ++l)
+    if (a.links[l].switch_times.size() != b.links[l].switch_times.size()) return false;
+  return true;
+}
 
 std::size_t stride_of(double coarse, double h) {
   const double ratio = coarse / h;
@@ -85,8 +132,9 @@ std::size_t stride_of(double coarse, double h) {
   return static_cast<std::size_t>(rounded);
 }
 
+// Relative error; absolute against a zero reference.
 double relative(double value, double reference) {
-  return std::abs(value - reference) / std::max(std::abs(reference), 1e-300);
+  return reference != 0.0 ? std::abs(value - reference) / std::abs(reference) : std::abs(value);
 }
 
 std::string number(double v) {
@@ -94,6 +142,45 @@ std::string number(double v) {
   s.precision(6);
   s << v;
   return s.str();
+}
+
+// The order observed between the previous rung's error of the same quantity and this one's.
+void set_order(QuantityError& q, const std::vector<QuantityError>& previous, double h_previous, double h) {
+  for (const auto& p : previous)
+    if (p.name == q.name && p.error > 0.0 && q.error > 0.0) q.order = std::log(p.error / q.error) / std::log(h_previous / h);
+}
+
+struct Reference {
+  std::string description;
+  std::vector<Eigen::VectorXd> x;  // on the coarsest grid
+  double scale = 1.0;              // max |x_ref|
+  std::optional<Report> report;    // a finer run's (not the analytic solution's)
+};
+
+// The exact solution on the coarsest grid, when a two-block scene's problem is linear under the
+// decaying sine: no damper, or one that the best scheme's finest run (`finest_run`) shows stuck
+// throughout (then |q| < mu is checked on the exact solution too). Empty otherwise.
+std::optional<Reference> analytic_reference(const RunSpec& scene, double coarse, const RunSpec& finest_run) {
+  const auto* sine = dynamic_cast<const DecayingSine*>(scene.ground.get());
+  if (!scene.two_block() || !sine) return std::nullopt;
+  bool stuck = false;
+  if (scene.model->mu > 0.0) {
+    CoarseGrid probe(1);
+    run(finest_run, {nullptr, &probe});
+    stuck = probe.all_stuck;
+  }
+  if (scene.model->mu != 0.0 && !stuck) return std::nullopt;
+  const LinearReference exact(*scene.model, sine->u0(), sine->omega(), sine->k(), stuck);
+  const std::size_t n = static_cast<std::size_t>(std::ceil(scene.solver.t_end / coarse * (1 - 1e-12))) + 1;
+  Reference ref;
+  for (std::size_t j = 0; j < n; ++j) {
+    const LinearResponse r = exact.at(static_cast<double>(j) * coarse);
+    if (stuck && std::abs(r.q) >= scene.model->mu) return std::nullopt;  // the exact solution slips
+    ref.x.push_back(Eigen::Vector2d(r.x1, r.x2));
+  }
+  ref.description = stuck ? "analytic: exact solution with the damper stuck throughout (Laplace inversion)"
+                          : "analytic: exact solution without damper (Laplace inversion)";
+  return ref;
 }
 
 }  // namespace
@@ -106,13 +193,27 @@ bool ConvergenceOptions::IsValid(std::string* error) const {
   return true;
 }
 
-ConvergenceResult run_convergence(const RunSpec& scene, const ConvergenceOptions& asked) {
+ConvergenceResult run_convergence(const RunSpec& given, const ConvergenceOptions& asked) {
   std::string error;
   if (!asked.IsValid(&error)) throw InputError(error);
   ConvergenceOptions options = asked;
-  if (options.engines.empty()) options.engines = {scene.two_block() ? HistoryEngine::direct : HistoryEngine::fft};
-  if (!scene.two_block()) return detail::building_convergence(scene, options);
-  if (options.schemes.empty()) options.schemes = {Scheme::paper, Scheme::implicit_gl, Scheme::implicit};
+  RunSpec scene = given;
+  const bool two_block = scene.two_block();
+  if (options.engines.empty()) options.engines = {two_block ? HistoryEngine::direct : HistoryEngine::fft};
+  if (two_block && options.schemes.empty()) options.schemes = {Scheme::paper, Scheme::implicit_gl, Scheme::implicit};
+  if (!two_block) {
+    // A structure runs one scheme: the structure step with one of its two restart rules.
+    if (options.schemes.size() > 1) throw InputError("a building takes one scheme, implicit or implicit-damped");
+    for (Scheme scheme : options.schemes) {
+      if (scheme != Scheme::implicit && scheme != Scheme::implicit_damped)
+        throw InputError(to_string(scheme) + ": a building runs the structure step, implicit or implicit-damped; the other "
+                         "schemes are the two-block system's");
+      scene.solver = with_scheme(scene.solver, scheme);
+      scene.solver.restart = scheme == Scheme::implicit ? StructureSolverOptions::Restart::automatic
+                                                        : StructureSolverOptions::Restart::always;
+    }
+    if (options.schemes.empty()) options.schemes = {scene.solver.scheme};
+  }
   std::vector<double> steps = options.steps;
   if (steps.empty())
     for (double f : {4.0, 2.0, 1.0, 0.5, 0.25}) steps.push_back(scene.solver.h * f);
@@ -120,65 +221,49 @@ ConvergenceResult run_convergence(const RunSpec& scene, const ConvergenceOptions
   const double coarse = steps.front(), finest = steps.back();
   for (double h : steps) stride_of(coarse, h);
 
+  // A run of the ladder; spectra are not compared (they cost a history per signal).
   auto with = [&](Scheme scheme, HistoryEngine engine, double h) {
     RunSpec s = scene;
-    s.solver.scheme = scheme;
+    if (two_block) s.solver.scheme = scheme;
     s.solver.history = engine;
     s.solver.h = h;
+    s.output.spectra.reset();
     return s;
   };
+  // The scheme's name in the table: a structure's says its restart rule.
+  auto scheme_text = [&](Scheme scheme) { return two_block ? to_string(scheme) : std::string(scheme_name(scene.solver)); };
 
-  // ---- the reference ----
+  // ---- the reference: the exact solution, else a finer run of the best scheme ----
   Reference ref;
-  const auto* sine = dynamic_cast<const DecayingSine*>(scene.ground.get());
-  bool analytic = false;
-  if (sine) {
-    bool stuck = false;
-    if (scene.model->mu > 0.0) {
-      // Linear only if the damper never slips: ask the best scheme at the finest step.
-      CoarseGrid probe(1);
-      run(with(Scheme::implicit, HistoryEngine::direct, finest), {nullptr, &probe});
-      stuck = probe.all_stuck;
-    }
-    if (scene.model->mu == 0.0 || stuck) {
-      const LinearReference exact(*scene.model, sine->u0(), sine->omega(), sine->k(), stuck);
-      const std::size_t n = static_cast<std::size_t>(std::ceil(scene.solver.t_end / coarse * (1 - 1e-12))) + 1;
-      analytic = true;
-      for (std::size_t j = 0; j < n; ++j) {
-        const LinearResponse r = exact.at(static_cast<double>(j) * coarse);
-        if (stuck && std::abs(r.q) >= scene.model->mu) analytic = false;  // the exact solution slips
-        ref.x1.push_back(r.x1);
-        ref.x2.push_back(r.x2);
-      }
-      ref.description = stuck ? "analytic: exact solution with the damper stuck throughout (Laplace inversion)"
-                              : "analytic: exact solution without damper (Laplace inversion)";
-    }
-  }
-  if (!analytic) {
+  if (auto exact = analytic_reference(scene, coarse, with(Scheme::implicit, HistoryEngine::direct, finest))) {
+    ref = std::move(*exact);
+  } else {
     const double h_ref = finest / options.reference_factor;
+    // A two-block scene's best scheme is implicit with the fft history (direct in a build
+    // without fft); a structure's is its own step, fft unless only direct was asked for.
+    const bool fft = std::find(options.engines.begin(), options.engines.end(), HistoryEngine::fft) != options.engines.end();
+    const Scheme ref_scheme = two_block ? Scheme::implicit : options.schemes.front();
+    const HistoryEngine ref_engine =
+        two_block || fft || options.engines.size() > 1 ? HistoryEngine::fft : options.engines.front();
     CoarseGrid grid(stride_of(coarse, h_ref));
-    RunSpec s = with(Scheme::implicit, HistoryEngine::fft, h_ref);
-    Report r;
+    RunSpec s = with(ref_scheme, ref_engine, h_ref);
+    const auto observers = [&] { return two_block ? RunObservers{nullptr, &grid} : RunObservers{&grid, nullptr}; };
     try {
-      r = run(s, {nullptr, &grid});
+      ref.report = run(s, observers());
     } catch (const InputError&) {  // no fft engine in this build: fall back to direct
+      if (!two_block) throw;
       s.solver.history = HistoryEngine::direct;
-      r = run(s, {nullptr, &grid});
+      ref.report = run(s, observers());
     }
-    ref.x1 = grid.x1;
-    ref.x2 = grid.x2;
-    ref.has_summary = true;
-    ref.peak_x1 = r.two_block->peaks.x1.max_abs;
-    ref.min_gap = r.two_block->pounding->min_gap;
-    ref.friction = r.two_block->energy->friction;
-    ref.report = r;
+    ref.x = grid.x;
     // In the scene's time unit (seconds for an SI scene), as the ladder's steps are printed.
-    ref.description = "a finer run: implicit/" + to_string(s.solver.history) + " at h = " + number(h_ref * scene.scales.time) +
-                      (scene.scales.si ? " s" : "");
+    ref.description = "a finer run: " + scheme_text(ref_scheme) + "/" + to_string(s.solver.history) +
+                      " at h = " + number(h_ref * scene.scales.time) + (scene.scales.si ? " s" : "");
   }
   ref.scale = 0.0;
-  for (std::size_t j = 0; j < ref.x1.size(); ++j) ref.scale = std::max({ref.scale, std::abs(ref.x1[j]), std::abs(ref.x2[j])});
+  for (const auto& x : ref.x) ref.scale = std::max(ref.scale, x.cwiseAbs().maxCoeff());
   if (ref.scale == 0.0) ref.scale = 1.0;
+  const std::vector<QuantityError> theirs = ref.report ? reported_quantities(scene, *ref.report) : std::vector<QuantityError>{};
 
   // ---- the ladders ----
   ConvergenceResult result;
@@ -189,36 +274,47 @@ ConvergenceResult run_convergence(const RunSpec& scene, const ConvergenceOptions
       std::vector<QuantityError> previous_quantities;
       for (double h : steps) {
         ConvergenceRow row;
-        row.scheme = to_string(scheme);
+        row.scheme = scheme_text(scheme);
         row.history = to_string(engine);
         row.h = h;
+        row.peak_x1 = row.min_gap = row.friction = kNaN;
         CoarseGrid grid(stride_of(coarse, h));
         try {
           const RunSpec s = with(scheme, engine, h);
           row.steps = s.solver.steps();
-          const Report r = run(s, {nullptr, &grid});
+          const Report r = run(s, two_block ? RunObservers{nullptr, &grid} : RunObservers{&grid, nullptr});
           row.wall_seconds = r.solver.wall_seconds;
           double e = 0.0;
-          const std::size_t n = std::min(grid.x1.size(), ref.x1.size());
-          for (std::size_t j = 0; j < n; ++j)
-            e = std::max({e, std::abs(grid.x1[j] - ref.x1[j]), std::abs(grid.x2[j] - ref.x2[j])});
+          for (std::size_t j = 0; j < grid.x.size() && j < ref.x.size(); ++j)
+            e = std::max(e, (grid.x[j] - ref.x[j]).cwiseAbs().maxCoeff());
           row.error = e / ref.scale;
-          row.order = std::isnan(previous) ? kNaN : std::log(previous / row.error) / std::log(result.rows.back().h / h);
+          const double h_previous = result.rows.empty() ? h : result.rows.back().h;
+          row.order = std::isnan(previous) ? kNaN : std::log(previous / row.error) / std::log(h_previous / h);
           previous = row.error;
-          row.peak_x1 = ref.has_summary ? relative(r.two_block->peaks.x1.max_abs, ref.peak_x1) : kNaN;
-          row.min_gap = ref.has_summary ? relative(r.two_block->pounding->min_gap, ref.min_gap) : kNaN;
-          row.friction = ref.has_summary && ref.friction > 0.0 ? relative(r.two_block->energy->friction, ref.friction) : kNaN;
-          if (ref.has_summary) {
-            row.switches_differ = !same_phases(r, ref.report);
-            const auto mine = reported_quantities(r), theirs = reported_quantities(ref.report);
-            for (std::size_t i = 0; i < mine.size() && i < theirs.size(); ++i) {
-              if (mine[i].name != theirs[i].name || (row.switches_differ && mine[i].name.rfind("switch", 0) == 0)) continue;
-              QuantityError q = mine[i];
-              q.error = q.instant ? std::abs(mine[i].error - theirs[i].error) : relative(mine[i].error, theirs[i].error);
-              for (const auto& p : previous_quantities)
-                if (p.name == q.name && p.error > 0.0 && q.error > 0.0)
-                  q.order = std::log(p.error / q.error) / std::log(result.rows.back().h / h);
+          if (ref.report) {
+            if (two_block) {  // the summary's three values under SPEC §3's names
+              const TwoBlockReport &mine = *r.two_block, &fine = *ref.report->two_block;
+              row.peak_x1 = relative(mine.peaks.x1.max_abs, fine.peaks.x1.max_abs);
+              row.min_gap = relative(mine.pounding->min_gap, fine.pounding->min_gap);
+              row.friction = fine.energy->friction > 0.0 ? relative(mine.energy->friction, fine.energy->friction) : kNaN;
+            }
+            row.switches_differ = !same_switches(r, *ref.report);
+            for (const auto& m : reported_quantities(s, r)) {
+              if (row.switches_differ && is_switch(m.name)) continue;
+              const auto match = std::find_if(theirs.begin(), theirs.end(), [&](const QuantityError& q) { return q.name == m.name; });
+              if (match == theirs.end()) continue;
+              QuantityError q = m;
+              q.error = q.instant ? std::abs(m.error - match->error) : relative(m.error, match->error);
+              set_order(q, previous_quantities, h_previous, h);
               row.quantities.push_back(q);
+            }
+            if (!two_block) {
+              // The balance's residual, relative to the input: an error in itself.
+              QuantityError residual{"energy residual", false,
+                                     r.energy.input != 0.0 ? std::abs(r.energy.residual / r.energy.input) : std::abs(r.energy.residual),
+                                     kNaN};
+              set_order(residual, previous_quantities, h_previous, h);
+              row.quantities.push_back(residual);
             }
             previous_quantities = row.quantities;
           }

@@ -8,6 +8,7 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/structure/channels.hpp"
+#include "adjoin/structure/two_block.hpp"
 #include "step_ladder.hpp"
 
 namespace adjoin {
@@ -19,6 +20,18 @@ PeakError peak_error(const Peak& fine, const Peak& coarse, double denominator) {
   return {std::abs(richardson(fine.max_abs, coarse.max_abs, denominator)), std::abs(richardson(fine.t, coarse.t, denominator))};
 }
 
+// The estimate of a refined peak, and the largest relative one so far.
+void add_peak(const std::string& channel, const Peak& fine, const Peak& coarse, double denominator, ErrorEstimate* e) {
+  e->peaks.push_back({channel, peak_error(fine, coarse, denominator)});
+  if (fine.max_abs > 0.0) {
+    const double relative = e->peaks.back().error.max_abs / fine.max_abs;
+    if (relative > e->max_relative_peak || e->worst_channel.empty()) {
+      e->max_relative_peak = std::max(e->max_relative_peak, relative);
+      e->worst_channel = channel;
+    }
+  }
+}
+
 // A building's values: the refined channel peaks, the links, the contact pairs.
 void compare_channels(const RunSpec& spec, const Report& fine, const Report& c, double denominator, ErrorEstimate* e) {
   auto error = [&](double f, double g) { return std::abs(richardson(f, g, denominator)); };
@@ -27,14 +40,7 @@ void compare_channels(const RunSpec& spec, const Report& fine, const Report& c, 
     const ChannelPeak& p = fine.peaks[i];
     const auto channel = structure::find_channel(spec.structure, p.channel);
     if (!channel || structure::info(channel->quantity).peak != structure::PeakRule::refined) continue;
-    e->peaks.push_back({p.channel, peak_error(p.peak, c.peaks[i].peak, denominator)});
-    if (p.peak.max_abs > 0.0) {
-      const double relative = e->peaks.back().error.max_abs / p.peak.max_abs;
-      if (relative > e->max_relative_peak || e->worst_channel.empty()) {
-        e->max_relative_peak = std::max(e->max_relative_peak, relative);
-        e->worst_channel = p.channel;
-      }
-    }
+    add_peak(p.channel, p.peak, c.peaks[i].peak, denominator, e);
   }
   for (std::size_t l = 0; l < fine.links.size(); ++l) {
     const LinkReport& f = fine.links[l];
@@ -68,18 +74,11 @@ void compare_channels(const RunSpec& spec, const Report& fine, const Report& c, 
 // A two-block spec's values: the paper's peaks, the minimum gap, the friction energy, the
 // switching instants.
 void compare_two_block(const TwoBlockReport& fine, const TwoBlockReport& c, double denominator, ErrorEstimate* e) {
-  const Peaks& pf = fine.peaks;
-  const Peaks& pc = c.peaks;
-  e->x1 = peak_error(pf.x1, pc.x1, denominator);
-  e->x2 = peak_error(pf.x2, pc.x2, denominator);
-  e->drift = peak_error(pf.drift, pc.drift, denominator);
-  e->f1 = peak_error(pf.f1, pc.f1, denominator);
-  e->f2 = peak_error(pf.f2, pc.f2, denominator);
-  e->q = peak_error(pf.q, pc.q, denominator);
-  const std::pair<const Peak*, const PeakError*> peaks[] = {{&pf.x1, &e->x1}, {&pf.x2, &e->x2}, {&pf.drift, &e->drift},
-                                                            {&pf.f1, &e->f1}, {&pf.f2, &e->f2}, {&pf.q, &e->q}};
-  for (const auto& [value, error] : peaks)
-    if (value->max_abs > 0.0) e->max_relative_peak = std::max(e->max_relative_peak, error->max_abs / value->max_abs);
+  // The peaks refined between samples, named by the 1 + 1 structure's channels.
+  const std::pair<const char*, Peak Peaks::*> refined[] = {{"x1", &Peaks::x1}, {"x2", &Peaks::x2}, {"drift", &Peaks::drift},
+                                                           {"f1", &Peaks::f1}, {"f2", &Peaks::f2}, {"q", &Peaks::q}};
+  for (const auto& [name, peak] : refined)
+    add_peak(structure::two_block_channel(name), fine.peaks.*peak, c.peaks.*peak, denominator, e);
   if (fine.pounding && c.pounding) {
     e->min_gap = std::abs(richardson(fine.pounding->min_gap, c.pounding->min_gap, denominator));
     e->t_min_gap = std::abs(richardson(fine.pounding->t_min_gap, c.pounding->t_min_gap, denominator));

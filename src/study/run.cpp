@@ -300,17 +300,8 @@ SolverSummary simulate_spec(const RunSpec& spec, const structure::Structure& s, 
   watched.add(&observer);
   watched.add(spec.watch);
   const StructureSolverOptions options = with_scheme(spec.solver, spec.solver.scheme);
-  const StructureRunSummary run = simulate_structure(options, s, *spec.ground, watched);
+  SolverSummary summary = simulate_structure(options, s, *spec.ground, watched);
   if (collapse) *collapse = collapse_watch.collapse();
-  SolverSummary summary;
-  summary.scheme = scheme_name(options);
-  summary.history = to_string(options.history);
-  summary.h = options.h;
-  summary.steps = run.steps;
-  summary.wall_seconds = run.wall_seconds;
-  summary.history_bytes = run.history_bytes;
-  summary.history_error = run.history_error;
-  summary.history_modes = run.history_modes;
   return summary;
 }
 

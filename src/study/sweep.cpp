@@ -14,13 +14,9 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_motion.hpp"
-#include "adjoin/observe/energy.hpp"
-#include "adjoin/observe/peaks.hpp"
-#include "adjoin/observe/phases.hpp"
-#include "adjoin/observe/pounding.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "adjoin/solver/simulate.hpp"
-#include "adjoin/study/building_sweep.hpp"
+#include "adjoin/study/sweep_columns.hpp"
 
 namespace adjoin {
 
@@ -64,24 +60,31 @@ std::string sa_column(double period) { return "sa_" + shortest(period); }
 
 // ---- the runs ----
 
-// Keeps what the intensity measures need: max |a_g| always, the history only for Sa.
-class GroundRecorder final : public Observer {
+// Keeps what the intensity measures need: max |a_g| always, the history (m/s^2) only for Sa.
+// A two-block run's a_g is in g (State), a structure's in m/s^2 (StructureState).
+class GroundRecorder final : public Observer, public StructureObserver {
  public:
   explicit GroundRecorder(bool keep) : keep_(keep) {}
-  void begin(const RunInfo& info) override {
-    pga = 0.0;
-    ag.clear();
-    if (keep_) ag.reserve(info.steps + 1);
-  }
-  void observe(const State& s) override {
-    pga = std::max(pga, std::abs(s.ag));
-    if (keep_) ag.push_back(s.ag);
-  }
-  double pga = 0.0;
-  std::vector<double> ag;
+  void begin(const RunInfo& info) override { start(info.steps, 1.0); }
+  void begin(const structure::Structure&, const StructureSolverOptions& o) override { start(o.steps(), kStandardGravity); }
+  void observe(const State& s) override { take(s.ag, s.ag * kStandardGravity); }
+  void observe(const StructureState& st) override { take(st.ag, st.ag); }
+  double pga_g() const { return pga_ / unit_; }
+  std::vector<double> ag;  // m/s^2
 
  private:
+  void start(std::size_t steps, double unit) {
+    pga_ = 0.0;
+    unit_ = unit;
+    ag.clear();
+    if (keep_) ag.reserve(steps + 1);
+  }
+  void take(double own, double si) {
+    pga_ = std::max(pga_, std::abs(own));
+    if (keep_) ag.push_back(si);
+  }
   bool keep_;
+  double pga_ = 0.0, unit_ = 1.0;  // max |a_g| in the run's own unit, and g in it
 };
 
 std::string one_line(std::string text) {
@@ -93,14 +96,14 @@ std::string one_line(std::string text) {
 }  // namespace
 
 const std::vector<std::string>& sweep_fixed_column_names() {
-  static const std::vector<std::string> names = {
-      "index", "motion", "units", "x1", "x2", "drift", "f1", "f2", "a1_abs", "a2_abs", "min_gap", "contact",
-      "outside_model", "contact.impacts", "contact.force_max", "contact.penetration_max",
-      "energy_input", "share_rod1", "share_rod2", "share_friction", "share_residual", "stick_intervals",
-      "slip_intervals", "switches", "pga_g", "wall_seconds", "error"};
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n = {"index", "motion", "units"};
+    for (const auto& c : two_block_sweep_channels()) n.push_back(c.name);
+    for (const char* last : {"pga_g", "wall_seconds", "error"}) n.push_back(last);
+    return n;
+  }();
   return names;
 }
-
 
 std::string sweep_axis_memory_problem(std::size_t n) {
   // Sized before the points are made: a huge axis is refused now, not by bad_alloc later.
@@ -163,82 +166,44 @@ void check_sweep_memory(const SweepSpec& spec, std::size_t runs) {
 }
 
 RunSpec sweep_scene(const SweepSpec& spec, std::size_t index) {
-  if (spec.building()) return building_sweep_scene(spec, index);  // (its edits' counts checked too)
   if (!spec.scenes) throw std::logic_error("sweep_scene: the sweep has no SweepScenes (read it with load_sweep or parse_sweep)");
-  return spec.scenes->scene(spec, index);
+  RunSpec scene = spec.scenes->scene(spec, index);
+  if (spec.building()) check_groups(spec, index, scene.structure);  // its columns are the base's
+  return scene;
 }
 
 SweepRow run_sweep_point(const SweepSpec& spec, std::size_t index) {
-  if (spec.building()) return run_building_sweep_point(spec, index);
   const auto start = std::chrono::steady_clock::now();
   SweepRow row;
   row.index = index;
   const RunSpec scene = sweep_scene(spec, index);
-  const Scales& k = scene.scales;
-  row.units = k.units_name();
+  row.units = scene.scales.units_name();
 
-  // Every row has the same columns, whatever the scene's [output] asks of `adjoin run`.
+  // Every row has the same columns, whatever the scene's [output] asks of `adjoin run`; a sweep
+  // writes no run files, so no in-structure spectra.
   RunSpec asked = scene;
   asked.output.peaks = asked.output.phases = asked.output.pounding = asked.output.energy = true;
   asked.output.spectra.reset();
   GroundRecorder ground(!spec.im_periods.empty());
   try {
-    const Report report = run(asked, {nullptr, &ground});
-    const TwoBlockReport& r = *report.two_block;
-    const Peaks& p = r.peaks;
-    const PoundingMargin& margin = *r.pounding;
-    row.x1 = p.x1.max_abs * k.length;
-    row.x2 = p.x2.max_abs * k.length;
-    row.drift = p.drift.max_abs * k.length;
-    row.f1 = p.f1.max_abs * k.force;
-    row.f2 = p.f2.max_abs * k.force;
-    row.a1_abs = p.a1.max_abs * k.acceleration;
-    row.a2_abs = p.a2.max_abs * k.acceleration;
-    row.min_gap = margin.min_gap * k.length;
-    row.contact = margin.contact;
-    row.outside_model = margin.outside_model();
-    row.contact_law = margin.has_law();
-    if (row.contact_law) {
-      row.impacts = margin.impacts.size();
-      row.force_max = margin.force_max * k.force;
-      row.penetration_max = margin.penetration_max * k.length;
-    }
-    const EnergyBalance& e = *r.energy;
-    row.energy_input = e.input * k.energy;
-    const double in = e.input != 0.0 ? e.input : kNaN;
-    row.share_rod1 = e.rod1 / in;
-    row.share_rod2 = e.rod2 / in;
-    row.share_friction = e.friction / in;
-    row.share_residual = e.residual / in;
-    for (const auto& interval : r.phases)
-      ++(interval.state == Phase::stick ? row.stick_intervals : row.slip_intervals);
-    row.switches = r.phases.empty() ? 0 : r.phases.size() - 1;
-    // Intensity measures of the forcing as the solver saw it (dimensionless accelerations are in g).
-    row.pga_g = ground.pga;
+    const Report report = run(asked, scene.two_block() ? RunObservers{nullptr, &ground} : RunObservers{&ground, nullptr});
+    row.channels = channel_cells(spec, asked, report);
+    // Intensity measures of the forcing as the solver saw it.
+    row.pga_g = ground.pga_g();
     if (!spec.im_periods.empty()) {
+      // The step in seconds (a dimensionless scene's time unit: a record's time scale).
       const auto* record = dynamic_cast<const RecordMotion*>(scene.ground.get());
-      const double seconds = record ? record->time_scale() : k.time;
-      std::vector<double> accel(ground.ag.size());
-      for (std::size_t i = 0; i < accel.size(); ++i) accel[i] = ground.ag[i] * kStandardGravity;
+      const double seconds = !scene.two_block() ? 1.0 : record ? record->time_scale() : scene.scales.time;
       SpectrumOptions options;
       options.dampings = {spec.im_damping};
       options.threads = 1;
       for (double period : spec.im_periods)
-        row.sa_g.push_back(spectral_values(scene.solver.h * seconds, accel, period, spec.im_damping, options).sa);
+        row.sa_g.push_back(spectral_values(scene.solver.h * seconds, ground.ag, period, spec.im_damping, options).sa);
     }
   } catch (const NumericalError& e) {
-    const SweepRow blank = [&] {
-      SweepRow b;
-      b.index = index;
-      b.units = row.units;
-      for (double* v : {&b.x1, &b.x2, &b.drift, &b.f1, &b.f2, &b.a1_abs, &b.a2_abs, &b.min_gap, &b.force_max,
-                        &b.penetration_max, &b.energy_input,
-                        &b.share_rod1, &b.share_rod2, &b.share_friction, &b.share_residual, &b.pga_g})
-        *v = kNaN;
-      b.sa_g.assign(spec.im_periods.size(), kNaN);
-      return b;
-    }();
-    row = blank;
+    row.channels.assign(channel_columns(spec).size(), "");
+    row.pga_g = kNaN;
+    row.sa_g.assign(spec.im_periods.size(), kNaN);
     row.error = one_line(e.what());
     if (row.error.empty()) row.error = "numerical failure";
   }
@@ -311,25 +276,8 @@ std::vector<SweepColumn> sweep_columns(const SweepSpec& spec) {
   }
   c.push_back({"motion", ColumnType::string});
   c.push_back({"units", ColumnType::string});
-  if (spec.building()) {
-    c.insert(c.end(), spec.channel_columns.begin(), spec.channel_columns.end());
-    c.push_back({"pga_g", ColumnType::number});
-    for (double t : spec.im_periods) c.push_back({sa_column(t), ColumnType::number});
-    c.push_back({"wall_seconds", ColumnType::number});
-    c.push_back({"error", ColumnType::string});
-    return c;
-  }
-  for (const char* n : {"x1", "x2", "drift", "f1", "f2", "a1_abs", "a2_abs", "min_gap"}) c.push_back({n, ColumnType::number});
-  c.push_back({"contact", ColumnType::boolean});
-  // Pounding (SPEC §6): whether the run went on past a contact with no contact law, and the
-  // contact law's results (empty cells for a run without a law).
-  c.push_back({"outside_model", ColumnType::boolean});
-  c.push_back({"contact.impacts", ColumnType::integer, true});
-  c.push_back({"contact.force_max", ColumnType::number});
-  c.push_back({"contact.penetration_max", ColumnType::number});
-  for (const char* n : {"energy_input", "share_rod1", "share_rod2", "share_friction", "share_residual"})
-    c.push_back({n, ColumnType::number});
-  for (const char* n : {"stick_intervals", "slip_intervals", "switches"}) c.push_back({n, ColumnType::integer});
+  const auto channels = channel_columns(spec);  // x1 ... switches, or a structure's (study/sweep_columns.hpp)
+  c.insert(c.end(), channels.begin(), channels.end());
   c.push_back({"pga_g", ColumnType::number});
   for (double t : spec.im_periods) c.push_back({sa_column(t), ColumnType::number});
   c.push_back({"wall_seconds", ColumnType::number});
@@ -337,36 +285,14 @@ std::vector<SweepColumn> sweep_columns(const SweepSpec& spec) {
   return c;
 }
 
-namespace {
-
-// x1 ... switches: the two-block columns between units and pga_g.
-void append_two_block_cells(const SweepRow& row, std::vector<std::string>& cells) {
-  for (double v : {row.x1, row.x2, row.drift, row.f1, row.f2, row.a1_abs, row.a2_abs, row.min_gap}) cells.push_back(shortest(v));
-  const bool failed = !row.error.empty();
-  cells.push_back(failed ? "" : (row.contact ? "true" : "false"));
-  cells.push_back(failed ? "" : (row.outside_model ? "true" : "false"));
-  const bool law = !failed && row.contact_law;
-  cells.push_back(law ? std::to_string(row.impacts) : "");
-  cells.push_back(law ? shortest(row.force_max) : "");
-  cells.push_back(law ? shortest(row.penetration_max) : "");
-  for (double v : {row.energy_input, row.share_rod1, row.share_rod2, row.share_friction, row.share_residual})
-    cells.push_back(shortest(v));
-  for (std::size_t v : {row.stick_intervals, row.slip_intervals, row.switches}) cells.push_back(failed ? "" : std::to_string(v));
-}
-
-}  // namespace
-
 std::vector<std::string> sweep_cells(const SweepSpec& spec, const SweepRow& row) {
   std::vector<std::string> cells{std::to_string(row.index)};
   const auto coordinates = spec.coordinates(row.index);
   for (std::size_t k = 0; k < spec.axes.size(); ++k) cells.push_back(spec.axes[k].values[coordinates[k]].label);
   cells.push_back(spec.motions[coordinates.back()].label);
   cells.push_back(row.units);
-  if (spec.building()) {
-    for (std::size_t i = 0; i < spec.channel_columns.size(); ++i) cells.push_back(i < row.channels.size() ? row.channels[i] : "");
-  } else {
-    append_two_block_cells(row, cells);
-  }
+  const std::size_t columns = channel_columns(spec).size();
+  for (std::size_t i = 0; i < columns; ++i) cells.push_back(i < row.channels.size() ? row.channels[i] : "");
   cells.push_back(shortest(row.pga_g));
   for (std::size_t i = 0; i < spec.im_periods.size(); ++i) cells.push_back(i < row.sa_g.size() ? shortest(row.sa_g[i]) : "");
   cells.push_back(shortest(row.wall_seconds));

@@ -1,5 +1,8 @@
 #pragma once
-// Streams a two-block run's impacts (SPEC §6) to CSV as the solver reports them (one row per
+// impacts.csv. A structure run's (any scene not written with the two-block keys) is made from
+// its report once the run is done (impacts_csv below): one row per impact in the order they
+// started, with its pair first (contact, 1-based), SI. A two-block run's is streamed: its
+// impacts (SPEC §6) to CSV as the solver reports them (one row per
 // Observer::impact, in order), in the scene's units like timeseries.csv (dimensionless, or s,
 // N, m, m/s and N s for SI scenes):
 //
@@ -13,6 +16,7 @@
 
 #include "adjoin/core/units.hpp"
 #include "adjoin/structure/observer.hpp"
+#include "adjoin/study/report.hpp"
 
 namespace adjoin {
 
@@ -21,6 +25,10 @@ inline constexpr const char* kImpactsCsvHeader =
 
 // One row (no newline) of impacts.csv for an impact in the solver's dimensionless units.
 std::string impact_csv_row(const Impact& impact, const Scales& scales);
+
+// A structure run's impacts.csv: contact,t_start,duration,force_max,t_force_max,penetration_max,
+// approach_speed,rebound_speed,impulse,complete (SI; contact 1-based).
+std::string impacts_csv(const Report& report);
 
 class ImpactsCsvWriter final : public Observer {
  public:

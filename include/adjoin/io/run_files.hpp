@@ -8,8 +8,10 @@
 // run's error is estimated from a companion run at about 2h unless solver.error_estimate =
 // false (study/error_estimate.hpp).
 //
-// Always summary.json; timeseries.csv (output.timeseries), energy.csv (output.energy_history)
-// and spectra.csv ([output.spectra]) when asked. The streamed files are written while the
+// Always summary.json (io/summary.hpp); timeseries.csv (output.timeseries, io/timeseries_csv.hpp:
+// a structure's channels, or a two-block scene's SPEC §3 columns), energy.csv (a two-block
+// scene's output.energy_history), spectra.csv ([output.spectra]) when asked, and impacts.csv
+// (io/impacts_csv.hpp) when a contact pair has a contact law. The streamed files are written while the
 // solver runs; all of them are committed as one set (io/atomic_file.hpp FileSet): a run that
 // fails (bad input, numerical failure, disk full) leaves the folder as it was, and a run that
 // succeeds leaves exactly its own files (outputs of an earlier run that this one does not
@@ -39,8 +41,8 @@ const std::vector<std::string>& run_file_names();
 
 // Checks `dir` (io/output_place.hpp), runs the scene and commits its files; `dir` is created
 // (if it is not there) for the files and removed again if the run fails.
-// A building scene's files are io/building_files.hpp's; `warn` is told, before the run starts
-// writing, what is valid but probably unintended ("timeseries.csv will be about 504 MB ...").
+// `warn` is told, before the run starts writing, what is valid but probably unintended
+// ("timeseries.csv will be about 504 MB ...").
 using RunWarning = std::function<void(const std::string&)>;
 RunFiles run_to_folder(const Scene& scene, const std::filesystem::path& dir, const RunWarning& warn = {});
 // The same files written to `outputs` (io/run_outputs.hpp: a folder, or memory), committed at

@@ -1,6 +1,8 @@
 #pragma once
 // The run's report in the scene's units: summary.json (SPEC §3; keys may be added, never
-// renamed) and a short human summary for the terminal.
+// renamed) and a short human summary for the terminal. A scene written with the two-block keys
+// is presented under SPEC §3's names; any other structure by its channels, links and contact
+// pairs (src/io/structure_summary.cpp: modes, peaks by channel, links, contacts, energy).
 #include <string>
 
 #include "adjoin/io/scene.hpp"

@@ -38,6 +38,19 @@ struct SolverOptions {
   bool IsValid(std::string* error, std::string* field = nullptr) const;
 };
 
+// What a run reports of itself, whichever stepper ran it (the time loop fills the counts and
+// the wall time; simulate() and simulate_structure() the names and the step).
+struct SolverSummary {
+  std::string scheme;
+  std::string history;
+  double h = 0.0;
+  std::size_t steps = 0;
+  double wall_seconds = 0.0;      // the loop's: the stepper's set-up (weights) included
+  std::size_t history_bytes = 0;  // memory held by the history engines
+  double history_error = 0.0;     // soe: the largest relative weight error (0: exact engines)
+  std::size_t history_modes = 0;  // soe: recurrences per element (Q)
+};
+
 // The most steps a run takes (two-block and building runs alike), and the one message for a
 // run beyond it (empty when t_end / h is within it).
 inline constexpr double kMaxSteps = 2e9;  // (below 2^31)

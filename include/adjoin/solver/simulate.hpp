@@ -27,17 +27,7 @@
 
 namespace adjoin {
 
-struct SolverSummary {
-  std::string scheme;
-  std::string history;
-  double h = 0.0;
-  std::size_t steps = 0;
-  double wall_seconds = 0.0;
-  std::size_t history_bytes = 0;  // memory held by the rods' history engines
-  double history_error = 0.0;     // soe: the largest relative weight error (0: exact engines)
-  std::size_t history_modes = 0;  // soe: recurrences per rod (Q)
-};
-
+// SolverSummary: solver/options.hpp.
 SolverSummary simulate(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                        Observer& observer);
 

@@ -93,17 +93,10 @@ inline const char* scheme_name(const StructureSolverOptions& o) {
          : o.restart == StructureSolverOptions::Restart::never ? "implicit (no restart)" : "implicit";
 }
 
-struct StructureRunSummary {
-  std::size_t steps = 0;
-  double wall_seconds = 0.0;
-  std::size_t history_bytes = 0;
-  double history_error = 0.0;     // soe: the largest relative weight error (0: exact engines)
-  std::size_t history_modes = 0;  // soe: recurrences per element (Q)
-};
-
-// `ground` gives a_g in g against time in seconds (a scene's ground with unit scales).
-StructureRunSummary simulate_structure(const StructureSolverOptions& options, const structure::Structure& s,
-                                       const GroundMotion& ground, StructureObserver& observer);
+// `ground` gives a_g in g against time in seconds (a scene's ground with unit scales). The
+// summary's scheme is scheme_name(options).
+SolverSummary simulate_structure(const StructureSolverOptions& options, const structure::Structure& s,
+                                 const GroundMotion& ground, StructureObserver& observer);
 
 // Whether a run with these options takes the backward-Euler step after a damper's switch
 // (Restart::automatic resolved as the run resolves it, h omega_max > 1; always: if the

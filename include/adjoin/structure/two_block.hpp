@@ -4,6 +4,8 @@
 // (if mu > 0) and one contact pair at floor 1 with gap gap0 and the model's contact law.
 // `scales` turns the dimensionless model into SI (masses m1, m1/rho, stiffnesses k1, eps k1,
 // tau in s^order); the default gives it in the model's dimensionless units.
+#include <string>
+
 #include "adjoin/structure/parameters.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/structure/building.hpp"
@@ -11,5 +13,11 @@
 namespace adjoin::structure {
 
 Structure two_block_structure(const Model& model, const Scales& scales = Scales::Dimensionless());
+
+// The channel (structure/channels.hpp) of the 1 + 1 structure that SPEC §3's name `name`
+// presents (SPEC §4): x1 = A.x1, x2 = B.x1, drift = link1.stroke (x1 - x2), f1 = A.shear1,
+// f2 = B.shear1 (the storeys' forces), q = link1.force, a1_abs = A.a1_abs, a2_abs = B.a1_abs,
+// gap = contact1.gap. "" for a name that is not a channel's.
+std::string two_block_channel(const std::string& name);
 
 }  // namespace adjoin::structure

@@ -1,6 +1,6 @@
 #pragma once
 // Convergence and work-precision: error against run time for each scheme and history engine
-// on a ladder of steps, for any spec (a building's ladder: src/study/building_convergence.cpp).
+// on a ladder of steps, for any spec.
 //
 //     ConvergenceResult result = run_convergence(scene, options);
 //
@@ -18,11 +18,22 @@
 //    run; against the exact solution only the trajectory error is given).
 // The observed order is log2 of the ratio of successive errors over a halving of h.
 //
-// Against a finer run, every reported quantity is compared too (ConvergenceRow::quantities):
-// the peaks of x1, x2, the stroke, f1, f2 and q with their times, the minimum gap and its
-// time, the friction energy, final.q, and each switching instant (when the run has the
-// reference's sequence of phases; otherwise the row says the switch count differs). Values
-// are relative errors, instants absolute (dimensionless time); each with its observed order.
+// Against a finer run, every reported quantity is compared too (ConvergenceRow::quantities),
+// by the scene's presentation. A two-block scene's: the peaks of x1, x2, the stroke, f1, f2
+// and q with their times, the minimum gap and its time, the friction energy, final.q, and each
+// switching instant (when the run has the reference's sequence of phases; otherwise the row says
+// the switches differ). A structure's (SPEC §5): each channel's peak and, for the peaks refined
+// between samples (structure/channels.hpp PeakRule::refined), its time; each link's largest
+// force and stroke and, for friction links, the dissipated energy and each switching instant
+// (when the run switches as often as the reference); each contact pair's smallest gap and its
+// time; and the energy balance's residual relative to the input (an error in itself, listed as
+// it is). Values are relative errors (absolute against a zero reference), instants absolute;
+// each with its observed order.
+//
+// A structure's ladder runs one scheme, the structure step with the scene's restart rule or
+// the one asked for (implicit or implicit-damped); its reference is that step at
+// reference_factor times the smallest step, with the fft history (direct if asked for alone),
+// and its trajectory error is taken over every floor.
 #include <string>
 #include <vector>
 
@@ -70,8 +81,6 @@ struct ConvergenceResult {
   std::vector<ConvergenceRow> rows;
 };
 
-// A building's ladder is study/building_convergence.cpp's (its header comment says what it
-// compares); a two-block spec's is the one above.
 ConvergenceResult run_convergence(const RunSpec& scene, const ConvergenceOptions& options);
 
 }  // namespace adjoin

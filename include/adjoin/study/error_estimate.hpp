@@ -76,15 +76,17 @@ struct ErrorEstimate {
   double companion_h = 0.0;       // the coarse step
   int order = 2;                  // p
   double companion_wall_seconds = 0.0;
-  // A building's (Report's channels):
-  std::vector<ChannelPeakError> peaks;  // the refined channels, in the report's order
+  // The refined peaks by channel, in the report's order (a two-block spec's by its 1 + 1
+  // structure's channels: A.x1, B.x1, link1.stroke, A.shear1, B.shear1, link1.force, which io
+  // presents as x1, x2, drift, f1, f2, q: structure/two_block.hpp two_block_channel).
+  std::vector<ChannelPeakError> peaks;
+  std::string worst_channel;            // where max_relative_peak is reached ("" if every peak is zero)
+  // A building's (Report's links and contact pairs):
   std::vector<LinkError> links;         // in the structure's order
   std::vector<ContactError> contacts;   // in the structure's order
-  std::string worst_channel;            // where max_relative_peak is reached ("" if every peak is zero)
   // The collapse time's error (SPEC §7), when both runs collapsed (the same storey); else empty.
   std::optional<double> collapse_t;
   // A two-block spec's (Report::two_block):
-  PeakError x1, x2, drift, f1, f2, q;
   double min_gap = 0.0, t_min_gap = 0.0;
   double friction = 0.0;          // of the friction energy
   bool switches_matched = false;  // the companion found the same phases

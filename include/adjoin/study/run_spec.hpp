@@ -38,7 +38,7 @@ struct OutputOptions {
   bool timeseries = false;      // output.timeseries: write timeseries.csv (streamed)
   bool energy_history = false;  // output.energy_history: write energy.csv (streamed)
   // output.every: keep every n-th grid point in the CSV files; 0: not given, the run's rule
-  // (1 for two-block runs; building runs with a chosen step: io/building_files.hpp).
+  // (1 for two-block runs; structure runs with a chosen step: io/timeseries_csv.hpp output_every).
   std::size_t every = 0;
   std::optional<SpectraOutput> spectra;  // [output.spectra]: write spectra.csv
 };

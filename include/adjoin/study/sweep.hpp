@@ -16,9 +16,9 @@
 // integrated with the observers run() uses (peaks, phases, pounding, energy) plus the
 // ground-motion intensity measures of the forcing the solver actually saw (PGA; Sa(T, damping)
 // at the sweep's im_periods). A NumericalError is recorded in the row's `error`; an InputError
-// stops the sweep with the sweep file, the run and the key. A building scene as the base
-// (SPEC §5) runs as `adjoin run` runs it (study/run.hpp), its columns generated from its
-// structure's channels (study/building_sweep.hpp). Finished rows go to a SweepRowSink (io's
+// stops the sweep with the sweep file, the run and the key. Its columns are read from the
+// run's Report by the base scene's registry (study/sweep_columns.hpp): SPEC §3's names for a
+// scene written with the two-block keys, a structure's channels otherwise. Finished rows go to a SweepRowSink (io's
 // journal, io/sweep_files.hpp, is the one a resumed sweep reads back).
 //
 // Values are in the base scene's units (SI scenes: m, N, m/s^2, J); energy shares are ratios to
@@ -112,7 +112,7 @@ struct SweepSpec {
   double im_damping = 0.05;           // [output] im_damping
   std::string fingerprint;            // hash of the sweep text, the base scene text and the version
   std::shared_ptr<const SweepScenes> scenes;  // makes each run's description (set by the reader)
-  // A building scene as the base (SPEC §5; study/building_sweep.hpp): its structure as read
+  // A structure as the base (SPEC §5; study/sweep_columns.hpp): its structure as read
   // (without edits), which decides the channel columns; null for a two-block base.
   std::shared_ptr<const structure::Structure> base_structure;
   std::vector<SweepColumn> channel_columns;  // building sweeps: A.roof_max, link1.stroke_max, ...
@@ -127,7 +127,8 @@ struct SweepSpec {
   std::string describe(std::size_t index) const;
 };
 
-// The scene of run `index` (InputError prefixed with the sweep file and the run).
+// The scene of run `index` (InputError prefixed with the sweep file, the line of the edit that
+// caused it and the run); a structure's groups checked against the base's (study/sweep_columns.hpp).
 RunSpec sweep_scene(const SweepSpec& spec, std::size_t index);
 
 // The column names every two-block sweep table has (an axis may not take one of them).
@@ -139,28 +140,14 @@ std::string sweep_axis_memory_problem(std::size_t n);
 struct SweepRow {
   std::size_t index = 0;
   std::string units;  // "dimensionless" or "SI"
-  // Peaks (max |.|) in the scene's units: displacements, drift = |x1 - x2| (the damper's stroke),
-  // rod forces, absolute accelerations of the blocks.
-  double x1 = 0, x2 = 0, drift = 0, f1 = 0, f2 = 0, a1_abs = 0, a2_abs = 0;
-  double min_gap = 0;   // pounding margin (scene units)
-  bool contact = false;
-  // No contact law and the gap closed: the row's values after the first contact are outside
-  // the model.
-  bool outside_model = false;
-  // With a contact law (SPEC §6): the number of impacts, the peak contact force and the largest
-  // penetration (scene units); without one the cells stay empty.
-  bool contact_law = false;
-  std::size_t impacts = 0;
-  double force_max = 0, penetration_max = 0;
-  double energy_input = 0;  // scene units (per unit m1, or J)
-  double share_rod1 = 0, share_rod2 = 0, share_friction = 0, share_residual = 0;  // / input
-  std::size_t stick_intervals = 0, slip_intervals = 0, switches = 0;
+  // The cells of the run's report, in the columns between units and pga_g
+  // (study/sweep_columns.hpp: x1 ... switches for a two-block base, a structure's channel
+  // columns otherwise); all empty if the run failed.
+  std::vector<std::string> channels;
   double pga_g = 0;             // of the forcing the solver saw [g]
   std::vector<double> sa_g;     // Sa(T, im_damping) at spec.im_periods [g]
   double wall_seconds = 0;      // building the scene + integrating + intensity measures
   std::string error;            // a NumericalError's message; the numbers are then NaN
-  // Building sweeps: the cells of spec.channel_columns (the two-block fields above stay unused).
-  std::vector<std::string> channels;
 };
 
 // One run (InputError propagates; NumericalError is caught into row.error).

@@ -1,29 +1,30 @@
-#include "adjoin/io/building_files.hpp"
-#include "adjoin/io/summary.hpp"
+// summary.json and the terminal report of a structure run (any scene not written with the
+// two-block keys; io/summary.hpp summary_json and brief_report choose it): the solver, the
+// ground, each building's periods, damping ratios and mode shapes and the coupled periods, the
+// peak of every channel (structure/channels.hpp), each link, each contact pair, the flags of
+// values outside the model, the energy balance and the error estimate. SI units; no NaN or Inf
+// is written (exit 3).
+#include "summary_presenters.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
-#include <memory>
 #include <sstream>
 
 #include <nlohmann/json.hpp>
 
 #include "../detail/finite_output.hpp"
 #include "adjoin/core/errors.hpp"
-#include "adjoin/io/atomic_file.hpp"
-#include "adjoin/observe/channel_values.hpp"
 #include "adjoin/structure/channels.hpp"
 
-namespace adjoin {
+namespace adjoin::detail {
 namespace {
 
 using nlohmann::ordered_json;
 
 void require_finite(const ordered_json& j, const std::string& path, double t_end) {
   if (j.is_number_float() && !std::isfinite(j.get<double>()))
-    detail::non_finite_output("summary.json", path, j.get<double>(), t_end, t_end);
+    non_finite_output("summary.json", path, j.get<double>(), t_end, t_end);
   if (j.is_object())
     for (const auto& [key, value] : j.items()) require_finite(value, path.empty() ? key : path + "." + key, t_end);
   if (j.is_array())
@@ -73,115 +74,6 @@ ordered_json collapse_json(const Collapse& c) {
           {"drift_ratio_limit", c.drift_ratio}};
 }
 
-// A CSV value as to_chars writes it (about 17 digits, sign, exponent) and its comma: the
-// size estimate of a time series before it is written.
-constexpr double kBytesPerCsvValue = 20.0;
-constexpr double kLargeCsvBytes = 50e6;  // warned before writing
-
-// Streams every `every`-th grid point of a building run (building_output_every, from each
-// run's own step): t, a_g, then every channel the registry marks for the time series
-// (structure/channels.hpp), in its order, and `outside_model` when a contact pair has no law.
-// Before a run whose file would exceed 50 MB it tells `warn` the size.
-class BuildingCsvWriter final : public StructureObserver {
- public:
-  BuildingCsvWriter(std::ostream& out, const BuildingScene& scene, RunWarning warn)
-      : out_(out), scene_(scene), warn_(std::move(warn)) {}
-  void begin(const structure::Structure& s, const StructureSolverOptions& o) override {
-    s_ = &s;
-    steps_ = o.steps();
-    every_ = building_output_every(scene_, o.h);
-    count_ = 0;
-    std::vector<structure::Channel> columns;
-    for (auto& c : structure::channels(s))
-      if (structure::info(c.quantity).timeseries) columns.push_back(std::move(c));
-    columns_ = ChannelValues(s, std::move(columns));
-    unmodelled_ = false;
-    flagged_ = std::any_of(s.contacts.begin(), s.contacts.end(),
-                           [](const structure::Contact& c) { return c.law.model == structure::ContactModel::none; });
-    warn_if_large(o.h);
-    out_ << "t,ag";
-    for (const auto& c : columns_.channels()) out_ << "," << c.name;
-    if (flagged_) out_ << ",outside_model";
-    out_ << "\n";
-    // The gap of each pair without a law, read at every grid point (not only the written
-    // ones): its first overlap puts every later row outside the model.
-    gaps_.clear();
-    for (std::size_t k = 0; k < s.contacts.size(); ++k)
-      if (s.contacts[k].law.model == structure::ContactModel::none)
-        gaps_.push_back({"", structure::Quantity::contact_gap, 'A', static_cast<int>(k + 1), -1});
-  }
-  void observe(const StructureState& st) override {
-    const std::size_t index = count_++;
-    for (const auto& gap : gaps_)
-      if (channel_value(*s_, gap, st) <= 0.0) unmodelled_ = true;
-    if (index % every_ != 0 && index != steps_) {
-      last_ = st;  // written at end() if the run ends here (a collapse stops it early)
-      pending_ = true;
-      return;
-    }
-    pending_ = false;
-    write_row(st);
-  }
-  void end() override {
-    if (pending_) write_row(last_);
-    pending_ = false;
-    out_ << buffer_;
-    buffer_.clear();
-  }
-
- private:
-  void write_row(const StructureState& st) {
-    values_.resize(2 + columns_.size());
-    values_[0] = st.t;
-    values_[1] = st.ag;
-    columns_.read(st, values_.data() + 2);
-    if (flagged_) values_.push_back(unmodelled_ ? 1.0 : 0.0);
-    char number[32];
-    for (std::size_t i = 0; i < values_.size(); ++i) {
-      detail::require_finite_output(values_[i], "timeseries.csv", "a value", st.t, st.t);
-      auto [end, ec] = std::to_chars(number, number + sizeof number, values_[i]);
-      buffer_.append(number, end);
-      buffer_.push_back(i + 1 < values_.size() ? ',' : '\n');
-    }
-    if (buffer_.size() > (1 << 16)) { out_ << buffer_; buffer_.clear(); }
-  }
-
-  // Once per size: a run to a tolerance begins again with each rung.
-  void warn_if_large(double h) {
-    const double rows = static_cast<double>(steps_ / every_ + 2);
-    const double columns = static_cast<double>(2 + columns_.size() + (flagged_ ? 1 : 0));
-    const double bytes = rows * columns * kBytesPerCsvValue;
-    if (!warn_ || bytes <= kLargeCsvBytes || bytes <= 2.0 * warned_bytes_) return;
-    warned_bytes_ = bytes;
-    char text[400];
-    std::snprintf(text, sizeof text,
-                  "timeseries.csv will be about %.0f MB (%.0f rows of %.0f columns: a row every %zu steps of h = %.4g s); "
-                  "set output.every (a row every output.every steps) to write fewer rows",
-                  bytes / 1e6, rows, columns, every_, h);
-    warn_(text);
-  }
-
-  std::ostream& out_;
-  const BuildingScene& scene_;
-  RunWarning warn_;
-  double warned_bytes_ = 0.0;
-  std::size_t every_ = 1, steps_ = 0, count_ = 0;
-  const structure::Structure* s_ = nullptr;
-  ChannelValues columns_;
-  std::vector<structure::Channel> gaps_;
-  std::vector<double> values_;
-  std::string buffer_;
-  bool flagged_ = false, unmodelled_ = false;
-  StructureState last_;   // the last grid point not written (the run's last, if it stops early)
-  bool pending_ = false;
-};
-
-std::string number_text(double v) {
-  char number[32];
-  auto [end, ec] = std::to_chars(number, number + sizeof number, v);
-  return std::string(number, end);
-}
-
 // Text for a time that may be absent (NaN): null.
 ordered_json time_or_null(bool present, double t) { return present ? ordered_json(t) : ordered_json(nullptr); }
 
@@ -196,8 +88,8 @@ std::string unmodelled_message(std::size_t k, const structure::Contact& c, doubl
   return text;
 }
 
-// Estimated absolute errors of the reported values (SI), shaped as a two-block run's.
-ordered_json building_error_json(const BuildingScene& scene, const ErrorEstimate& e, bool collapsed) {
+// Estimated absolute errors of the reported values (SI), by channel, link and contact pair.
+ordered_json structure_error_json(const RunSpec& scene, const ErrorEstimate& e, bool collapsed) {
   if (!e.available) return ordered_json{{"available", false}, {"reason", e.reason}};
   ordered_json peaks = ordered_json::object();
   for (const auto& p : e.peaks) peaks[p.channel] = {{"max_abs", p.error.max_abs}, {"t", p.error.t}};
@@ -229,44 +121,9 @@ ordered_json building_error_json(const BuildingScene& scene, const ErrorEstimate
   return out;
 }
 
-// The streamed writer, started afresh with each run it sees: a run to a tolerance streams every
-// rung it tries into the same file, and the rung it keeps is the last one written.
-class RestartingWriter final : public StructureObserver {
- public:
-  RestartingWriter(RunOutputs& set, StructureObserver& writer) : set_(set), writer_(writer) {}
-  void begin(const structure::Structure& s, const StructureSolverOptions& o) override {
-    if (started_) set_.restart();
-    started_ = true;
-    writer_.begin(s, o);
-  }
-  void observe(const StructureState& st) override { writer_.observe(st); }
-  void impact(const Impact& e) override { writer_.impact(e); }
-  void end() override { writer_.end(); }
-
- private:
-  RunOutputs& set_;
-  StructureObserver& writer_;
-  bool started_ = false;
-};
-
 }  // namespace
 
-double building_output_interval(const BuildingScene& scene) {
-  if (scene.output.every > 0 || scene.accuracy.h_rule == "given") return 0.0;
-  const auto& contacts = scene.structure.contacts;
-  const bool impacts = std::any_of(contacts.begin(), contacts.end(),
-                                   [](const structure::Contact& c) { return c.law.model != structure::ContactModel::none; });
-  return impacts ? 1e-3 : 5e-3;
-}
-
-std::size_t building_output_every(const BuildingScene& scene, double h) {
-  if (scene.output.every > 0) return scene.output.every;
-  const double interval = building_output_interval(scene);
-  if (!(interval > 0.0 && h > 0.0)) return 1;
-  return std::max<std::size_t>(1, static_cast<std::size_t>(std::floor(interval / h * (1.0 + 1e-9))));
-}
-
-std::string building_summary_json(const BuildingScene& scene, const Report& r, const ErrorEstimate* estimate,
+std::string structure_summary_json(const RunSpec& scene, const Report& r, const ErrorEstimate* estimate,
                                   const TolerantRun* tolerant) {
   const structure::Structure& s = scene.structure;
   ordered_json j;
@@ -362,12 +219,12 @@ std::string building_summary_json(const BuildingScene& scene, const Report& r, c
   for (const auto& v : r.residual) residual[v.channel] = v.value;
   j["residual"] = residual;
   if (r.collapse) j["collapse"] = collapse_json(*r.collapse);
-  if (estimate) j["error_estimate"] = building_error_json(scene, *estimate, r.collapse.has_value());
+  if (estimate) j["error_estimate"] = structure_error_json(scene, *estimate, r.collapse.has_value());
   require_finite(j, "", scene.solver.t_end);
   return j.dump(2) + "\n";
 }
 
-std::string building_brief_report(const BuildingScene& scene, const Report& r, const ErrorEstimate* estimate,
+std::string structure_brief_report(const RunSpec& scene, const Report& r, const ErrorEstimate* estimate,
                                   const TolerantRun* tolerant) {
   std::ostringstream o;
   char line[512];
@@ -476,50 +333,4 @@ std::string building_brief_report(const BuildingScene& scene, const Report& r, c
   return o.str();
 }
 
-std::string building_impacts_csv(const Report& r) {
-  std::vector<Impact> all;
-  for (const auto& c : r.contacts) all.insert(all.end(), c.impact_list.begin(), c.impact_list.end());
-  std::stable_sort(all.begin(), all.end(), [](const Impact& a, const Impact& b) { return a.start < b.start; });
-  std::string out = "contact,t_start,duration,force_max,t_force_max,penetration_max,approach_speed,rebound_speed,impulse,complete\n";
-  for (const Impact& e : all) {
-    const double values[] = {e.start, e.duration, e.force_max, e.t_force_max, e.penetration_max, e.approach_speed, e.rebound_speed,
-                             e.impulse};
-    out += std::to_string(e.contact + 1);
-    for (double v : values) {
-      detail::require_finite_output(v, "impacts.csv", "a value", e.start, e.start);
-      out += ',' + number_text(v);
-    }
-    out += e.complete ? ",true\n" : ",false\n";
-  }
-  return out;
-}
-
-RunFiles run_building_to(const BuildingScene& scene, RunOutputs& set, const RunWarning& warn) {
-  std::unique_ptr<BuildingCsvWriter> writer;
-  std::unique_ptr<RestartingWriter> restarting;
-  if (scene.output.timeseries) {
-    writer = std::make_unique<BuildingCsvWriter>(set.open("timeseries.csv"), scene, warn);
-    restarting = std::make_unique<RestartingWriter>(set, *writer);
-  }
-  RunFiles files;
-  const AccuracyOptions& accuracy = scene.accuracy;
-  if (accuracy.tolerance) {
-    files.tolerant = run_to_tolerance(scene, *accuracy.tolerance, {restarting.get()});
-    files.report = files.tolerant->report;
-    files.estimate = files.tolerant->estimate;
-  } else {
-    files.report = run(scene, {restarting.get()});
-    if (accuracy.error_estimate) files.estimate = estimate_error(scene, files.report);
-  }
-  if (!files.report.spectra.empty()) set.open("spectra.csv") << spectra_csv(files.report.spectra);
-  const auto& contacts = scene.structure.contacts;
-  if (std::any_of(contacts.begin(), contacts.end(),
-                  [](const structure::Contact& c) { return c.law.model != structure::ContactModel::none; }))
-    set.open("impacts.csv") << building_impacts_csv(files.report);
-  set.open("summary.json") << building_summary_json(scene, files.report, files.estimate ? &*files.estimate : nullptr,
-                                                    files.tolerant ? &*files.tolerant : nullptr);
-  files.written = set.commit();
-  return files;
-}
-
-}  // namespace adjoin
+}  // namespace adjoin::detail

@@ -1,4 +1,4 @@
-#include "adjoin/study/building_sweep.hpp"
+#include "adjoin/study/sweep_columns.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -76,6 +76,16 @@ void for_each_column(const structure::Structure& s, F each) {
   scope(ChannelScope::whole, 0);
 }
 
+// A value as its column's cell; NaN: empty.
+std::string cell(ColumnType type, double v) {
+  if (std::isnan(v)) return "";
+  switch (type) {
+    case ColumnType::integer: return std::to_string(static_cast<std::size_t>(v));
+    case ColumnType::boolean: return v != 0.0 ? "true" : "false";
+    default: return sweep_number_cell(v);
+  }
+}
+
 bool starts_with(const std::string& text, const std::string& prefix) { return text.rfind(prefix, 0) == 0; }
 
 // The line of the first setting whose edits touch `prefix` (e.g. "link"), or 0.
@@ -92,50 +102,6 @@ std::size_t line_of_edit(const std::vector<SweepSetting>& settings, const std::s
 std::string at(const SweepSpec& spec, std::size_t line) {
   return spec.file.string() + (line ? ":" + std::to_string(line) : std::string()) + ": ";
 }
-
-// A run's structure keeps the base's groups or drops a whole group (its cells are then empty).
-void check_groups(const SweepSpec& spec, std::size_t index, const std::vector<SweepSetting>& settings,
-                  const structure::Structure& run) {
-  const structure::Structure& base = *spec.base_structure;
-  struct Group {
-    const char* key;
-    const char* what;
-    std::size_t base, run;
-  };
-  const Group groups[] = {{"building.B", "building B", base.b ? 1u : 0u, run.b ? 1u : 0u},
-                          {"link", "link", base.links.size(), run.links.size()},
-                          {"contact", "contact", base.contacts.size(), run.contacts.size()}};
-  for (const auto& g : groups) {
-    if (g.run == g.base || g.run == 0) continue;
-    const std::string plural = std::string(g.what) + (g.base == 1 ? "" : "s");
-    throw InputError(at(spec, line_of_edit(settings, g.key)) + "run " + std::to_string(index) + " (" + spec.describe(index) +
-                     "): its structure has " + std::to_string(g.run) + " " + g.what + (g.run == 1 ? "" : "s") +
-                     " but the base scene has " + std::to_string(g.base) + " " +
-                     (g.base == 1 ? std::string(g.what) : plural) +
-                     "; a building sweep's columns are the base structure's: a run keeps every " + g.what +
-                     " of the base, or removes them all (unset = [\"" + g.key + "\"]), whose cells it leaves empty");
-  }
-}
-
-// a_g at every grid point [m/s^2], for the intensity measures.
-class GroundHistory final : public StructureObserver {
- public:
-  explicit GroundHistory(bool keep) : keep_(keep) {}
-  void begin(const structure::Structure&, const StructureSolverOptions& o) override {
-    pga = 0.0;
-    ag.clear();
-    if (keep_) ag.reserve(o.steps() + 1);
-  }
-  void observe(const StructureState& st) override {
-    pga = std::max(pga, std::abs(st.ag));
-    if (keep_) ag.push_back(st.ag);
-  }
-  double pga = 0.0;
-  std::vector<double> ag;
-
- private:
-  bool keep_;
-};
 
 }  // namespace
 
@@ -200,6 +166,56 @@ const std::vector<SweepChannel>& building_sweep_channels() {
   return channels;
 }
 
+// A scene written with the two-block keys: SPEC §3's names, in the scene's units. A two-block
+// sweep's run asks for every part of the report (study/sweep.cpp run_sweep_point).
+const std::vector<SweepChannel>& two_block_sweep_channels() {
+  using T = ColumnType;
+  using Value = std::function<double(const TwoBlockReport&, const Scales&)>;
+  const auto column = [](const char* name, T type, const char* meaning, Value v, bool may_be_empty = false) {
+    return SweepChannel{ChannelScope::whole, name, type, "", meaning,
+                        [v = std::move(v)](const RunSpec& s, const Report& r, std::size_t) { return v(*r.two_block, s.scales); },
+                        may_be_empty};
+  };
+  // A contact law's results; without one the cells stay empty.
+  const auto with_law = [](const TwoBlockReport& r, double v) { return r.pounding->has_law() ? v : kNaN; };
+  // A share of the input energy (NaN for zero input).
+  const auto of_input = [](const TwoBlockReport& r, double work) { return work / (r.energy->input != 0.0 ? r.energy->input : kNaN); };
+  const auto intervals = [](const TwoBlockReport& r, bool stick) {
+    std::size_t n = 0;
+    for (const auto& interval : r.phases) n += (interval.state == Phase::stick) == stick ? 1 : 0;
+    return static_cast<double>(n);
+  };
+  static const std::vector<SweepChannel> channels = {
+      column("x1", T::number, "peak |x1| (block 1's displacement)", [](const TwoBlockReport& r, const Scales& k) { return r.peaks.x1.max_abs * k.length; }),
+      column("x2", T::number, "peak |x2|", [](const TwoBlockReport& r, const Scales& k) { return r.peaks.x2.max_abs * k.length; }),
+      column("drift", T::number, "peak |x1 - x2| (the damper's stroke)", [](const TwoBlockReport& r, const Scales& k) { return r.peaks.drift.max_abs * k.length; }),
+      column("f1", T::number, "peak |f1| (rod 1's force)", [](const TwoBlockReport& r, const Scales& k) { return r.peaks.f1.max_abs * k.force; }),
+      column("f2", T::number, "peak |f2|", [](const TwoBlockReport& r, const Scales& k) { return r.peaks.f2.max_abs * k.force; }),
+      column("a1_abs", T::number, "peak absolute acceleration of block 1", [](const TwoBlockReport& r, const Scales& k) { return r.peaks.a1.max_abs * k.acceleration; }),
+      column("a2_abs", T::number, "peak absolute acceleration of block 2", [](const TwoBlockReport& r, const Scales& k) { return r.peaks.a2.max_abs * k.acceleration; }),
+      column("min_gap", T::number, "the pounding margin", [](const TwoBlockReport& r, const Scales& k) { return r.pounding->min_gap * k.length; }),
+      column("contact", T::boolean, "whether the gap closed", [](const TwoBlockReport& r, const Scales&) { return r.pounding->contact ? 1.0 : 0.0; }),
+      column("outside_model", T::boolean, "no contact law and the gap closed: values after the first contact are outside the model",
+             [](const TwoBlockReport& r, const Scales&) { return r.pounding->outside_model() ? 1.0 : 0.0; }),
+      column("contact.impacts", T::integer, "impacts (with a contact law)",
+             [with_law](const TwoBlockReport& r, const Scales&) { return with_law(r, static_cast<double>(r.pounding->impacts.size())); }, true),
+      column("contact.force_max", T::number, "peak contact force (with a contact law)",
+             [with_law](const TwoBlockReport& r, const Scales& k) { return with_law(r, r.pounding->force_max * k.force); }),
+      column("contact.penetration_max", T::number, "largest penetration (with a contact law)",
+             [with_law](const TwoBlockReport& r, const Scales& k) { return with_law(r, r.pounding->penetration_max * k.length); }),
+      column("energy_input", T::number, "input energy (per unit m1, or J)", [](const TwoBlockReport& r, const Scales& k) { return r.energy->input * k.energy; }),
+      column("share_rod1", T::number, "work on rod 1 / input", [of_input](const TwoBlockReport& r, const Scales&) { return of_input(r, r.energy->rod1); }),
+      column("share_rod2", T::number, "work on rod 2 / input", [of_input](const TwoBlockReport& r, const Scales&) { return of_input(r, r.energy->rod2); }),
+      column("share_friction", T::number, "friction work / input", [of_input](const TwoBlockReport& r, const Scales&) { return of_input(r, r.energy->friction); }),
+      column("share_residual", T::number, "balance residual / input", [of_input](const TwoBlockReport& r, const Scales&) { return of_input(r, r.energy->residual); }),
+      column("stick_intervals", T::integer, "stick phases", [intervals](const TwoBlockReport& r, const Scales&) { return intervals(r, true); }),
+      column("slip_intervals", T::integer, "slip phases", [intervals](const TwoBlockReport& r, const Scales&) { return intervals(r, false); }),
+      column("switches", T::integer, "phase changes",
+             [](const TwoBlockReport& r, const Scales&) { return r.phases.empty() ? 0.0 : static_cast<double>(r.phases.size() - 1); }),
+  };
+  return channels;
+}
+
 std::vector<SweepColumn> building_channel_columns(const structure::Structure& s) {
   std::vector<SweepColumn> columns;
   for_each_column(s, [&](const SweepChannel& c, std::size_t k) {
@@ -216,12 +232,7 @@ std::vector<std::string> building_channel_cells(const structure::Structure& base
       cells.emplace_back();  // a group the run removed
       return;
     }
-    const double v = c.value(scene, report, k);
-    switch (c.type) {
-      case ColumnType::integer: cells.push_back(std::to_string(static_cast<std::size_t>(v))); break;
-      case ColumnType::boolean: cells.push_back(v != 0.0 ? "true" : "false"); break;
-      default: cells.push_back(sweep_number_cell(v)); break;
-    }
+    cells.push_back(cell(c.type, c.value(scene, report, k)));
   });
   return cells;
 }
@@ -231,42 +242,43 @@ void prepare_building_sweep(SweepSpec& spec, const structure::Structure& base) {
   spec.channel_columns = building_channel_columns(base);
 }
 
-RunSpec building_sweep_scene(const SweepSpec& spec, std::size_t index) {
-  if (!spec.scenes)
-    throw std::logic_error("building_sweep_scene: the sweep has no SweepScenes (read it with load_sweep or parse_sweep)");
-  RunSpec scene = spec.scenes->scene(spec, index);
-  check_groups(spec, index, spec.settings(index), scene.structure);
-  return scene;
+// A run's structure keeps the base's groups or drops a whole group (its cells are then empty).
+void check_groups(const SweepSpec& spec, std::size_t index, const structure::Structure& run) {
+  const structure::Structure& base = *spec.base_structure;
+  const std::vector<SweepSetting> settings = spec.settings(index);
+  struct Group {
+    const char* key;
+    const char* what;
+    std::size_t base, run;
+  };
+  const Group groups[] = {{"building.B", "building B", base.b ? 1u : 0u, run.b ? 1u : 0u},
+                          {"link", "link", base.links.size(), run.links.size()},
+                          {"contact", "contact", base.contacts.size(), run.contacts.size()}};
+  for (const auto& g : groups) {
+    if (g.run == g.base || g.run == 0) continue;
+    const std::string plural = std::string(g.what) + (g.base == 1 ? "" : "s");
+    throw InputError(at(spec, line_of_edit(settings, g.key)) + "run " + std::to_string(index) + " (" + spec.describe(index) +
+                     "): its structure has " + std::to_string(g.run) + " " + g.what + (g.run == 1 ? "" : "s") +
+                     " but the base scene has " + std::to_string(g.base) + " " +
+                     (g.base == 1 ? std::string(g.what) : plural) +
+                     "; a building sweep's columns are the base structure's: a run keeps every " + g.what +
+                     " of the base, or removes them all (unset = [\"" + g.key + "\"]), whose cells it leaves empty");
+  }
 }
 
-SweepRow run_building_sweep_point(const SweepSpec& spec, std::size_t index) {
-  const auto start = std::chrono::steady_clock::now();
-  SweepRow row;
-  row.index = index;
-  row.units = "SI";
-  RunSpec scene = building_sweep_scene(spec, index);
-  scene.output.spectra.reset();  // a sweep writes no run files: no in-structure spectra
-  GroundHistory ground(!spec.im_periods.empty());
-  try {
-    const Report report = run(scene, {&ground});
-    row.channels = building_channel_cells(*spec.base_structure, scene, report);
-    row.pga_g = ground.pga / kStandardGravity;
-    SpectrumOptions options;
-    options.dampings = {spec.im_damping};
-    options.threads = 1;
-    for (double period : spec.im_periods)
-      row.sa_g.push_back(spectral_values(scene.solver.h, ground.ag, period, spec.im_damping, options).sa);
-  } catch (const NumericalError& e) {
-    row.channels.assign(spec.channel_columns.size(), "");
-    row.pga_g = kNaN;
-    row.sa_g.assign(spec.im_periods.size(), kNaN);
-    std::string message = e.what();
-    for (char& c : message)
-      if (c == '\n' || c == '\r') c = ' ';
-    row.error = message.empty() ? "numerical failure" : message;
-  }
-  row.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return row;
+
+std::vector<SweepColumn> channel_columns(const SweepSpec& spec) {
+  if (spec.building()) return spec.channel_columns;
+  std::vector<SweepColumn> columns;
+  for (const auto& c : two_block_sweep_channels()) columns.push_back({c.name, c.type, c.may_be_empty});
+  return columns;
+}
+
+std::vector<std::string> channel_cells(const SweepSpec& spec, const RunSpec& scene, const Report& report) {
+  if (spec.building()) return building_channel_cells(*spec.base_structure, scene, report);
+  std::vector<std::string> cells;
+  for (const auto& c : two_block_sweep_channels()) cells.push_back(cell(c.type, c.value(scene, report, 0)));
+  return cells;
 }
 
 }  // namespace adjoin
