@@ -202,17 +202,18 @@ class StructureStepper {
       ws.memory_before = ws.contact_memory;
       std::fill(ws.step_work.begin(), ws.step_work.end(), 0.0);
       ws.q_trial.setZero();
-      if (m.nf > 0 && step > 0) {
+      if (m.nq > 0 && step > 0) {
         hold_as_phased(now);
         solve_held(ws.hold, ws.fixed, &ws.q_trial);
       }
       contact_pass(now, ws.q_trial);
     }
-    if (m.nf > 0 && step == 0) {  // from rest: the closed-form relay of the box QP
-      const detail::BoxQpResult& r = ws.box_qp->solve(ws.w_free, m.limit, ws.states);
+    if (m.nq > 0 && step == 0) {  // from rest: the closed-form relay of the box QP
+      hold_bilinear();  // (the bilinear elements held elastic: limit infinite)
+      const detail::BoxQpResult& r = ws.box_qp->solve(ws.w_free, m.nh > 0 ? m.limit_q : m.limit, ws.states);
       ws.q_step = r.q;
       ws.decided = r.state;
-    } else if (m.nf > 0) {
+    } else if (m.nq > 0) {
       decide_dampers(now);
     }
     ws.states.swap(ws.decided);  // (decided is filled again at the next step)
@@ -220,7 +221,7 @@ class StructureStepper {
     // with them, so that each pair's end of step is its own (no penetration for the Newton
     // law, the compliant force consistent with the floors' motion); the dampers keep their
     // decisions.
-    if (ws.any_contact && m.nf > 0) contact_pass(now, ws.q_step);
+    if (ws.any_contact && m.nq > 0) contact_pass(now, ws.q_step);
     for (int ci = 0; ci < m.nc; ++ci) ws.contact_work[ci] += ws.step_work[ci];
   }
 
@@ -231,6 +232,17 @@ class StructureStepper {
       const Phase ph = now.link_phase[m.friction[f]];
       ws.hold[f] = ph == Phase::stick;
       if (!ws.hold[f]) ws.fixed[f] = ph == Phase::slip_right ? m.limit[f] : -m.limit[f];
+    }
+    hold_bilinear();
+  }
+  // The bilinear elements as phased at t_n (bilinear_step.hpp): held elastic, or plastic at
+  // their fixed step forces; their rows of the QP's right-hand side.
+  void hold_bilinear() {
+    for (int e = 0; e < m.nh; ++e) {
+      const detail::BilinearElement& el = m.bilinear[e];
+      const int k = m.nf + e;
+      const double w_free = ws.v_free[el.i] - (el.j >= 0 ? ws.v_free[el.j] : 0.0);
+      detail::bilinear_as_phased(el, ws.bilinear[e], ws.sm->theta, m.h, w_free, &ws.hold[k], &ws.fixed[k], &ws.w_free[k]);
     }
   }
   // Solves for the held dampers (limit infinite) with the others' step forces fixed.
@@ -251,7 +263,7 @@ class StructureStepper {
       in.h = m.h;
       in.delta0 = p.of(now.x) - m.s.contacts[m.active[ci]].gap;
       in.w0 = p.of(now.v);
-      in.a = (p.of(ws.v_free0) - (m.nf > 0 ? m.h * ws.sm->contact_friction.row(ci).dot(q_f) : 0.0) - in.w0) / m.h;
+      in.a = (p.of(ws.v_free0) - (m.nq > 0 ? m.h * ws.sm->contact_friction.row(ci).dot(q_f) : 0.0) - in.w0) / m.h;
       in.kappa = ws.sm->kappa[ci];
       ws.contact_impulse[ci] = ws.contact_moment[ci] = ws.contact_end_force[ci] = 0.0;
       ws.contact_memory[ci] = ws.memory_before[ci];
@@ -287,6 +299,15 @@ class StructureStepper {
       if (ws.hold[f]) decide_stuck(f, now);
       else decide_slipping(f, now);
     }
+    // The bilinear elements: yield or unloading located inside the step (bilinear_step.hpp).
+    for (int e = 0; e < m.nh; ++e) {
+      const detail::BilinearElement& el = m.bilinear[e];
+      const int k = m.nf + e;
+      ws.hold2[k] = ws.hold[k];
+      ws.fixed2[k] = ws.fixed[k];
+      const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
+      detail::bilinear_decide(el, ws.bilinear[e], ws.sm->theta, m.h, w1, &ws.hold2[k], &ws.fixed2[k]);
+    }
     // (Mostly the dampers go on as they were, and the trial's forces are the step's.)
     if (ws.hold2 == ws.hold && ws.fixed2 == ws.fixed) ws.q_step = ws.q_trial;
     else solve_held(ws.hold2, ws.fixed2, &ws.q_step);
@@ -308,7 +329,7 @@ class StructureStepper {
   // where P there needs them), C v and P (Zener forces at their offsets), as the step's end
   // (correct) computes them everywhere.
   void trial_state(const StructureState& now, const Eigen::VectorXd& q) {
-    kernels.columns(m.nt + m.nd, m.nf, ws.sm->trial_rows.data(), q.data(), ws.trial_change.data());
+    kernels.columns(m.nt + m.nd, m.nq, ws.sm->trial_rows.data(), q.data(), ws.trial_change.data());
     for (std::size_t t = 0; t < m.trial_dofs.size(); ++t) {
       const int k = m.trial_dofs[t];
       ws.v1[k] = ws.v_free[k] - m.h * ws.trial_change[t];
@@ -321,6 +342,11 @@ class StructureStepper {
       for (const auto& [e, sign] : m.damper_zener[d]) {
         const auto& el = m.zener[static_cast<std::size_t>(e)];
         ws.p1[k] += sign * (el.stiffness * el.pair.of(ws.x1) + ws.offsets[e]);
+      }
+      for (const auto& [e, sign] : m.damper_bilinear[d]) {
+        const detail::BilinearElement& el = m.bilinear[static_cast<std::size_t>(e)];
+        const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
+        ws.p1[k] += sign * detail::bilinear_trial_force(el, ws.bilinear[e], ws.sm->theta, m.h, w1);
       }
     }
   }
@@ -392,7 +418,7 @@ class StructureStepper {
   // displacements (with the kinks of ended slips and the contact impulses' timing), and the
   // storey and link forces P at t_n+1.
   void correct(std::size_t step, const StructureState& now, StructureState& next) {
-    if (m.nf > 0) {
+    if (m.nq > 0) {
       ws.sm->damper_response.apply(ws.q_step.data(), ws.response_q.data());
       kernels.end_velocities(m.n, ws.v_free.data(), ws.cv_free.data(), ws.response_q.data(), ws.response_q.data() + m.n, m.h,
                              next.v.data(), ws.cv_next.data());
@@ -421,6 +447,22 @@ class StructureStepper {
       const auto& el = m.zener[e];
       ws.zener_force[e] = el.stiffness * el.pair.of(next.x) + ws.offsets[static_cast<Eigen::Index>(e)];
       el.pair.add(ws.p_next, ws.zener_force[e]);
+    }
+    end_bilinear(now, next);
+  }
+
+  // The bilinear elements' forces and phases at t_n+1 from the step's end velocities, in P,
+  // and their storeys' yield instants located in the step.
+  void end_bilinear(const StructureState& now, StructureState& next) {
+    if (m.nh == 0) return;
+    std::fill(next.hyst_yield.begin(), next.hyst_yield.end(), kNaN);
+    for (int e = 0; e < m.nh; ++e) {
+      const detail::BilinearElement& el = m.bilinear[e];
+      detail::BilinearState& st = ws.bilinear[e];
+      const double w1 = next.v[el.i] - (el.j >= 0 ? next.v[el.j] : 0.0);
+      detail::bilinear_end(el, st, ws.sm->theta, m.h, w1);
+      Pair{el.i, el.j}.add(ws.p_next, st.q);
+      if (el.storey_law && st.yielded && !std::isnan(st.event)) next.hyst_yield[el.storey] = now.t + st.event * m.h;
     }
   }
 
@@ -653,6 +695,14 @@ class StructureStepper {
     if (m.s.b) building(*m.s.b, m.s.a.floors());
     for (std::size_t e = 0; e < m.zener.size(); ++e)
       if (m.zener[e].storey >= 0) st.storey_force[m.zener[e].storey] += ws.zener_force[e];
+    // The bilinear elements' forces, and the storeys' own laws' z (bilinear_step.hpp).
+    st.hyst.setZero(m.n);
+    st.hyst_yield.resize(static_cast<std::size_t>(m.n), kNaN);
+    for (int e = 0; e < m.nh; ++e) {
+      const detail::BilinearElement& el = m.bilinear[e];
+      st.storey_force[el.storey] += ws.bilinear[e].q;
+      if (el.storey_law) st.hyst[el.storey] = ws.bilinear[e].q / el.k;
+    }
   }
   void fill_links(StructureState& st, const Eigen::VectorXd& q_friction) const {
     fill_storeys(st);

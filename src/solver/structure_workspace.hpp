@@ -25,6 +25,7 @@ struct StepWorkspace {
   std::vector<ContactMemory> contact_memory, memory_before;  // per contact pair with a law; before the step
   std::unique_ptr<BoxQp> box_qp_trapezoidal, box_qp_backward;  // the dampers' QP of each step matrix
   SubsetInverses stuck_systems;  // B_s M^-1 B_s' per stuck set, inverted when first met
+  std::vector<BilinearState> bilinear;  // per bilinear element of the model (bilinear_step.hpp)
 
   // ---- this step ----
   bool restart = false;            // backward Euler
