@@ -312,12 +312,28 @@ std::string building_summary_json(const BuildingScene& scene, const Report& r, c
     const auto& part = r.energy.buildings[b];
     energy[b == 0 ? "A" : "B"] = {{"input", part.input}, {"kinetic", part.kinetic}, {"inherent_damping", part.inherent},
                                   {"storeys", part.storeys}};
+    if (!part.hysteretic.empty()) energy[b == 0 ? "A" : "B"]["hysteretic"] = part.hysteretic;  // (within storeys)
   }
   energy["links"] = r.energy.links;
   energy["contacts"] = r.energy.contacts;
   energy["input"] = r.energy.input;
   energy["residual"] = r.energy.residual;
   j["energy"] = energy;
+  if (!r.yield.empty()) {  // (SPEC §7: per building, per storey)
+    ordered_json yield = ordered_json::object();
+    for (const BuildingYield& y : r.yield) {
+      ordered_json list = ordered_json::array();
+      for (const StoreyYield& sy : y.storeys)
+        list.push_back({{"storey", sy.storey},
+                        {"yielded", sy.yielded},
+                        {"t_first", time_or_null(sy.yielded, sy.t_first)},
+                        {"excursions", sy.excursions},
+                        {"ductility_max", sy.ductility_max},
+                        {"plastic_work", sy.plastic_work}});
+      yield[std::string(1, y.building)] = list;
+    }
+    j["yield"] = yield;
+  }
   if (estimate) j["error_estimate"] = building_error_json(scene, *estimate);
   require_finite(j, "", scene.solver.t_end);
   return j.dump(2) + "\n";

@@ -5,7 +5,7 @@
 namespace adjoin::structure {
 namespace {
 
-constexpr std::array<QuantityInfo, 9> kQuantities{{
+constexpr std::array<QuantityInfo, 10> kQuantities{{
     {Quantity::displacement, ChannelScope::floor, "x", "", "m", PeakRule::refined, true,
      "floor displacement relative to the ground"},
     {Quantity::drift, ChannelScope::storey, "drift", "", "m", PeakRule::refined, false,
@@ -24,6 +24,8 @@ constexpr std::array<QuantityInfo, 9> kQuantities{{
      "contact pair's gap (negative: overlap)"},
     {Quantity::contact_force, ChannelScope::contact, "force", "", "N", PeakRule::none, true,
      "contact pair's compressive force"},
+    {Quantity::hysteretic, ChannelScope::storey, "hyst", "", "m", PeakRule::sampled, false,
+     "storey's hysteretic variable z (bilinear storeys; |z| <= F_y / k)"},
 }};
 
 std::string element_name(const QuantityInfo& q, char building, int index) {
@@ -54,6 +56,7 @@ std::vector<Channel> channels(const Structure& s) {
     for (const auto& q : kQuantities) {
       if (q.scope == ChannelScope::building) out.push_back({element_name(q, name, 0), q.quantity, name, 0, -1});
       if (q.scope != ChannelScope::floor && q.scope != ChannelScope::storey) continue;
+      if (q.quantity == Quantity::hysteretic && b.hysteresis.model == HysteresisModel::elastic) continue;
       for (int i = 1; i <= b.floors(); ++i) out.push_back({element_name(q, name, i), q.quantity, name, i, s.dof(name, i)});
     }
   };

@@ -9,6 +9,7 @@
 #include "adjoin/structure/two_block.hpp"
 #include "adjoin/study/run_watch.hpp"
 #include "channel_observer.hpp"
+#include "yield_observer.hpp"
 
 namespace adjoin {
 
@@ -229,11 +230,13 @@ Report run_building(const RunSpec& spec, const RunObservers& extra) {
     r.coupled = structure::coupled_modes(s);
   }
   detail::ChannelObserver observer(s);
+  detail::YieldObserver yielding(s);
   const auto& asked = spec.output.spectra;
   std::unique_ptr<detail::SignalRecorder> recorder;
   if (asked) recorder = std::make_unique<detail::SignalRecorder>(s, asked->signals);
   StructureObserverList all;
   all.add(&observer);
+  all.add(&yielding);
   all.add(recorder.get());
   all.add(extra.structure);
   r.solver = simulate_spec(spec, s, all);
@@ -248,6 +251,9 @@ Report run_building(const RunSpec& spec, const RunObservers& extra) {
   r.links = observer.links();
   r.contacts = observer.contacts();
   r.energy = observer.energy();
+  r.yield = yielding.report();
+  for (const BuildingYield& y : r.yield)
+    for (const StoreyYield& st : y.storeys) r.energy.buildings[y.building == 'A' ? 0 : 1].hysteretic.push_back(st.plastic_work);
   return r;
 }
 
