@@ -2,9 +2,10 @@
 // The yielding storeys' report (SPEC §7; study/run.cpp, internal): per building whose storeys
 // have a bilinear law, per storey, whether and when it first yielded (the solver's located
 // instant), its excursions (elastic -> plastic transitions), its largest ductility |d|max / u_y
-// and the work its slider dissipated (the plastic work): the work done on its hysteretic
-// element, integrated by the trapezoidal rule over the grid, less the element's stored energy
-// q^2 / (2 k_h), q = k_h z.
+// and the work its slider dissipated (the plastic work): the slider's force F_h = (1 - b) F_y
+// times its slip u_p = d - z in each step (it slips only at |q| = F_h; exact for the grid's
+// d and z, so the work converges at the step's order, where a trapezoidal rule over the
+// power q d' would see the yield kinks).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -25,14 +26,13 @@ class YieldObserver final : public StructureObserver {
       y.offset = s.dof(name, 1);
       for (int i = 0; i < b.floors(); ++i) {
         const double k = b.springs[i], f = b.hysteresis.yield_forces[i];
-        y.k_h.push_back((1.0 - b.hysteresis.hardening) * k);
+        y.f_h.push_back((1.0 - b.hysteresis.hardening) * f);
         y.u_y.push_back(f / k);
         StoreyYield r;
         r.storey = i + 1;
         y.storeys.push_back(r);
       }
-      y.work.assign(y.storeys.size(), 0.0);
-      y.power.assign(y.storeys.size(), 0.0);
+      y.slip.assign(y.storeys.size(), 0.0);
       buildings_.push_back(std::move(y));
     };
     add(s.a, 'A');
@@ -45,20 +45,16 @@ class YieldObserver final : public StructureObserver {
         StoreyYield& r = b.storeys[i];
         const int k = b.offset + static_cast<int>(i);
         const double drift = st.x[k] - (i > 0 ? st.x[k - 1] : 0.0);
-        const double rate = st.v[k] - (i > 0 ? st.v[k - 1] : 0.0);
-        const double q = b.k_h[i] * (st.hyst.size() > k ? st.hyst[k] : 0.0);
+        const double slip = drift - (st.hyst.size() > k ? st.hyst[k] : 0.0);
         r.ductility_max = std::max(r.ductility_max, std::abs(drift) / b.u_y[i]);
         if (st.hyst_yield.size() > static_cast<std::size_t>(k) && !std::isnan(st.hyst_yield[k])) {
           if (!r.yielded) r.t_first = st.hyst_yield[k];
           r.yielded = true;
           ++r.excursions;
         }
-        const double power = q * rate;
-        if (!first_) b.work[i] += 0.5 * (st.t - last_t_) * (power + b.power[i]);
-        b.power[i] = power;
-        r.plastic_work = b.work[i] - 0.5 * q * q / b.k_h[i];
+        if (!first_) r.plastic_work += b.f_h[i] * std::abs(slip - b.slip[i]);
+        b.slip[i] = slip;
       }
-    last_t_ = st.t;
     first_ = false;
   }
 
@@ -72,11 +68,10 @@ class YieldObserver final : public StructureObserver {
   struct Building {
     char name = 'A';
     int offset = 0;
-    std::vector<double> k_h, u_y, work, power;
+    std::vector<double> f_h, u_y, slip;  // F_h, u_y, and the slip u_p at the last grid point
     std::vector<StoreyYield> storeys;
   };
   std::vector<Building> buildings_;
-  double last_t_ = 0.0;
   bool first_ = true;
 };
 
