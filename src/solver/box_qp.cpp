@@ -24,7 +24,10 @@ SubsetInverses::System& SubsetInverses::find(const std::vector<int>& set) {
     for (int i = 0; i < m; ++i)
       for (int j = 0; j < m; ++j) a(i, j) = s_(set[i], set[j]);
     System entry;
-    entry.inverse = a.ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+    // (A negative diagonal: a slipping bilinear element's row, whose compliance is negative;
+    // the set's matrix is then symmetric indefinite, and LU with partial pivoting inverts it.)
+    if ((a.diagonal().array() < 0.0).any()) entry.inverse = a.partialPivLu().inverse();
+    else entry.inverse = a.ldlt().solve(Eigen::MatrixXd::Identity(m, m));
     entry.b.resize(m);
     entry.x.resize(m);
     it = cache_.emplace(set, std::move(entry)).first;

@@ -83,7 +83,6 @@ void StructureModel::assemble_elements(Assembly& a) {
   mass.resize(n);
   c = Eigen::MatrixXd::Zero(n, n);
   a.k0_dense = Eigen::MatrixXd::Zero(n, n);
-  a.k_bilinear = Eigen::MatrixXd::Zero(n, n);
   // A Zener element: its order's weights (computed once per order) and its effective stiffness.
   // (The soe engine keeps no weights: its law is made from the rule and order, and only w_0 is
   // needed here.)
@@ -103,19 +102,16 @@ void StructureModel::assemble_elements(Assembly& a) {
         const Pair p{offset + st - 1, st > 1 ? offset + st - 2 : -1};
         if (d.type == DeviceType::spring) p.add(a.k0_dense, d.k);
         if (d.type == DeviceType::zener) zener.push_back(zener_element(p, offset + st - 1, d.zener));
-        if (d.type == DeviceType::bilinear) {  // b k in K0, the rest an element of the QP
-          p.add(a.k0_dense, d.hardening * d.k);
-          p.add(a.k_bilinear, (1.0 - d.hardening) * d.k);
+        if (d.type == DeviceType::bilinear) {  // k in K0; the slider's slip an offset (bilinear_step.hpp)
+          p.add(a.k0_dense, d.k);
           bilinear.push_back({p.i, p.j, offset + st - 1, false, (1.0 - d.hardening) * d.k, (1.0 - d.hardening) * d.yield_force});
         }
       }
-    // A bilinear storey spring: its series part (1 - b) k leaves K0 for the QP.
+    // A bilinear storey spring: k stays in K0; its series element's slip is an offset.
     if (b.hysteresis.model == structure::HysteresisModel::bilinear)
       for (int st = 0; st < nb; ++st) {
         const Pair p{offset + st, st > 0 ? offset + st - 1 : -1};
         const double b_ = b.hysteresis.hardening, kh = (1.0 - b_) * b.springs[st];
-        p.add(a.k0_dense, -kh);
-        p.add(a.k_bilinear, kh);
         bilinear.push_back({p.i, p.j, offset + st, true, kh, (1.0 - b_) * b.hysteresis.yield_forces[st]});
       }
   };
@@ -157,7 +153,7 @@ void StructureModel::assemble_dampers(Assembly& a) {
     a.bf(f, p.j) = -1.0;
     limit[f] = s.links[friction[f]].slip_force;
   }
-  // The bilinear elements follow the dampers among the QP's unknowns (held, limit infinite).
+  // The bilinear elements follow the dampers among the QP's unknowns (held while they slip).
   nh = static_cast<int>(bilinear.size());
   nq = nf + nh;
   a.bq = Eigen::MatrixXd::Zero(nq, n);
@@ -166,8 +162,6 @@ void StructureModel::assemble_dampers(Assembly& a) {
     a.bq(nf + e, bilinear[e].i) = 1.0;
     if (bilinear[e].j >= 0) a.bq(nf + e, bilinear[e].j) = -1.0;
   }
-  limit_q = Eigen::VectorXd::Constant(nq, INFINITY);
-  limit_q.head(nf) = limit;
 }
 
 void StructureModel::assemble_contacts(Assembly& a) {
@@ -218,10 +212,11 @@ std::unique_ptr<StepMatrices> StructureModel::step_matrices(double theta, const 
   m->c_a_inv_bt = nq > 0 ? Eigen::MatrixXd(c * m->a_inv_bt) : Eigen::MatrixXd(n, 0);
   Eigen::MatrixXd stacked(2 * n, nq);
   stacked << m->a_inv_bt, m->c_a_inv_bt;
+  if (nh > 0) m->damper_response_columns = stacked;
   m->damper_response = DenseProduct(std::move(stacked));
   m->delassus = nq > 0 ? Eigen::MatrixXd(h * a.bq * m->a_inv_bt) : Eigen::MatrixXd(0, 0);
   m->qp_matrix = m->delassus;
-  for (int e = 0; e < nh; ++e) m->qp_matrix(nf + e, nf + e) += 1.0 / (theta * theta * bilinear[e].k * h);
+  for (int e = 0; e < nh; ++e) m->qp_matrix(nf + e, nf + e) -= 1.0 / (theta * theta * bilinear[e].k * h);
   m->a_inv_bc = Eigen::MatrixXd::Zero(n, nc);
   m->kappa.resize(nc);
   if (nc > 0) {
@@ -257,9 +252,7 @@ int StructureModel::restart_rule(const Assembly& a) const {
     // matrix directly where a block is one (a shear building: O(n^2), not the dense O(n^3)).
     for (const auto& [offset, size] : a.ranges) {
       const Eigen::VectorXd inv_sqrt_m = mass.segment(offset, size).cwiseSqrt().cwiseInverse();
-      // (with the bilinear elements' initial stiffness)
-      const Eigen::MatrixXd scaled =
-          inv_sqrt_m.asDiagonal() * (a.k_eff_dense + a.k_bilinear).block(offset, offset, size, size) * inv_sqrt_m.asDiagonal();
+      const Eigen::MatrixXd scaled = inv_sqrt_m.asDiagonal() * a.k_eff_dense.block(offset, offset, size, size) * inv_sqrt_m.asDiagonal();
       bool tridiagonal = size > 1;
       for (int j = 0; j < size && tridiagonal; ++j)
         for (int i = 0; i < size; ++i)
@@ -360,10 +353,8 @@ void StructureModel::assemble_storeys() {
       for (int st : d.storeys) {
         if (d.type == DeviceType::spring) storey_spring[offset + st - 1] += d.k;
         if (d.type == DeviceType::dashpot) storey_dashpot[offset + st - 1] += d.c;
-        if (d.type == DeviceType::bilinear) storey_spring[offset + st - 1] += d.hardening * d.k;  // (its element's force: the solver's)
+        if (d.type == DeviceType::bilinear) storey_spring[offset + st - 1] += d.k;  // (its slip's offset: the solver's)
       }
-    if (b.hysteresis.model == structure::HysteresisModel::bilinear)  // (as in K0)
-      for (int st = 0; st < b.floors(); ++st) storey_spring[offset + st] -= (1.0 - b.hysteresis.hardening) * b.springs[st];
   };
   storeys_of(s.a, 0);
   if (s.b) storeys_of(*s.b, s.a.floors());

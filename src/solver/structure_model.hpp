@@ -66,8 +66,9 @@ struct StepMatrices {
   // and their damping forces C v = C v_free - h C A^-1 B' Q, O(n nf) for any Q tried.
   Eigen::MatrixXd a_inv_bt, c_a_inv_bt;
   DenseProduct damper_response;  // [A^-1 B'; C A^-1 B']: one product per step
+  Eigen::MatrixXd damper_response_columns;  // ... as a matrix (with bilinear elements: their nonzero columns only)
   Eigen::MatrixXd delassus;      // S = h B A^-1 B'
-  // The QP's matrix: S with the bilinear elements' compliance 1 / (theta^2 k_h h) on their
+  // The QP's matrix: S with the bilinear elements' compliance -1 / (theta^2 k_h h) on their
   // diagonal (bilinear_step.hpp); S itself without them.
   Eigen::MatrixXd qp_matrix;
   Eigen::MatrixXd a_inv_bc, c_a_inv_bc, contact_friction;  // A^-1 B_c', C A^-1 B_c', B_c A^-1 B_f'
@@ -80,7 +81,6 @@ struct Assembly {
   Eigen::MatrixXd k0_dense, k_eff_dense;    // K0, and K_eff (the Zener elements at their effective stiffness)
   Eigen::MatrixXd bf, bc;                   // B of the friction dampers, of the contact pairs with a law
   Eigen::MatrixXd bq;                       // B of the QP's unknowns: the friction dampers', then the bilinear elements'
-  Eigen::MatrixXd k_bilinear;               // the bilinear elements' series springs (the initial stiffness's rest)
   bool coupled = false;                     // a link other than friction enters A = M + h/2 C + h^2/4 K
   std::vector<std::pair<int, int>> ranges;  // A's diagonal blocks: (offset, size)
 };
@@ -135,7 +135,6 @@ class StructureModel {
   std::vector<BilinearElement> bilinear;
   int nh = 0;  // how many
   int nq = 0;  // nf + nh: the QP's unknowns
-  Eigen::VectorXd limit_q;  // the QP's limits: the dampers', then infinite (held) for the elements
   std::vector<std::vector<std::pair<int, double>>> damper_bilinear;  // per damper dof: (element, sign)
 
   // ---- the contact pairs ----

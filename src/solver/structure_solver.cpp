@@ -128,9 +128,11 @@ class StructureStepper {
     next.ag = g * ground.ag(next.t);
     // The Zener elements' history terms: constant through the step (until commit).
     for (std::size_t e = 0; e < ws.laws.size(); ++e) ws.offsets[static_cast<Eigen::Index>(e)] = ws.laws[e]->offset();
-    if (!m.zener.empty()) {  // (else it stays zero)
+    if (!m.zener.empty() || m.nh > 0) {  // (else it stays zero)
       ws.off_dof.setZero();
       for (std::size_t e = 0; e < m.zener.size(); ++e) m.zener[e].pair.add(ws.off_dof, ws.offsets[static_cast<Eigen::Index>(e)]);
+      // The bilinear elements' slips: -k_h u_p (bilinear_step.hpp).
+      for (int e = 0; e < m.nh; ++e) Pair{m.bilinear[e].i, m.bilinear[e].j}.add(ws.off_dof, ws.bilinear[e].offset(m.bilinear[e]));
     }
     // The step after a switch, where the restart applies, is backward Euler.
     ws.restart = ws.restart_left > 0;
@@ -208,12 +210,17 @@ class StructureStepper {
       }
       contact_pass(now, ws.q_trial);
     }
-    if (m.nq > 0 && step == 0) {  // from rest: the closed-form relay of the box QP
-      hold_bilinear();  // (the bilinear elements held elastic: limit infinite)
-      const detail::BoxQpResult& r = ws.box_qp->solve(ws.w_free, m.nh > 0 ? m.limit_q : m.limit, ws.states);
+    if (m.nf > 0 && step == 0 && m.nh > 0) {  // (the bilinear elements elastic from rest: not unknowns)
+      ws.w_friction = ws.w_free.head(m.nf);
+      const detail::BoxQpResult& r = ws.box_qp_friction->solve(ws.w_friction, m.limit, ws.states_friction);
+      ws.q_step.setZero();
+      ws.q_step.head(m.nf) = r.q;
+      std::copy(r.state.begin(), r.state.end(), ws.decided.begin());
+    } else if (m.nf > 0 && step == 0) {  // from rest: the closed-form relay of the box QP
+      const detail::BoxQpResult& r = ws.box_qp->solve(ws.w_free, m.limit, ws.states);
       ws.q_step = r.q;
       ws.decided = r.state;
-    } else if (m.nq > 0) {
+    } else if (m.nq > 0 && step > 0) {
       decide_dampers(now);
     }
     ws.states.swap(ws.decided);  // (decided is filled again at the next step)
@@ -235,14 +242,24 @@ class StructureStepper {
     }
     hold_bilinear();
   }
-  // The bilinear elements as phased at t_n (bilinear_step.hpp): held elastic, or plastic at
-  // their fixed step forces; their rows of the QP's right-hand side.
+  // The bilinear elements as phased at t_n (bilinear_step.hpp): elastic (no unknown), or
+  // slipping, held at their yield force; their rows of the QP's right-hand side.
   void hold_bilinear() {
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
       const int k = m.nf + e;
       const double w_free = ws.v_free[el.i] - (el.j >= 0 ? ws.v_free[el.j] : 0.0);
-      detail::bilinear_as_phased(el, ws.bilinear[e], ws.sm->theta, m.h, w_free, &ws.hold[k], &ws.fixed[k], &ws.w_free[k]);
+      detail::bilinear_as_phased(ws.bilinear[e], ws.sm->theta, w_free, &ws.hold[k], &ws.fixed[k], &ws.w_free[k]);
+    }
+  }
+  // A product with columns of [A^-1 B'; C A^-1 B'] (rows `rows` of `columns`), skipping the
+  // zero step forces: with bilinear elements most of the QP's unknowns are zero (elastic).
+  void sparse_columns(const Eigen::MatrixXd& columns, Eigen::Index rows, const Eigen::VectorXd& q, double* out) const {
+    std::fill_n(out, rows, 0.0);
+    for (int k = 0; k < m.nq; ++k) {
+      if (q[k] == 0.0) continue;
+      const double* col = columns.data() + k * columns.rows();
+      for (Eigen::Index r = 0; r < rows; ++r) out[r] += q[k] * col[r];
     }
   }
   // Solves for the held dampers (limit infinite) with the others' step forces fixed.
@@ -306,7 +323,8 @@ class StructureStepper {
       ws.hold2[k] = ws.hold[k];
       ws.fixed2[k] = ws.fixed[k];
       const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
-      detail::bilinear_decide(el, ws.bilinear[e], ws.sm->theta, m.h, w1, &ws.hold2[k], &ws.fixed2[k]);
+      const double d1 = ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0);
+      detail::bilinear_decide(el, ws.bilinear[e], ws.sm->theta, m.h, d1, w1, &ws.hold2[k], &ws.fixed2[k]);
     }
     // (Mostly the dampers go on as they were, and the trial's forces are the step's.)
     if (ws.hold2 == ws.hold && ws.fixed2 == ws.fixed) ws.q_step = ws.q_trial;
@@ -329,7 +347,8 @@ class StructureStepper {
   // where P there needs them), C v and P (Zener forces at their offsets), as the step's end
   // (correct) computes them everywhere.
   void trial_state(const StructureState& now, const Eigen::VectorXd& q) {
-    kernels.columns(m.nt + m.nd, m.nq, ws.sm->trial_rows.data(), q.data(), ws.trial_change.data());
+    if (m.nh > 0) sparse_columns(ws.sm->trial_rows, m.nt + m.nd, q, ws.trial_change.data());
+    else kernels.columns(m.nt + m.nd, m.nf, ws.sm->trial_rows.data(), q.data(), ws.trial_change.data());
     for (std::size_t t = 0; t < m.trial_dofs.size(); ++t) {
       const int k = m.trial_dofs[t];
       ws.v1[k] = ws.v_free[k] - m.h * ws.trial_change[t];
@@ -345,8 +364,8 @@ class StructureStepper {
       }
       for (const auto& [e, sign] : m.damper_bilinear[d]) {
         const detail::BilinearElement& el = m.bilinear[static_cast<std::size_t>(e)];
-        const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
-        ws.p1[k] += sign * detail::bilinear_trial_force(el, ws.bilinear[e], ws.sm->theta, m.h, w1);
+        const double d1 = ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0);  // (K0 holds k_h d1)
+        ws.p1[k] += sign * (detail::bilinear_trial_force(el, ws.bilinear[e], d1) - el.k * d1);
       }
     }
   }
@@ -418,7 +437,11 @@ class StructureStepper {
   // displacements (with the kinks of ended slips and the contact impulses' timing), and the
   // storey and link forces P at t_n+1.
   void correct(std::size_t step, const StructureState& now, StructureState& next) {
-    if (m.nq > 0) {
+    if (m.nh > 0) {
+      sparse_columns(ws.sm->damper_response_columns, 2 * m.n, ws.q_step, ws.response_q.data());
+      kernels.end_velocities(m.n, ws.v_free.data(), ws.cv_free.data(), ws.response_q.data(), ws.response_q.data() + m.n, m.h,
+                             next.v.data(), ws.cv_next.data());
+    } else if (m.nf > 0) {
       ws.sm->damper_response.apply(ws.q_step.data(), ws.response_q.data());
       kernels.end_velocities(m.n, ws.v_free.data(), ws.cv_free.data(), ws.response_q.data(), ws.response_q.data() + m.n, m.h,
                              next.v.data(), ws.cv_next.data());
@@ -460,8 +483,9 @@ class StructureStepper {
       const detail::BilinearElement& el = m.bilinear[e];
       detail::BilinearState& st = ws.bilinear[e];
       const double w1 = next.v[el.i] - (el.j >= 0 ? next.v[el.j] : 0.0);
-      detail::bilinear_end(el, st, ws.sm->theta, m.h, w1);
-      Pair{el.i, el.j}.add(ws.p_next, st.q);
+      const double d1 = next.x[el.i] - (el.j >= 0 ? next.x[el.j] : 0.0);
+      detail::bilinear_end(el, st, d1, w1);
+      Pair{el.i, el.j}.add(ws.p_next, st.offset(el));  // (K0 holds k_h d1)
       if (el.storey_law && st.yielded && !std::isnan(st.event)) next.hyst_yield[el.storey] = now.t + st.event * m.h;
     }
   }
@@ -700,7 +724,7 @@ class StructureStepper {
     st.hyst_yield.resize(static_cast<std::size_t>(m.n), kNaN);
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
-      st.storey_force[el.storey] += ws.bilinear[e].q;
+      st.storey_force[el.storey] += ws.bilinear[e].offset(el);  // (the storey's spring holds k_h d)
       if (el.storey_law) st.hyst[el.storey] = ws.bilinear[e].q / el.k;
     }
   }

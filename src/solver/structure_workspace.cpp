@@ -16,6 +16,11 @@ StepWorkspace::StepWorkspace(const StructureModel& m) {
   box_qp_trapezoidal = std::make_unique<BoxQp>(m.trapezoidal->qp_matrix);
   if (m.backward) box_qp_backward = std::make_unique<BoxQp>(m.backward->qp_matrix);
   bilinear.assign(static_cast<std::size_t>(m.nh), BilinearState{});
+  if (m.nh > 0 && nf > 0) {
+    box_qp_friction = std::make_unique<BoxQp>(m.trapezoidal->delassus.topLeftCorner(nf, nf));
+    states_friction.assign(nf, DamperState::stick);
+    w_friction.resize(nf);
+  }
   sm = m.trapezoidal.get();
   box_qp = box_qp_trapezoidal.get();
   // The stuck dampers' systems (B_s M^-1 B_s'), inverted per stuck set (a product with the

@@ -26,6 +26,11 @@ struct StepWorkspace {
   std::unique_ptr<BoxQp> box_qp_trapezoidal, box_qp_backward;  // the dampers' QP of each step matrix
   SubsetInverses stuck_systems;  // B_s M^-1 B_s' per stuck set, inverted when first met
   std::vector<BilinearState> bilinear;  // per bilinear element of the model (bilinear_step.hpp)
+  // With bilinear elements, the dampers' own QP for the first step (from rest the elements are
+  // elastic: no unknowns).
+  std::unique_ptr<BoxQp> box_qp_friction;
+  std::vector<DamperState> states_friction;
+  Eigen::VectorXd w_friction;
 
   // ---- this step ----
   bool restart = false;            // backward Euler
