@@ -51,11 +51,14 @@ void BoxQp::solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held,
   if (held_.empty()) return;
   SubsetInverses::System& sys = inverses_.of(held_);
   const Eigen::MatrixXd& s = inverses_.matrix();
+  // (the fixed forces that are not zero: with bilinear elements most are)
+  fixed_.clear();
+  for (int k = 0; k < n; ++k)
+    if (!held[k] && fd[k] != 0.0) fixed_.push_back(k);
   for (std::size_t i = 0; i < held_.size(); ++i) {
     const int h = held_[i];
     double b = w0[h];
-    for (int k = 0; k < n; ++k)
-      if (!held[k]) b -= s(h, k) * fd[k];
+    for (int k : fixed_) b -= s(h, k) * fd[k];
     sys.b[static_cast<Eigen::Index>(i)] = b;
   }
   sys.solve();

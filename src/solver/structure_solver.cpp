@@ -255,12 +255,10 @@ class StructureStepper {
   // A product with columns of [A^-1 B'; C A^-1 B'] (rows `rows` of `columns`), skipping the
   // zero step forces: with bilinear elements most of the QP's unknowns are zero (elastic).
   void sparse_columns(const Eigen::MatrixXd& columns, Eigen::Index rows, const Eigen::VectorXd& q, double* out) const {
-    std::fill_n(out, rows, 0.0);
-    for (int k = 0; k < m.nq; ++k) {
-      if (q[k] == 0.0) continue;
-      const double* col = columns.data() + k * columns.rows();
-      for (Eigen::Index r = 0; r < rows; ++r) out[r] += q[k] * col[r];
-    }
+    Eigen::Map<Eigen::VectorXd> sum(out, rows);
+    sum.setZero();
+    for (int k = 0; k < m.nq; ++k)
+      if (q[k] != 0.0) sum.noalias() += q[k] * columns.col(k).head(rows);
   }
   // Solves for the held dampers (limit infinite) with the others' step forces fixed.
   void solve_held(const std::vector<char>& hold, const Eigen::VectorXd& fixed, Eigen::VectorXd* q) {
