@@ -25,7 +25,7 @@ constexpr std::array<QuantityInfo, 10> kQuantities{{
     {Quantity::contact_force, ChannelScope::contact, "force", "", "N", PeakRule::none, true,
      "contact pair's compressive force"},
     {Quantity::hysteretic, ChannelScope::storey, "hyst", "", "m", PeakRule::sampled, false,
-     "storey's hysteretic variable z (bilinear storeys; |z| <= F_y / k)"},
+     "storey's hysteretic variable z of a bilinear storey (at most F_y / k in size)"},
 }};
 
 std::string element_name(const QuantityInfo& q, char building, int index) {
