@@ -9,8 +9,12 @@
 // storeys_springs/N: the same without the Zener devices (the mechanics alone). viscous/: the
 // springs-only pair with three alpha = 0.4 viscous dampers instead of the friction dampers, and
 // beside them.
+// targets/2x20/bilinear: the springs pair with bilinear storeys (yield drift 5 mm, 5 %
+// hardening; SPEC §7): the target is at most 2x targets/2x20/springs. Its counter
+// "yields" is the storeys' yield events in a run.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <string>
 
 #include "adjoin/ground/record_file.hpp"
@@ -23,7 +27,7 @@ namespace {
 using namespace adjoin;
 using namespace adjoin::structure;
 
-Structure pair_of(int storeys, bool zener) {
+Structure pair_of(int storeys, bool zener, bool bilinear = false) {
   Structure s;
   auto building = [&](const char* name, double mass, double k) {
     Building b;
@@ -37,6 +41,11 @@ Structure pair_of(int storeys, bool zener) {
       for (int i = 1; i <= storeys; ++i) d.storeys.push_back(i);
       d.zener = {0.2 * k, 0.5, 0.2, 0.01};
       b.devices.push_back(d);
+    }
+    if (bilinear) {
+      b.hysteresis.model = HysteresisModel::bilinear;
+      b.hysteresis.yield_forces = Eigen::VectorXd::Constant(storeys, 0.005 * k);
+      b.hysteresis.hardening = 0.05;
     }
     return b;
   };
@@ -77,6 +86,23 @@ void BM_zener_fft(benchmark::State& st) { run(st, pair_of(20, true), HistoryEngi
 void BM_zener_direct(benchmark::State& st) { run(st, pair_of(20, true), HistoryEngine::direct); }
 void BM_zener_soe(benchmark::State& st) { run(st, pair_of(20, true), HistoryEngine::soe); }
 void BM_springs(benchmark::State& st) { run(st, pair_of(20, false), HistoryEngine::fft); }
+class Yields final : public StructureObserver {
+ public:
+  void observe(const StructureState& s) override {
+    for (double t : s.hyst_yield) count += std::isnan(t) ? 0 : 1;
+  }
+  int count = 0;
+};
+void BM_bilinear(benchmark::State& state) {
+  const Structure s = pair_of(20, false, true);
+  run(state, s, HistoryEngine::fft);
+  StructureSolverOptions o;
+  o.h = 0.005;
+  o.t_end = 40.0;
+  Yields yields;
+  simulate_structure(o, s, newhall(), yields);
+  state.counters["yields"] = yields.count;
+}
 void BM_storeys(benchmark::State& st) { run(st, pair_of(static_cast<int>(st.range(0)), true), HistoryEngine::fft); }
 // The mechanics alone (no Zener devices, no history): with modal damping C is dense, so its
 // per-step cost grows as n^2 (one product with [A^-1; C A^-1] per building), the rest as n.
@@ -107,6 +133,7 @@ BENCHMARK(BM_zener_soe)->Name("targets/2x20/zener/soe")->Unit(benchmark::kMillis
 BENCHMARK(BM_springs)->Name("targets/2x20/springs")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_viscous)->Name("viscous/2x20/alpha0.4")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_viscous_friction)->Name("viscous/2x20/alpha0.4+friction")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_bilinear)->Name("targets/2x20/bilinear")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_storeys)->Name("storeys")->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_storeys_springs)->Name("storeys_springs")->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);
 

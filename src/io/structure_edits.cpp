@@ -82,6 +82,8 @@ std::vector<std::string> alternatives(const std::string& key) {
   if (key == "heights") return {"height"};
   if (key == "slip_force") return {"slip_ratio", "of"};
   if (key == "slip_ratio") return {"slip_force"};
+  if (key == "yield_force") return {"yield_forces"};  // (building.X.hysteresis)
+  if (key == "yield_forces") return {"yield_force"};
   return {};
 }
 

@@ -225,11 +225,46 @@ void read_heights(const TableReader& r, Building* b) {
     r.fail(key, problem);
 }
 
+// A bilinear law's post-yield stiffness ratio b, in [0, 1) (default 0: elastic-perfectly-plastic).
+double read_hardening(const TableReader& r) {
+  const double b = r.number("hardening", 0.0);
+  if (!(b >= 0.0 && b < 1.0)) r.fail("hardening", "expected a post-yield stiffness ratio in [0, 1)");
+  return b;
+}
+
+// A building's storey law (SPEC §7): hysteresis = { model = "bilinear", yield_force = ...,
+// hardening = 0.05 } (or yield_forces = [...] per storey); model = "elastic" is the default.
+structure::StoreyHysteresis read_hysteresis(const toml::table& building, const TableReader& r, int n) {
+  const toml::table* h = building.get_as<toml::table>("hysteresis");
+  if (!h) r.fail("hysteresis", "expected a table: { model = \"bilinear\", yield_force = 160.0e3, hardening = 0.05 }");
+  const TableReader hr = r.inner(*h, r.path() + ".hysteresis");
+  hr.only({"model", "yield_force", "yield_forces", "hardening"});
+  structure::StoreyHysteresis y;
+  y.model = hr.choice<structure::HysteresisModel>("model");
+  if (y.model == structure::HysteresisModel::elastic) {
+    hr.only_with({"model"}, "the model \"elastic\" (no yielding)");
+    return y;
+  }
+  if (hr.has("yield_force") == hr.has("yield_forces"))
+    hr.fail("", "give the yield force as yield_force (every storey) or yield_forces (a list), one of them");
+  if (hr.has("yield_force")) {
+    y.yield_forces = Eigen::VectorXd::Constant(n, hr.bounded("yield_force", kForceRange));
+  } else {
+    const auto f = hr.numbers("yield_forces", n);
+    y.yield_forces = Eigen::Map<const Eigen::VectorXd>(f.data(), n);
+    for (int i = 0; i < n; ++i)
+      if (const std::string problem = bounded_problem(f[static_cast<std::size_t>(i)], kForceRange); !problem.empty())
+        hr.fail("yield_forces", "storey " + std::to_string(i + 1) + ": " + problem);
+  }
+  y.hardening = read_hardening(hr);
+  return y;
+}
+
 Building read_building(const toml::table& root, const std::string& name, const TableReader& top) {
   const toml::table* t = root["building"][name].as_table();
   const TableReader r = top.inner(*t, "building." + name);
   r.only({"storeys", "mass", "masses", "stiffness", "stiffnesses", "period", "damping", "device", "height", "heights", "p_delta",
-          "collapse_drift_ratio"});
+          "collapse_drift_ratio", "hysteresis"});
   Building b;
   b.name = name;
   const int n = r.integer("storeys", 1, structure::kMaxStoreys);
@@ -299,6 +334,11 @@ Building read_building(const toml::table& root, const std::string& name, const T
         dr.only({"type", "storeys", "c", "alpha"});
         dev.c = dr.bounded("c", kDashpotRange);
         if (dr.has("alpha")) dev.alpha = dr.bounded("alpha", kAlphaRange);
+      } else if (dev.type == DeviceType::bilinear) {
+        dr.only({"type", "storeys", "stiffness", "yield_force", "hardening"});
+        dev.k = dr.bounded("stiffness", kStiffnessRange);
+        dev.yield_force = dr.bounded("yield_force", kForceRange);
+        dev.hardening = read_hardening(dr);
       } else {
         dr.only({"type", "storeys", "stiffness", "order", "tau_x", "tau_f"});
         dev.zener = read_zener(dr);
@@ -306,6 +346,7 @@ Building read_building(const toml::table& root, const std::string& name, const T
       b.devices.push_back(dev);
     }
   }
+  if (r.has("hysteresis")) b.hysteresis = read_hysteresis(*t, r, n);
   if (r.has("period") && !b.devices.empty()) {
     // The period is the building's with its devices (their relaxed stiffness).
     std::string problem;

@@ -208,6 +208,7 @@ std::string structure_summary_json(const RunSpec& scene, const Report& r, const 
     const auto& part = r.energy.buildings[b];
     energy[b == 0 ? "A" : "B"] = {{"input", part.input}, {"kinetic", part.kinetic}, {"inherent_damping", part.inherent},
                                   {"storeys", part.storeys}};
+    if (!part.hysteretic.empty()) energy[b == 0 ? "A" : "B"]["hysteretic"] = part.hysteretic;  // (within storeys)
   }
   energy["links"] = r.energy.links;
   energy["contacts"] = r.energy.contacts;
@@ -219,6 +220,21 @@ std::string structure_summary_json(const RunSpec& scene, const Report& r, const 
   for (const auto& v : r.residual) residual[v.channel] = v.value;
   j["residual"] = residual;
   if (r.collapse) j["collapse"] = collapse_json(*r.collapse);
+  if (!r.yield.empty()) {  // (SPEC §7: per building, per storey)
+    ordered_json yield = ordered_json::object();
+    for (const BuildingYield& y : r.yield) {
+      ordered_json list = ordered_json::array();
+      for (const StoreyYield& sy : y.storeys)
+        list.push_back({{"storey", sy.storey},
+                        {"yielded", sy.yielded},
+                        {"t_first", time_or_null(sy.yielded, sy.t_first)},
+                        {"excursions", sy.excursions},
+                        {"ductility_max", sy.ductility_max},
+                        {"plastic_work", sy.plastic_work}});
+      yield[std::string(1, y.building)] = list;
+    }
+    j["yield"] = yield;
+  }
   if (estimate) j["error_estimate"] = structure_error_json(scene, *estimate, r.collapse.has_value());
   require_finite(j, "", scene.solver.t_end);
   return j.dump(2) + "\n";

@@ -24,7 +24,10 @@ SubsetInverses::System& SubsetInverses::find(const std::vector<int>& set) {
     for (int i = 0; i < m; ++i)
       for (int j = 0; j < m; ++j) a(i, j) = s_(set[i], set[j]);
     System entry;
-    entry.inverse = a.ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+    // (A negative diagonal: a slipping bilinear element's row, whose compliance is negative;
+    // the set's matrix is then symmetric indefinite, and LU with partial pivoting inverts it.)
+    if ((a.diagonal().array() < 0.0).any()) entry.inverse = a.partialPivLu().inverse();
+    else entry.inverse = a.ldlt().solve(Eigen::MatrixXd::Identity(m, m));
     entry.b.resize(m);
     entry.x.resize(m);
     it = cache_.emplace(set, std::move(entry)).first;
@@ -48,11 +51,14 @@ void BoxQp::solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held,
   if (held_.empty()) return;
   SubsetInverses::System& sys = inverses_.of(held_);
   const Eigen::MatrixXd& s = inverses_.matrix();
+  // (the fixed forces that are not zero: with bilinear elements most are)
+  fixed_.clear();
+  for (int k = 0; k < n; ++k)
+    if (!held[k] && fd[k] != 0.0) fixed_.push_back(k);
   for (std::size_t i = 0; i < held_.size(); ++i) {
     const int h = held_[i];
     double b = w0[h];
-    for (int k = 0; k < n; ++k)
-      if (!held[k]) b -= s(h, k) * fd[k];
+    for (int k : fixed_) b -= s(h, k) * fd[k];
     sys.b[static_cast<Eigen::Index>(i)] = b;
   }
   sys.solve();

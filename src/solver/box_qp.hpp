@@ -94,7 +94,7 @@ class BoxQp {
 
  private:
   SubsetInverses inverses_;
-  std::vector<int> stuck_, held_;
+  std::vector<int> stuck_, held_, fixed_;
   BoxQpResult r_;
 };
 

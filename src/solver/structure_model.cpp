@@ -71,9 +71,12 @@ void StructureModel::check_inputs() const {
     bool relaxed = false;  // an element whose state at t = 0 is relaxed (or stuck)
     for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
       if (b)
-        for (const auto& d : b->devices) relaxed = relaxed || d.type == DeviceType::zener;
+        for (const auto& d : b->devices) relaxed = relaxed || d.type == DeviceType::zener || d.type == DeviceType::bilinear;
+    for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
+      if (b) relaxed = relaxed || b->hysteresis.model != structure::HysteresisModel::elastic;
     for (const auto& l : s.links) relaxed = relaxed || l.type == LinkType::zener || l.type == LinkType::friction;
-    if (relaxed) throw InputError("initial displacements need a structure without Zener elements and friction links");
+    if (relaxed)
+      throw InputError("initial displacements need a structure without Zener elements, friction links and yielding storeys or devices");
   }
 }
 
@@ -112,6 +115,17 @@ void StructureModel::assemble_elements(Assembly& a) {
         if (d.type == DeviceType::spring) p.add(a.k0_dense, d.k);
         if (d.type == DeviceType::dashpot && d.alpha != 1.0) add_viscous(p, offset + st - 1, -1, d.c, d.alpha);
         if (d.type == DeviceType::zener) zener.push_back(zener_element(p, offset + st - 1, d.zener));
+        if (d.type == DeviceType::bilinear) {  // k in K0; the slider's slip an offset (bilinear_step.hpp)
+          p.add(a.k0_dense, d.k);
+          bilinear.push_back({p.i, p.j, offset + st - 1, false, (1.0 - d.hardening) * d.k, (1.0 - d.hardening) * d.yield_force});
+        }
+      }
+    // A bilinear storey spring: k stays in K0; its series element's slip is an offset.
+    if (b.hysteresis.model == structure::HysteresisModel::bilinear)
+      for (int st = 0; st < nb; ++st) {
+        const Pair p{offset + st, st > 0 ? offset + st - 1 : -1};
+        const double b_ = b.hysteresis.hardening, kh = (1.0 - b_) * b.springs[st];
+        bilinear.push_back({p.i, p.j, offset + st, true, kh, (1.0 - b_) * b.hysteresis.yield_forces[st]});
       }
   };
   add_building(s.a, 0);
@@ -163,6 +177,15 @@ void StructureModel::assemble_dampers(Assembly& a) {
     a.bf(f, p.j) = -1.0;
     limit[f] = s.links[friction[f]].slip_force;
   }
+  // The bilinear elements follow the dampers among the QP's unknowns (held while they slip).
+  nh = static_cast<int>(bilinear.size());
+  nq = nf + nh;
+  a.bq = Eigen::MatrixXd::Zero(nq, n);
+  a.bq.topRows(nf) = a.bf;
+  for (int e = 0; e < nh; ++e) {
+    a.bq(nf + e, bilinear[e].i) = 1.0;
+    if (bilinear[e].j >= 0) a.bq(nf + e, bilinear[e].j) = -1.0;
+  }
 }
 
 void StructureModel::assemble_contacts(Assembly& a) {
@@ -205,15 +228,19 @@ std::unique_ptr<StepMatrices> StructureModel::step_matrices(double theta, const 
   }
   // No friction link (a building alone): nothing to solve, and Eigen's triangular solve must
   // not see a matrix with no columns (it binds a reference to its null data).
-  m->a_inv_bt = Eigen::MatrixXd::Zero(n, nf);
-  if (nf > 0)
+  // (The QP's unknowns: the dampers' step forces, then the bilinear elements'.)
+  m->a_inv_bt = Eigen::MatrixXd::Zero(n, nq);
+  if (nq > 0)
     for (const StepBlock& b : m->blocks)
-      m->a_inv_bt.middleRows(b.offset, b.size) = b.a.solve(a.bf.transpose().middleRows(b.offset, b.size));
-  m->c_a_inv_bt = nf > 0 ? Eigen::MatrixXd(c * m->a_inv_bt) : Eigen::MatrixXd(n, 0);
-  Eigen::MatrixXd stacked(2 * n, nf);
+      m->a_inv_bt.middleRows(b.offset, b.size) = b.a.solve(a.bq.transpose().middleRows(b.offset, b.size));
+  m->c_a_inv_bt = nq > 0 ? Eigen::MatrixXd(c * m->a_inv_bt) : Eigen::MatrixXd(n, 0);
+  Eigen::MatrixXd stacked(2 * n, nq);
   stacked << m->a_inv_bt, m->c_a_inv_bt;
+  if (nh > 0) m->damper_response_columns = stacked;
   m->damper_response = DenseProduct(std::move(stacked));
-  m->delassus = nf > 0 ? Eigen::MatrixXd(h * a.bf * m->a_inv_bt) : Eigen::MatrixXd(0, 0);
+  m->delassus = nq > 0 ? Eigen::MatrixXd(h * a.bq * m->a_inv_bt) : Eigen::MatrixXd(0, 0);
+  m->qp_matrix = m->delassus;
+  for (int e = 0; e < nh; ++e) m->qp_matrix(nf + e, nf + e) -= 1.0 / (theta * theta * bilinear[e].k * h);
   m->a_inv_bc = Eigen::MatrixXd::Zero(n, nc);
   m->kappa.resize(nc);
   if (nc > 0) {
@@ -230,9 +257,9 @@ std::unique_ptr<StepMatrices> StructureModel::step_matrices(double theta, const 
     m->viscous_g = h * a.bv * m->a_inv_bv;
     m->viscous_friction = a.bv * m->a_inv_bt;
   }
-  m->contact_friction = Eigen::MatrixXd::Zero(nc, nf);
+  m->contact_friction = Eigen::MatrixXd::Zero(nc, nq);
   for (int ci = 0; ci < nc; ++ci)
-    for (int f = 0; f < nf; ++f) {
+    for (int f = 0; f < nq; ++f) {
       const Pair& p = contact_pair[active[ci]];
       m->contact_friction(ci, f) = m->a_inv_bt(p.i, f) - m->a_inv_bt(p.j, f);
     }
@@ -319,7 +346,20 @@ void StructureModel::prepare_trial() {
       if (pr.i == k || pr.j == k) viscous_here.emplace_back(static_cast<int>(e), pr.i == k ? 1.0 : -1.0);
     }
     damper_viscous.push_back(std::move(viscous_here));
+    std::vector<std::pair<int, double>> elements;
+    for (int e = 0; e < nh; ++e) {
+      const BilinearElement& el = bilinear[e];
+      if (el.i != k && el.j != k) continue;
+      elements.emplace_back(e, el.i == k ? 1.0 : -1.0);
+      for (int d : {el.i, el.j})
+        if (d >= 0) trial_dofs.push_back(d);
+    }
+    damper_bilinear.push_back(std::move(elements));
   }
+  // The bilinear elements' decisions read the trial's velocities at their floors.
+  for (const BilinearElement& el : bilinear)
+    for (int d : {el.i, el.j})
+      if (d >= 0) trial_dofs.push_back(d);
   std::sort(trial_dofs.begin(), trial_dofs.end());
   trial_dofs.erase(std::unique(trial_dofs.begin(), trial_dofs.end()), trial_dofs.end());
   // The rows of A^-1 B' at the trial's floors and below them those of C A^-1 B' at the dampers'.
@@ -329,7 +369,7 @@ void StructureModel::prepare_trial() {
   nd = static_cast<Eigen::Index>(damper_dofs.size());
   for (StepMatrices* m : {trapezoidal.get(), backward.get()}) {
     if (m == nullptr) continue;
-    m->trial_rows.resize(nt + nd, nf);
+    m->trial_rows.resize(nt + nd, nq);
     for (Eigen::Index t = 0; t < nt; ++t) m->trial_rows.row(t) = m->a_inv_bt.row(trial_dofs[t]);
     for (Eigen::Index d = 0; d < nd; ++d) m->trial_rows.row(nt + d) = m->c_a_inv_bt.row(damper_dofs[d]);
   }
@@ -356,6 +396,7 @@ void StructureModel::assemble_storeys() {
       for (int st : d.storeys) {
         if (d.type == DeviceType::spring) storey_spring[offset + st - 1] += d.k;
         if (d.type == DeviceType::dashpot && d.alpha == 1.0) storey_dashpot[offset + st - 1] += d.c;
+        if (d.type == DeviceType::bilinear) storey_spring[offset + st - 1] += d.k;  // (its slip's offset: the solver's)
       }
   };
   storeys_of(s.a, 0);

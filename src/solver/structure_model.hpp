@@ -14,6 +14,7 @@
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/parameters.hpp"
 #include "banded.hpp"
+#include "bilinear_step.hpp"
 #include "contact_step.hpp"
 #include "dense_product.hpp"
 #include "viscous_step.hpp"
@@ -74,7 +75,11 @@ struct StepMatrices {
   // and their damping forces C v = C v_free - h C A^-1 B' Q, O(n nf) for any Q tried.
   Eigen::MatrixXd a_inv_bt, c_a_inv_bt;
   DenseProduct damper_response;  // [A^-1 B'; C A^-1 B']: one product per step
+  Eigen::MatrixXd damper_response_columns;  // ... as a matrix (with bilinear elements: their nonzero columns only)
   Eigen::MatrixXd delassus;      // S = h B A^-1 B'
+  // The QP's matrix: S with the bilinear elements' compliance -1 / (theta^2 k_h h) on their
+  // diagonal (bilinear_step.hpp); S itself without them.
+  Eigen::MatrixXd qp_matrix;
   Eigen::MatrixXd a_inv_bc, c_a_inv_bc, contact_friction;  // A^-1 B_c', C A^-1 B_c', B_c A^-1 B_f'
   Eigen::VectorXd kappa;                                   // B_c A^-1 B_c' per pair
   // The nonlinear viscous dampers' A^-1 B_v', C A^-1 B_v', G = h B_v A^-1 B_v' and B_v A^-1 B_f'.
@@ -87,6 +92,7 @@ struct Assembly {
   Eigen::MatrixXd k0_dense, k_eff_dense;    // K0, and K_eff (the Zener elements at their effective stiffness)
   Eigen::MatrixXd bf, bc;                   // B of the friction dampers, of the contact pairs with a law
   Eigen::MatrixXd bv;                       // B of the nonlinear viscous dampers
+  Eigen::MatrixXd bq;                       // B of the QP's unknowns: the friction dampers', then the bilinear elements'
   bool coupled = false;                     // a link other than friction enters A = M + h/2 C + h^2/4 K
   std::vector<std::pair<int, int>> ranges;  // A's diagonal blocks: (offset, size)
 };
@@ -143,6 +149,12 @@ class StructureModel {
   std::vector<std::vector<std::pair<int, double>>> damper_zener;  // per damper dof: (element, sign), in order
   Eigen::Index nt = 0, nd = 0;  // trial_dofs.size(), damper_dofs.size()
   std::vector<int> pi, pj;      // each damper's floors' places in damper_dofs
+
+  // ---- the bilinear elements (bilinear_step.hpp): the QP's unknowns after the dampers' ----
+  std::vector<BilinearElement> bilinear;
+  int nh = 0;  // how many
+  int nq = 0;  // nf + nh: the QP's unknowns
+  std::vector<std::vector<std::pair<int, double>>> damper_bilinear;  // per damper dof: (element, sign)
 
   // ---- the contact pairs ----
   std::vector<int> active;  // contacts with a law

@@ -133,9 +133,11 @@ class StructureStepper {
     next.ag = g * ground.ag(next.t);
     // The Zener elements' history terms: constant through the step (until commit).
     for (std::size_t e = 0; e < ws.laws.size(); ++e) ws.offsets[static_cast<Eigen::Index>(e)] = ws.laws[e]->offset();
-    if (!m.zener.empty()) {  // (else it stays zero)
+    if (!m.zener.empty() || m.nh > 0) {  // (else it stays zero)
       ws.off_dof.setZero();
       for (std::size_t e = 0; e < m.zener.size(); ++e) m.zener[e].pair.add(ws.off_dof, ws.offsets[static_cast<Eigen::Index>(e)]);
+      // The bilinear elements' slips: -k_h u_p (bilinear_step.hpp).
+      for (int e = 0; e < m.nh; ++e) Pair{m.bilinear[e].i, m.bilinear[e].j}.add(ws.off_dof, ws.bilinear[e].offset(m.bilinear[e]));
     }
     // The step after a switch, where the restart applies, is backward Euler.
     ws.restart = ws.restart_left > 0;
@@ -207,17 +209,23 @@ class StructureStepper {
       ws.memory_before = ws.contact_memory;
       std::fill(ws.step_work.begin(), ws.step_work.end(), 0.0);
       ws.q_trial.setZero();
-      if (m.nf > 0 && step > 0) {
+      if (m.nq > 0 && step > 0) {
         hold_as_phased(now);
         solve_held(ws.hold, ws.fixed, &ws.q_trial);
       }
       contact_pass(now, ws.q_trial);
     }
-    if (m.nf > 0 && step == 0) {  // from rest: the closed-form relay of the box QP
+    if (m.nf > 0 && step == 0 && m.nh > 0) {  // (the bilinear elements elastic from rest: not unknowns)
+      ws.w_friction = ws.w_free.head(m.nf);
+      const detail::BoxQpResult& r = ws.box_qp_friction->solve(ws.w_friction, m.limit, ws.states_friction);
+      ws.q_step.setZero();
+      ws.q_step.head(m.nf) = r.q;
+      std::copy(r.state.begin(), r.state.end(), ws.decided.begin());
+    } else if (m.nf > 0 && step == 0) {  // from rest: the closed-form relay of the box QP
       const detail::BoxQpResult& r = ws.box_qp->solve(ws.w_free, m.limit, ws.states);
       ws.q_step = r.q;
       ws.decided = r.state;
-    } else if (m.nf > 0) {
+    } else if (m.nq > 0 && step > 0) {
       decide_dampers(now);
     }
     ws.states.swap(ws.decided);  // (decided is filled again at the next step)
@@ -225,7 +233,7 @@ class StructureStepper {
     // with them, so that each pair's end of step is its own (no penetration for the Newton
     // law, the compliant force consistent with the floors' motion); the dampers keep their
     // decisions.
-    if (ws.any_contact && m.nf > 0) contact_pass(now, ws.q_step);
+    if (ws.any_contact && m.nq > 0) contact_pass(now, ws.q_step);
     for (int ci = 0; ci < m.nc; ++ci) ws.contact_work[ci] += ws.step_work[ci];
   }
 
@@ -240,7 +248,7 @@ class StructureStepper {
     ws.v_base = ws.v_free;
     ws.cv_base = ws.cv_free;
     ws.viscous_w1 = ws.viscous_w0;
-    if (m.nf == 0 && m.nc == 0) {
+    if (m.nq == 0 && m.nc == 0) {
       for (int k = 0; k < m.nv; ++k) ws.viscous_wt[k] = m.viscous[static_cast<std::size_t>(k)].pair.of(ws.v_base);
       if (!ws.viscous_solver->solve(ws.sm->viscous_g, ws.viscous_wt, ws.viscous_w0, end_force, ws.viscous_w1, ws.viscous_q))
         viscous_failed(now.t);
@@ -251,12 +259,14 @@ class StructureStepper {
     ws.states_before = ws.states;
     ws.memory_saved = ws.contact_memory;
     ws.contact_work_saved = ws.contact_work;
+    ws.bilinear_saved = ws.bilinear;
     double last_change = std::numeric_limits<double>::infinity();
     for (int pass = 0;; ++pass) {
       if (pass > 0) {
         ws.states = ws.states_before;
         ws.contact_memory = ws.memory_saved;
         ws.contact_work = ws.contact_work_saved;
+        ws.bilinear = ws.bilinear_saved;
       }
       fold_viscous();
       local_solve(step, now);
@@ -266,7 +276,7 @@ class StructureStepper {
       ws.viscous_wt.noalias() = g_eff * ws.viscous_q;
       for (int k = 0; k < m.nv; ++k) {
         ws.viscous_wt[k] += m.viscous[static_cast<std::size_t>(k)].pair.of(ws.v_free);
-        if (m.nf > 0) ws.viscous_wt[k] -= m.h * ws.sm->viscous_friction.row(k).dot(ws.q_step);
+        if (m.nq > 0) ws.viscous_wt[k] -= m.h * ws.sm->viscous_friction.row(k).dot(ws.q_step);
       }
       ws.viscous_w_pass = ws.viscous_w1;
       if (!ws.viscous_solver->solve(g_eff, ws.viscous_wt, ws.viscous_w0, end_force, ws.viscous_w1, ws.viscous_q_new))
@@ -289,6 +299,7 @@ class StructureStepper {
         ws.states = ws.states_before;
         ws.contact_memory = ws.memory_saved;
         ws.contact_work = ws.contact_work_saved;
+        ws.bilinear = ws.bilinear_saved;
         fold_viscous();
         local_solve(step, now);
         ++ws.viscous_unsettled;
@@ -362,6 +373,25 @@ class StructureStepper {
       ws.hold[f] = ph == Phase::stick;
       if (!ws.hold[f]) ws.fixed[f] = ph == Phase::slip_right ? m.limit[f] : -m.limit[f];
     }
+    hold_bilinear();
+  }
+  // The bilinear elements as phased at t_n (bilinear_step.hpp): elastic (no unknown), or
+  // slipping, held at their yield force; their rows of the QP's right-hand side.
+  void hold_bilinear() {
+    for (int e = 0; e < m.nh; ++e) {
+      const detail::BilinearElement& el = m.bilinear[e];
+      const int k = m.nf + e;
+      const double w_free = ws.v_free[el.i] - (el.j >= 0 ? ws.v_free[el.j] : 0.0);
+      detail::bilinear_as_phased(ws.bilinear[e], ws.sm->theta, w_free, &ws.hold[k], &ws.fixed[k], &ws.w_free[k]);
+    }
+  }
+  // A product with columns of [A^-1 B'; C A^-1 B'] (rows `rows` of `columns`), skipping the
+  // zero step forces: with bilinear elements most of the QP's unknowns are zero (elastic).
+  void sparse_columns(const Eigen::MatrixXd& columns, Eigen::Index rows, const Eigen::VectorXd& q, double* out) const {
+    Eigen::Map<Eigen::VectorXd> sum(out, rows);
+    sum.setZero();
+    for (int k = 0; k < m.nq; ++k)
+      if (q[k] != 0.0) sum.noalias() += q[k] * columns.col(k).head(rows);
   }
   // Solves for the held dampers (limit infinite) with the others' step forces fixed.
   void solve_held(const std::vector<char>& hold, const Eigen::VectorXd& fixed, Eigen::VectorXd* q) {
@@ -381,7 +411,7 @@ class StructureStepper {
       in.h = m.h;
       in.delta0 = p.of(now.x) - m.s.contacts[m.active[ci]].gap;
       in.w0 = p.of(now.v);
-      in.a = (p.of(ws.v_free0) - (m.nf > 0 ? m.h * ws.sm->contact_friction.row(ci).dot(q_f) : 0.0) - in.w0) / m.h;
+      in.a = (p.of(ws.v_free0) - (m.nq > 0 ? m.h * ws.sm->contact_friction.row(ci).dot(q_f) : 0.0) - in.w0) / m.h;
       in.kappa = ws.sm->kappa[ci];
       ws.contact_impulse[ci] = ws.contact_moment[ci] = ws.contact_end_force[ci] = 0.0;
       ws.contact_memory[ci] = ws.memory_before[ci];
@@ -417,6 +447,16 @@ class StructureStepper {
       if (ws.hold[f]) decide_stuck(f, now);
       else decide_slipping(f, now);
     }
+    // The bilinear elements: yield or unloading located inside the step (bilinear_step.hpp).
+    for (int e = 0; e < m.nh; ++e) {
+      const detail::BilinearElement& el = m.bilinear[e];
+      const int k = m.nf + e;
+      ws.hold2[k] = ws.hold[k];
+      ws.fixed2[k] = ws.fixed[k];
+      const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
+      const double d1 = ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0);
+      detail::bilinear_decide(el, ws.bilinear[e], ws.sm->theta, m.h, d1, w1, &ws.hold2[k], &ws.fixed2[k]);
+    }
     // (Mostly the dampers go on as they were, and the trial's forces are the step's.)
     if (ws.hold2 == ws.hold && ws.fixed2 == ws.fixed) ws.q_step = ws.q_trial;
     else solve_held(ws.hold2, ws.fixed2, &ws.q_step);
@@ -438,7 +478,8 @@ class StructureStepper {
   // where P there needs them), C v and P (Zener forces at their offsets), as the step's end
   // (correct) computes them everywhere.
   void trial_state(const StructureState& now, const Eigen::VectorXd& q) {
-    kernels.columns(m.nt + m.nd, m.nf, ws.sm->trial_rows.data(), q.data(), ws.trial_change.data());
+    if (m.nh > 0) sparse_columns(ws.sm->trial_rows, m.nt + m.nd, q, ws.trial_change.data());
+    else kernels.columns(m.nt + m.nd, m.nf, ws.sm->trial_rows.data(), q.data(), ws.trial_change.data());
     for (std::size_t t = 0; t < m.trial_dofs.size(); ++t) {
       const int k = m.trial_dofs[t];
       ws.v1[k] = ws.v_free[k] - m.h * ws.trial_change[t];
@@ -455,6 +496,11 @@ class StructureStepper {
       // (the viscous dampers at their latest end velocities)
       for (const auto& [e, sign] : m.damper_viscous[d])
         ws.p1[k] += sign * m.viscous_laws[static_cast<std::size_t>(e)].force(ws.viscous_w1[e]);
+      for (const auto& [e, sign] : m.damper_bilinear[d]) {
+        const detail::BilinearElement& el = m.bilinear[static_cast<std::size_t>(e)];
+        const double d1 = ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0);  // (K0 holds k_h d1)
+        ws.p1[k] += sign * (detail::bilinear_trial_force(el, ws.bilinear[e], d1) - el.k * d1);
+      }
     }
   }
 
@@ -525,7 +571,11 @@ class StructureStepper {
   // displacements (with the kinks of ended slips and the contact impulses' timing), and the
   // storey and link forces P at t_n+1.
   void correct(std::size_t step, const StructureState& now, StructureState& next) {
-    if (m.nf > 0) {
+    if (m.nh > 0) {
+      sparse_columns(ws.sm->damper_response_columns, 2 * m.n, ws.q_step, ws.response_q.data());
+      kernels.end_velocities(m.n, ws.v_free.data(), ws.cv_free.data(), ws.response_q.data(), ws.response_q.data() + m.n, m.h,
+                             next.v.data(), ws.cv_next.data());
+    } else if (m.nf > 0) {
       ws.sm->damper_response.apply(ws.q_step.data(), ws.response_q.data());
       kernels.end_velocities(m.n, ws.v_free.data(), ws.cv_free.data(), ws.response_q.data(), ws.response_q.data() + m.n, m.h,
                              next.v.data(), ws.cv_next.data());
@@ -554,6 +604,23 @@ class StructureStepper {
       const auto& el = m.zener[e];
       ws.zener_force[e] = el.stiffness * el.pair.of(next.x) + ws.offsets[static_cast<Eigen::Index>(e)];
       el.pair.add(ws.p_next, ws.zener_force[e]);
+    }
+    end_bilinear(now, next);
+  }
+
+  // The bilinear elements' forces and phases at t_n+1 from the step's end velocities, in P,
+  // and their storeys' yield instants located in the step.
+  void end_bilinear(const StructureState& now, StructureState& next) {
+    if (m.nh == 0) return;
+    std::fill(next.hyst_yield.begin(), next.hyst_yield.end(), kNaN);
+    for (int e = 0; e < m.nh; ++e) {
+      const detail::BilinearElement& el = m.bilinear[e];
+      detail::BilinearState& st = ws.bilinear[e];
+      const double w1 = next.v[el.i] - (el.j >= 0 ? next.v[el.j] : 0.0);
+      const double d1 = next.x[el.i] - (el.j >= 0 ? next.x[el.j] : 0.0);
+      detail::bilinear_end(el, st, d1, w1);
+      Pair{el.i, el.j}.add(ws.p_next, st.offset(el));  // (K0 holds k_h d1)
+      if (el.storey_law && st.yielded && !std::isnan(st.event)) next.hyst_yield[el.storey] = now.t + st.event * m.h;
     }
   }
 
@@ -794,6 +861,14 @@ class StructureStepper {
       if (m.zener[e].storey >= 0) st.storey_force[m.zener[e].storey] += ws.zener_force[e];
     for (int k = 0; k < m.nv; ++k)
       if (m.viscous[static_cast<std::size_t>(k)].storey >= 0) st.storey_force[m.viscous[static_cast<std::size_t>(k)].storey] += ws.viscous_force[k];
+    // The bilinear elements' forces, and the storeys' own laws' z (bilinear_step.hpp).
+    st.hyst.setZero(m.n);
+    st.hyst_yield.resize(static_cast<std::size_t>(m.n), kNaN);
+    for (int e = 0; e < m.nh; ++e) {
+      const detail::BilinearElement& el = m.bilinear[e];
+      st.storey_force[el.storey] += ws.bilinear[e].offset(el);  // (the storey's spring holds k_h d)
+      if (el.storey_law) st.hyst[el.storey] = ws.bilinear[e].q / el.k;
+    }
   }
   void fill_links(StructureState& st, const Eigen::VectorXd& q_friction) const {
     fill_storeys(st);

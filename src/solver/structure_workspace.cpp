@@ -13,8 +13,14 @@ StepWorkspace::StepWorkspace(const StructureModel& m) {
                        : std::make_unique<RodLaw>(e.rod, e.k, m.h, m.options.history, m.weights_of(e)));
   zener_force.assign(m.zener.size(), 0.0);
   contact_memory.resize(static_cast<std::size_t>(nc));
-  box_qp_trapezoidal = std::make_unique<BoxQp>(m.trapezoidal->delassus);
-  if (m.backward) box_qp_backward = std::make_unique<BoxQp>(m.backward->delassus);
+  box_qp_trapezoidal = std::make_unique<BoxQp>(m.trapezoidal->qp_matrix);
+  if (m.backward) box_qp_backward = std::make_unique<BoxQp>(m.backward->qp_matrix);
+  bilinear.assign(static_cast<std::size_t>(m.nh), BilinearState{});
+  if (m.nh > 0 && nf > 0) {
+    box_qp_friction = std::make_unique<BoxQp>(m.trapezoidal->delassus.topLeftCorner(nf, nf));
+    states_friction.assign(nf, DamperState::stick);
+    w_friction.resize(nf);
+  }
   sm = m.trapezoidal.get();
   box_qp = box_qp_trapezoidal.get();
   // The stuck dampers' systems (B_s M^-1 B_s'), inverted per stuck set (a product with the
@@ -39,15 +45,16 @@ StepWorkspace::StepWorkspace(const StructureModel& m) {
   response_q.resize(2 * n);
   off_dof = Eigen::VectorXd::Zero(n);
   for (Eigen::VectorXd* v : {&rhs, &v_free, &cv_free, &v1, &x1, &p1, &cv1, &p_next, &cv_next, &v_pre, &bq}) v->resize(n);
-  for (Eigen::VectorXd* v : {&w_free, &w_end, &q_step, &q_trial, &q1, &stick1, &w1, &fixed, &fixed2, &q_grid, &stick_grid, &others})
-    v->resize(nf);
+  for (Eigen::VectorXd* v : {&q1, &stick1, &w1, &q_grid, &stick_grid, &others}) v->resize(nf);
+  // (the QP's: the dampers' entries, then the bilinear elements')
+  for (Eigen::VectorXd* v : {&w_free, &w_end, &q_step, &q_trial, &fixed, &fixed2}) v->setZero(m.nq);
   for (std::vector<double>* v : {&onset, &crossing, &kink_theta, &kink_jump}) v->resize(nf);
-  decided.resize(nf);
-  hold.resize(nf);
-  hold2.resize(nf);
+  decided.assign(m.nq, DamperState::stick);
+  hold.assign(m.nq, 0);
+  hold2.assign(m.nq, 0);
   touched.reserve(2 * static_cast<std::size_t>(nf));
   touched_flag.assign(m.damper_dofs.size(), 0);
-  states.assign(nf, DamperState::stick);
+  states.assign(m.nq, DamperState::stick);
   internal = Eigen::VectorXd::Zero(n);
   for (Eigen::VectorXd* v : {&viscous_q, &viscous_w_pass, &viscous_w0, &viscous_w1, &viscous_wt, &viscous_force, &viscous_q_new})
     *v = Eigen::VectorXd::Zero(m.nv);
@@ -59,6 +66,7 @@ StepWorkspace::StepWorkspace(const StructureModel& m) {
     states_before.resize(static_cast<std::size_t>(nf));
     memory_saved.resize(static_cast<std::size_t>(nc));
     contact_work_saved.resize(static_cast<std::size_t>(nc));
+    bilinear_saved.resize(static_cast<std::size_t>(m.nh));
   }
   friction_now = stick_force_now = stick_force_prev = Eigen::VectorXd::Zero(nf);
   prev_stuck.assign(nf, false);

@@ -26,6 +26,12 @@ struct StepWorkspace {
   std::vector<ContactMemory> contact_memory, memory_before;  // per contact pair with a law; before the step
   std::unique_ptr<BoxQp> box_qp_trapezoidal, box_qp_backward;  // the dampers' QP of each step matrix
   SubsetInverses stuck_systems;  // B_s M^-1 B_s' per stuck set, inverted when first met
+  std::vector<BilinearState> bilinear;  // per bilinear element of the model (bilinear_step.hpp)
+  // With bilinear elements, the dampers' own QP for the first step (from rest the elements are
+  // elastic: no unknowns).
+  std::unique_ptr<BoxQp> box_qp_friction;
+  std::vector<DamperState> states_friction;
+  Eigen::VectorXd w_friction;
 
   // ---- this step ----
   bool restart = false;            // backward Euler
@@ -81,6 +87,7 @@ struct StepWorkspace {
   std::deque<std::pair<std::vector<char>, Eigen::MatrixXd>> held_g;
   std::vector<DamperState> states_before;
   std::vector<ContactMemory> memory_saved;
+  std::vector<BilinearState> bilinear_saved;
   std::vector<double> contact_work_saved;
 
   // The grid points t_n (`now`) and t_n+1 (`next`): two states whose vectors every step reuses,

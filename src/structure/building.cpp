@@ -50,6 +50,22 @@ bool building_valid(const Building& b, const std::string& path, std::string* err
       const std::string p = zener_check(dev.zener);
       if (!p.empty()) return fail(where + ": " + p);
     }
+    if (dev.type == DeviceType::bilinear) {
+      if (!positive(dev.k)) return fail(where + ".stiffness must be positive (N/m)");
+      if (!positive(dev.yield_force)) return fail(where + ".yield_force must be a positive force (N)");
+      if (!(dev.hardening >= 0.0 && dev.hardening < 1.0)) return fail(where + ".hardening must lie in [0, 1)");
+    }
+  }
+  if (b.hysteresis.model == HysteresisModel::bilinear) {
+    const StoreyHysteresis& y = b.hysteresis;
+    if (y.yield_forces.size() != n) return fail(path + ".hysteresis.yield_forces: expected " + std::to_string(n) + " values, one per storey");
+    for (int i = 0; i < n; ++i)
+      if (!positive(y.yield_forces[i]))
+        return fail(path + ".hysteresis.yield_forces[" + std::to_string(i + 1) + "] must be a positive force (N)");
+    if (!(y.hardening >= 0.0 && y.hardening < 1.0)) return fail(path + ".hysteresis.hardening must lie in [0, 1)");
+    for (int i = 0; i < n; ++i)
+      if (!(b.springs[i] > 0.0))
+        return fail(path + ".hysteresis: storey " + std::to_string(i + 1) + " has no spring to yield (give its stiffness)");
   }
   const Eigen::VectorXd k = b.static_stiffness();
   for (int i = 0; i < n; ++i)
@@ -77,7 +93,7 @@ bool building_valid(const Building& b, const std::string& path, std::string* err
 Eigen::VectorXd Building::static_stiffness() const {
   Eigen::VectorXd k = springs;
   for (const StoreyDevice& d : devices) {
-    const double add = d.type == DeviceType::spring ? d.k : (d.type == DeviceType::zener ? d.zener.k : 0.0);
+    const double add = d.type == DeviceType::spring || d.type == DeviceType::bilinear ? d.k : (d.type == DeviceType::zener ? d.zener.k : 0.0);
     for (int s : d.storeys)
       if (s >= 1 && s <= k.size()) k[s - 1] += add;
   }

@@ -5,7 +5,7 @@
 namespace adjoin::structure {
 namespace {
 
-constexpr std::array<QuantityInfo, 10> kQuantities{{
+constexpr QuantityInfo kQuantities[] = {
     {Quantity::displacement, ChannelScope::floor, "x", "", "m", PeakRule::refined, true,
      "floor displacement relative to the ground"},
     {Quantity::drift, ChannelScope::storey, "drift", "", "m", PeakRule::refined, false,
@@ -26,7 +26,9 @@ constexpr std::array<QuantityInfo, 10> kQuantities{{
      "contact pair's gap (negative: overlap)"},
     {Quantity::contact_force, ChannelScope::contact, "force", "", "N", PeakRule::none, true,
      "contact pair's compressive force"},
-}};
+    {Quantity::hysteretic, ChannelScope::storey, "hyst", "", "m", PeakRule::sampled, false,
+     "storey's hysteretic variable z of a bilinear storey (at most F_y / k in size)"},
+};
 
 std::string element_name(const QuantityInfo& q, char building, int index) {
   switch (q.scope) {
@@ -57,6 +59,7 @@ std::vector<Channel> channels(const Structure& s) {
       if (q.scope == ChannelScope::building) out.push_back({element_name(q, name, 0), q.quantity, name, 0, -1});
       if (q.scope != ChannelScope::floor && q.scope != ChannelScope::storey) continue;
       if (q.quantity == Quantity::drift_ratio && !b.has_heights()) continue;  // needs the storey heights
+      if (q.quantity == Quantity::hysteretic && b.hysteresis.model == HysteresisModel::elastic) continue;
       for (int i = 1; i <= b.floors(); ++i) out.push_back({element_name(q, name, i), q.quantity, name, i, s.dof(name, i)});
     }
   };

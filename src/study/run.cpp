@@ -10,6 +10,7 @@
 #include "adjoin/study/run_watch.hpp"
 #include "channel_observer.hpp"
 #include "collapse_observer.hpp"
+#include "yield_observer.hpp"
 
 namespace adjoin {
 
@@ -233,11 +234,13 @@ Report run_building(const RunSpec& spec, const RunObservers& extra) {
     r.coupled = structure::coupled_modes(s);
   }
   detail::ChannelObserver observer(s);
+  detail::YieldObserver yielding(s);
   const auto& asked = spec.output.spectra;
   std::unique_ptr<detail::SignalRecorder> recorder;
   if (asked) recorder = std::make_unique<detail::SignalRecorder>(s, asked->signals);
   StructureObserverList all;
   all.add(&observer);
+  all.add(&yielding);
   all.add(recorder.get());
   all.add(extra.structure);
   r.solver = simulate_spec(spec, s, all, &r.collapse);
@@ -253,6 +256,9 @@ Report run_building(const RunSpec& spec, const RunObservers& extra) {
   r.contacts = observer.contacts();
   r.energy = observer.energy();
   r.residual = observer.residual();
+  r.yield = yielding.report();
+  for (const BuildingYield& y : r.yield)
+    for (const StoreyYield& st : y.storeys) r.energy.buildings[y.building == 'A' ? 0 : 1].hysteretic.push_back(st.plastic_work);
   return r;
 }
 

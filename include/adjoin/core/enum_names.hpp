@@ -66,7 +66,9 @@ namespace structure {
 // A contact pair's law (structure/contact.hpp).
 enum class ContactModel { none, linear, hertz, hertzdamp, jankowski, impact };
 // A storey device, a building's inherent damping, a link (structure/building.hpp).
-enum class DeviceType { spring, dashpot, zener };
+enum class DeviceType { spring, dashpot, zener, bilinear };
+// A storey spring's own law (SPEC §7; structure/building.hpp).
+enum class HysteresisModel { elastic, bilinear };
 enum class DampingModel { none, modal, rayleigh };
 enum class LinkType { friction, dashpot, spring, zener };
 }  // namespace structure
@@ -163,7 +165,13 @@ struct EnumTable<structure::ContactModel> {
 template <>
 struct EnumTable<structure::DeviceType> {
   using E = structure::DeviceType;
-  static constexpr EnumName<E> entries[] = {{E::spring, "spring"}, {E::dashpot, "dashpot"}, {E::zener, "zener"}};
+  static constexpr EnumName<E> entries[] = {{E::spring, "spring"}, {E::dashpot, "dashpot"}, {E::zener, "zener"}, {E::bilinear, "bilinear"}};
+};
+
+template <>
+struct EnumTable<structure::HysteresisModel> {
+  using E = structure::HysteresisModel;
+  static constexpr EnumName<E> entries[] = {{E::elastic, "elastic"}, {E::bilinear, "bilinear"}};
 };
 
 template <>

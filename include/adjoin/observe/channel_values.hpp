@@ -39,6 +39,7 @@ inline double channel_value(const structure::Structure& s, const structure::Chan
       const structure::Contact& pair = s.contacts[static_cast<std::size_t>(k)];
       return pair.gap - (st.x[s.dof('A', pair.floor_a)] - st.x[s.dof('B', pair.floor_b)]);
     }
+    case Quantity::hysteretic: return st.hyst.size() > c.dof ? st.hyst[c.dof] : 0.0;
     case Quantity::contact_force:
       return st.contact_force.size() == static_cast<Eigen::Index>(s.contacts.size()) ? st.contact_force[k] : 0.0;
   }

@@ -22,15 +22,27 @@ struct Zener {
   double k = 0.0, order = 0.5, tau_x = 0.0, tau_f = 0.0;
 };
 
-// DeviceType (spring, dashpot, zener): core/enum_names.hpp.
+// DeviceType (spring, dashpot, zener, bilinear): core/enum_names.hpp.
 // A device in parallel with the spring of each listed storey (1-based).
 struct StoreyDevice {
   DeviceType type = DeviceType::spring;
   std::vector<int> storeys;
-  double k = 0.0;  // spring [N/m]
+  double k = 0.0;  // spring, bilinear (initial stiffness) [N/m]
   double c = 0.0;  // dashpot [N (s/m)^alpha]
   Zener zener;
+  double yield_force = 0.0, hardening = 0.0;  // bilinear (a metallic damper, a BRB): F_y [N], b in [0, 1)
   double alpha = 1.0;  // dashpot: F = c |v|^alpha sign v, 0 < alpha <= 1 (1: linear)
+};
+
+// A storey spring's own law (SPEC §7; HysteresisModel: core/enum_names.hpp): elastic, or
+// bilinear with kinematic hardening, force = b k d + (1 - b) k z, z the elastic-perfectly-
+// plastic part (|z| <= F_y / k): the spring b k in parallel with the spring (1 - b) k in
+// series with a Coulomb slider of slip force (1 - b) F_y. The inherent damping stays that of
+// the initial stiffness k (static_stiffness()).
+struct StoreyHysteresis {
+  HysteresisModel model = HysteresisModel::elastic;
+  Eigen::VectorXd yield_forces;  // bilinear: F_y per storey [N], bottom up
+  double hardening = 0.0;        // b, in [0, 1)
 };
 
 // Classical damping from the building's mass and elastic (static) stiffness.
@@ -57,9 +69,12 @@ struct Building {
   // Checked only with heights.
   double collapse_drift_ratio = 0.10;
 
+  StoreyHysteresis hysteresis;
+
   int floors() const { return static_cast<int>(masses.size()); }
   bool has_heights() const { return heights.size() > 0; }
-  // Spring plus the relaxed stiffness of each storey's Zener devices and springs.
+  // Spring plus the relaxed stiffness of each storey's Zener devices and springs (and the
+  // initial stiffness of bilinear devices).
   Eigen::VectorXd static_stiffness() const;
   // Per storey, the P-Delta geometric stiffness -P_i/h_i [N/m]; zeros without p_delta.
   Eigen::VectorXd geometric_stiffness() const;

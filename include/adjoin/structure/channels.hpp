@@ -11,7 +11,8 @@
 // acceleration), A.drift2 (storey 2's drift x_2 - x_1; A.drift_ratio2 = A.drift2 / h_2 when the
 // building has storey heights), A.shear2 (storey 2's shear: spring +
 // devices), A.base_shear (-sum m_i a_i,abs); link1.force, link1.stroke (x_A,i - x_B,j);
-// contact1.gap, contact1.force. B likewise; elements are numbered from 1.
+// contact1.gap, contact1.force; A.hyst2 (storey 2's hysteretic variable z, SPEC §7, when A's
+// storeys yield). B likewise; elements are numbered from 1.
 #include <optional>
 #include <span>
 #include <string>
@@ -35,6 +36,7 @@ enum class Quantity {
   link_stroke,            // link: x_A,i - x_B,j [m]
   contact_gap,            // contact pair: gap - s [m] (negative: overlap)
   contact_force,          // contact pair: compressive force [N]
+  hysteretic,             // storey: its bilinear law's z [m] (only for a building whose storeys yield)
 };
 
 // How the peak of a channel is found from its grid samples. Smooth signals (displacements,

@@ -58,6 +58,10 @@ struct StructureState {
   std::vector<Phase> link_phase;   // friction links: stick or slip direction (others: slip_*)
   std::vector<double> link_switch; // the located switch inside the step ending here, or NaN
   Eigen::VectorXd storey_force;    // per storey, A's then B's: spring + devices (its shear) [N]
+  // Per storey, A's then B's: its bilinear law's hysteretic variable z [m] (SPEC §7; 0 for an
+  // elastic storey), and the instant it yielded inside the step ending here (located), or NaN.
+  Eigen::VectorXd hyst;
+  std::vector<double> hyst_yield;
   // Per contact pair: its gap g = gap - s [m] (negative: the floors overlap), its force at the
   // grid point [N] (compressive > 0; 0 for the Newton law, whose impacts are impulses), and,
   // accumulated from t = 0, the work the floors have done on it [J] (its stored elastic

@@ -83,6 +83,9 @@ struct BuildingEnergy {
   struct Part {
     double input = 0.0, kinetic = 0.0, inherent = 0.0;
     std::vector<double> storeys;
+    // Bilinear storeys (SPEC §7): the plastic work of each storey's law (a part of its storey's
+    // work, dissipated); empty for an elastic building.
+    std::vector<double> hysteretic;
   };
   std::vector<Part> buildings;  // A, then B
   std::vector<double> links;
@@ -121,6 +124,22 @@ struct TwoBlockReport {
   std::optional<EnergyBalance> energy;
 };
 
+// A yielding storey (SPEC §7, summary.json `yield`): whether and when it first yielded (the
+// located instant; NaN if never), its excursions (elastic -> plastic transitions), its largest
+// ductility |d|max / u_y and the work its law dissipated [J].
+struct StoreyYield {
+  int storey = 1;
+  bool yielded = false;
+  double t_first = std::numeric_limits<double>::quiet_NaN();
+  int excursions = 0;
+  double ductility_max = 0.0;
+  double plastic_work = 0.0;
+};
+struct BuildingYield {
+  char building = 'A';
+  std::vector<StoreyYield> storeys;
+};
+
 struct Report {
   SolverSummary solver;
   // The structure's channels (a building run; a two-block run when output.channels is set).
@@ -132,6 +151,7 @@ struct Report {
   BuildingEnergy energy;
   std::optional<Collapse> collapse;  // the run stopped at a collapse (SPEC §7)
   std::vector<ChannelValue> residual;  // each drift and drift-ratio channel at the last grid point
+  std::vector<BuildingYield> yield;  // the buildings whose storeys have a bilinear law
   // In-structure spectra ([output.spectra]).
   std::vector<SignalSpectrum> spectra;
   // A two-block spec's values under the paper's names.
