@@ -182,6 +182,9 @@ void check_order_two(bool with_friction) {
     ex.push_back(max_difference(roofs.a, reference.a, 16 / r));
     ev.push_back(max_difference(roofs.v, reference.v, 16 / r));
     residual.push_back(std::abs(rep.energy.residual) / rep.energy.input);
+    // Steps where a friction damper's onset and the viscous damper on its floors flipped each
+    // other and the step took the mean: a few per onset at most.
+    CHECK(rep.solver.viscous_split_steps <= rep.solver.steps / 100);
     link_energy = rep.energy.links.back();
   }
   INFO("roof x errors " << ex[0] << " " << ex[1] << " " << ex[2] << ", v errors " << ev[0] << " " << ev[1] << " " << ev[2]

@@ -20,6 +20,17 @@
 namespace adjoin::detail {
 namespace {
 
+// A dashpot device or link with alpha < 1 (solver/viscous_step.hpp).
+bool has_nonlinear_viscous(const structure::Structure& s) {
+  for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
+    if (b)
+      for (const auto& d : b->devices)
+        if (d.type == structure::DeviceType::dashpot && d.alpha != 1.0) return true;
+  for (const auto& l : s.links)
+    if (l.type == structure::LinkType::dashpot && l.alpha != 1.0) return true;
+  return false;
+}
+
 using nlohmann::ordered_json;
 
 void require_finite(const ordered_json& j, const std::string& path, double t_end) {
@@ -137,6 +148,7 @@ std::string structure_summary_json(const RunSpec& scene, const Report& r, const 
                  {"t_end", scene.solver.t_end},
                  {"h_rule", scene.accuracy.h_rule},
                  {"t_end_rule", scene.accuracy.t_end_rule}};
+  if (has_nonlinear_viscous(scene.structure)) j["solver"]["viscous_split_steps"] = r.solver.viscous_split_steps;
   if (scene.solver.history == HistoryEngine::soe) {  // the compression's verified bound and size
     j["solver"]["history_error"] = r.solver.history_error;
     j["solver"]["history_modes"] = r.solver.history_modes;

@@ -71,6 +71,7 @@ class StructureStepper {
     for (const auto& law : ws.laws) modes = std::max(modes, law->modes());
     return modes;
   }
+  std::size_t viscous_split_steps() const { return ws.viscous_split_steps; }
   // The impacts to report before the state advance() returned (time_loop.hpp's impacts()).
   const std::vector<Impact>& impacts() const { return ws.step_impacts; }
 
@@ -302,7 +303,7 @@ class StructureStepper {
         ws.bilinear = ws.bilinear_saved;
         fold_viscous();
         local_solve(step, now);
-        ++ws.viscous_unsettled;
+        ++ws.viscous_split_steps;
         return;
       }
       ws.viscous_q.swap(ws.viscous_q_new);

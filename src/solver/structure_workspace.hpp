@@ -82,7 +82,7 @@ struct StepWorkspace {
   Eigen::VectorXd viscous_q, viscous_w_pass, viscous_w0, viscous_w1, viscous_wt, viscous_force, viscous_q_new, viscous_bt;
   Eigen::VectorXd v_base, cv_base;
   std::unique_ptr<ViscousSolver> viscous_solver;
-  std::size_t viscous_unsettled = 0;  // steps whose passes flipped (viscous_step)
+  std::size_t viscous_split_steps = 0;  // steps whose passes flipped (viscous_step): SolverSummary
   std::vector<char> held_key;  // (restart, stuck per damper): viscous_g_held's cache
   std::deque<std::pair<std::vector<char>, Eigen::MatrixXd>> held_g;
   std::vector<DamperState> states_before;

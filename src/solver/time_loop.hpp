@@ -67,6 +67,12 @@ concept Stepper = requires(S& s, const S& cs, std::size_t n) {
   { cs.history_modes() } -> std::convertible_to<std::size_t>;
 };
 
+// A stepper that counts the steps whose viscous dampers' passes were split (SolverSummary).
+template <class S>
+concept CountsSplitSteps = requires(const S& cs) {
+  { cs.viscous_split_steps() } -> std::convertible_to<std::size_t>;
+};
+
 // A stepper that reports impacts (contact laws).
 template <class S>
 concept ReportsImpacts = requires(S& s) {
@@ -121,6 +127,7 @@ SolverSummary integrate(Obs& observer, Setup&&... setup) {
   result.history_bytes = stepper.history_bytes();
   result.history_error = stepper.history_error();
   result.history_modes = stepper.history_modes();
+  if constexpr (CountsSplitSteps<S>) result.viscous_split_steps = stepper.viscous_split_steps();
   result.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return result;
 }

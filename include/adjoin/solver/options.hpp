@@ -49,6 +49,10 @@ struct SolverSummary {
   std::size_t history_bytes = 0;  // memory held by the history engines
   double history_error = 0.0;     // soe: the largest relative weight error (0: exact engines)
   std::size_t history_modes = 0;  // soe: recurrences per element (Q)
+  // Steps in which a friction damper at its onset and a nonlinear viscous damper on its floors
+  // flipped each other's answer and the step took the mean of the two (structure_solver.cpp's
+  // viscous_step): each carries the viscous force's error over one step.
+  std::size_t viscous_split_steps = 0;
 };
 
 // The most steps a run takes (two-block and building runs alike), and the one message for a
