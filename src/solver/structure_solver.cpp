@@ -257,31 +257,14 @@ class StructureStepper {
       local_solve(step, now);
       return;
     }
-    ws.states_before = ws.states;
-    ws.memory_saved = ws.contact_memory;
-    ws.contact_work_saved = ws.contact_work;
-    ws.bilinear_saved = ws.bilinear;
+    save_local_state();
     double last_change = std::numeric_limits<double>::infinity();
     for (int pass = 0;; ++pass) {
-      if (pass > 0) {
-        ws.states = ws.states_before;
-        ws.contact_memory = ws.memory_saved;
-        ws.contact_work = ws.contact_work_saved;
-        ws.bilinear = ws.bilinear_saved;
-      }
+      if (pass > 0) restore_local_state();
       fold_viscous();
       local_solve(step, now);
-      // The elements' end velocities with these forces, less their own step forces' part, the
-      // stuck friction dampers' answer to them included: w_1 = w~ - G_eff Q with the set stuck.
-      const Eigen::MatrixXd& g_eff = viscous_g_held();
-      ws.viscous_wt.noalias() = g_eff * ws.viscous_q;
-      for (int k = 0; k < m.nv; ++k) {
-        ws.viscous_wt[k] += m.viscous[static_cast<std::size_t>(k)].pair.of(ws.v_free);
-        if (m.nq > 0) ws.viscous_wt[k] -= m.h * ws.sm->viscous_friction.row(k).dot(ws.q_step);
-      }
       ws.viscous_w_pass = ws.viscous_w1;
-      if (!ws.viscous_solver->solve(g_eff, ws.viscous_wt, ws.viscous_w0, end_force, ws.viscous_w1, ws.viscous_q_new))
-        viscous_failed(now.t);
+      solve_viscous_beside(now.t, end_force);
       // Settled when the dampers' velocities are, to 1e-10 of the floors' velocities or where
       // rounding stops their changes falling (below 1e-8). (Not the forces: near w = 0 the law
       // magnifies a rounding change of w, 1e-16 m/s giving 1e-6 of c.)
@@ -297,10 +280,7 @@ class StructureStepper {
         // the two passes' viscous forces and the decision that gives (its error is that of
         // the viscous force over one step, a few per onset; docs/explanation/numerics.md).
         ws.viscous_q = 0.5 * (ws.viscous_q + ws.viscous_q_new);
-        ws.states = ws.states_before;
-        ws.contact_memory = ws.memory_saved;
-        ws.contact_work = ws.contact_work_saved;
-        ws.bilinear = ws.bilinear_saved;
+        restore_local_state();
         fold_viscous();
         local_solve(step, now);
         ++ws.viscous_split_steps;
@@ -335,6 +315,33 @@ class StructureStepper {
     g_eff = 0.5 * (g_eff + g_eff.transpose()).eval();
     ws.held_g.emplace_back(ws.held_key, std::move(g_eff));
     return ws.held_g.back().second;
+  }
+
+  // The viscous dampers' forces with the last pass's dampers, bilinear elements and contact
+  // pairs fixed: their end velocities less their own step forces' part, the stuck friction
+  // dampers' answer to them included (w_1 = w~ - G_eff Q with the set stuck), solved.
+  void solve_viscous_beside(double t, bool end_force) {
+    const Eigen::MatrixXd& g_eff = viscous_g_held();
+    ws.viscous_wt.noalias() = g_eff * ws.viscous_q;
+    for (int k = 0; k < m.nv; ++k) {
+      ws.viscous_wt[k] += m.viscous[static_cast<std::size_t>(k)].pair.of(ws.v_free);
+      if (m.nq > 0) ws.viscous_wt[k] -= m.h * ws.sm->viscous_friction.row(k).dot(ws.q_step);
+    }
+    if (!ws.viscous_solver->solve(g_eff, ws.viscous_wt, ws.viscous_w0, end_force, ws.viscous_w1, ws.viscous_q_new))
+      viscous_failed(t);
+  }
+  // What the local solve changes (to take it again in the next pass).
+  void save_local_state() {
+    ws.states_before = ws.states;
+    ws.memory_saved = ws.contact_memory;
+    ws.contact_work_saved = ws.contact_work;
+    ws.bilinear_saved = ws.bilinear;
+  }
+  void restore_local_state() {
+    ws.states = ws.states_before;
+    ws.contact_memory = ws.memory_saved;
+    ws.contact_work = ws.contact_work_saved;
+    ws.bilinear = ws.bilinear_saved;
   }
 
   // The free step with the viscous dampers' step forces Q: v_base - h A^-1 B_v' Q (and C v).
