@@ -209,6 +209,7 @@ std::string structure_summary_json(const RunSpec& scene, const Report& r, const 
     energy[b == 0 ? "A" : "B"] = {{"input", part.input}, {"kinetic", part.kinetic}, {"inherent_damping", part.inherent},
                                   {"storeys", part.storeys}};
     if (!part.hysteretic.empty()) energy[b == 0 ? "A" : "B"]["hysteretic"] = part.hysteretic;  // (within storeys)
+    if ((b == 0 ? s.a : *s.b).base || (b == 0 ? s.a : *s.b).ground_friction > 0.0) energy[b == 0 ? "A" : "B"]["isolator"] = part.isolator;  // (SPEC §7: slider + pendulum)
   }
   energy["links"] = r.energy.links;
   energy["contacts"] = r.energy.contacts;
@@ -234,6 +235,12 @@ std::string structure_summary_json(const RunSpec& scene, const Report& r, const 
       yield[std::string(1, y.building)] = list;
     }
     j["yield"] = yield;
+  }
+  if (!r.bases.empty()) {  // (SPEC §7: per isolated building)
+    ordered_json base = ordered_json::object();
+    for (const BaseReport& b : r.bases)
+      base[std::string(1, b.building)] = {{"max_abs", b.max_abs}, {"t", b.t}, {"residual", b.residual}, {"switches", b.switches}, {"energy", b.energy}};
+    j["base"] = base;
   }
   if (estimate) j["error_estimate"] = structure_error_json(scene, *estimate, r.collapse.has_value());
   require_finite(j, "", scene.solver.t_end);

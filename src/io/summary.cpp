@@ -170,6 +170,8 @@ std::string summary_json(const Scene& scene, const Report& r, const ErrorEstimat
       j["energy"]["contact"] = e.contact * k.energy;
       j["energy"]["contact_dissipated"] = e.contact_dissipated * k.energy;
     }
+    // (SPEC §7; the residual already subtracts it)
+    if (scene.model->base_friction > 0.0) j["energy"]["base_friction"] = e.base_friction * k.energy;
   } else {
     j["energy"] = nullptr;
   }

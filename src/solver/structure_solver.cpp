@@ -81,13 +81,15 @@ class StructureStepper {
     first.x = m.options.x0.size() == m.n ? m.options.x0 : Eigen::VectorXd::Zero(m.n);
     first.v = m.options.v0.size() == m.n ? m.options.v0 : Eigen::VectorXd::Zero(m.n);
     first.ag = g * ground.ag(0.0);
-    first.link_force = first.link_stroke = first.link_velocity = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m.s.links.size()));
-    first.link_phase.assign(m.s.links.size(), Phase::stick);
+    // (per link, then per isolated base its slider: structure_model.hpp's link_pair)
+    const auto n_links = static_cast<Eigen::Index>(m.link_pair.size());
+    first.link_force = first.link_stroke = first.link_velocity = Eigen::VectorXd::Zero(n_links);
+    first.link_phase.assign(m.link_pair.size(), Phase::stick);
     const auto n_contacts = static_cast<Eigen::Index>(m.s.contacts.size());
     first.contact_force = first.contact_work = first.contact_dissipated = Eigen::VectorXd::Zero(n_contacts);
     first.contact_gap.resize(n_contacts);
     for (std::size_t k = 0; k < m.s.contacts.size(); ++k) first.contact_gap[static_cast<Eigen::Index>(k)] = m.s.contacts[k].gap;
-    first.link_switch.assign(m.s.links.size(), kNaN);
+    first.link_switch.assign(m.link_pair.size(), kNaN);
     for (auto& law : ws.laws) law->commit(0.0, 0.0);
     ws.cv_now = m.c * first.v;  // C v at t_n
 
@@ -200,7 +202,7 @@ class StructureStepper {
       ws.onset[f] = ws.crossing[f] = ws.kink_theta[f] = kNaN;  // (kink_theta: slips ended in the step)
       ws.kink_jump[f] = 0.0;
       ws.decided[f] = DamperState::stick;
-      ws.w_free[f] = ws.v_free[m.fi[f]] - ws.v_free[m.fj[f]];
+      ws.w_free[f] = across(ws.v_free, f);
     }
     ws.any_contact = false;
     if (m.nc > 0) {
@@ -430,7 +432,7 @@ class StructureStepper {
       ws.v_free.noalias() -= ws.sm->a_inv_bc * ws.contact_impulse;
       ws.cv_free.noalias() -= ws.sm->c_a_inv_bc * ws.contact_impulse;
     }
-    for (int f = 0; f < m.nf; ++f) ws.w_free[f] = ws.v_free[m.fi[f]] - ws.v_free[m.fj[f]];
+    for (int f = 0; f < m.nf; ++f) ws.w_free[f] = across(ws.v_free, f);
   }
 
   // The dampers' decisions after t_0: the trial step, each damper's switch (if any), the step
@@ -440,7 +442,7 @@ class StructureStepper {
     solve_held(ws.hold, ws.fixed, &ws.q_trial);
     trial_state(now, ws.q_trial);
     grid_forces(ws.cv1, ws.p1, now.link_phase, &ws.q1, &ws.stick1);
-    for (int f = 0; f < m.nf; ++f) ws.w1[f] = ws.v1[m.fi[f]] - ws.v1[m.fj[f]];
+    for (int f = 0; f < m.nf; ++f) ws.w1[f] = across(ws.v1, f);
     std::fill(ws.hold2.begin(), ws.hold2.end(), false);
     ws.fixed2.setZero();
     for (int f = 0; f < m.nf; ++f) {
@@ -630,7 +632,10 @@ class StructureStepper {
     // (touched: the stuck dampers' floors, ascending, from damper_dofs: sorted and unique.)
     std::fill(ws.touched_flag.begin(), ws.touched_flag.end(), 0);
     for (int f = 0; f < m.nf; ++f)
-      if (ws.states[f] == DamperState::stick) ws.touched_flag[m.pi[f]] = ws.touched_flag[m.pj[f]] = 1;
+      if (ws.states[f] == DamperState::stick) {
+        ws.touched_flag[m.pi[f]] = 1;
+        if (m.pj[f] >= 0) ws.touched_flag[m.pj[f]] = 1;
+      }
     ws.touched.clear();
     for (std::size_t d = 0; d < m.damper_dofs.size(); ++d)
       if (ws.touched_flag[d]) ws.touched.push_back(m.damper_dofs[d]);
@@ -639,6 +644,10 @@ class StructureStepper {
       for (int f = 0; f < m.nf; ++f)
         if (ws.states[f] == DamperState::stick) {
           const int i = m.fi[f], j = m.fj[f];
+          if (j < 0) {  // a base's slider: the base moves with the ground (its relative velocity 0)
+            next.v[i] = 0.0;
+            continue;
+          }
           const double v = (m.mass[i] * next.v[i] + m.mass[j] * next.v[j]) / (m.mass[i] + m.mass[j]);
           next.v[i] = next.v[j] = v;
         }
@@ -785,7 +794,7 @@ class StructureStepper {
     out->setZero();
     for (int f = 0; f < m.nf; ++f) {
       (*out)[m.fi[f]] += q[f];
-      (*out)[m.fj[f]] -= q[f];
+      if (m.fj[f] >= 0) (*out)[m.fj[f]] -= q[f];
     }
   }
   void damper_bt(const Eigen::VectorXd& q) {
@@ -793,15 +802,19 @@ class StructureStepper {
     std::fill_n(out, ws.btq_dampers.size(), 0.0);
     for (int f = 0; f < m.nf; ++f) {
       out[m.pi[f]] += q[f];
-      out[m.pj[f]] -= q[f];
+      if (m.pj[f] >= 0) out[m.pj[f]] -= q[f];
     }
   }
   // Damper f's relative acceleration without the ground, b_f M^-1 (-C v - P - B' q), B' q from
   // damper_bt.
   double relative_accel(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, int f) const {
     const int i = m.fi[f], j = m.fj[f];
-    return (-cv[i] - p[i] - ws.btq_dampers[m.pi[f]]) * m.inv_mass[i] - (-cv[j] - p[j] - ws.btq_dampers[m.pj[f]]) * m.inv_mass[j];
+    const double at_i = (-cv[i] - p[i] - ws.btq_dampers[m.pi[f]]) * m.inv_mass[i];
+    return j < 0 ? at_i : at_i - (-cv[j] - p[j] - ws.btq_dampers[m.pj[f]]) * m.inv_mass[j];
   }
+  // Damper f's relative velocity (or any quantity across it) in `v`: v_i - v_j, v_j = 0 at the
+  // ground (a base's slider).
+  double across(const Eigen::VectorXd& v, int f) const { return v[m.fi[f]] - (m.fj[f] >= 0 ? v[m.fj[f]] : 0.0); }
   // Grid-point forces: slipping dampers at +-F; the stuck ones carry what keeps their relative
   // acceleration zero, (B_s M^-1 B_s') q_s = B_s M^-1 (M 1 a_g - C v - P - B_l' q_l) (the ground
   // term cancels: B 1 = 0). Also returns each damper's stick force (unclamped) for onsets.
@@ -857,6 +870,14 @@ class StructureStepper {
     };
     building(m.s.a, 0);
     if (m.s.b) building(*m.s.b, m.s.a.floors());
+    // An isolated building's storey 1 joins its base, not the ground (SPEC §7).
+    for (char name : {'A', 'B'}) {
+      const int base = m.s.base_dof(name);
+      if (base < 0) continue;
+      const int k = m.s.dof(name, 1);
+      const bool dashpots = name == 'A' ? m.dashpots_a : m.dashpots_b;
+      st.storey_force[k] -= m.storey_spring[k] * st.x[base] + (dashpots ? m.storey_dashpot[k] * st.v[base] : 0.0);
+    }
     for (std::size_t e = 0; e < m.zener.size(); ++e)
       if (m.zener[e].storey >= 0) st.storey_force[m.zener[e].storey] += ws.zener_force[e];
     for (int k = 0; k < m.nv; ++k)
@@ -872,10 +893,11 @@ class StructureStepper {
   }
   void fill_links(StructureState& st, const Eigen::VectorXd& q_friction) const {
     fill_storeys(st);
-    for (std::size_t l = 0; l < m.s.links.size(); ++l) {
+    for (std::size_t l = 0; l < m.link_pair.size(); ++l) {
       const Pair& p = m.link_pair[l];
       st.link_stroke[l] = p.of(st.x);
       st.link_velocity[l] = p.of(st.v);
+      if (l >= m.s.links.size()) continue;  // a base's slider: a friction damper (below)
       const auto& link = m.s.links[l];
       if (link.type == LinkType::spring) st.link_force[l] = link.k * st.link_stroke[l];
       if (link.type == LinkType::dashpot) st.link_force[l] = link.c * st.link_velocity[l];
