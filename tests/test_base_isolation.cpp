@@ -132,7 +132,7 @@ TEST_CASE("a rigid block on a flat slider under a sine ground motion follows its
   for (double h : {2e-3, 1e-3}) {
     const Recorder r = run(s, h, 2.4, ground);
     const std::vector<double> located = switches(r);
-    REQUIRE(located.size() == 10);  // onset and stop, forward and backward, over 2.4 periods (5 slips)
+    REQUIRE(located.size() == 9);  // onsets and stops, forward and backward, to t = 2.4 (the fifth slip stops at 2.53)
     double e = 0.0;
     for (std::size_t k = 0; k < located.size(); ++k) {
       const double exact = (k % 2 == 0 ? t1 : t2) + 0.5 * period * static_cast<double>(k / 2);
@@ -172,7 +172,10 @@ TEST_CASE("a block on a friction pendulum reverses every half period pi sqrt(R /
   const int base = s.base_dof('A');
   const NoGround ground;
   const Recorder r = run(s, 1e-3, 12.0, ground, v0);
-  const std::vector<double> located = switches(r);
+  std::vector<double> located = switches(r);
+  REQUIRE(!located.empty());
+  CHECK(located[0] <= 1e-3);  // launched: stuck at t = 0, slipping from the first step
+  located.erase(located.begin());
   REQUIRE(located.size() >= 6);
   // Reversals: the first at W t = atan2(v0 W, mu g) (x = -mu R + mu R cos W t + v0/W sin W t).
   const double first = std::atan2(v0 * omega, mu * g) / omega;

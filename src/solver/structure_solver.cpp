@@ -133,6 +133,7 @@ class StructureStepper {
   void begin_step(std::size_t step, StructureState& next) {
     next.t = static_cast<double>(step + 1) * m.h;
     next.ag = g * ground.ag(next.t);
+    ag_next = next.ag;
     // The Zener elements' history terms: constant through the step (until commit).
     for (std::size_t e = 0; e < ws.laws.size(); ++e) ws.offsets[static_cast<Eigen::Index>(e)] = ws.laws[e]->offset();
     if (!m.zener.empty() || m.nh > 0) {  // (else it stays zero)
@@ -441,7 +442,7 @@ class StructureStepper {
     hold_as_phased(now);
     solve_held(ws.hold, ws.fixed, &ws.q_trial);
     trial_state(now, ws.q_trial);
-    grid_forces(ws.cv1, ws.p1, now.link_phase, &ws.q1, &ws.stick1);
+    grid_forces(ws.cv1, ws.p1, ag_next, now.link_phase, &ws.q1, &ws.stick1);
     for (int f = 0; f < m.nf; ++f) ws.w1[f] = across(ws.v1, f);
     std::fill(ws.hold2.begin(), ws.hold2.end(), false);
     ws.fixed2.setZero();
@@ -552,8 +553,8 @@ class StructureStepper {
                          : (w_now != ws.w1[f] ? std::clamp(w_now / (w_now - ws.w1[f]), 0.0, 1.0) : 1.0);
     ws.crossing[f] = theta;
     // The force that would keep it stuck, at t_n and at the end of slipping on.
-    const double s0 = would_stick(ws.cv_now, m.nc > 0 || m.nv > 0 ? ws.total_now : ws.internal, ws.friction_now, f);
-    const double s1 = would_stick(ws.cv1, ws.p1, ws.q1, f);
+    const double s0 = would_stick(ws.cv_now, m.nc > 0 || m.nv > 0 ? ws.total_now : ws.internal, now.ag, ws.friction_now, f);
+    const double s1 = would_stick(ws.cv1, ws.p1, ag_next, ws.q1, f);
     const double at = s0 + theta * (s1 - s0);
     ws.kink_theta[f] = theta;
     if (std::abs(at) <= lim) {
@@ -728,7 +729,7 @@ class StructureStepper {
     if (m.nv > 0 && viscous_end_forces(next) && m.viscous_restarts) ws.restart_left = std::max(ws.restart_left, 1);
     if (m.nc > 0 || m.nv > 0) ws.total_next = ws.p_next + ws.contact_bt + ws.viscous_bt;
     const Eigen::VectorXd& p_grid = m.nc > 0 || m.nv > 0 ? ws.total_next : ws.p_next;
-    grid_forces(ws.cv_next, p_grid, next.link_phase, &ws.q_grid, &ws.stick_grid);
+    grid_forces(ws.cv_next, p_grid, next.ag, next.link_phase, &ws.q_grid, &ws.stick_grid);
     // Absolute accelerations at the grid point: x'' - a_g.
     // The dampers' forces B' q are added at their floors only.
     kernels.accelerations(m.n, m.mass.data(), m.inv_mass.data(), ws.cv_next.data(), p_grid.data(), next.ag, next.a_abs.data());
@@ -805,21 +806,22 @@ class StructureStepper {
       if (m.pj[f] >= 0) out[m.pj[f]] -= q[f];
     }
   }
-  // Damper f's relative acceleration without the ground, b_f M^-1 (-C v - P - B' q), B' q from
+  // Damper f's relative acceleration, b_f M^-1 (-C v - P - B' q) (+ a_g against the ground), B' q from
   // damper_bt.
-  double relative_accel(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, int f) const {
+  // Against the ground (a base's slider, j = -1) the ground term stays: + a_g.
+  double relative_accel(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, double ag, int f) const {
     const int i = m.fi[f], j = m.fj[f];
     const double at_i = (-cv[i] - p[i] - ws.btq_dampers[m.pi[f]]) * m.inv_mass[i];
-    return j < 0 ? at_i : at_i - (-cv[j] - p[j] - ws.btq_dampers[m.pj[f]]) * m.inv_mass[j];
+    return j < 0 ? at_i + ag : at_i - (-cv[j] - p[j] - ws.btq_dampers[m.pj[f]]) * m.inv_mass[j];
   }
   // Damper f's relative velocity (or any quantity across it) in `v`: v_i - v_j, v_j = 0 at the
   // ground (a base's slider).
   double across(const Eigen::VectorXd& v, int f) const { return v[m.fi[f]] - (m.fj[f] >= 0 ? v[m.fj[f]] : 0.0); }
   // Grid-point forces: slipping dampers at +-F; the stuck ones carry what keeps their relative
   // acceleration zero, (B_s M^-1 B_s') q_s = B_s M^-1 (M 1 a_g - C v - P - B_l' q_l) (the ground
-  // term cancels: B 1 = 0). Also returns each damper's stick force (unclamped) for onsets.
+  // term cancels: B 1 = 0, but for a damper against the ground, relative_accel). Also returns each damper's stick force (unclamped) for onsets.
   // `cv` is C v. Only the dampers' floors are needed: O(nf^2).
-  void grid_forces(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const std::vector<Phase>& phase, Eigen::VectorXd* q,
+  void grid_forces(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, double ag, const std::vector<Phase>& phase, Eigen::VectorXd* q,
                    Eigen::VectorXd* stick) {
     double* qd = q->data();
     double* sd = stick->data();
@@ -839,7 +841,7 @@ class StructureStepper {
     const int n_stuck = static_cast<int>(ws.stuck.size());
     detail::SubsetInverses::System& sys = ws.stuck_systems.of(ws.stuck);
     double* b = sys.b.data();
-    for (int i = 0; i < n_stuck; ++i) b[i] = relative_accel(cv, p, ws.stuck[i]);
+    for (int i = 0; i < n_stuck; ++i) b[i] = relative_accel(cv, p, ag, ws.stuck[i]);
     sys.solve();
     const double* x = sys.x.data();
     for (int i = 0; i < n_stuck; ++i) {
@@ -850,11 +852,11 @@ class StructureStepper {
   }
   // The force that would keep slipping damper f stuck at this instant, the others at their
   // forces q: b_f M^-1 (-C v - P - sum_{g != f} b_g q_g) / (b_f M^-1 b_f').
-  double would_stick(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const Eigen::VectorXd& q, int f) {
+  double would_stick(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, double ag, const Eigen::VectorXd& q, int f) {
     ws.others = q;
     ws.others[f] = 0.0;
     damper_bt(ws.others);
-    return relative_accel(cv, p, f) / m.g_all(f, f);
+    return relative_accel(cv, p, ag, f) / m.g_all(f, f);
   }
 
   void fill_storeys(StructureState& st) const {
@@ -909,6 +911,7 @@ class StructureStepper {
   }
   // ---- the model (constant), the workspace (the run's state), the ground ----
   static constexpr double g = kStandardGravity;
+  double ag_next = 0.0;  // a_g at t_n+1 (for the dampers against the ground, at the trial's end)
   const detail::StructureModel m;
   detail::StepWorkspace ws;
   const GroundMotion& ground;
