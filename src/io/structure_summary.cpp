@@ -308,6 +308,12 @@ std::string structure_brief_report(const RunSpec& scene, const Report& r, const 
       o << ", " << r.links[l].switches << (r.links[l].switches == 1 ? " switch" : " switches");
     o << "\n";
   }
+  for (const BaseReport& b : r.bases) {  // (SPEC §7: an isolated base)
+    const structure::Building& building = b.building == 'A' ? s.a : *s.b;
+    std::snprintf(line, sizeof line, "base %c (%s): x0 max %.4g m at t = %.4g s, residual %.4g m, %zu %s, slider energy %.4g J\n", b.building,
+                  to_string(building.base->model).c_str(), b.max_abs, b.t, b.residual, b.switches, b.switches == 1 ? "switch" : "switches", b.energy);
+    o << line;
+  }
   for (std::size_t k = 0; k < s.contacts.size(); ++k) {
     const ContactReport& c = r.contacts[k];
     const structure::Contact& pair = s.contacts[k];

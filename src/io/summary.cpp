@@ -288,6 +288,10 @@ std::string brief_report(const Scene& scene, const Report& r, const ErrorEstimat
       std::snprintf(line, sizeof line, "contact %.6g, ", e.contact * k.energy);
       s << line;
     }
+    if (scene.model->base_friction > 0.0) {  // (SPEC §7)
+      std::snprintf(line, sizeof line, "base friction %.6g, ", e.base_friction * k.energy);
+      s << line;
+    }
     std::snprintf(line, sizeof line, "residual %.3g\n", e.residual * k.energy);
     s << line;
   }
