@@ -73,10 +73,10 @@ void StructureModel::check_inputs() const {
       if (b)
         for (const auto& d : b->devices) relaxed = relaxed || d.type == DeviceType::zener || d.type == DeviceType::bilinear;
     for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
-      if (b) relaxed = relaxed || b->hysteresis.model != structure::HysteresisModel::elastic;
+      if (b) relaxed = relaxed || b->hysteresis.model != structure::HysteresisModel::elastic || b->base || b->ground_friction > 0.0;
     for (const auto& l : s.links) relaxed = relaxed || l.type == LinkType::zener || l.type == LinkType::friction;
     if (relaxed)
-      throw InputError("initial displacements need a structure without Zener elements, friction links and yielding storeys or devices");
+      throw InputError("initial displacements need a structure without Zener elements, friction links, yielding storeys or devices and sliding bases");
   }
 }
 
