@@ -6,11 +6,13 @@
 //    period pi sqrt(R / g) apart, its amplitude falling by 2 mu R per half cycle.
 //  - The energy balance with an isolated building (isolator term) closes at order 2.
 #include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 #include <cmath>
 #include <functional>
 #include <vector>
 
 #include "adjoin/core/errors.hpp"
+#include "cli_helpers.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/observe/energy.hpp"
 #include "adjoin/solver/simulate.hpp"
@@ -343,4 +345,26 @@ TEST_CASE("base friction is refused with the paper scheme", "[base][two_block]")
   o.scheme = Scheme::paper;
   TwoBlockRecorder r;
   CHECK_THROWS_AS(simulate(o, model, Pulse(1.0, 3.0), r), InputError);
+}
+
+// The outputs (SPEC §7): summary.json's `base`, the energy's `isolator`, X.x0 in `peaks`,
+// `residual` and timeseries.csv; the terminal's base line.
+TEST_CASE("adjoin run writes an isolated base's outputs", "[base][cli]") {
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "isolated-run";
+  std::filesystem::remove_all(dir);
+  const auto r = test::run_cli("run '" + kIsolated + "' --set solver.t_end=3 --set output.timeseries=true --out '" + dir.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("base B (friction-pendulum): x0 max") != std::string::npos);
+  const auto j = nlohmann::json::parse(test::slurp(dir / "summary.json"));
+  const auto& base = j["base"]["B"];
+  for (const char* key : {"max_abs", "t", "residual", "switches", "energy"}) CHECK(base.contains(key));
+  CHECK(base["max_abs"].get<double>() == j["peaks"]["B.x0"]["max_abs"].get<double>());
+  CHECK(base["residual"].get<double>() == j["residual"]["B.x0"].get<double>());
+  CHECK(base["switches"].get<int>() > 0);
+  CHECK(j["energy"]["B"]["isolator"].get<double>() >= base["energy"].get<double>());  // (+ the pendulum's stored energy)
+  CHECK_FALSE(j["energy"]["A"].contains("isolator"));
+  CHECK_FALSE(j["base"].contains("A"));
+  const std::string header = test::slurp(dir / "timeseries.csv").substr(0, 200);
+  CHECK(header.find("B.x0,B.x1") != std::string::npos);
 }
