@@ -42,6 +42,7 @@ const std::vector<KeySpec>& schema() {
       {"model.units", Kind::string},
       {"model.rho", Kind::number},        {"model.eps", Kind::number},
       {"model.mu", Kind::number},         {"model.gap0", Kind::number},
+      {"model.base_friction", Kind::number},
       {"model.m1", Kind::number},         {"model.m2", Kind::number},
       {"model.k1", Kind::number},         {"model.k2", Kind::number},
       {"model.slip_force", Kind::number},
@@ -406,6 +407,11 @@ void read_model(const SceneReader& r, Scene& scene) {
   } else {
     r.fail("model.units", "model.units = " + escaped_excerpt(units) + " must be \"dimensionless\" or \"SI\"");
   }
+  // mu_b, a friction coefficient in either unit system (SPEC §7).
+  m.base_friction = r.number("model.base_friction", 0.0);
+  if (!(m.base_friction >= 0.0 && m.base_friction <= 1.0))
+    r.fail("model.base_friction", "model.base_friction = " + format_number(m.base_friction) +
+                                      " must lie in [0, 1] (the blocks' friction coefficient on their bases; 0: none)");
   for (const char* rod : {"model.rod1", "model.rod2"})
     if (!r.has(rod)) r.fail(rod, std::string("missing section [") + rod + "]");
   m.rod1 = read_rod(r, "model.rod1", scene.scales.time);
@@ -449,6 +455,9 @@ void read_solver(const SceneReader& r, Scene& scene) {
   if (contact != structure::ContactModel::none && o.scheme == Scheme::paper)
     r.fail("solver.scheme", "solver.scheme = " + escaped_excerpt(scheme) + ": the contact laws need the implicit scheme (model.contact.model = \"" +
                                 to_string(contact) + "\"); remove solver.scheme (the default is \"implicit\") or choose an implicit one");
+  if (scene.model && scene.model->base_friction > 0.0 && o.scheme == Scheme::paper)
+    r.fail("solver.scheme", "solver.scheme = " + escaped_excerpt(scheme) + ": the base friction (model.base_friction) runs on the implicit schemes only; "
+                            "remove solver.scheme (the default is \"implicit\") or choose an implicit one");
 
 }
 

@@ -260,11 +260,35 @@ structure::StoreyHysteresis read_hysteresis(const toml::table& building, const T
   return y;
 }
 
+// An isolated base (SPEC §7): [building.X.base] mass, model ("flat-slider" or
+// "friction-pendulum"), friction (mu > 0, of the total weight), radius (friction-pendulum only).
+structure::Base read_base(const toml::table& building, const TableReader& r) {
+  const toml::table* t = building.get_as<toml::table>("base");
+  if (!t) r.fail("base", "expected a table: [building.X.base] with mass, model, friction (and radius)");
+  const TableReader br = r.inner(*t, r.path() + ".base");
+  br.only({"mass", "model", "friction", "radius"});
+  structure::Base base;
+  base.mass = br.number("mass");
+  if (!(base.mass > 0.0)) br.fail("mass", "expected a positive base mass (kg)");
+  if (const std::string problem = kMassRange.problem(base.mass); !problem.empty()) br.fail("mass", problem);
+  base.model = br.choice<structure::BaseModel>("model");
+  base.friction = br.number("friction");
+  if (!(base.friction > 0.0 && base.friction < 1.0))
+    br.fail("friction", "expected a friction coefficient mu in (0, 1) (of the weight of the base and the floors above)");
+  if (base.model == structure::BaseModel::friction_pendulum) {
+    base.radius = br.number("radius");
+    if (!(base.radius > 0.0)) br.fail("radius", "expected a positive radius of curvature (m)");
+  } else if (br.has("radius")) {
+    br.fail("radius", "a flat slider has no radius; remove it, or use model = \"friction-pendulum\"");
+  }
+  return base;
+}
+
 Building read_building(const toml::table& root, const std::string& name, const TableReader& top) {
   const toml::table* t = root["building"][name].as_table();
   const TableReader r = top.inner(*t, "building." + name);
   r.only({"storeys", "mass", "masses", "stiffness", "stiffnesses", "period", "damping", "device", "height", "heights", "p_delta",
-          "collapse_drift_ratio", "hysteresis"});
+          "collapse_drift_ratio", "hysteresis", "base"});
   Building b;
   b.name = name;
   const int n = r.integer("storeys", 1, structure::kMaxStoreys);
@@ -356,6 +380,7 @@ Building read_building(const toml::table& root, const std::string& name, const T
   }
   if (const std::string problem = structure::storey_stiffness_problem(b); !problem.empty()) r.fail("", problem);
   read_heights(r, &b);
+  if (r.has("base")) b.base = read_base(*t, r);
   return b;
 }
 

@@ -221,6 +221,7 @@ std::string structure_summary_json(const RunSpec& scene, const Report& r, const 
     energy[b == 0 ? "A" : "B"] = {{"input", part.input}, {"kinetic", part.kinetic}, {"inherent_damping", part.inherent},
                                   {"storeys", part.storeys}};
     if (!part.hysteretic.empty()) energy[b == 0 ? "A" : "B"]["hysteretic"] = part.hysteretic;  // (within storeys)
+    if ((b == 0 ? s.a : *s.b).base || (b == 0 ? s.a : *s.b).ground_friction > 0.0) energy[b == 0 ? "A" : "B"]["isolator"] = part.isolator;  // (SPEC §7: slider + pendulum)
   }
   energy["links"] = r.energy.links;
   energy["contacts"] = r.energy.contacts;
@@ -246,6 +247,12 @@ std::string structure_summary_json(const RunSpec& scene, const Report& r, const 
       yield[std::string(1, y.building)] = list;
     }
     j["yield"] = yield;
+  }
+  if (!r.bases.empty()) {  // (SPEC §7: per isolated building)
+    ordered_json base = ordered_json::object();
+    for (const BaseReport& b : r.bases)
+      base[std::string(1, b.building)] = {{"max_abs", b.max_abs}, {"t", b.t}, {"residual", b.residual}, {"switches", b.switches}, {"energy", b.energy}};
+    j["base"] = base;
   }
   if (estimate) j["error_estimate"] = structure_error_json(scene, *estimate, r.collapse.has_value());
   require_finite(j, "", scene.solver.t_end);
@@ -312,6 +319,12 @@ std::string structure_brief_report(const RunSpec& scene, const Report& r, const 
     if (s.links[l].type == structure::LinkType::friction)
       o << ", " << r.links[l].switches << (r.links[l].switches == 1 ? " switch" : " switches");
     o << "\n";
+  }
+  for (const BaseReport& b : r.bases) {  // (SPEC §7: an isolated base)
+    const structure::Building& building = b.building == 'A' ? s.a : *s.b;
+    std::snprintf(line, sizeof line, "base %c (%s): x0 max %.4g m at t = %.4g s, residual %.4g m, %zu %s, slider energy %.4g J\n", b.building,
+                  to_string(building.base->model).c_str(), b.max_abs, b.t, b.residual, b.switches, b.switches == 1 ? "switch" : "switches", b.energy);
+    o << line;
   }
   for (std::size_t k = 0; k < s.contacts.size(); ++k) {
     const ContactReport& c = r.contacts[k];

@@ -170,6 +170,8 @@ std::string summary_json(const Scene& scene, const Report& r, const ErrorEstimat
       j["energy"]["contact"] = e.contact * k.energy;
       j["energy"]["contact_dissipated"] = e.contact_dissipated * k.energy;
     }
+    // (SPEC §7; the residual already subtracts it)
+    if (scene.model->base_friction > 0.0) j["energy"]["base_friction"] = e.base_friction * k.energy;
   } else {
     j["energy"] = nullptr;
   }
@@ -284,6 +286,10 @@ std::string brief_report(const Scene& scene, const Report& r, const ErrorEstimat
     s << line;
     if (scene.model->contact.model != structure::ContactModel::none) {
       std::snprintf(line, sizeof line, "contact %.6g, ", e.contact * k.energy);
+      s << line;
+    }
+    if (scene.model->base_friction > 0.0) {  // (SPEC §7)
+      std::snprintf(line, sizeof line, "base friction %.6g, ", e.base_friction * k.energy);
       s << line;
     }
     std::snprintf(line, sizeof line, "residual %.3g\n", e.residual * k.energy);

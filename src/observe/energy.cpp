@@ -19,6 +19,7 @@ void EnergyObserver::observe(const State& s) {
     balance_.rod1 += half_dt * (p.f1 * p.v1 + s.f1 * s.v1);
     balance_.rod2 += half_dt * (p.f2 * p.v2 + s.f2 * s.v2);
     balance_.friction += half_dt * (p.q * (p.v1 - p.v2) + s.q * (s.v1 - s.v2));
+    balance_.base_friction += half_dt * (p.qb1 * p.v1 + p.qb2 * p.v2 + s.qb1 * s.v1 + s.qb2 * s.v2);
   }
   balance_.t = s.t;
   balance_.kinetic = 0.5 * s.v1 * s.v1 + 0.5 * s.v2 * s.v2 / rho_;
@@ -30,6 +31,7 @@ void EnergyObserver::observe(const State& s) {
   } else {
     balance_.residual = balance_.input - (balance_.kinetic + balance_.rod1 + balance_.rod2 + balance_.friction);
   }
+  if (balance_.base_friction != 0.0) balance_.residual -= balance_.base_friction;
   if (keep_history_ && count_ % every_ == 0) history_.push_back(balance_);
   previous_ = s;
   ++count_;

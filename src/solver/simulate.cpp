@@ -45,6 +45,8 @@ SolverSummary simulate(const SolverOptions& options, const Model& model, const G
   // the run (set-up included).
   if (options.scheme == Scheme::paper && model.contact.model != structure::ContactModel::none)
     throw InputError("solver.scheme = \"paper\": a contact law (model.contact) runs on the implicit schemes only; use solver.scheme = \"implicit\"");
+  if (options.scheme == Scheme::paper && model.base_friction > 0.0)
+    throw InputError("solver.scheme = \"paper\": the base friction (model.base_friction) runs on the implicit schemes only; use solver.scheme = \"implicit\"");
   SolverSummary summary = options.scheme == Scheme::paper
                               ? detail::run_paper_scheme(options, model, ground, observer)
                               : detail::run_two_block_on_structure(options, model, ground, observer);

@@ -73,10 +73,10 @@ void StructureModel::check_inputs() const {
       if (b)
         for (const auto& d : b->devices) relaxed = relaxed || d.type == DeviceType::zener || d.type == DeviceType::bilinear;
     for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
-      if (b) relaxed = relaxed || b->hysteresis.model != structure::HysteresisModel::elastic;
+      if (b) relaxed = relaxed || b->hysteresis.model != structure::HysteresisModel::elastic || b->base || b->ground_friction > 0.0;
     for (const auto& l : s.links) relaxed = relaxed || l.type == LinkType::zener || l.type == LinkType::friction;
     if (relaxed)
-      throw InputError("initial displacements need a structure without Zener elements, friction links and yielding storeys or devices");
+      throw InputError("initial displacements need a structure without Zener elements, friction links, yielding storeys or devices and sliding bases");
   }
 }
 
@@ -101,17 +101,34 @@ void StructureModel::assemble_elements(Assembly& a) {
   };
   auto add_building = [&](const structure::Building& b, int offset) {
     const int nb = b.floors();
+    const char name = offset == 0 ? 'A' : 'B';
+    // The dof under 0-based storey st: the floor below, the base (SPEC §7) or the ground (-1).
+    auto lower = [&](int st) { return s.below(name, st + 1); };
     mass.segment(offset, nb) = b.masses;
-    c.block(offset, offset, nb, nb) = structure::inherent_damping_matrix(b) + structure::dashpot_matrix(b);
-    for (int st = 0; st < nb; ++st) Pair{offset + st, st > 0 ? offset + st - 1 : -1}.add(a.k0_dense, b.springs[st]);
+    const Eigen::MatrixXd c_fixed = structure::inherent_damping_matrix(b) + structure::dashpot_matrix(b);
+    c.block(offset, offset, nb, nb) = c_fixed;
+    if (b.base) {
+      // An isolated base: its mass, and the fixed-base superstructure's damping acting on the
+      // floors' velocities relative to the base, v - v_b 1: C = T' C_fixed T with
+      // T = [-1 | I] (base, floors), none on the base's own velocity (the slider is its only
+      // damping). The FP's restoring stiffness W / R joins the base to the ground.
+      const int base = s.base_dof(name);
+      mass[base] = b.base->mass;
+      const Eigen::VectorXd c1 = c_fixed.rowwise().sum();
+      c(base, base) = c1.sum();
+      c.block(offset, base, nb, 1) = -c1;
+      c.block(base, offset, 1, nb) = -c1.transpose();
+      Pair{base, -1}.add(a.k0_dense, b.base_stiffness());
+    }
+    for (int st = 0; st < nb; ++st) Pair{offset + st, lower(st)}.add(a.k0_dense, b.springs[st]);
     // P-Delta (SPEC §7): each storey's geometric stiffness -P_i/h_i joins K0 (C above stays K0's without it).
     if (b.p_delta) {
       const Eigen::VectorXd kg = b.geometric_stiffness();
-      for (int st = 0; st < nb; ++st) Pair{offset + st, st > 0 ? offset + st - 1 : -1}.add(a.k0_dense, kg[st]);
+      for (int st = 0; st < nb; ++st) Pair{offset + st, lower(st)}.add(a.k0_dense, kg[st]);
     }
     for (const auto& d : b.devices)
       for (int st : d.storeys) {
-        const Pair p{offset + st - 1, st > 1 ? offset + st - 2 : -1};
+        const Pair p{offset + st - 1, lower(st - 1)};
         if (d.type == DeviceType::spring) p.add(a.k0_dense, d.k);
         if (d.type == DeviceType::dashpot && d.alpha != 1.0) add_viscous(p, offset + st - 1, -1, d.c, d.alpha);
         if (d.type == DeviceType::zener) zener.push_back(zener_element(p, offset + st - 1, d.zener));
@@ -123,7 +140,7 @@ void StructureModel::assemble_elements(Assembly& a) {
     // A bilinear storey spring: k stays in K0; its series element's slip is an offset.
     if (b.hysteresis.model == structure::HysteresisModel::bilinear)
       for (int st = 0; st < nb; ++st) {
-        const Pair p{offset + st, st > 0 ? offset + st - 1 : -1};
+        const Pair p{offset + st, lower(st)};
         const double b_ = b.hysteresis.hardening, kh = (1.0 - b_) * b.springs[st];
         bilinear.push_back({p.i, p.j, offset + st, true, kh, (1.0 - b_) * b.hysteresis.yield_forces[st]});
       }
@@ -144,6 +161,17 @@ void StructureModel::assemble_elements(Assembly& a) {
     if (link.type == LinkType::zener) zener.push_back(zener_element(p, -1, link.zener));
     if (link.type == LinkType::friction) friction.push_back(static_cast<int>(l));
     else a.coupled = true;
+  }
+  // The isolated bases' sliders (SPEC §7): friction dampers between the base and the ground,
+  // after the links (their damper index and their place in the state's link arrays:
+  // links.size() + k, k = 0 for A's base if any, then B's). A base's dof lies after every
+  // floor, outside its building's block of A: one block for the whole.
+  // (The two-block scene's base friction under floor 1 is one too, in its building's block.)
+  for (const structure::GroundSlider& slider : s.ground_sliders()) {
+    friction.push_back(static_cast<int>(link_pair.size()));
+    link_pair.push_back(Pair{slider.dof, -1});
+    base_slip_force.push_back(slider.slip_force);
+    a.coupled = a.coupled || slider.base;
   }
   // Zener links come after the storey devices in `zener`; remember where each link's is.
   link_zener.assign(s.links.size(), -1);
@@ -174,8 +202,9 @@ void StructureModel::assemble_dampers(Assembly& a) {
   for (int f = 0; f < nf; ++f) {
     const Pair& p = link_pair[friction[f]];
     a.bf(f, p.i) = 1.0;
-    a.bf(f, p.j) = -1.0;
-    limit[f] = s.links[friction[f]].slip_force;
+    if (p.j >= 0) a.bf(f, p.j) = -1.0;  // (a base's slider: j is the ground)
+    const auto l = static_cast<std::size_t>(friction[f]);
+    limit[f] = l < s.links.size() ? s.links[l].slip_force : base_slip_force[l - s.links.size()];
   }
   // The bilinear elements follow the dampers among the QP's unknowns (held while they slip).
   nh = static_cast<int>(bilinear.size());
@@ -325,7 +354,9 @@ void StructureModel::prepare_trial() {
   // The trial step (the dampers' decisions) is read at the dampers' floors only: there its
   // velocities, damping forces and P, for which x at those floors' stiffness columns and at
   // the other ends of their Zener elements.
-  for (int f = 0; f < nf; ++f) damper_dofs.insert(damper_dofs.end(), {fi[f], fj[f]});
+  for (int f = 0; f < nf; ++f)
+    for (int d : {fi[f], fj[f]})
+      if (d >= 0) damper_dofs.push_back(d);  // (a base's slider has the ground at j)
   std::sort(damper_dofs.begin(), damper_dofs.end());
   damper_dofs.erase(std::unique(damper_dofs.begin(), damper_dofs.end()), damper_dofs.end());
   for (int k : damper_dofs) {
@@ -377,7 +408,7 @@ void StructureModel::prepare_trial() {
   pj.resize(nf);
   for (int f = 0; f < nf; ++f) {
     pi[f] = static_cast<int>(std::lower_bound(damper_dofs.begin(), damper_dofs.end(), fi[f]) - damper_dofs.begin());
-    pj[f] = static_cast<int>(std::lower_bound(damper_dofs.begin(), damper_dofs.end(), fj[f]) - damper_dofs.begin());
+    pj[f] = fj[f] < 0 ? -1 : static_cast<int>(std::lower_bound(damper_dofs.begin(), damper_dofs.end(), fj[f]) - damper_dofs.begin());
   }
 }
 
@@ -403,7 +434,7 @@ void StructureModel::assemble_storeys() {
   if (s.b) storeys_of(*s.b, s.a.floors());
   const Eigen::Map<const Eigen::VectorXd> dashpot_of(storey_dashpot.data(), n);
   dashpots_a = !dashpot_of.head(s.a.floors()).isZero(0.0);
-  dashpots_b = !dashpot_of.tail(n - s.a.floors()).isZero(0.0);
+  dashpots_b = !dashpot_of.tail(n - s.a.floors()).isZero(0.0);  // (with the bases' dofs: no storeys, zeros)
 }
 
 }  // namespace adjoin::detail

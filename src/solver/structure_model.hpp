@@ -126,8 +126,9 @@ class StructureModel {
   Eigen::MatrixXd c;  // C, the inherent damping and the dashpots
   std::vector<ZenerElement> zener;
   std::map<double, std::vector<double>> weights;  // the Zener elements' quadrature weights, per order
-  std::vector<Pair> link_pair;
-  std::vector<int> friction;    // link indices
+  std::vector<Pair> link_pair;  // per link, then per ground slider (an isolated base's, a base friction's): (dof, ground)
+  std::vector<double> base_slip_force;  // per ground slider (Structure::ground_sliders()), its slip force
+  std::vector<int> friction;    // link indices (a base's slider: links.size() + its base's index)
   std::vector<int> link_zener;  // per link, its Zener element (or -1)
   Banded k0, k_eff;             // K0 and K_eff (with the Zener elements' effective stiffness)
   std::vector<double> storey_spring, storey_dashpot;  // per storey: springs and spring devices; dashpots
@@ -148,7 +149,7 @@ class StructureModel {
   std::vector<int> damper_dofs, trial_dofs;  // the dampers' floors; the floors the trial step reads
   std::vector<std::vector<std::pair<int, double>>> damper_zener;  // per damper dof: (element, sign), in order
   Eigen::Index nt = 0, nd = 0;  // trial_dofs.size(), damper_dofs.size()
-  std::vector<int> pi, pj;      // each damper's floors' places in damper_dofs
+  std::vector<int> pi, pj;      // each damper's floors' places in damper_dofs (pj -1: the ground)
 
   // ---- the bilinear elements (bilinear_step.hpp): the QP's unknowns after the dampers' ----
   std::vector<BilinearElement> bilinear;

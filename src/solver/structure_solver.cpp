@@ -82,13 +82,15 @@ class StructureStepper {
     first.x = m.options.x0.size() == m.n ? m.options.x0 : Eigen::VectorXd::Zero(m.n);
     first.v = m.options.v0.size() == m.n ? m.options.v0 : Eigen::VectorXd::Zero(m.n);
     first.ag = g * ground.ag(0.0);
-    first.link_force = first.link_stroke = first.link_velocity = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(m.s.links.size()));
-    first.link_phase.assign(m.s.links.size(), Phase::stick);
+    // (per link, then per isolated base its slider: structure_model.hpp's link_pair)
+    const auto n_links = static_cast<Eigen::Index>(m.link_pair.size());
+    first.link_force = first.link_stroke = first.link_velocity = Eigen::VectorXd::Zero(n_links);
+    first.link_phase.assign(m.link_pair.size(), Phase::stick);
     const auto n_contacts = static_cast<Eigen::Index>(m.s.contacts.size());
     first.contact_force = first.contact_work = first.contact_dissipated = Eigen::VectorXd::Zero(n_contacts);
     first.contact_gap.resize(n_contacts);
     for (std::size_t k = 0; k < m.s.contacts.size(); ++k) first.contact_gap[static_cast<Eigen::Index>(k)] = m.s.contacts[k].gap;
-    first.link_switch.assign(m.s.links.size(), kNaN);
+    first.link_switch.assign(m.link_pair.size(), kNaN);
     for (auto& law : ws.laws) law->commit(0.0, 0.0);
     ws.cv_now = m.c * first.v;  // C v at t_n
 
@@ -132,6 +134,7 @@ class StructureStepper {
   void begin_step(std::size_t step, StructureState& next) {
     next.t = static_cast<double>(step + 1) * m.h;
     next.ag = g * ground.ag(next.t);
+    ag_next = next.ag;
     // The Zener elements' history terms: constant through the step (until commit).
     for (std::size_t e = 0; e < ws.laws.size(); ++e) ws.offsets[static_cast<Eigen::Index>(e)] = ws.laws[e]->offset();
     if (!m.zener.empty() || m.nh > 0) {  // (else it stays zero)
@@ -201,7 +204,7 @@ class StructureStepper {
       ws.onset[f] = ws.crossing[f] = ws.kink_theta[f] = kNaN;  // (kink_theta: slips ended in the step)
       ws.kink_jump[f] = 0.0;
       ws.decided[f] = DamperState::stick;
-      ws.w_free[f] = ws.v_free[m.fi[f]] - ws.v_free[m.fj[f]];
+      ws.w_free[f] = across(ws.v_free, f);
     }
     ws.any_contact = false;
     if (m.nc > 0) {
@@ -438,7 +441,7 @@ class StructureStepper {
       ws.v_free.noalias() -= ws.sm->a_inv_bc * ws.contact_impulse;
       ws.cv_free.noalias() -= ws.sm->c_a_inv_bc * ws.contact_impulse;
     }
-    for (int f = 0; f < m.nf; ++f) ws.w_free[f] = ws.v_free[m.fi[f]] - ws.v_free[m.fj[f]];
+    for (int f = 0; f < m.nf; ++f) ws.w_free[f] = across(ws.v_free, f);
   }
 
   // The dampers' decisions after t_0: the trial step, each damper's switch (if any), the step
@@ -447,8 +450,8 @@ class StructureStepper {
     hold_as_phased(now);
     solve_held(ws.hold, ws.fixed, &ws.q_trial);
     trial_state(now, ws.q_trial);
-    grid_forces(ws.cv1, ws.p1, now.link_phase, &ws.q1, &ws.stick1);
-    for (int f = 0; f < m.nf; ++f) ws.w1[f] = ws.v1[m.fi[f]] - ws.v1[m.fj[f]];
+    grid_forces(ws.cv1, ws.p1, ag_next, now.link_phase, &ws.q1, &ws.stick1);
+    for (int f = 0; f < m.nf; ++f) ws.w1[f] = across(ws.v1, f);
     std::fill(ws.hold2.begin(), ws.hold2.end(), false);
     ws.fixed2.setZero();
     for (int f = 0; f < m.nf; ++f) {
@@ -558,8 +561,8 @@ class StructureStepper {
                          : (w_now != ws.w1[f] ? std::clamp(w_now / (w_now - ws.w1[f]), 0.0, 1.0) : 1.0);
     ws.crossing[f] = theta;
     // The force that would keep it stuck, at t_n and at the end of slipping on.
-    const double s0 = would_stick(ws.cv_now, m.nc > 0 || m.nv > 0 ? ws.total_now : ws.internal, ws.friction_now, f);
-    const double s1 = would_stick(ws.cv1, ws.p1, ws.q1, f);
+    const double s0 = would_stick(ws.cv_now, m.nc > 0 || m.nv > 0 ? ws.total_now : ws.internal, now.ag, ws.friction_now, f);
+    const double s1 = would_stick(ws.cv1, ws.p1, ag_next, ws.q1, f);
     const double at = s0 + theta * (s1 - s0);
     ws.kink_theta[f] = theta;
     if (std::abs(at) <= lim) {
@@ -638,7 +641,10 @@ class StructureStepper {
     // (touched: the stuck dampers' floors, ascending, from damper_dofs: sorted and unique.)
     std::fill(ws.touched_flag.begin(), ws.touched_flag.end(), 0);
     for (int f = 0; f < m.nf; ++f)
-      if (ws.states[f] == DamperState::stick) ws.touched_flag[m.pi[f]] = ws.touched_flag[m.pj[f]] = 1;
+      if (ws.states[f] == DamperState::stick) {
+        ws.touched_flag[m.pi[f]] = 1;
+        if (m.pj[f] >= 0) ws.touched_flag[m.pj[f]] = 1;
+      }
     ws.touched.clear();
     for (std::size_t d = 0; d < m.damper_dofs.size(); ++d)
       if (ws.touched_flag[d]) ws.touched.push_back(m.damper_dofs[d]);
@@ -647,6 +653,10 @@ class StructureStepper {
       for (int f = 0; f < m.nf; ++f)
         if (ws.states[f] == DamperState::stick) {
           const int i = m.fi[f], j = m.fj[f];
+          if (j < 0) {  // a base's slider: the base moves with the ground (its relative velocity 0)
+            next.v[i] = 0.0;
+            continue;
+          }
           const double v = (m.mass[i] * next.v[i] + m.mass[j] * next.v[j]) / (m.mass[i] + m.mass[j]);
           next.v[i] = next.v[j] = v;
         }
@@ -727,7 +737,7 @@ class StructureStepper {
     if (m.nv > 0 && viscous_end_forces(next) && m.viscous_restarts) ws.restart_left = std::max(ws.restart_left, 1);
     if (m.nc > 0 || m.nv > 0) ws.total_next = ws.p_next + ws.contact_bt + ws.viscous_bt;
     const Eigen::VectorXd& p_grid = m.nc > 0 || m.nv > 0 ? ws.total_next : ws.p_next;
-    grid_forces(ws.cv_next, p_grid, next.link_phase, &ws.q_grid, &ws.stick_grid);
+    grid_forces(ws.cv_next, p_grid, next.ag, next.link_phase, &ws.q_grid, &ws.stick_grid);
     // Absolute accelerations at the grid point: x'' - a_g.
     // The dampers' forces B' q are added at their floors only.
     kernels.accelerations(m.n, m.mass.data(), m.inv_mass.data(), ws.cv_next.data(), p_grid.data(), next.ag, next.a_abs.data());
@@ -793,7 +803,7 @@ class StructureStepper {
     out->setZero();
     for (int f = 0; f < m.nf; ++f) {
       (*out)[m.fi[f]] += q[f];
-      (*out)[m.fj[f]] -= q[f];
+      if (m.fj[f] >= 0) (*out)[m.fj[f]] -= q[f];
     }
   }
   void damper_bt(const Eigen::VectorXd& q) {
@@ -801,20 +811,25 @@ class StructureStepper {
     std::fill_n(out, ws.btq_dampers.size(), 0.0);
     for (int f = 0; f < m.nf; ++f) {
       out[m.pi[f]] += q[f];
-      out[m.pj[f]] -= q[f];
+      if (m.pj[f] >= 0) out[m.pj[f]] -= q[f];
     }
   }
-  // Damper f's relative acceleration without the ground, b_f M^-1 (-C v - P - B' q), B' q from
+  // Damper f's relative acceleration, b_f M^-1 (-C v - P - B' q) (+ a_g against the ground), B' q from
   // damper_bt.
-  double relative_accel(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, int f) const {
+  // Against the ground (a base's slider, j = -1) the ground term stays: + a_g.
+  double relative_accel(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, double ag, int f) const {
     const int i = m.fi[f], j = m.fj[f];
-    return (-cv[i] - p[i] - ws.btq_dampers[m.pi[f]]) * m.inv_mass[i] - (-cv[j] - p[j] - ws.btq_dampers[m.pj[f]]) * m.inv_mass[j];
+    const double at_i = (-cv[i] - p[i] - ws.btq_dampers[m.pi[f]]) * m.inv_mass[i];
+    return j < 0 ? at_i + ag : at_i - (-cv[j] - p[j] - ws.btq_dampers[m.pj[f]]) * m.inv_mass[j];
   }
+  // Damper f's relative velocity (or any quantity across it) in `v`: v_i - v_j, v_j = 0 at the
+  // ground (a base's slider).
+  double across(const Eigen::VectorXd& v, int f) const { return v[m.fi[f]] - (m.fj[f] >= 0 ? v[m.fj[f]] : 0.0); }
   // Grid-point forces: slipping dampers at +-F; the stuck ones carry what keeps their relative
   // acceleration zero, (B_s M^-1 B_s') q_s = B_s M^-1 (M 1 a_g - C v - P - B_l' q_l) (the ground
-  // term cancels: B 1 = 0). Also returns each damper's stick force (unclamped) for onsets.
+  // term cancels: B 1 = 0, but for a damper against the ground, relative_accel). Also returns each damper's stick force (unclamped) for onsets.
   // `cv` is C v. Only the dampers' floors are needed: O(nf^2).
-  void grid_forces(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const std::vector<Phase>& phase, Eigen::VectorXd* q,
+  void grid_forces(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, double ag, const std::vector<Phase>& phase, Eigen::VectorXd* q,
                    Eigen::VectorXd* stick) {
     double* qd = q->data();
     double* sd = stick->data();
@@ -834,7 +849,7 @@ class StructureStepper {
     const int n_stuck = static_cast<int>(ws.stuck.size());
     detail::SubsetInverses::System& sys = ws.stuck_systems.of(ws.stuck);
     double* b = sys.b.data();
-    for (int i = 0; i < n_stuck; ++i) b[i] = relative_accel(cv, p, ws.stuck[i]);
+    for (int i = 0; i < n_stuck; ++i) b[i] = relative_accel(cv, p, ag, ws.stuck[i]);
     sys.solve();
     const double* x = sys.x.data();
     for (int i = 0; i < n_stuck; ++i) {
@@ -845,11 +860,11 @@ class StructureStepper {
   }
   // The force that would keep slipping damper f stuck at this instant, the others at their
   // forces q: b_f M^-1 (-C v - P - sum_{g != f} b_g q_g) / (b_f M^-1 b_f').
-  double would_stick(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, const Eigen::VectorXd& q, int f) {
+  double would_stick(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, double ag, const Eigen::VectorXd& q, int f) {
     ws.others = q;
     ws.others[f] = 0.0;
     damper_bt(ws.others);
-    return relative_accel(cv, p, f) / m.g_all(f, f);
+    return relative_accel(cv, p, ag, f) / m.g_all(f, f);
   }
 
   void fill_storeys(StructureState& st) const {
@@ -865,6 +880,14 @@ class StructureStepper {
     };
     building(m.s.a, 0);
     if (m.s.b) building(*m.s.b, m.s.a.floors());
+    // An isolated building's storey 1 joins its base, not the ground (SPEC §7).
+    for (char name : {'A', 'B'}) {
+      const int base = m.s.base_dof(name);
+      if (base < 0) continue;
+      const int k = m.s.dof(name, 1);
+      const bool dashpots = name == 'A' ? m.dashpots_a : m.dashpots_b;
+      st.storey_force[k] -= m.storey_spring[k] * st.x[base] + (dashpots ? m.storey_dashpot[k] * st.v[base] : 0.0);
+    }
     for (std::size_t e = 0; e < m.zener.size(); ++e)
       if (m.zener[e].storey >= 0) st.storey_force[m.zener[e].storey] += ws.zener_force[e];
     for (int k = 0; k < m.nv; ++k)
@@ -880,10 +903,11 @@ class StructureStepper {
   }
   void fill_links(StructureState& st, const Eigen::VectorXd& q_friction) const {
     fill_storeys(st);
-    for (std::size_t l = 0; l < m.s.links.size(); ++l) {
+    for (std::size_t l = 0; l < m.link_pair.size(); ++l) {
       const Pair& p = m.link_pair[l];
       st.link_stroke[l] = p.of(st.x);
       st.link_velocity[l] = p.of(st.v);
+      if (l >= m.s.links.size()) continue;  // a base's slider: a friction damper (below)
       const auto& link = m.s.links[l];
       if (link.type == LinkType::spring) st.link_force[l] = link.k * st.link_stroke[l];
       if (link.type == LinkType::dashpot) st.link_force[l] = link.c * st.link_velocity[l];
@@ -895,6 +919,7 @@ class StructureStepper {
   }
   // ---- the model (constant), the workspace (the run's state), the ground ----
   static constexpr double g = kStandardGravity;
+  double ag_next = 0.0;  // a_g at t_n+1 (for the dampers against the ground, at the trial's end)
   const detail::StructureModel m;
   detail::StepWorkspace ws;
   const GroundMotion& ground;

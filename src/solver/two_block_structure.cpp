@@ -56,6 +56,12 @@ class AsTwoBlock final : public StructureObserver {
       t_previous_ = s.t;
       ++points_;
     }
+    // The base friction's sliders follow the link (if any) in the link arrays (SPEC §7).
+    const Eigen::Index sliders = damper_ ? 1 : 0;
+    if (s.link_force.size() >= sliders + 2) {
+      out.qb1 = s.link_force[sliders];
+      out.qb2 = s.link_force[sliders + 1];
+    }
     out.fc = s.contact_force[0];
     out.contact_work = s.contact_work[0];
     out.contact_dissipated = s.contact_dissipated[0];

@@ -85,6 +85,17 @@ bool building_valid(const Building& b, const std::string& path, std::string* err
     if (c.mode_i < 1 || c.mode_j < 1 || c.mode_i > n || c.mode_j > n || c.mode_i == c.mode_j)
       return fail(path + ".damping.modes: two different modes in 1.." + std::to_string(n));
   }
+  if (!(std::isfinite(b.ground_friction) && b.ground_friction >= 0.0)) return fail(path + ": the base friction must be a non-negative force (N)");
+  if (b.base && b.ground_friction > 0.0) return fail(path + ": base friction under floor 1 and an isolated base: give one of them");
+  if (b.base) {
+    const Base& base = *b.base;
+    if (!positive(base.mass)) return fail(path + ".base.mass must be a positive mass (kg)");
+    if (!positive(base.friction)) return fail(path + ".base.friction must be a positive friction coefficient (mu > 0)");
+    if (base.model == BaseModel::friction_pendulum && !positive(base.radius))
+      return fail(path + ".base.radius must be a positive radius (m) for a friction pendulum");
+    if (base.model == BaseModel::flat_slider && base.radius != 0.0)
+      return fail(path + ".base.radius: a flat slider has no radius (use model = \"friction-pendulum\")");
+  }
   return true;
 }
 
@@ -109,6 +120,26 @@ Eigen::VectorXd Building::geometric_stiffness() const {
     k[i] = -above * kStandardGravity / heights[i];
   }
   return k;
+}
+
+double Building::base_slip_force() const {
+  return base ? base->friction * (base->mass + masses.sum()) * kStandardGravity : 0.0;
+}
+
+double Building::base_stiffness() const {
+  if (!base || base->model != BaseModel::friction_pendulum) return 0.0;
+  return (base->mass + masses.sum()) * kStandardGravity / base->radius;
+}
+
+std::vector<GroundSlider> Structure::ground_sliders() const {
+  std::vector<GroundSlider> out;
+  for (const Building* building : {&a, b ? &*b : nullptr}) {
+    if (!building) continue;
+    const char name = building == &a ? 'A' : 'B';
+    if (building->base) out.push_back({name, true, base_dof(name), building->base_slip_force()});
+    if (building->ground_friction > 0.0) out.push_back({name, false, dof(name, 1), building->ground_friction});
+  }
+  return out;
 }
 
 bool Structure::IsValid(std::string* error) const {

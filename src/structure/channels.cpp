@@ -60,6 +60,8 @@ std::vector<Channel> channels(const Structure& s) {
       if (q.scope != ChannelScope::floor && q.scope != ChannelScope::storey) continue;
       if (q.quantity == Quantity::drift_ratio && !b.has_heights()) continue;  // needs the storey heights
       if (q.quantity == Quantity::hysteretic && b.hysteresis.model == HysteresisModel::elastic) continue;
+      // An isolated base's displacement is floor 0's (X.x0, SPEC §7), before floor 1's.
+      if (q.quantity == Quantity::displacement && b.base) out.push_back({element_name(q, name, 0), q.quantity, name, 0, s.base_dof(name)});
       for (int i = 1; i <= b.floors(); ++i) out.push_back({element_name(q, name, i), q.quantity, name, i, s.dof(name, i)});
     }
   };

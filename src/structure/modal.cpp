@@ -141,7 +141,8 @@ Modes building_modes(const Building& b) {
 }
 
 CoupledModes coupled_modes(const Structure& s) {
-  const int n = s.dofs();
+  // The floors only: an isolated base (SPEC §7) is stuck here, as its slider is below mu W.
+  const int n = s.a.floors() + (s.b ? s.b->floors() : 0);
   Eigen::MatrixXd m = Eigen::MatrixXd::Zero(n, n), k = Eigen::MatrixXd::Zero(n, n);
   const int na = s.a.floors();
   m.topLeftCorner(na, na) = mass_matrix(s.a);

@@ -67,6 +67,9 @@ bool Model::IsValid(std::string* error, std::string* field) const {
   if (mu > kMaxRatio)
     return fail(error, field, "model.mu", "model.mu = " + format(mu) + " must be at most " + format(kMaxRatio) +
                            " (slip force / (m1 g); a larger one never slips: use a large finite value)");
+  if (!(std::isfinite(base_friction) && base_friction >= 0.0 && base_friction <= kMaxRatio))
+    return fail(error, field, "model.base_friction", "model.base_friction = " + format(base_friction) + " must lie in [0, " + format(kMaxRatio) +
+                           "] (the blocks' friction coefficient on their bases)");
   if (std::abs(gap0) > kMaxRatio)
     return fail(error, field, "model.gap0", "model.gap0 = " + format(gap0) + " must lie in [-" + format(kMaxRatio) + ", " +
                            format(kMaxRatio) + "] (in units of X0 = m1 g / k1)");

@@ -26,6 +26,9 @@ Structure two_block_structure(const Model& m, const Scales& k) {
   Structure s;
   s.a = storey(m.rod1, m1, k1, "A");
   s.b = storey(m.rod2, m1 / m.rho, m.eps * k1, "B");
+  // Base friction (SPEC §7): each block on its base with friction mu_b m_i g (m1 g = k.force).
+  s.a.ground_friction = m.base_friction * k.force;
+  s.b->ground_friction = m.base_friction / m.rho * k.force;
   if (m.mu > 0.0) {
     Link l;
     l.type = LinkType::friction;

@@ -42,6 +42,21 @@ class ChannelObserver final : public StructureObserver {
     c_.clear();
     c_.push_back(structure::inherent_damping_matrix(s.a));
     if (s.b) c_.push_back(structure::inherent_damping_matrix(*s.b));
+    // The isolated bases (SPEC §7): each slider's place in the state's link arrays (after the
+    // links) and its X.x0 channel.
+    // (A base friction under floor 1, the two-block scene's, is a slider with no X.x0.)
+    bases_.clear();
+    for (const structure::GroundSlider& slider : s.ground_sliders()) {
+      Base base;
+      base.report.building = slider.building;
+      base.slider = s.links.size() + bases_.size();
+      base.dof = slider.dof;
+      base.isolated = slider.base;
+      base.stiffness = slider.base ? (slider.building == 'A' ? s.a : *s.b).base_stiffness() : 0.0;
+      for (std::size_t i = 0; i < values_.size(); ++i)
+        if (values_.channels()[i].name == std::string(1, slider.building) + ".x0") base.channel = i;
+      bases_.push_back(base);
+    }
     input_scale_ = 0.0;
     first_ = true;
   }
@@ -78,6 +93,14 @@ class ChannelObserver final : public StructureObserver {
       if (st.contact_work.size() == n_contacts) contact_work_[k] = st.contact_work[i];
       if (st.contact_dissipated.size() == n_contacts) r.dissipated = st.contact_dissipated[i];
     }
+    for (Base& b : bases_) {
+      const double power = st.link_force[static_cast<Eigen::Index>(b.slider)] * st.link_velocity[static_cast<Eigen::Index>(b.slider)];
+      if (!first_) {
+        if (st.link_phase[b.slider] != last_phase_[b.slider]) ++b.report.switches;
+        b.report.energy += 0.5 * (st.t - last_t_) * (power + b.last_power);
+      }
+      b.last_power = power;
+    }
     energy_step(st);
     check_contact_energy(st.t);
     last_phase_ = st.link_phase;
@@ -100,16 +123,22 @@ class ChannelObserver final : public StructureObserver {
     std::size_t part = 0;
     auto building = [&](const structure::Building& b, int offset, const Eigen::MatrixXd& c) {
       const int n = b.floors();
+      // An isolated base (SPEC §7): its mass takes input and kinetic energy, the inherent
+      // damping acts on the floors' velocities relative to it, storey 1 deforms against it.
+      const int base = s_.base_dof(offset == 0 ? 'A' : 'B');
+      const double vb = base >= 0 ? st.v[base] : 0.0, mb = base >= 0 ? b.base->mass : 0.0;
       Eigen::VectorXd& v = v_[part];
       v = st.v.segment(offset, n);
+      power_[k++] = st.ag * (b.masses.dot(v) + mb * vb);  // input
+      kinetic_[part] = 0.5 * (v.dot(b.masses.cwiseProduct(v)) + mb * vb * vb);
+      if (base >= 0) v.array() -= vb;
       cv_[part].noalias() = c * v;
-      power_[k++] = st.ag * b.masses.dot(v);  // input
       power_[k++] = v.dot(cv_[part]);         // inherent damping
       for (int i = 0; i < n; ++i) power_[k++] = st.storey_force[offset + i] * (v[i] - (i > 0 ? v[i - 1] : 0.0));
-      kinetic_[part++] = 0.5 * v.dot(b.masses.cwiseProduct(v));
+      ++part;
     };
     if (first_) {
-      std::size_t count = 2 + static_cast<std::size_t>(s_.a.floors()) + s_.links.size();
+      std::size_t count = 2 + static_cast<std::size_t>(s_.a.floors()) + s_.links.size() + bases_.size();
       if (s_.b) count += 2 + static_cast<std::size_t>(s_.b->floors());
       power_.assign(count, 0.0);
       last_powers_.assign(count, 0.0);
@@ -121,6 +150,11 @@ class ChannelObserver final : public StructureObserver {
     building(s_.a, 0, c_[0]);
     if (s_.b) building(*s_.b, s_.a.floors(), c_[1]);
     for (std::size_t l = 0; l < s_.links.size(); ++l) power_[k++] = st.link_force[l] * st.link_velocity[l];
+    // Each isolator: its slider's power and its pendulum's, k_p x_b v_b.
+    for (const Base& b : bases_) {
+      const auto l = static_cast<Eigen::Index>(b.slider);
+      power_[k++] = st.link_force[l] * st.link_velocity[l] + b.stiffness * st.x[b.dof] * st.v[b.dof];
+    }
     if (!first_) {
       const double dt = st.t - last_t_;
       for (std::size_t j = 0; j < power_.size(); ++j) work_[j] += 0.5 * dt * (power_[j] + last_powers_[j]);
@@ -148,9 +182,14 @@ class ChannelObserver final : public StructureObserver {
     unpack(s_.a);
     if (s_.b) unpack(*s_.b);
     for (std::size_t l = 0; l < s_.links.size(); ++l) e.links.push_back(work_.at(k++));
+    for (const Base& b : bases_) {
+      BuildingEnergy::Part& p = e.buildings[b.report.building == 'A' ? 0 : 1];
+      p.isolator += work_.at(k++);
+      p.isolator_dissipated += b.report.energy;
+    }
     double out = 0.0;
     for (const auto& p : e.buildings) {
-      out += p.kinetic + p.inherent;
+      out += p.kinetic + p.inherent + p.isolator;
       for (double w : p.storeys) out += w;
     }
     for (double w : e.links) out += w;
@@ -189,7 +228,22 @@ class ChannelObserver final : public StructureObserver {
     std::vector<ChannelValue> out;
     for (std::size_t i = 0; i < values_.size(); ++i) {
       const structure::Quantity q = values_.channels()[i].quantity;
-      if (q == structure::Quantity::drift || q == structure::Quantity::drift_ratio) out.push_back({values_.channels()[i].name, row_[i]});
+      const bool base = q == structure::Quantity::displacement && values_.channels()[i].index == 0;  // X.x0
+      if (q == structure::Quantity::drift || q == structure::Quantity::drift_ratio || base) out.push_back({values_.channels()[i].name, row_[i]});
+    }
+    return out;
+  }
+  // The isolated bases (SPEC §7 `base`): X.x0's peak and its value at the last grid point.
+  std::vector<BaseReport> bases() const {
+    std::vector<BaseReport> out;
+    for (const Base& b : bases_) {
+      if (!b.isolated) continue;
+      BaseReport r = b.report;
+      const Peak peak = smooth_[b.channel].peak();
+      r.max_abs = peak.max_abs;
+      r.t = peak.t;
+      r.residual = row_[b.channel];
+      out.push_back(r);
     }
     return out;
   }
@@ -219,6 +273,15 @@ class ChannelObserver final : public StructureObserver {
 
  private:
   const structure::Structure& s_;
+  struct Base {
+    BaseReport report;
+    std::size_t slider = 0, channel = 0;  // its slider in the state's link arrays; its X.x0 among values_
+    int dof = -1;
+    bool isolated = true;     // an isolated base's slider (else a base friction under floor 1)
+    double stiffness = 0.0;   // a friction pendulum's W / R
+    double last_power = 0.0;  // the slider's at the last grid point
+  };
+  std::vector<Base> bases_;
   ChannelValues values_;
   std::vector<double> row_;          // the channels' values at the current grid point
   std::vector<SmoothPeak> smooth_;   // displacements, drifts, strokes: refined between samples

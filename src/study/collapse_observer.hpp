@@ -26,7 +26,7 @@ class CollapseObserver final : public StructureObserver {
       if (!b || !b->has_heights()) continue;
       const char name = b->name.empty() ? 'A' : b->name[0];
       for (int i = 1; i <= b->floors(); ++i)
-        storeys_.push_back({name, i, s.dof(name, i), b->heights[i - 1] * b->collapse_drift_ratio, b->collapse_drift_ratio});
+        storeys_.push_back({name, i, s.dof(name, i), s.below(name, i), b->heights[i - 1] * b->collapse_drift_ratio, b->collapse_drift_ratio});
     }
     previous_.assign(storeys_.size(), {});
     collapse_.reset();
@@ -56,6 +56,7 @@ class CollapseObserver final : public StructureObserver {
   struct Storey {
     char building;
     int storey, dof;
+    int below;     // the dof under it (-1: the ground; storey 1 of an isolated building: its base)
     double limit;  // collapse_drift_ratio x h [m]
     double ratio;  // collapse_drift_ratio
   };
@@ -63,7 +64,7 @@ class CollapseObserver final : public StructureObserver {
     double t = 0.0, d = 0.0, v = 0.0;  // time, drift, drift velocity
   };
 
-  static double drift(const Eigen::VectorXd& x, const Storey& s) { return x[s.dof] - (s.storey > 1 ? x[s.dof - 1] : 0.0); }
+  static double drift(const Eigen::VectorXd& x, const Storey& s) { return x[s.dof] - (s.below >= 0 ? x[s.below] : 0.0); }
 
   // The time in (a.t, b.t] where the cubic Hermite interpolant of the drift reaches `target`
   // (a.d is on the near side of it, b.d past it), by bisection to the last bit.

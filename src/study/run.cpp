@@ -97,9 +97,12 @@ class AsStructure final : public Observer {
   AsStructure(StructureObserver& inner, const RunSpec& spec) : inner_(inner), structure_(solver_structure(spec)), options_(spec.solver) {
     const bool link = !structure_.links.empty(), contact = !structure_.contacts.empty();
     for (auto* v : {&state_.x, &state_.v, &state_.a_abs, &state_.storey_force}) v->setZero(2);
-    for (auto* v : {&state_.link_force, &state_.link_stroke, &state_.link_velocity}) v->setZero(link ? 1 : 0);
-    state_.link_phase.assign(link ? 1 : 0, Phase::stick);
-    state_.link_switch.assign(link ? 1 : 0, 0.0);
+    // (after the link, the base friction's two sliders, model.base_friction > 0: SPEC §7)
+    sliders_ = structure_.ground_sliders().size();
+    const Eigen::Index n_links = (link ? 1 : 0) + static_cast<Eigen::Index>(sliders_);
+    for (auto* v : {&state_.link_force, &state_.link_stroke, &state_.link_velocity}) v->setZero(n_links);
+    state_.link_phase.assign(static_cast<std::size_t>(n_links), Phase::stick);
+    state_.link_switch.assign(static_cast<std::size_t>(n_links), 0.0);
     for (auto* v : {&state_.contact_gap, &state_.contact_force, &state_.contact_work, &state_.contact_dissipated})
       v->setZero(contact ? 1 : 0);
     gap0_ = spec.model->gap0;
@@ -113,7 +116,17 @@ class AsStructure final : public Observer {
     o.v << s.v1, s.v2;
     o.a_abs << s.a1, s.a2;
     o.storey_force << s.f1, s.f2;
-    if (o.link_force.size() == 1) {
+    if (sliders_ == 2) {  // the blocks' base friction: force, the block's motion, its phase
+      const Eigen::Index k = o.link_force.size() - 2;
+      const double q[2] = {s.qb1, s.qb2}, x[2] = {s.x1, s.x2}, v[2] = {s.v1, s.v2};
+      for (Eigen::Index i = 0; i < 2; ++i) {
+        o.link_force[k + i] = q[i];
+        o.link_stroke[k + i] = x[i];
+        o.link_velocity[k + i] = v[i];
+        o.link_phase[static_cast<std::size_t>(k + i)] = v[i] > 0.0 ? Phase::slip_right : (v[i] < 0.0 ? Phase::slip_left : Phase::stick);
+      }
+    }
+    if (o.link_force.size() - static_cast<Eigen::Index>(sliders_) == 1) {
       o.link_force[0] = s.q;
       o.link_stroke[0] = s.x1 - s.x2;
       o.link_velocity[0] = s.v1 - s.v2;
@@ -137,6 +150,7 @@ class AsStructure final : public Observer {
   StructureSolverOptions options_;
   StructureState state_;
   double gap0_ = 0.0;
+  std::size_t sliders_ = 0;  // the base friction's sliders (0 or 2)
 };
 
 Report run_two_block(const RunSpec& spec, const RunObservers& extra) {
@@ -256,6 +270,7 @@ Report run_building(const RunSpec& spec, const RunObservers& extra) {
   r.contacts = observer.contacts();
   r.energy = observer.energy();
   r.residual = observer.residual();
+  r.bases = observer.bases();
   r.yield = yielding.report();
   for (const BuildingYield& y : r.yield)
     for (const StoreyYield& st : y.storeys) r.energy.buildings[y.building == 'A' ? 0 : 1].hysteretic.push_back(st.plastic_work);

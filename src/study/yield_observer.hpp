@@ -24,6 +24,7 @@ class YieldObserver final : public StructureObserver {
       Building y;
       y.name = name;
       y.offset = s.dof(name, 1);
+      y.base = s.base_dof(name);
       for (int i = 0; i < b.floors(); ++i) {
         const double k = b.springs[i], f = b.hysteresis.yield_forces[i];
         y.f_h.push_back((1.0 - b.hysteresis.hardening) * f);
@@ -44,7 +45,7 @@ class YieldObserver final : public StructureObserver {
       for (std::size_t i = 0; i < b.storeys.size(); ++i) {
         StoreyYield& r = b.storeys[i];
         const int k = b.offset + static_cast<int>(i);
-        const double drift = st.x[k] - (i > 0 ? st.x[k - 1] : 0.0);
+        const double drift = st.x[k] - (i > 0 ? st.x[k - 1] : (b.base >= 0 ? st.x[b.base] : 0.0));
         const double slip = drift - (st.hyst.size() > k ? st.hyst[k] : 0.0);
         r.ductility_max = std::max(r.ductility_max, std::abs(drift) / b.u_y[i]);
         if (st.hyst_yield.size() > static_cast<std::size_t>(k) && !std::isnan(st.hyst_yield[k])) {
@@ -68,6 +69,7 @@ class YieldObserver final : public StructureObserver {
   struct Building {
     char name = 'A';
     int offset = 0;
+    int base = -1;  // its isolated base's dof (SPEC §7), or -1
     std::vector<double> f_h, u_y, slip;  // F_h, u_y, and the slip u_p at the last grid point
     std::vector<StoreyYield> storeys;
   };

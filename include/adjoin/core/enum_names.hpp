@@ -69,6 +69,8 @@ enum class ContactModel { none, linear, hertz, hertzdamp, jankowski, impact };
 enum class DeviceType { spring, dashpot, zener, bilinear };
 // A storey spring's own law (SPEC §7; structure/building.hpp).
 enum class HysteresisModel { elastic, bilinear };
+// An isolated base's bearing (SPEC §7; structure/building.hpp).
+enum class BaseModel { flat_slider, friction_pendulum };
 enum class DampingModel { none, modal, rayleigh };
 enum class LinkType { friction, dashpot, spring, zener };
 }  // namespace structure
@@ -172,6 +174,12 @@ template <>
 struct EnumTable<structure::HysteresisModel> {
   using E = structure::HysteresisModel;
   static constexpr EnumName<E> entries[] = {{E::elastic, "elastic"}, {E::bilinear, "bilinear"}};
+};
+
+template <>
+struct EnumTable<structure::BaseModel> {
+  using E = structure::BaseModel;
+  static constexpr EnumName<E> entries[] = {{E::flat_slider, "flat-slider"}, {E::friction_pendulum, "friction-pendulum"}};
 };
 
 template <>

@@ -11,6 +11,12 @@
 
 namespace adjoin {
 
+// Under storey 1 of c's building: its isolated base's displacement (SPEC §7), or the ground's 0.
+inline double base_x(const structure::Structure& s, const structure::Channel& c, const StructureState& st) {
+  const int base = s.base_dof(c.building);
+  return base >= 0 ? st.x[base] : 0.0;
+}
+
 // Inline: observers read every channel at every grid point.
 inline double channel_value(const structure::Structure& s, const structure::Channel& c, const StructureState& st) {
   using structure::Quantity;
@@ -18,10 +24,10 @@ inline double channel_value(const structure::Structure& s, const structure::Chan
   switch (c.quantity) {
     case Quantity::displacement: return st.x[c.dof];
     case Quantity::absolute_acceleration: return st.a_abs[c.dof];
-    case Quantity::drift: return st.x[c.dof] - (c.index > 1 ? st.x[c.dof - 1] : 0.0);
+    case Quantity::drift: return st.x[c.dof] - (c.index > 1 ? st.x[c.dof - 1] : base_x(s, c, st));
     case Quantity::drift_ratio: {
       const structure::Building& b = c.building == 'A' ? s.a : *s.b;
-      return (st.x[c.dof] - (c.index > 1 ? st.x[c.dof - 1] : 0.0)) / b.heights[c.index - 1];
+      return (st.x[c.dof] - (c.index > 1 ? st.x[c.dof - 1] : base_x(s, c, st))) / b.heights[c.index - 1];
     }
     case Quantity::storey_shear: return st.storey_force[c.dof];
     case Quantity::base_shear: {

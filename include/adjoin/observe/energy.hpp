@@ -9,7 +9,10 @@
 //     friction = int q (x1' - x2') dt                dissipated in the damper (>= 0)
 //     contact  = int fc (x1' - x2') dt               work on the contact law (SPEC §6): its
 //                                                    stored energy plus what it dissipated
-//     residual = input - (kinetic + rod1 + rod2 + friction + contact)
+//     base     = int (qb1 x1' + qb2 x2') dt           dissipated by the blocks' base friction
+//                                                    (model.base_friction, SPEC §7; qb2 =
+//                                                    mu_b / rho, block 2's slip force per m1 g)
+//     residual = input - (kinetic + rod1 + rod2 + friction + contact + base)
 //
 // The contact terms are the solver's own (State::contact_work and contact_dissipated,
 // integrated consistently with its step); without a contact law they are 0 and the residual is
@@ -28,6 +31,7 @@ struct EnergyBalance {
   double input = 0.0, kinetic = 0.0, rod1 = 0.0, rod2 = 0.0, friction = 0.0, residual = 0.0;
   double contact = 0.0;              // work on the contact (0 without a contact law)
   double contact_dissipated = 0.0;   // the part of it the contact dissipated
+  double base_friction = 0.0;        // dissipated by the base friction (0 without)
 };
 
 class EnergyObserver final : public Observer {

@@ -53,6 +53,18 @@ struct InherentDamping {
   int mode_i = 1, mode_j = 2;  // rayleigh: 1-based mode numbers
 };
 
+// An isolated base (SPEC §7): a base floor of mass m_b under floor 1 that slides on the ground
+// with Coulomb friction mu W (W = g x the mass of the base and every floor above; stick exact),
+// a flat slider, or a friction pendulum that adds the restoring stiffness W / R between the
+// base and the ground. Storey 1 joins the base to floor 1; the floors' displacements stay
+// relative to the ground.
+struct Base {
+  double mass = 0.0;  // m_b [kg]
+  BaseModel model = BaseModel::flat_slider;
+  double friction = 0.0;  // mu, of the total weight W
+  double radius = 0.0;    // friction-pendulum: R [m]
+};
+
 struct Building {
   std::string name;               // "A" or "B"
   Eigen::VectorXd masses;         // floor masses [kg], bottom up
@@ -70,6 +82,11 @@ struct Building {
   double collapse_drift_ratio = 0.10;
 
   StoreyHysteresis hysteresis;
+  std::optional<Base> base;  // an isolated base (SPEC §7), or none: a fixed base
+  // A Coulomb slider between floor 1 and the ground, in parallel with storey 1: its slip force
+  // [N], 0 for none (the two-block scene's model.base_friction: each block on its base with
+  // friction mu_b m_i g, SPEC §7). Not with an isolated base.
+  double ground_friction = 0.0;
 
   int floors() const { return static_cast<int>(masses.size()); }
   bool has_heights() const { return heights.size() > 0; }
@@ -78,6 +95,9 @@ struct Building {
   Eigen::VectorXd static_stiffness() const;
   // Per storey, the P-Delta geometric stiffness -P_i/h_i [N/m]; zeros without p_delta.
   Eigen::VectorXd geometric_stiffness() const;
+  // An isolated base's slip force mu W and pendulum stiffness W / R (0 for a flat slider).
+  double base_slip_force() const;
+  double base_stiffness() const;
 };
 
 // LinkType (friction, dashpot, spring, zener): core/enum_names.hpp.
@@ -101,15 +121,43 @@ struct Contact {
   ContactLaw law;
 };
 
+// A friction damper between a dof and the ground (SPEC §7): an isolated base's slider (mu W
+// under the base) or a building's ground_friction (under floor 1). Its force acts -q on the dof.
+struct GroundSlider {
+  char building = 'A';
+  bool base = true;  // an isolated base's slider; false: ground_friction under floor 1
+  int dof = 0;
+  double slip_force = 0.0;  // [N]
+};
+
 struct Structure {
   Building a;
   std::optional<Building> b;
   std::vector<Link> links;
   std::vector<Contact> contacts;
 
-  int dofs() const { return a.floors() + (b ? b->floors() : 0); }
-  // The index of floor `floor` (1-based) of building "A" or "B" in the stacked state.
-  int dof(char building, int floor) const { return building == 'A' ? floor - 1 : a.floors() + floor - 1; }
+  // The floors, then the isolated bases (SPEC §7): each base is one more dof after every floor
+  // (A's base, then B's), so the floors keep their indices and every reader of A's and B's
+  // floors (channels, links, contacts, the two blocks) is unchanged; only storey 1 of an
+  // isolated building looks at its base instead of the ground (below()).
+  int dofs() const { return a.floors() + (b ? b->floors() : 0) + (a.base ? 1 : 0) + (b && b->base ? 1 : 0); }
+  // The index of floor `floor` (1-based) of building "A" or "B" in the stacked state; floor 0
+  // is its base (base_dof).
+  int dof(char building, int floor) const {
+    if (floor == 0) return base_dof(building);
+    return building == 'A' ? floor - 1 : a.floors() + floor - 1;
+  }
+  // The index of a building's base, or -1 (a fixed base: the ground).
+  int base_dof(char building) const {
+    const int floors = a.floors() + (b ? b->floors() : 0);
+    if (building == 'A') return a.base ? floors : -1;
+    return b && b->base ? floors + (a.base ? 1 : 0) : -1;
+  }
+  // The dof under storey `storey` (1-based): the floor below, the base, or -1 (the ground).
+  int below(char building, int storey) const { return storey > 1 ? dof(building, storey - 1) : base_dof(building); }
+  // The friction dampers to the ground, A's then B's: the solver puts each after the links in
+  // the state's link arrays (StructureState::link_force[links.size() + k]).
+  std::vector<GroundSlider> ground_sliders() const;
   // Why the structure is not valid (sizes, ranges, floors out of range), with the field path
   // ("building.A.masses[3]", "link[2].floors"), or true.
   bool IsValid(std::string* error) const;

@@ -12,7 +12,8 @@
 // building has storey heights), A.shear2 (storey 2's shear: spring +
 // devices), A.base_shear (-sum m_i a_i,abs); link1.force, link1.stroke (x_A,i - x_B,j);
 // contact1.gap, contact1.force; A.hyst2 (storey 2's hysteretic variable z, SPEC §7, when A's
-// storeys yield). B likewise; elements are numbered from 1.
+// storeys yield); A.x0 (an isolated base's displacement relative to the ground, SPEC §7). B
+// likewise; elements are numbered from 1.
 #include <optional>
 #include <span>
 #include <string>

@@ -41,6 +41,10 @@ struct Model {
   double eps = 2.0;   // k2 / k1
   double mu = 0.3;    // damper slip force / (m1 g); 0 means no damper (blocks decoupled)
   double gap0 = 2.0;  // initial gap xi0 between the blocks
+  // mu_b (SPEC §7, the paper's suggestion): each block slides on its base with Coulomb friction
+  // mu_b m_i g, in parallel with its rod; 0 means none (the paper's system). The implicit
+  // schemes only.
+  double base_friction = 0.0;
   Rod rod1{0.23, 1.183, 0.004, false};
   Rod rod2{0.53, 4.0, 0.2, false};
   // What happens when the gap closes (SPEC §6), dimensionless: a linear stiffness in units of

@@ -31,6 +31,9 @@ struct State {
   // and, accumulated from t = 0, the work the blocks have done on the contact (its stored
   // elastic energy plus what it dissipated) and the part dissipated.
   double fc = 0.0, contact_work = 0.0, contact_dissipated = 0.0;
+  // Base friction (model.base_friction, SPEC §7): each block's friction force on its base,
+  // acting -qb_i on block i (0 without).
+  double qb1 = 0.0, qb2 = 0.0;
 };
 
 // One impact of a contact pair, from the first touch (located inside its step) to separation.
@@ -52,7 +55,10 @@ struct StructureState {
   double t = 0.0;
   double ag = 0.0;                 // a_g = -(ground acceleration) [m/s^2]
   Eigen::VectorXd x, v, a_abs;     // per floor, A's floors first then B's [m, m/s, m/s^2]
-  Eigen::VectorXd link_force;      // per link [N], acting -q on A's floor, +q on B's
+  // Per link [N], acting -q on A's floor, +q on B's; after the links, per ground slider
+  // (Structure::ground_sliders(): an isolated base's, a base friction's) its force, acting -q
+  // on its dof, and its stroke and velocity (the dof's), phase and switch likewise.
+  Eigen::VectorXd link_force;
   Eigen::VectorXd link_stroke;     // x_A,i - x_B,j [m]
   Eigen::VectorXd link_velocity;   // [m/s]
   std::vector<Phase> link_phase;   // friction links: stick or slip direction (others: slip_*)

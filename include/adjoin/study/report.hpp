@@ -86,6 +86,9 @@ struct BuildingEnergy {
     // Bilinear storeys (SPEC §7): the plastic work of each storey's law (a part of its storey's
     // work, dissipated); empty for an elastic building.
     std::vector<double> hysteretic;
+    // An isolated base (SPEC §7): the work done on its isolator, the slider's dissipated work
+    // plus a friction pendulum's stored energy (0 without a base), and the slider's part.
+    double isolator = 0.0, isolator_dissipated = 0.0;
   };
   std::vector<Part> buildings;  // A, then B
   std::vector<double> links;
@@ -140,6 +143,15 @@ struct BuildingYield {
   std::vector<StoreyYield> storeys;
 };
 
+// An isolated base (SPEC §7, summary.json `base`): the peak of X.x0 and its value at t_end,
+// the slider's phase changes and the work it dissipated [J].
+struct BaseReport {
+  char building = 'A';
+  double max_abs = 0.0, t = 0.0, residual = 0.0;
+  std::size_t switches = 0;
+  double energy = 0.0;
+};
+
 struct Report {
   SolverSummary solver;
   // The structure's channels (a building run; a two-block run when output.channels is set).
@@ -152,6 +164,7 @@ struct Report {
   std::optional<Collapse> collapse;  // the run stopped at a collapse (SPEC §7)
   std::vector<ChannelValue> residual;  // each drift and drift-ratio channel at the last grid point
   std::vector<BuildingYield> yield;  // the buildings whose storeys have a bilinear law
+  std::vector<BaseReport> bases;     // the isolated buildings, A's first
   // In-structure spectra ([output.spectra]).
   std::vector<SignalSpectrum> spectra;
   // A two-block spec's values under the paper's names.
