@@ -211,6 +211,57 @@ TEST_CASE("a Bouc-Wen oscillator (n = 1, beta 0.7, gamma 0.3) converges at order
   check_order_two(o);
 }
 
+TEST_CASE("a Bouc-Wen building beside a friction damper to a second building converges at order 2", "[bouc-wen]") {
+  // A: the Bouc-Wen oscillator (2 storeys); B: an elastic one-storey building (T = 0.3 s); a
+  // friction link at floor 1 slipping at 8 kN: stick, slip and reversals with the law yielding.
+  Oscillator o;
+  Structure s = o.structure();
+  s.a.masses = Eigen::VectorXd::Constant(2, o.m);
+  s.a.springs = Eigen::VectorXd::Constant(2, o.k());
+  s.a.hysteresis.yield_forces = Eigen::VectorXd::Constant(2, o.k() * o.uy);
+  s.a.damping = {DampingModel::modal, 0.05, 1, 2};
+  Building b;
+  b.name = "B";
+  b.masses = Eigen::VectorXd::Constant(1, 8e3);
+  b.springs = Eigen::VectorXd::Constant(1, 8e3 * std::pow(2.0 * M_PI / 0.3, 2));
+  b.damping = {DampingModel::modal, 0.05, 1, 2};
+  s.b = b;
+  Link link;
+  link.type = LinkType::friction;
+  link.slip_force = 8e3;
+  s.links.push_back(link);
+  const Sine ground(3.0, 2.0 * M_PI / 0.6, 3.0);
+  auto roof = [&](double h) {
+    StructureSolverOptions options;
+    options.h = h;
+    options.t_end = 3.0;
+    Recorder r(s);
+    simulate_structure(options, s, ground, r);
+    std::size_t switches = 0;
+    std::vector<double> out;
+    for (std::size_t i = 0; i < r.states.size(); ++i) {
+      out.push_back(r.states[i].x[1]);
+      if (i > 0 && r.states[i].link_phase[0] != r.states[i - 1].link_phase[0]) ++switches;
+    }
+    return std::make_pair(out, switches);
+  };
+  const double h0 = 1e-3;
+  const auto [reference, switches] = roof(h0 / 32.0);
+  INFO("the damper's switches: " << switches);
+  CHECK(switches >= 4);
+  std::vector<double> errors;
+  for (int level = 0; level < 3; ++level) {
+    const std::size_t div = std::size_t{1} << level;
+    const auto run = roof(h0 / static_cast<double>(div)).first;
+    double e = 0.0;
+    for (std::size_t n = 0; n * div < run.size(); ++n) e = std::max(e, std::abs(run[n * div] - reference[n * div * 32 / div]));
+    errors.push_back(e);
+  }
+  INFO("roof errors " << errors[0] << " " << errors[1] << " " << errors[2]);
+  CHECK(errors[0] / errors[1] == Approx(4.0).epsilon(0.25));
+  CHECK(errors[1] / errors[2] == Approx(4.0).epsilon(0.25));
+}
+
 namespace {
 
 const std::string kTwoFrames = std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/buildings/two-frames.toml";
