@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "../src/study/yield_observer.hpp"
+#include "cli_helpers.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/ground/ground_motion.hpp"
 #include "adjoin/io/building_scene.hpp"
@@ -324,24 +325,34 @@ TEST_CASE("the energy balance closes at order 2 with a Bouc-Wen device", "[bouc-
   CHECK(with.energy.buildings[1].storeys[0] != Approx(elastic.energy.buildings[1].storeys[0]).epsilon(1e-3));
 }
 
-TEST_CASE("a Bouc-Wen storey law and a Bouc-Wen device in a scene file are read, defaults and all", "[bouc-wen]") {
-  // The two-frame scene with A's storeys on the Bouc-Wen law and a Bouc-Wen device in B.
+namespace {
+
+// The two-frame scene, in the scratch folder, with A's storeys on `hysteresis` and (if not
+// empty) a device in B with the keys `device`.
+std::string two_frames_with(const std::string& hysteresis, const std::string& device) {
   std::ifstream in(kTwoFrames);
   std::stringstream text;
   text << in.rdbuf();
   std::string scene_text = text.str();
   const std::string a_damping = "damping = { model = \"modal\", ratio = 0.05 }\n";
   REQUIRE(scene_text.find(a_damping) != std::string::npos);
-  scene_text.replace(scene_text.find(a_damping), a_damping.size(),
-                     a_damping + "hysteresis = { model = \"bouc-wen\", yield_force = 9.0e4, hardening = 0.03, n = 3 }\n");
+  scene_text.replace(scene_text.find(a_damping), a_damping.size(), a_damping + "hysteresis = " + hysteresis + "\n");
   const std::string link = "[[link]]";
-  scene_text.replace(scene_text.find(link), link.size(),
-                     "[[building.B.device]]\nstoreys = [1]\ntype = \"bouc-wen\"\nstiffness = 2.0e7\nyield_force = 4.0e4\nbeta = 0.9\n"
-                     "gamma = 0.1\n\n[[link]]");
+  if (!device.empty()) scene_text.replace(scene_text.find(link), link.size(), "[[building.B.device]]\n" + device + "\n[[link]]");
   const std::string record = "../../real/", absolute = std::string(ADJOIN_SOURCE_DIR) + "/records/real/";
   scene_text.replace(scene_text.find(record), record.size(), absolute);
-  const std::string path = ADJOIN_TEST_TMP + "/bouc-wen.toml";
+  static int count = 0;
+  const std::string path = ADJOIN_TEST_TMP + "/bouc-wen-" + std::to_string(++count) + ".toml";
   std::ofstream(path) << scene_text;
+  return path;
+}
+
+}  // namespace
+
+TEST_CASE("a Bouc-Wen storey law and a Bouc-Wen device in a scene file are read, defaults and all", "[bouc-wen]") {
+  const std::string path = two_frames_with("{ model = \"bouc-wen\", yield_force = 9.0e4, hardening = 0.03, n = 3 }",
+                                           "storeys = [1]\ntype = \"bouc-wen\"\nstiffness = 2.0e7\nyield_force = 4.0e4\nbeta = 0.9\n"
+                                           "gamma = 0.1\n");
   const BuildingScene scene = load_building_scene(path, {"solver.t_end=2", "output.timeseries=false"});
   const StoreyHysteresis& y = scene.structure.a.hysteresis;
   CHECK(y.model == HysteresisModel::bouc_wen);
@@ -371,4 +382,17 @@ TEST_CASE("a Bouc-Wen storey law and a Bouc-Wen device in a scene file are read,
   const BuildingScene edited = load_building_scene(path, {"building.A.hysteresis.n=1", "building.A.hysteresis.gamma=0.2"});
   CHECK(edited.structure.a.hysteresis.n == 1.0);
   CHECK(edited.structure.a.hysteresis.gamma == 0.2);
+}
+
+TEST_CASE("a Bouc-Wen law whose implicit step has no solution stops with exit 3 naming the time and storey", "[bouc-wen][cli]") {
+  // beta < |gamma|: unloading drives z away from zero (z' = w (1 + (beta' - gamma') z^n) changes
+  // sign), until z's implicit equation has no root: a numerical failure, not a crash.
+  const std::string path = two_frames_with("{ model = \"bouc-wen\", yield_force = 8.0e4, beta = -0.3, gamma = 0.5 }", "");
+  const adjoin::test::CliResult r = adjoin::test::run_cli("run '" + path + "' --out '" + ADJOIN_TEST_TMP + "/bouc-wen-out'");
+  INFO(r.err);
+  CHECK(r.status == 3);
+  CHECK(r.err.rfind("error: ", 0) == 0);
+  CHECK(r.err.find("the Bouc-Wen law of building A's storey") != std::string::npos);
+  CHECK(r.err.find(" s; reduce solver.h (now 0.002 s)") != std::string::npos);
+  CHECK(r.err.find("from t = ") != std::string::npos);
 }

@@ -436,7 +436,7 @@ class StructureStepper {
     message << "the Bouc-Wen " << (el.storey_law ? "law of" : "device on") << " building " << (el.storey < na ? m.s.a.name : m.s.b->name)
             << "'s storey " << (el.storey < na ? el.storey + 1 : el.storey - na + 1)
             << ": its implicit step (Newton's method on z) did not converge in the step from t = " << t << " s; reduce solver.h (now "
-            << m.h << " s)";
+            << m.h << " s), and check the law's beta and gamma (beta >= |gamma| keeps z bounded)";
     throw NumericalError(message.str(), t);
   }
   // The Bouc-Wen elements at t_n+1 from the step's end velocities and displacements (z_n+1 on
