@@ -18,11 +18,19 @@ BoucWenElement::BoucWenElement(int i_, int j_, int storey_, bool storey_law_, do
   beta = beta_ / scale;
   gamma = gamma_ / scale;
   z_limit = u_y * std::pow(beta_ + gamma_, -1.0 / n);
+  if (n == std::floor(n) && n <= 20.0) whole = static_cast<int>(n);
+}
+
+double BoucWenElement::power(double a, int less) const {
+  if (whole == 0) return std::pow(a, n - less);
+  double r = 1.0;
+  for (int p = less; p < whole; ++p) r *= a;
+  return r;
 }
 
 // z' = w - beta |w| |z|^(n-1) z - gamma w |z|^n (|z|^(n-1) z = |z|^n sign z).
 double BoucWenElement::rate(double z, double w) const {
-  const double a = std::pow(std::abs(z), n);
+  const double a = power(std::abs(z));
   return w - beta * std::abs(w) * a * sign(z) - gamma * w * a;
 }
 
@@ -30,17 +38,18 @@ double BoucWenElement::rate_dz(double z, double w) const {
   if (z == 0.0 && n > 1.0) return 0.0;
   // (n = 1 at z = 0: the side z's sign takes under loading, sign w)
   const double s = z != 0.0 ? sign(z) : sign(w);
-  return -n * std::pow(std::abs(z), n - 1.0) * (beta * std::abs(w) + gamma * w * s);
+  return -n * power(std::abs(z), 1) * (beta * std::abs(w) + gamma * w * s);
 }
 
 double BoucWenElement::rate_dw(double z, double w) const {
-  const double a = std::pow(std::abs(z), n);
+  const double a = power(std::abs(z));
   const double sw = w != 0.0 ? sign(w) : (z != 0.0 ? sign(z) : 1.0);  // (at w = 0 the loading side)
   return 1.0 - beta * sw * a * sign(z) - gamma * a;
 }
 
 // z1 = c + h theta z'(z1, w1), c = z_n + h (1 - theta) z'_n: Newton's method on
-// F(z) = z - c - h theta z'(z, w1), its steps halved while |F| does not fall.
+// F(z) = z - c - h theta z'(z, w1), its steps halved while |F| does not fall; converged when a
+// step is at rounding level of z, or F at rounding level of its terms.
 bool bouc_wen_end_z(const BoucWenElement& e, const BoucWenState& st, double theta, double h, double w1, double* z1,
                     double* dz1_dw1) {
   const double ht = h * theta, c = st.z + h * (1.0 - theta) * st.rate;
@@ -48,21 +57,27 @@ bool bouc_wen_end_z(const BoucWenElement& e, const BoucWenState& st, double thet
   constexpr double eps = std::numeric_limits<double>::epsilon();
   double z = c + ht * e.rate(c, w1);
   double f = residual(z);
-  bool converged = f == 0.0;
+  auto small = [&](double value, double at) { return std::abs(value) <= 8.0 * eps * (std::abs(c) + ht * std::abs(w1) + std::abs(at)); };
+  bool converged = small(f, z);
   for (int it = 0; it < 100 && !converged; ++it) {
     const double slope = 1.0 - ht * e.rate_dz(z, w1);
     if (!(std::isfinite(slope) && slope != 0.0)) return false;
-    double step = f / slope, z_try = z - step, f_try = residual(z_try);
-    for (int halving = 0; halving < 40 && !(std::abs(f_try) < std::abs(f)); ++halving) {
+    double step = f / slope;
+    if (std::abs(step) <= 4.0 * eps * std::abs(z)) {  // (Newton's last step: below z's rounding)
+      z -= step;
+      converged = true;
+      break;
+    }
+    double z_try = z - step, f_try = residual(z_try);
+    for (int halving = 0; halving < 30 && !(std::abs(f_try) < std::abs(f)); ++halving) {
       step *= 0.5;
       z_try = z - step;
       f_try = residual(z_try);
     }
-    const double scale = std::abs(c) + ht * std::abs(w1) + std::abs(z_try);
-    converged = std::abs(f_try) <= 8.0 * eps * scale || std::abs(z_try - z) <= 2.0 * eps * std::abs(z_try);
-    if (!(std::abs(f_try) <= std::abs(f)) && !converged) return false;  // (no descent: not converging)
+    if (!(std::abs(f_try) < std::abs(f))) return false;  // (no descent: not converging)
     z = z_try;
     f = f_try;
+    converged = small(f, z);
   }
   if (!converged || !std::isfinite(z)) return false;
   *z1 = z;

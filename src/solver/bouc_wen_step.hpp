@@ -46,9 +46,11 @@ struct BoucWenElement {
   BoucWenElement() = default;
   BoucWenElement(int i, int j, int storey, bool storey_law, double k, double hardening, double yield_force, double n, double beta,
                  double gamma);
+  int whole = 0;            // n if it is a whole number (powers by products), else 0
   double rate(double z, double w) const;     // z'
   double rate_dz(double z, double w) const;  // d z' / d z
   double rate_dw(double z, double w) const;  // d z' / d w (w's sign, or loading at w = 0)
+  double power(double a, int less = 0) const;  // a^(n - less), a >= 0 (std::pow only for fractional n)
 };
 
 // The element's state at t_n and this step's end.
