@@ -55,7 +55,7 @@ bool bouc_wen_end_z(const BoucWenElement& e, const BoucWenState& st, double thet
   const double ht = h * theta, c = st.z + h * (1.0 - theta) * st.rate;
   auto residual = [&](double z) { return z - c - ht * e.rate(z, w1); };
   constexpr double eps = std::numeric_limits<double>::epsilon();
-  double z = c + ht * e.rate(c, w1);
+  double z = st.z1;  // (the latest solve's, or extrapolated from the last two steps: bouc_wen_commit)
   double f = residual(z);
   auto small = [&](double value, double at) { return std::abs(value) <= 8.0 * eps * (std::abs(c) + ht * std::abs(w1) + std::abs(at)); };
   bool converged = small(f, z);
@@ -117,24 +117,37 @@ int BoucWenSolver::solve(const std::vector<BoucWenElement>& elements, std::vecto
     r.noalias() += g * qq;
     return r.cwiseAbs().maxCoeff();
   };
-  // Newton's method, each iterate kept only if it lowers the residual.
+  // Newton's method, each iterate kept only if it lowers the residual: first with the
+  // Jacobian's diagonal 1 + G_kk Q'_k (G Q' ~ (omega h)^2 / 4 off the diagonal: a few cheap
+  // iterations, no factorisation), then with the whole J = I + G diag(Q') if that stalls.
   if (const int bad = forces(elements, states, theta, h, w1, q, &slope_); bad >= 0) return bad;
   double norm = residual(w1, q, r_);
-  for (int it = 0; it < 30 && norm > tolerance; ++it) {
-    jacobian_ = g * slope_.asDiagonal();
-    jacobian_.diagonal().array() += 1.0;
-    lu_.compute(jacobian_);
-    step_ = lu_.solve(r_);
-    w_try_ = w1 - step_;
-    if (forces(elements, states, theta, h, w_try_, q_try_, &slope_) >= 0) break;
-    const double next = residual(w_try_, q_try_, r_try_);
-    if (!(next < norm)) break;  // (the fixed point takes over from the best iterate)
-    w1.swap(w_try_);
-    q.swap(q_try_);
-    r_.swap(r_try_);
-    norm = next;
-  }
-  if (norm <= tolerance) return forces(elements, states, theta, h, w1, q, nullptr);  // (z1 of the iterate kept)
+  bool current = true;  // the states' z1 are those of w1
+  for (const bool whole : {false, true})
+    for (int it = 0; it < (whole ? 30 : 60) && norm > tolerance; ++it) {
+      if (whole) {
+        jacobian_ = g * slope_.asDiagonal();
+        jacobian_.diagonal().array() += 1.0;
+        lu_.compute(jacobian_);
+        step_ = lu_.solve(r_);
+      } else {
+        step_.array() = r_.array() / (1.0 + g.diagonal().array() * slope_.array());
+      }
+      w_try_ = w1 - step_;
+      current = false;
+      const bool failed = forces(elements, states, theta, h, w_try_, q_try_, &slope_) >= 0;
+      const double next = failed ? norm : residual(w_try_, q_try_, r_try_);
+      if (!(next < norm)) {  // (the next method takes over from the best iterate, its slopes)
+        current = forces(elements, states, theta, h, w1, q, &slope_) < 0;
+        break;
+      }
+      current = true;
+      w1.swap(w_try_);
+      q.swap(q_try_);
+      r_.swap(r_try_);
+      norm = next;
+    }
+  if (norm <= tolerance) return current ? -1 : forces(elements, states, theta, h, w1, q, nullptr);
   // The fixed point w1 = w~ - G Q(w1): a contraction for the steps that resolve the structure.
   for (int it = 0; it < 500; ++it) {
     if (const int bad = forces(elements, states, theta, h, w1, q, nullptr); bad >= 0) return bad;

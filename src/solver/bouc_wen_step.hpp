@@ -57,7 +57,7 @@ struct BoucWenElement {
 struct BoucWenState {
   double z = 0.0, d = 0.0, w = 0.0;  // at t_n
   double rate = 0.0;                 // z'(z_n, w_n)
-  double z1 = 0.0;                   // z_n+1 of the latest solve
+  double z1 = 0.0;                   // z_n+1 of the latest solve (at t_n: a guess, extrapolated)
   double offset(const BoucWenElement& e) const { return e.k * (z - d); }  // r_n, the step's offset
 };
 
@@ -68,11 +68,11 @@ bool bouc_wen_end_z(const BoucWenElement& e, const BoucWenState& st, double thet
 
 // The step's end: the state at t_n+1 from its end deformation d1, velocity w1 and z1.
 inline void bouc_wen_commit(const BoucWenElement& e, BoucWenState& st, double d1, double w1, double z1) {
-  st.z = z1;
   st.d = d1;
   st.w = w1;
   st.rate = e.rate(z1, w1);
-  st.z1 = z1;
+  st.z1 = 2.0 * z1 - st.z;  // (the next step's first guess of its z_n+1)
+  st.z = z1;
 }
 
 // The elements' end velocities and step forces for one step. Sized once: a solve allocates
