@@ -419,7 +419,7 @@ class StructureStepper {
       }
       const double change = pass == 0 ? INFINITY : (ws.bouc_wen_w1 - ws.bouc_wen_w_pass).cwiseAbs().maxCoeff();
       const double scale = ws.bouc_wen_v_base.cwiseAbs().maxCoeff() + ws.bouc_wen_w1.cwiseAbs().maxCoeff();
-      if (change <= 1e-12 * scale) return;
+      if (change <= 1e-10 * scale) return;
       // (Not settled: a friction damper flipping between passes at its onset; the last pass's
       // step is taken, its error that of the element's force over one step.)
       if (pass == kMaxPasses) {
