@@ -11,7 +11,8 @@
 // beside them.
 // targets/2x20/bilinear: the springs pair with bilinear storeys (yield drift 5 mm, 5 %
 // hardening; SPEC §7): the target is at most 2x targets/2x20/springs. Its counter
-// "yields" is the storeys' yield events in a run.
+// "yields" is the storeys' yield events in a run. targets/2x20/bouc-wen: the same with the
+// Bouc-Wen law (n = 2, beta = gamma = 1/2; a yield: |z| reaching 0.9 u_y).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -103,6 +104,17 @@ void BM_bilinear(benchmark::State& state) {
   simulate_structure(o, s, newhall(), yields);
   state.counters["yields"] = yields.count;
 }
+void BM_bouc_wen(benchmark::State& state) {
+  Structure s = pair_of(20, false, true);
+  s.a.hysteresis.model = s.b->hysteresis.model = HysteresisModel::bouc_wen;
+  run(state, s, HistoryEngine::fft);
+  StructureSolverOptions o;
+  o.h = 0.005;
+  o.t_end = 40.0;
+  Yields yields;
+  simulate_structure(o, s, newhall(), yields);
+  state.counters["yields"] = yields.count;
+}
 void BM_storeys(benchmark::State& st) { run(st, pair_of(static_cast<int>(st.range(0)), true), HistoryEngine::fft); }
 // The mechanics alone (no Zener devices, no history): with modal damping C is dense, so its
 // per-step cost grows as n^2 (one product with [A^-1; C A^-1] per building), the rest as n.
@@ -134,6 +146,7 @@ BENCHMARK(BM_springs)->Name("targets/2x20/springs")->Unit(benchmark::kMillisecon
 BENCHMARK(BM_viscous)->Name("viscous/2x20/alpha0.4")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_viscous_friction)->Name("viscous/2x20/alpha0.4+friction")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_bilinear)->Name("targets/2x20/bilinear")->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_bouc_wen)->Name("targets/2x20/bouc-wen")->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_storeys)->Name("storeys")->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_storeys_springs)->Name("storeys_springs")->Arg(5)->Arg(10)->Arg(20)->Arg(40)->Arg(80)->Unit(benchmark::kMillisecond);
 

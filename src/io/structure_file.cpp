@@ -232,19 +232,32 @@ double read_hardening(const TableReader& r) {
   return b;
 }
 
+// A Bouc-Wen law's shape (SPEC §7): n (default 2) in [1, 20], beta and gamma (default 0.5 each)
+// with beta + gamma > 0, into (n, beta, gamma).
+void read_bouc_wen_shape(const TableReader& r, double* n, double* beta, double* gamma) {
+  *n = r.number("n", 2.0);
+  if (!(*n >= 1.0 && *n <= 20.0)) r.fail("n", "expected the Bouc-Wen exponent n in [1, 20]");
+  *beta = r.number("beta", 0.5);
+  *gamma = r.number("gamma", 0.5);
+  if (!(*beta + *gamma > 0.0))
+    r.fail(r.has("gamma") ? "gamma" : "beta", "expected beta + gamma > 0 (else the Bouc-Wen law never yields)");
+}
+
 // A building's storey law (SPEC §7): hysteresis = { model = "bilinear", yield_force = ...,
 // hardening = 0.05 } (or yield_forces = [...] per storey); model = "elastic" is the default.
 structure::StoreyHysteresis read_hysteresis(const toml::table& building, const TableReader& r, int n) {
   const toml::table* h = building.get_as<toml::table>("hysteresis");
   if (!h) r.fail("hysteresis", "expected a table: { model = \"bilinear\", yield_force = 160.0e3, hardening = 0.05 }");
   const TableReader hr = r.inner(*h, r.path() + ".hysteresis");
-  hr.only({"model", "yield_force", "yield_forces", "hardening"});
+  hr.only({"model", "yield_force", "yield_forces", "hardening", "n", "beta", "gamma"});
   structure::StoreyHysteresis y;
   y.model = hr.choice<structure::HysteresisModel>("model");
   if (y.model == structure::HysteresisModel::elastic) {
     hr.only_with({"model"}, "the model \"elastic\" (no yielding)");
     return y;
   }
+  if (y.model == structure::HysteresisModel::bouc_wen) read_bouc_wen_shape(hr, &y.n, &y.beta, &y.gamma);
+  else hr.only_with({"model", "yield_force", "yield_forces", "hardening"}, "the model \"bilinear\" (n, beta, gamma are Bouc-Wen's)");
   if (hr.has("yield_force") == hr.has("yield_forces"))
     hr.fail("", "give the yield force as yield_force (every storey) or yield_forces (a list), one of them");
   if (hr.has("yield_force")) {
@@ -363,6 +376,12 @@ Building read_building(const toml::table& root, const std::string& name, const T
         dev.k = dr.bounded("stiffness", kStiffnessRange);
         dev.yield_force = dr.bounded("yield_force", kForceRange);
         dev.hardening = read_hardening(dr);
+      } else if (dev.type == DeviceType::bouc_wen) {
+        dr.only({"type", "storeys", "stiffness", "yield_force", "hardening", "n", "beta", "gamma"});
+        dev.k = dr.bounded("stiffness", kStiffnessRange);
+        dev.yield_force = dr.bounded("yield_force", kForceRange);
+        dev.hardening = read_hardening(dr);
+        read_bouc_wen_shape(dr, &dev.n, &dev.beta, &dev.gamma);
       } else {
         dr.only({"type", "storeys", "stiffness", "order", "tau_x", "tau_f"});
         dev.zener = read_zener(dr);

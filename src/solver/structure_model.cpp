@@ -71,7 +71,8 @@ void StructureModel::check_inputs() const {
     bool relaxed = false;  // an element whose state at t = 0 is relaxed (or stuck)
     for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
       if (b)
-        for (const auto& d : b->devices) relaxed = relaxed || d.type == DeviceType::zener || d.type == DeviceType::bilinear;
+        for (const auto& d : b->devices)
+          relaxed = relaxed || d.type == DeviceType::zener || d.type == DeviceType::bilinear || d.type == DeviceType::bouc_wen;
     for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
       if (b) relaxed = relaxed || b->hysteresis.model != structure::HysteresisModel::elastic || b->base || b->ground_friction > 0.0;
     for (const auto& l : s.links) relaxed = relaxed || l.type == LinkType::zener || l.type == LinkType::friction;
@@ -137,6 +138,17 @@ void StructureModel::assemble_elements(Assembly& a) {
           bilinear.push_back({p.i, p.j, offset + st - 1, false, (1.0 - d.hardening) * d.k, (1.0 - d.hardening) * d.yield_force});
         }
       }
+    for (const auto& d : b.devices)  // (k in K0; r = k_h (z - d) an offset and a step force: bouc_wen_step.hpp)
+      if (d.type == DeviceType::bouc_wen)
+        for (int st : d.storeys) {
+          const Pair p{offset + st - 1, lower(st - 1)};
+          p.add(a.k0_dense, d.k);
+          bouc_wen.emplace_back(p.i, p.j, offset + st - 1, false, d.k, d.hardening, d.yield_force, d.n, d.beta, d.gamma);
+        }
+    if (const auto& y = b.hysteresis; y.model == structure::HysteresisModel::bouc_wen)
+      for (int st = 0; st < nb; ++st)
+        bouc_wen.emplace_back(offset + st, lower(st), offset + st, true, b.springs[st], y.hardening,
+                              y.yield_forces[st], y.n, y.beta, y.gamma);
     // A bilinear storey spring: k stays in K0; its series element's slip is an offset.
     if (b.hysteresis.model == structure::HysteresisModel::bilinear)
       for (int st = 0; st < nb; ++st) {
@@ -215,6 +227,12 @@ void StructureModel::assemble_dampers(Assembly& a) {
     a.bq(nf + e, bilinear[e].i) = 1.0;
     if (bilinear[e].j >= 0) a.bq(nf + e, bilinear[e].j) = -1.0;
   }
+  nw = static_cast<int>(bouc_wen.size());
+  a.bw = Eigen::MatrixXd::Zero(nw, n);
+  for (int e = 0; e < nw; ++e) {
+    a.bw(e, bouc_wen[e].i) = 1.0;
+    if (bouc_wen[e].j >= 0) a.bw(e, bouc_wen[e].j) = -1.0;
+  }
 }
 
 void StructureModel::assemble_contacts(Assembly& a) {
@@ -285,6 +303,14 @@ std::unique_ptr<StepMatrices> StructureModel::step_matrices(double theta, const 
     m->c_a_inv_bv = c * m->a_inv_bv;
     m->viscous_g = h * a.bv * m->a_inv_bv;
     m->viscous_friction = a.bv * m->a_inv_bt;
+  }
+  if (nw > 0) {
+    m->a_inv_bw.resize(n, nw);
+    for (const StepBlock& b : m->blocks)
+      m->a_inv_bw.middleRows(b.offset, b.size) = b.a.solve(a.bw.transpose().middleRows(b.offset, b.size));
+    m->c_a_inv_bw = c * m->a_inv_bw;
+    m->bouc_wen_g = h * a.bw * m->a_inv_bw;
+    m->bouc_wen_qp = a.bw * m->a_inv_bt;
   }
   m->contact_friction = Eigen::MatrixXd::Zero(nc, nq);
   for (int ci = 0; ci < nc; ++ci)
@@ -386,6 +412,15 @@ void StructureModel::prepare_trial() {
         if (d >= 0) trial_dofs.push_back(d);
     }
     damper_bilinear.push_back(std::move(elements));
+    std::vector<std::pair<int, double>> bouc_wen_here;
+    for (int e = 0; e < nw; ++e) {
+      const BoucWenElement& el = bouc_wen[e];
+      if (el.i != k && el.j != k) continue;
+      bouc_wen_here.emplace_back(e, el.i == k ? 1.0 : -1.0);
+      for (int d : {el.i, el.j})
+        if (d >= 0) trial_dofs.push_back(d);
+    }
+    damper_bouc_wen.push_back(std::move(bouc_wen_here));
   }
   // The bilinear elements' decisions read the trial's velocities at their floors.
   for (const BilinearElement& el : bilinear)
@@ -428,6 +463,7 @@ void StructureModel::assemble_storeys() {
         if (d.type == DeviceType::spring) storey_spring[offset + st - 1] += d.k;
         if (d.type == DeviceType::dashpot && d.alpha == 1.0) storey_dashpot[offset + st - 1] += d.c;
         if (d.type == DeviceType::bilinear) storey_spring[offset + st - 1] += d.k;  // (its slip's offset: the solver's)
+        if (d.type == DeviceType::bouc_wen) storey_spring[offset + st - 1] += d.k;  // (its k_h (z - d): the solver's)
       }
   };
   storeys_of(s.a, 0);

@@ -15,6 +15,7 @@
 #include "adjoin/structure/parameters.hpp"
 #include "banded.hpp"
 #include "bilinear_step.hpp"
+#include "bouc_wen_step.hpp"
 #include "contact_step.hpp"
 #include "dense_product.hpp"
 #include "viscous_step.hpp"
@@ -84,6 +85,8 @@ struct StepMatrices {
   Eigen::VectorXd kappa;                                   // B_c A^-1 B_c' per pair
   // The nonlinear viscous dampers' A^-1 B_v', C A^-1 B_v', G = h B_v A^-1 B_v' and B_v A^-1 B_f'.
   Eigen::MatrixXd a_inv_bv, c_a_inv_bv, viscous_g, viscous_friction;
+  // The Bouc-Wen elements' A^-1 B_w', C A^-1 B_w', G = h B_w A^-1 B_w' and B_w A^-1 B_q' (bouc_wen_step.hpp).
+  Eigen::MatrixXd a_inv_bw, c_a_inv_bw, bouc_wen_g, bouc_wen_qp;
   Eigen::MatrixXd trial_rows;  // the trial's rows of A^-1 B' and C A^-1 B' (structure_model.cpp)
 };
 
@@ -92,6 +95,7 @@ struct Assembly {
   Eigen::MatrixXd k0_dense, k_eff_dense;    // K0, and K_eff (the Zener elements at their effective stiffness)
   Eigen::MatrixXd bf, bc;                   // B of the friction dampers, of the contact pairs with a law
   Eigen::MatrixXd bv;                       // B of the nonlinear viscous dampers
+  Eigen::MatrixXd bw;                       // B of the Bouc-Wen elements
   Eigen::MatrixXd bq;                       // B of the QP's unknowns: the friction dampers', then the bilinear elements'
   bool coupled = false;                     // a link other than friction enters A = M + h/2 C + h^2/4 K
   std::vector<std::pair<int, int>> ranges;  // A's diagonal blocks: (offset, size)
@@ -156,6 +160,11 @@ class StructureModel {
   int nh = 0;  // how many
   int nq = 0;  // nf + nh: the QP's unknowns
   std::vector<std::vector<std::pair<int, double>>> damper_bilinear;  // per damper dof: (element, sign)
+
+  // ---- the Bouc-Wen elements (bouc_wen_step.hpp): step forces beside the QP's ----
+  std::vector<BoucWenElement> bouc_wen;
+  int nw = 0;  // how many
+  std::vector<std::vector<std::pair<int, double>>> damper_bouc_wen;  // per damper dof: (element, sign)
 
   // ---- the contact pairs ----
   std::vector<int> active;  // contacts with a law

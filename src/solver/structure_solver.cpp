@@ -119,7 +119,8 @@ class StructureStepper {
     // as both states began.)
     begin_step(step, next);
     predict(now, next);
-    if (m.nv > 0) viscous_step(step, now);
+    if (m.nw > 0) bouc_wen_step(step, now);
+    else if (m.nv > 0) viscous_step(step, now);
     else local_solve(step, now);
     correct(step, now, next);
     locate_switches(step, now, next);
@@ -137,11 +138,13 @@ class StructureStepper {
     ag_next = next.ag;
     // The Zener elements' history terms: constant through the step (until commit).
     for (std::size_t e = 0; e < ws.laws.size(); ++e) ws.offsets[static_cast<Eigen::Index>(e)] = ws.laws[e]->offset();
-    if (!m.zener.empty() || m.nh > 0) {  // (else it stays zero)
+    if (!m.zener.empty() || m.nh > 0 || m.nw > 0) {  // (else it stays zero)
       ws.off_dof.setZero();
       for (std::size_t e = 0; e < m.zener.size(); ++e) m.zener[e].pair.add(ws.off_dof, ws.offsets[static_cast<Eigen::Index>(e)]);
       // The bilinear elements' slips: -k_h u_p (bilinear_step.hpp).
       for (int e = 0; e < m.nh; ++e) Pair{m.bilinear[e].i, m.bilinear[e].j}.add(ws.off_dof, ws.bilinear[e].offset(m.bilinear[e]));
+      // The Bouc-Wen elements' k_h (z - d) at t_n (bouc_wen_step.hpp).
+      for (int e = 0; e < m.nw; ++e) Pair{m.bouc_wen[e].i, m.bouc_wen[e].j}.add(ws.off_dof, ws.bouc_wen[e].offset(m.bouc_wen[e]));
     }
     // The step after a switch, where the restart applies, is backward Euler.
     ws.restart = ws.restart_left > 0;
@@ -376,6 +379,99 @@ class StructureStepper {
     return turned;
   }
 
+  // The Bouc-Wen elements' step forces (bouc_wen_step.hpp) with the local solve's (and the
+  // viscous dampers'): solved in turn until the elements' end velocities settle (Gauss-Seidel,
+  // as viscous_step; a contraction of rate ~ (omega h)^2 / 4, the elements' forces changing by
+  // O(h) over a step). Alone, their equation is solved once.
+  void bouc_wen_step(std::size_t step, const StructureState& now) {
+    constexpr int kMaxPasses = 30;
+    ws.bouc_wen_v_base = ws.v_free;
+    ws.bouc_wen_cv_base = ws.cv_free;
+    auto inner = [&] {
+      ws.v_free = ws.bouc_wen_v_base;
+      ws.cv_free = ws.bouc_wen_cv_base;
+      ws.v_free.noalias() -= m.h * (ws.sm->a_inv_bw * ws.bouc_wen_q);
+      ws.cv_free.noalias() -= m.h * (ws.sm->c_a_inv_bw * ws.bouc_wen_q);
+      if (m.nv > 0) viscous_step(step, now);
+      else local_solve(step, now);
+    };
+    const bool alone = m.nq == 0 && m.nc == 0 && m.nv == 0;
+    if (!alone) {
+      ws.bouc_wen_states_saved = ws.states;
+      ws.bouc_wen_memory_saved = ws.contact_memory;
+      ws.bouc_wen_work_saved = ws.contact_work;
+      ws.bouc_wen_bilinear_saved = ws.bilinear;
+    }
+    for (int pass = 0;; ++pass) {
+      if (pass > 0) {
+        ws.states = ws.bouc_wen_states_saved;
+        ws.contact_memory = ws.bouc_wen_memory_saved;
+        ws.contact_work = ws.bouc_wen_work_saved;
+        ws.bilinear = ws.bouc_wen_bilinear_saved;
+      }
+      if (!alone) inner();
+      // The elements' end velocities with the others' forces as they are, less their own Q's part.
+      const auto& v = alone ? ws.bouc_wen_v_base : ws.v_free;
+      if (alone) ws.bouc_wen_wt.setZero();
+      else ws.bouc_wen_wt.noalias() = ws.sm->bouc_wen_g * ws.bouc_wen_q;
+      for (int k = 0; k < m.nw; ++k) {
+        const detail::BoucWenElement& el = m.bouc_wen[k];
+        ws.bouc_wen_wt[k] += v[el.i] - (el.j >= 0 ? v[el.j] : 0.0);
+        if (!alone && m.nq > 0) ws.bouc_wen_wt[k] -= m.h * ws.sm->bouc_wen_qp.row(k).dot(ws.q_step);
+      }
+      ws.bouc_wen_w_pass = ws.bouc_wen_w1;
+      const int bad = ws.bouc_wen_solver->solve(m.bouc_wen, ws.bouc_wen, ws.sm->theta, m.h, ws.sm->bouc_wen_g, ws.bouc_wen_wt,
+                                                ws.bouc_wen_w1, ws.bouc_wen_q_new);
+      if (bad >= 0) bouc_wen_failed(now.t, bad);
+      if (alone) {
+        ws.bouc_wen_q.swap(ws.bouc_wen_q_new);
+        inner();
+        return;
+      }
+      const double change = pass == 0 ? INFINITY : (ws.bouc_wen_w1 - ws.bouc_wen_w_pass).cwiseAbs().maxCoeff();
+      const double scale = ws.bouc_wen_v_base.cwiseAbs().maxCoeff() + ws.bouc_wen_w1.cwiseAbs().maxCoeff();
+      if (change <= 1e-10 * scale) return;
+      // (Not settled: a friction damper flipping between passes at its onset; the last pass's
+      // step is taken, its error that of the element's force over one step.)
+      if (pass == kMaxPasses) {
+        ++ws.bouc_wen_unsettled;
+        return;
+      }
+      ws.bouc_wen_q.swap(ws.bouc_wen_q_new);
+    }
+  }
+  [[noreturn]] void bouc_wen_failed(double t, int e) const {
+    const detail::BoucWenElement& el = m.bouc_wen[static_cast<std::size_t>(e)];
+    const int na = m.s.a.floors();
+    std::ostringstream message;
+    message << "the Bouc-Wen " << (el.storey_law ? "law of" : "device on") << " building " << (el.storey < na ? m.s.a.name : m.s.b->name)
+            << "'s storey " << (el.storey < na ? el.storey + 1 : el.storey - na + 1)
+            << ": its implicit step (Newton's method on z) did not converge in the step from t = " << t << " s; reduce solver.h (now "
+            << m.h << " s), and check the law's beta and gamma (beta >= |gamma| keeps z bounded)";
+    throw NumericalError(message.str(), t);
+  }
+  // The Bouc-Wen elements at t_n+1 from the step's end velocities and displacements (z_n+1 on
+  // them, bouc_wen_step.hpp), in P; a storey law's yield (|z| reaching 0.9 of its saturation)
+  // located in the step (linear in z).
+  void end_bouc_wen(const StructureState& now, StructureState& next) {
+    for (int e = 0; e < m.nw; ++e) {
+      const detail::BoucWenElement& el = m.bouc_wen[e];
+      detail::BoucWenState& st = ws.bouc_wen[e];
+      const double w1 = next.v[el.i] - (el.j >= 0 ? next.v[el.j] : 0.0);
+      const double d1 = next.x[el.i] - (el.j >= 0 ? next.x[el.j] : 0.0);
+      double z1 = 0.0;
+      if (!detail::bouc_wen_end_z(el, st, ws.sm->theta, m.h, w1, &z1, nullptr)) bouc_wen_failed(now.t, e);
+      const double z0 = std::abs(st.z), threshold = detail::kBoucWenYield * el.z_limit;
+      detail::bouc_wen_commit(el, st, d1, w1, z1);
+      Pair{el.i, el.j}.add(ws.p_next, st.offset(el));  // (K0 holds k d1)
+      if (!el.storey_law) continue;
+      next.hyst_yield.resize(static_cast<std::size_t>(m.n), kNaN);
+      next.hyst_yield[el.storey] = z0 < threshold && std::abs(z1) >= threshold
+                                       ? now.t + (threshold - z0) / (std::abs(z1) - z0) * m.h
+                                       : kNaN;
+    }
+  }
+
   // The dampers as they were: the stuck ones held, the slipping ones at their limits.
   void hold_as_phased(const StructureState& now) {
     ws.fixed.setZero();
@@ -512,6 +608,10 @@ class StructureStepper {
         const double d1 = ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0);  // (K0 holds k_h d1)
         ws.p1[k] += sign * (detail::bilinear_trial_force(el, ws.bilinear[e], d1) - el.k * d1);
       }
+      for (const auto& [e, sign] : m.damper_bouc_wen[d]) {  // (at the latest z_n+1; K0 holds k d1)
+        const detail::BoucWenElement& el = m.bouc_wen[static_cast<std::size_t>(e)];
+        ws.p1[k] += sign * el.k * (ws.bouc_wen[e].z1 - (ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0)));
+      }
     }
   }
 
@@ -617,6 +717,7 @@ class StructureStepper {
       el.pair.add(ws.p_next, ws.zener_force[e]);
     }
     end_bilinear(now, next);
+    end_bouc_wen(now, next);
   }
 
   // The bilinear elements' forces and phases at t_n+1 from the step's end velocities, in P,
@@ -899,6 +1000,11 @@ class StructureStepper {
       const detail::BilinearElement& el = m.bilinear[e];
       st.storey_force[el.storey] += ws.bilinear[e].offset(el);  // (the storey's spring holds k_h d)
       if (el.storey_law) st.hyst[el.storey] = ws.bilinear[e].q / el.k;
+    }
+    for (int e = 0; e < m.nw; ++e) {  // (bouc_wen_step.hpp: the storey's spring holds k d)
+      const detail::BoucWenElement& el = m.bouc_wen[e];
+      st.storey_force[el.storey] += ws.bouc_wen[e].offset(el);
+      if (el.storey_law) st.hyst[el.storey] = ws.bouc_wen[e].z;
     }
   }
   void fill_links(StructureState& st, const Eigen::VectorXd& q_friction) const {

@@ -68,6 +68,13 @@ StepWorkspace::StepWorkspace(const StructureModel& m) {
     contact_work_saved.resize(static_cast<std::size_t>(nc));
     bilinear_saved.resize(static_cast<std::size_t>(m.nh));
   }
+  bouc_wen.assign(static_cast<std::size_t>(m.nw), BoucWenState{});
+  for (Eigen::VectorXd* v : {&bouc_wen_q, &bouc_wen_q_new, &bouc_wen_w1, &bouc_wen_w_pass, &bouc_wen_wt}) *v = Eigen::VectorXd::Zero(m.nw);
+  if (m.nw > 0) {
+    bouc_wen_solver = std::make_unique<BoucWenSolver>(m.nw);
+    bouc_wen_v_base.resize(n);
+    bouc_wen_cv_base.resize(n);
+  }
   friction_now = stick_force_now = stick_force_prev = Eigen::VectorXd::Zero(nf);
   prev_stuck.assign(nf, false);
   prev_same_slip.assign(nf, false);

@@ -90,6 +90,19 @@ struct StepWorkspace {
   std::vector<BilinearState> bilinear_saved;
   std::vector<double> contact_work_saved;
 
+  // The Bouc-Wen elements (bouc_wen_step.hpp): their states, step forces Q, end velocities (of
+  // this pass and the last), velocities without their own Q; the free step before their Q; what
+  // the local solve changes, kept to take it again (bouc_wen_step in structure_solver.cpp).
+  std::vector<BoucWenState> bouc_wen;
+  Eigen::VectorXd bouc_wen_q, bouc_wen_q_new, bouc_wen_w1, bouc_wen_w_pass, bouc_wen_wt;
+  Eigen::VectorXd bouc_wen_v_base, bouc_wen_cv_base;
+  std::unique_ptr<BoucWenSolver> bouc_wen_solver;
+  std::size_t bouc_wen_unsettled = 0;  // steps whose passes did not settle
+  std::vector<DamperState> bouc_wen_states_saved;
+  std::vector<ContactMemory> bouc_wen_memory_saved;
+  std::vector<BilinearState> bouc_wen_bilinear_saved;
+  std::vector<double> bouc_wen_work_saved;
+
   // The grid points t_n (`now`) and t_n+1 (`next`): two states whose vectors every step reuses,
   // their roles swapped after each step.
   StructureState first, second;

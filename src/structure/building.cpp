@@ -23,6 +23,16 @@ std::string zener_check(const Zener& z) {
   return "";
 }
 
+// A Bouc-Wen law's shape (SPEC §7): the exponent n in [1, 20] (below 1, |z|^(n-1) and so the
+// implicit step's derivative are unbounded at z = 0) and beta + gamma > 0 (else z does not
+// saturate: the law never yields).
+std::string bouc_wen_check(double n, double beta, double gamma) {
+  if (!(std::isfinite(n) && n >= 1.0 && n <= 20.0)) return "n must lie in [1, 20] (the Bouc-Wen exponent)";
+  if (!(std::isfinite(beta) && std::isfinite(gamma) && beta + gamma > 0.0))
+    return "beta: beta + gamma must be positive (else the Bouc-Wen law never yields)";
+  return "";
+}
+
 bool building_valid(const Building& b, const std::string& path, std::string* error) {
   auto fail = [&](const std::string& m) {
     if (error) *error = m;
@@ -50,13 +60,20 @@ bool building_valid(const Building& b, const std::string& path, std::string* err
       const std::string p = zener_check(dev.zener);
       if (!p.empty()) return fail(where + ": " + p);
     }
-    if (dev.type == DeviceType::bilinear) {
+    if (dev.type == DeviceType::bouc_wen) {
+      if (const std::string p = bouc_wen_check(dev.n, dev.beta, dev.gamma); !p.empty()) return fail(where + "." + p);
+    }
+    if (dev.type == DeviceType::bilinear || dev.type == DeviceType::bouc_wen) {
       if (!positive(dev.k)) return fail(where + ".stiffness must be positive (N/m)");
       if (!positive(dev.yield_force)) return fail(where + ".yield_force must be a positive force (N)");
       if (!(dev.hardening >= 0.0 && dev.hardening < 1.0)) return fail(where + ".hardening must lie in [0, 1)");
     }
   }
-  if (b.hysteresis.model == HysteresisModel::bilinear) {
+  if (b.hysteresis.model == HysteresisModel::bouc_wen) {
+    const StoreyHysteresis& y = b.hysteresis;
+    if (const std::string p = bouc_wen_check(y.n, y.beta, y.gamma); !p.empty()) return fail(path + ".hysteresis." + p);
+  }
+  if (b.hysteresis.model != HysteresisModel::elastic) {
     const StoreyHysteresis& y = b.hysteresis;
     if (y.yield_forces.size() != n) return fail(path + ".hysteresis.yield_forces: expected " + std::to_string(n) + " values, one per storey");
     for (int i = 0; i < n; ++i)
@@ -104,7 +121,8 @@ bool building_valid(const Building& b, const std::string& path, std::string* err
 Eigen::VectorXd Building::static_stiffness() const {
   Eigen::VectorXd k = springs;
   for (const StoreyDevice& d : devices) {
-    const double add = d.type == DeviceType::spring || d.type == DeviceType::bilinear ? d.k : (d.type == DeviceType::zener ? d.zener.k : 0.0);
+    const bool spring = d.type == DeviceType::spring || d.type == DeviceType::bilinear || d.type == DeviceType::bouc_wen;
+    const double add = spring ? d.k : (d.type == DeviceType::zener ? d.zener.k : 0.0);
     for (int s : d.storeys)
       if (s >= 1 && s <= k.size()) k[s - 1] += add;
   }

@@ -27,7 +27,7 @@ constexpr QuantityInfo kQuantities[] = {
     {Quantity::contact_force, ChannelScope::contact, "force", "", "N", PeakRule::none, true,
      "contact pair's compressive force"},
     {Quantity::hysteretic, ChannelScope::storey, "hyst", "", "m", PeakRule::sampled, false,
-     "storey's hysteretic variable z of a bilinear storey (at most F_y / k in size)"},
+     "storey's hysteretic variable z of a yielding storey (bilinear: at most F_y / k in size; Bouc-Wen: its z)"},
 };
 
 std::string element_name(const QuantityInfo& q, char building, int index) {

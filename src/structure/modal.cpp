@@ -71,7 +71,8 @@ Eigen::MatrixXcd complex_stiffness_matrix(const Building& b, double w) {
   for (int s = 0; s < n; ++s) add_between(k, s, s - 1, std::complex<double>(b.springs[s], 0.0));
   for (const StoreyDevice& d : b.devices) {
     std::complex<double> value = 0.0;
-    if (d.type == DeviceType::spring || d.type == DeviceType::bilinear) value = d.k;  // (bilinear: initial stiffness)
+    if (d.type == DeviceType::spring || d.type == DeviceType::bilinear || d.type == DeviceType::bouc_wen)
+      value = d.k;  // (bilinear, bouc-wen: initial stiffness)
     if (d.type == DeviceType::zener) value = zener_stiffness(d.zener, w);
     if (value != 0.0)
       for (int s : d.storeys) add_between(k, s - 1, s - 2, value);

@@ -66,9 +66,9 @@ namespace structure {
 // A contact pair's law (structure/contact.hpp).
 enum class ContactModel { none, linear, hertz, hertzdamp, jankowski, impact };
 // A storey device, a building's inherent damping, a link (structure/building.hpp).
-enum class DeviceType { spring, dashpot, zener, bilinear };
+enum class DeviceType { spring, dashpot, zener, bilinear, bouc_wen };
 // A storey spring's own law (SPEC §7; structure/building.hpp).
-enum class HysteresisModel { elastic, bilinear };
+enum class HysteresisModel { elastic, bilinear, bouc_wen };
 // An isolated base's bearing (SPEC §7; structure/building.hpp).
 enum class BaseModel { flat_slider, friction_pendulum };
 enum class DampingModel { none, modal, rayleigh };
@@ -167,13 +167,14 @@ struct EnumTable<structure::ContactModel> {
 template <>
 struct EnumTable<structure::DeviceType> {
   using E = structure::DeviceType;
-  static constexpr EnumName<E> entries[] = {{E::spring, "spring"}, {E::dashpot, "dashpot"}, {E::zener, "zener"}, {E::bilinear, "bilinear"}};
+  static constexpr EnumName<E> entries[] = {{E::spring, "spring"}, {E::dashpot, "dashpot"}, {E::zener, "zener"}, {E::bilinear, "bilinear"},
+                                             {E::bouc_wen, "bouc-wen"}};
 };
 
 template <>
 struct EnumTable<structure::HysteresisModel> {
   using E = structure::HysteresisModel;
-  static constexpr EnumName<E> entries[] = {{E::elastic, "elastic"}, {E::bilinear, "bilinear"}};
+  static constexpr EnumName<E> entries[] = {{E::elastic, "elastic"}, {E::bilinear, "bilinear"}, {E::bouc_wen, "bouc-wen"}};
 };
 
 template <>

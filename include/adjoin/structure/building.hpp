@@ -31,6 +31,7 @@ struct StoreyDevice {
   double c = 0.0;  // dashpot [N (s/m)^alpha]
   Zener zener;
   double yield_force = 0.0, hardening = 0.0;  // bilinear (a metallic damper, a BRB): F_y [N], b in [0, 1)
+  double n = 2.0, beta = 0.5, gamma = 0.5;     // bouc-wen (with yield_force, hardening): as StoreyHysteresis
   double alpha = 1.0;  // dashpot: F = c |v|^alpha sign v, 0 < alpha <= 1 (1: linear)
 };
 
@@ -43,6 +44,9 @@ struct StoreyHysteresis {
   HysteresisModel model = HysteresisModel::elastic;
   Eigen::VectorXd yield_forces;  // bilinear: F_y per storey [N], bottom up
   double hardening = 0.0;        // b, in [0, 1)
+  // bouc-wen: force = b k d + (1 - b) k z, z' = d' - beta'|d'||z|^(n-1) z - gamma' d' |z|^n,
+  // beta' = beta / u_y^n, gamma' = gamma / u_y^n, u_y = F_y / k (n > 0, beta + gamma > 0).
+  double n = 2.0, beta = 0.5, gamma = 0.5;
 };
 
 // Classical damping from the building's mass and elastic (static) stiffness.
