@@ -43,6 +43,9 @@ struct StoreyHysteresis {
   HysteresisModel model = HysteresisModel::elastic;
   Eigen::VectorXd yield_forces;  // bilinear: F_y per storey [N], bottom up
   double hardening = 0.0;        // b, in [0, 1)
+  // > 0 when the law was given by its yield drift ratio: yield_forces are then k_i x ratio x h_i
+  // (yield_forces_from_drift_ratio, structure/rules.hpp); 0 when the forces were given.
+  double yield_drift_ratio = 0.0;
 };
 
 // Classical damping from the building's mass and elastic (static) stiffness.
