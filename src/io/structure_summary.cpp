@@ -170,8 +170,12 @@ std::string structure_summary_json(const RunSpec& scene, const Report& r, const 
       o["slip_force"] = link.slip_force;
       o["switches"] = lr.switches;
       o["switch_times"] = lr.switch_times;
-      o["energy"] = lr.friction_energy;
     }
+    if (link.type == structure::LinkType::dashpot) {
+      o["c"] = link.c;
+      o["alpha"] = link.alpha;
+    }
+    o["energy"] = lr.energy;  // dissipated, whatever the type (SPEC §7)
     links.push_back(o);
   }
   j["links"] = links;
