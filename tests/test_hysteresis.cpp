@@ -20,6 +20,7 @@
 #include "adjoin/post/inelastic.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/building.hpp"
+#include "cli_helpers.hpp"
 
 using namespace adjoin;
 using namespace adjoin::structure;
@@ -471,4 +472,35 @@ TEST_CASE("a yield drift ratio gives each storey F_y = k x ratio x h and the run
   const BuildingScene edited = load_building_scene(kTwoFrames, edits);
   CHECK(edited.structure.a.hysteresis.yield_forces == Eigen::VectorXd::Constant(5, 1.5e5));
   CHECK(edited.structure.a.hysteresis.yield_drift_ratio == 0.0);
+}
+
+TEST_CASE("adjoin modes and the run's report say a yielding building's periods are its initial stiffness's", "[hysteresis][cli]") {
+  const std::string scene = "'" + kTwoFrames + "'";
+  const std::string bilinear = " --set 'building.A.hysteresis={ model = \"bilinear\", yield_force = 8e4, hardening = 0.03 }'";
+  const std::string brace = " --set 'building.B.device=[{ type = \"bilinear\", storeys = [1], stiffness = 2e7, yield_force = 4e4 }]'";
+  const std::string said = "yielding storeys: periods, shapes and damping ratios of the initial (elastic) stiffness";
+  const auto elastic = test::run_cli("modes " + scene);
+  REQUIRE(elastic.status == 0);
+  CHECK(elastic.out.find(said) == std::string::npos);
+  const auto yielding = test::run_cli("modes " + scene + bilinear + brace);
+  INFO(yielding.err);
+  REQUIRE(yielding.status == 0);
+  // Once for A (its storeys' law) and once for B (its brace), each after its building's line.
+  const auto a = yielding.out.find("building A:"), b = yielding.out.find("building B:"), first = yielding.out.find(said);
+  REQUIRE(first != std::string::npos);
+  CHECK(first > a);
+  CHECK(first < b);
+  CHECK(yielding.out.find(said, b) != std::string::npos);
+
+  const std::string out = std::string(ADJOIN_TEST_TMP) + "/yielding_report";
+  const auto run_report = test::run_cli("run " + scene + bilinear + " --set solver.t_end=1 --set output.timeseries=false --out '" + out + "'");
+  INFO(run_report.err);
+  REQUIRE(run_report.status == 0);
+  const auto line_a = run_report.out.find("building A: T1 = "), line_b = run_report.out.find("building B: T1 = ");
+  REQUIRE(line_a != std::string::npos);
+  REQUIRE(line_b != std::string::npos);
+  const std::string text_a = run_report.out.substr(line_a, run_report.out.find('\n', line_a) - line_a);
+  const std::string text_b = run_report.out.substr(line_b, run_report.out.find('\n', line_b) - line_b);
+  CHECK(text_a.find("; of the initial stiffness (the storeys yield)") != std::string::npos);
+  CHECK(text_b.find("initial stiffness") == std::string::npos);  // B is elastic here
 }

@@ -81,6 +81,9 @@ struct Building {
   Eigen::VectorXd static_stiffness() const;
   // Per storey, the P-Delta geometric stiffness -P_i/h_i [N/m]; zeros without p_delta.
   Eigen::VectorXd geometric_stiffness() const;
+  // Whether its storeys can yield (a hysteresis law, or a device that is not a spring, a dashpot
+  // or a Zener element): its periods are then those of the initial stiffness (SPEC §7).
+  bool yields() const;
 };
 
 // LinkType (friction, dashpot, spring, zener): core/enum_names.hpp.
