@@ -347,6 +347,32 @@ TEST_CASE("builder: the scene reader and the builder word a rule's problem alike
   CHECK(e.problem().find("is outside the supported") != std::string::npos);
 }
 
+TEST_CASE("builder: bilinear storeys by yield force or by yield drift ratio are the scene reader's", "[builder][hysteresis]") {
+  // B's springs come from its period: the drift ratio's forces are taken from them.
+  const std::string text =
+      "name = \"t\"\n[model]\nunits = \"SI\"\n[building.A]\nstoreys = 3\nmasses = [6e4, 6e4, 5e4]\nperiod = 0.5\n"
+      "heights = [4.0, 3.5, 3.0]\nhysteresis = { model = \"bilinear\", yield_drift_ratio = 0.01, hardening = 0.03 }\n";
+  const structure::Structure from_file = parse_structure(text, "t.toml");
+  StructureBuilder s;
+  s.building('A', 3).masses({6e4, 6e4, 5e4}).period(0.5).heights({4.0, 3.5, 3.0}).bilinear_drift_ratio(0.01, 0.03);
+  const structure::Building b = s.build().a;
+  CHECK(b.hysteresis.model == structure::HysteresisModel::bilinear);
+  CHECK(b.hysteresis.yield_forces == from_file.a.hysteresis.yield_forces);  // bit for bit
+  CHECK(b.hysteresis.hardening == 0.03);
+  CHECK(b.hysteresis.yield_forces[0] == Approx(b.springs[0] * 0.01 * 4.0).epsilon(1e-15));
+  CHECK(b.hysteresis.yield_forces[2] == Approx(b.springs[2] * 0.01 * 3.0).epsilon(1e-15));
+
+  using structure::BuildingBuilder;
+  const structure::Building forces = BuildingBuilder('A', 2).mass(1e4).stiffness(1e7).bilinear_per_storey({2e5, 1e5}, 0.05).build();
+  CHECK(forces.hysteresis.yield_forces == Eigen::Vector2d(2e5, 1e5));
+  CHECK(BuildingBuilder('A', 2).mass(1e4).stiffness(1e7).bilinear(3e5).build().hysteresis.yield_forces == Eigen::Vector2d(3e5, 3e5));
+  CHECK(field_error([] { BuildingBuilder('A', 2).mass(1e4).stiffness(1e7).bilinear_drift_ratio(0.01).build(); }).field() ==
+        "building.A.hysteresis.yield_drift_ratio");  // no heights
+  CHECK(field_error([] { BuildingBuilder('A', 2).bilinear_per_storey({1e5, 0.0}); }).field() == "building.A.hysteresis.yield_forces[2]");
+  CHECK(field_error([] { BuildingBuilder('A', 2).bilinear(1e5, 1.0); }).field() == "building.A.hysteresis.hardening");
+  CHECK(field_error([] { BuildingBuilder('A', 2).bilinear_drift_ratio(-0.01); }).field() == "building.A.hysteresis.yield_drift_ratio");
+}
+
 TEST_CASE("builder: a channel recorder keeps the times and the asked channels as arrays", "[builder][recorder]") {
   BuildingRunOptions o;
   o.h = 0.005;

@@ -7,7 +7,9 @@
 #include <catch2/catch.hpp>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "adjoin/core/errors.hpp"
@@ -18,6 +20,7 @@
 #include "adjoin/post/inelastic.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/building.hpp"
+#include "cli_helpers.hpp"
 
 using namespace adjoin;
 using namespace adjoin::structure;
@@ -406,4 +409,98 @@ TEST_CASE("the energy balance closes at order 2 with bilinear storeys when every
   scene.structure.a.hysteresis.model = HysteresisModel::bilinear;
   scene.structure.a.hysteresis.yield_forces = Eigen::VectorXd::Constant(5, 80e3);
   check_energy_closes(scene, 1e-4);  // (the first-order steps after switches: a larger constant)
+}
+
+namespace {
+
+// The two frames with yielding storeys, each law given by its yield drift ratio (A by its
+// stiffness, B by its period: the forces need the springs the period gives), or given by
+// `forces_a` and `forces_b` instead.
+std::vector<std::string> drift_ratio_edits(const std::string& law_a, const std::string& law_b) {
+  return {"solver.t_end=12", "output.timeseries=false", "building.A.height=3.5", "building.B.heights=[3.5, 3.2, 3.0]",
+          "building.A.hysteresis={ model = \"bilinear\", " + law_a + ", hardening = 0.03 }",
+          "building.B.hysteresis={ model = \"bilinear\", " + law_b + ", hardening = 0.02 }"};
+}
+
+std::string forces_text(const Eigen::VectorXd& f) {
+  std::string out = "yield_forces = [";
+  for (Eigen::Index i = 0; i < f.size(); ++i) {
+    char buffer[40];
+    std::snprintf(buffer, sizeof buffer, "%s%.17g", i ? ", " : "", f[i]);
+    out += buffer;
+  }
+  return out + "]";
+}
+
+}  // namespace
+
+TEST_CASE("a yield drift ratio gives each storey F_y = k x ratio x h and the run of those yield forces", "[hysteresis][yield_drift_ratio]") {
+  const BuildingScene by_ratio =
+      load_building_scene(kTwoFrames, drift_ratio_edits("yield_drift_ratio = 0.01", "yield_drift_ratio = 0.008"));
+  const Building& a = by_ratio.structure.a;
+  const Building& b = *by_ratio.structure.b;
+  REQUIRE(a.hysteresis.yield_forces.size() == 5);
+  REQUIRE(b.hysteresis.yield_forces.size() == 3);
+  CHECK(a.hysteresis.yield_drift_ratio == 0.01);
+  for (int i = 0; i < 5; ++i) CHECK(a.hysteresis.yield_forces[i] == Approx(5.482e6 * 0.01 * 3.5).epsilon(1e-15));
+  const double heights_b[] = {3.5, 3.2, 3.0};
+  REQUIRE(b.springs[0] > 1e6);  // from the period
+  for (int i = 0; i < 3; ++i) CHECK(b.hysteresis.yield_forces[i] == Approx(b.springs[i] * 0.008 * heights_b[i]).epsilon(1e-15));
+
+  const BuildingScene by_force =
+      load_building_scene(kTwoFrames, drift_ratio_edits(forces_text(a.hysteresis.yield_forces), forces_text(b.hysteresis.yield_forces)));
+  CHECK(by_force.structure.a.hysteresis.yield_forces == a.hysteresis.yield_forces);  // bit for bit
+  CHECK(by_force.structure.b->hysteresis.yield_forces == b.hysteresis.yield_forces);
+  CHECK(by_force.structure.a.hysteresis.yield_drift_ratio == 0.0);
+  const Report r_ratio = run(by_ratio), r_force = run(by_force);
+  REQUIRE(r_ratio.yield.size() == 2);
+  REQUIRE(r_force.yield.size() == 2);
+  CHECK(r_ratio.yield[0].storeys[0].yielded);  // the storeys do yield: the laws matter
+  for (std::size_t k = 0; k < 2; ++k)
+    for (std::size_t i = 0; i < r_ratio.yield[k].storeys.size(); ++i) {
+      CHECK(r_ratio.yield[k].storeys[i].plastic_work == r_force.yield[k].storeys[i].plastic_work);
+      CHECK(r_ratio.yield[k].storeys[i].excursions == r_force.yield[k].storeys[i].excursions);
+    }
+  REQUIRE(r_ratio.peaks.size() == r_force.peaks.size());
+  for (std::size_t i = 0; i < r_ratio.peaks.size(); ++i) {
+    INFO(r_ratio.peaks[i].channel);
+    CHECK(r_ratio.peaks[i].peak.max_abs == r_force.peaks[i].peak.max_abs);
+  }
+  // A --set of a yield force replaces the ratio, as editing the file would.
+  auto edits = drift_ratio_edits("yield_drift_ratio = 0.01", "yield_drift_ratio = 0.008");
+  edits.push_back("building.A.hysteresis.yield_force=1.5e5");
+  const BuildingScene edited = load_building_scene(kTwoFrames, edits);
+  CHECK(edited.structure.a.hysteresis.yield_forces == Eigen::VectorXd::Constant(5, 1.5e5));
+  CHECK(edited.structure.a.hysteresis.yield_drift_ratio == 0.0);
+}
+
+TEST_CASE("adjoin modes and the run's report say a yielding building's periods are its initial stiffness's", "[hysteresis][cli]") {
+  const std::string scene = "'" + kTwoFrames + "'";
+  const std::string bilinear = " --set 'building.A.hysteresis={ model = \"bilinear\", yield_force = 8e4, hardening = 0.03 }'";
+  const std::string brace = " --set 'building.B.device=[{ type = \"bilinear\", storeys = [1], stiffness = 2e7, yield_force = 4e4 }]'";
+  const std::string said = "yielding storeys: periods, shapes and damping ratios of the initial (elastic) stiffness";
+  const auto elastic = test::run_cli("modes " + scene);
+  REQUIRE(elastic.status == 0);
+  CHECK(elastic.out.find(said) == std::string::npos);
+  const auto yielding = test::run_cli("modes " + scene + bilinear + brace);
+  INFO(yielding.err);
+  REQUIRE(yielding.status == 0);
+  // Once for A (its storeys' law) and once for B (its brace), each after its building's line.
+  const auto a = yielding.out.find("building A:"), b = yielding.out.find("building B:"), first = yielding.out.find(said);
+  REQUIRE(first != std::string::npos);
+  CHECK(first > a);
+  CHECK(first < b);
+  CHECK(yielding.out.find(said, b) != std::string::npos);
+
+  const std::string out = std::string(ADJOIN_TEST_TMP) + "/yielding_report";
+  const auto run_report = test::run_cli("run " + scene + bilinear + " --set solver.t_end=1 --set output.timeseries=false --out '" + out + "'");
+  INFO(run_report.err);
+  REQUIRE(run_report.status == 0);
+  const auto line_a = run_report.out.find("building A: T1 = "), line_b = run_report.out.find("building B: T1 = ");
+  REQUIRE(line_a != std::string::npos);
+  REQUIRE(line_b != std::string::npos);
+  const std::string text_a = run_report.out.substr(line_a, run_report.out.find('\n', line_a) - line_a);
+  const std::string text_b = run_report.out.substr(line_b, run_report.out.find('\n', line_b) - line_b);
+  CHECK(text_a.find("; of the initial stiffness (the storeys yield)") != std::string::npos);
+  CHECK(text_b.find("initial stiffness") == std::string::npos);  // B is elastic here
 }

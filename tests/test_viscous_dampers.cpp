@@ -2,11 +2,17 @@
 // by one, launched at v0, against the closed form (finite-time stop, stroke, the energy it
 // dissipates) at order 2; a frame with such dampers in its storeys and between two buildings
 // under a ground motion, at order 2 against a run 16 times finer, with its energy balance;
-// with a friction damper beside them (the two local solves in turn); the laws' mean force.
+// with a friction damper beside them (the two local solves in turn); the laws' mean force; a
+// dashpot link's energy in summary.json against c times the integral of v^2 from the time series.
 #include <catch2/catch.hpp>
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <sstream>
+#include <string>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "../src/solver/viscous_step.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
@@ -14,6 +20,7 @@
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/study/builder.hpp"
 #include "adjoin/study/run.hpp"
+#include "cli_helpers.hpp"
 
 using namespace adjoin;
 using namespace adjoin::structure;
@@ -205,4 +212,87 @@ TEST_CASE("two frames with nonlinear viscous dampers converge at order 2, their 
 
 TEST_CASE("nonlinear viscous dampers beside a friction damper: the two solved in turn, order 2", "[viscous]") {
   check_order_two(true);
+}
+
+namespace {
+
+// The two frames of SPEC §5 joined at floor 3 by a dashpot link F = c |v|^alpha sign v and by a
+// spring link at floor 2, under the first 8 s of Newhall, every step in the time series.
+std::string dashpot_link_scene(double alpha) {
+  return "name = \"dashpot-link\"\n[model]\nunits = \"SI\"\n"
+         "[building.A]\nstoreys = 5\nmass = 45.0e3\nstiffness = 5.482e6\ndamping = { model = \"modal\", ratio = 0.05 }\n"
+         "[building.B]\nstoreys = 3\nmasses = [60.0e3, 60.0e3, 50.0e3]\nperiod = 0.5\n"
+         "[[link]]\nfloors = [3, 3]\ntype = \"dashpot\"\nc = 4.0e5\nalpha = " + std::to_string(alpha) + "\n"
+         "[[link]]\nfloors = [2, 2]\ntype = \"spring\"\nstiffness = 1.0e5\n"
+         "[ground]\nsource = \"record\"\nfile = \"" + std::string(ADJOIN_REAL_RECORDS) + "/peer/RSN1044_DirRot2.AT2\"\n"
+         "[solver]\nh = 0.002\nt_end = 8.0\n[output]\ntimeseries = true\nevery = 1\n";
+}
+
+// Runs the scene with the CLI; its summary.json and the columns of its timeseries.csv.
+struct CliRun {
+  nlohmann::json summary;
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> rows;
+  std::size_t column(const std::string& name) const {
+    const auto it = std::find(names.begin(), names.end(), name);
+    REQUIRE(it != names.end());
+    return static_cast<std::size_t>(it - names.begin());
+  }
+};
+
+CliRun run_with_cli(const std::string& name, const std::string& text) {
+  namespace fs = std::filesystem;
+  const fs::path scene = test::write_temp(name + ".toml", text);
+  const fs::path out = fs::path(ADJOIN_TEST_TMP) / (name + "_out");
+  fs::remove_all(out);
+  const auto r = test::run_cli("run '" + scene.string() + "' --out '" + out.string() + "' --quiet");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CliRun run;
+  run.summary = nlohmann::json::parse(test::slurp(out / "summary.json"));
+  std::istringstream csv(test::slurp(out / "timeseries.csv"));
+  std::string line, cell;
+  while (std::getline(csv, line) && (line.empty() || line[0] == '#')) {}
+  std::istringstream header(line);
+  while (std::getline(header, cell, ',')) run.names.push_back(cell);
+  while (std::getline(csv, line)) {
+    std::istringstream values(line);
+    std::vector<double> row;
+    while (std::getline(values, cell, ',')) row.push_back(std::stod(cell));
+    run.rows.push_back(row);
+  }
+  return run;
+}
+
+}  // namespace
+
+TEST_CASE("every link reports the energy dissipated in it: a dashpot's is c times the integral of v^2", "[viscous][summary][cli]") {
+  const CliRun linear = run_with_cli("dashpot_link_1", dashpot_link_scene(1.0));
+  const auto& links = linear.summary["links"];
+  REQUIRE(links.size() == 2);
+  CHECK(links[0]["type"] == "dashpot");
+  CHECK(links[0]["c"].get<double>() == 4.0e5);
+  CHECK(links[0]["alpha"].get<double>() == 1.0);
+  const double energy = links[0]["energy"];
+  CHECK(energy > 0.0);
+  CHECK(energy == Approx(linear.summary["energy"]["links"][0].get<double>()).epsilon(1e-12));  // its part of the balance
+  // c times the integral of v^2, v from the time series' strokes by central differences.
+  const std::size_t t = linear.column("t"), s = linear.column("link1.stroke");
+  double integral = 0.0;
+  for (std::size_t n = 1; n < linear.rows.size(); ++n) {
+    const double dt = linear.rows[n][t] - linear.rows[n - 1][t], ds = linear.rows[n][s] - linear.rows[n - 1][s];
+    integral += ds * ds / dt;
+  }
+  INFO("energy " << energy << " J, c int v^2 dt " << 4.0e5 * integral << " J");
+  CHECK(4.0e5 * integral == Approx(energy).epsilon(2e-3));
+  // A spring dissipates nothing: its work is what it holds.
+  CHECK(links[1]["type"] == "spring");
+  CHECK(links[1]["energy"].get<double>() == 0.0);
+  CHECK(linear.summary["energy"]["links"][1].get<double>() != 0.0);
+
+  const CliRun nonlinear = run_with_cli("dashpot_link_04", dashpot_link_scene(0.4));
+  CHECK(nonlinear.summary["links"][0]["alpha"].get<double>() == Approx(0.4).epsilon(1e-15));
+  CHECK(nonlinear.summary["links"][0]["energy"].get<double>() ==
+        Approx(nonlinear.summary["energy"]["links"][0].get<double>()).epsilon(1e-12));
+  CHECK(nonlinear.summary["links"][0]["energy"].get<double>() > 0.0);
 }

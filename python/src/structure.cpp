@@ -1,6 +1,8 @@
 // structure/builder.hpp and structure/modal.hpp in Python: adjoin.StructureBuilder (the typed
 // builder: buildings, storey devices, links, contact pairs, each problem an InputError naming
 // its field) and adjoin.modes (each building's modes, of a built structure or a scene).
+#include <optional>
+
 #include "adjoin/core/errors.hpp"
 #include "adjoin/structure/builder.hpp"
 #include "adjoin/structure/modal.hpp"
@@ -108,6 +110,21 @@ void bind_structure(py::module_& m) {
       .def("heights", &BuildingBuilder::heights, py::arg("m"), py::return_value_policy::reference_internal, "Each storey's height [m], storey 1 first.")
       .def("p_delta", &BuildingBuilder::p_delta, py::arg("on"), py::return_value_policy::reference_internal, "P-Delta: each storey's geometric stiffness -P_i/h_i (needs heights).")
       .def("collapse_drift_ratio", &BuildingBuilder::collapse_drift_ratio, py::arg("ratio"), py::return_value_policy::reference_internal, "The |drift| / height past which a run stops with a collapse (default 0.10; needs heights).")
+      .def(
+          "bilinear",
+          [](BuildingBuilder& b, std::optional<double> yield_force, std::optional<std::vector<double>> yield_forces,
+             std::optional<double> yield_drift_ratio, double hardening) -> BuildingBuilder& {
+            if (yield_force.has_value() + yield_forces.has_value() + yield_drift_ratio.has_value() != 1)
+              throw InputError(b.path() + ".hysteresis: give one of yield_force, yield_forces or yield_drift_ratio",
+                               b.path() + ".hysteresis");
+            if (yield_force) return b.bilinear(*yield_force, hardening);
+            if (yield_forces) return b.bilinear_per_storey(*yield_forces, hardening);
+            return b.bilinear_drift_ratio(*yield_drift_ratio, hardening);
+          },
+          py::kw_only(), py::arg("yield_force") = py::none(), py::arg("yield_forces") = py::none(),
+          py::arg("yield_drift_ratio") = py::none(), py::arg("hardening") = 0.0, py::return_value_policy::reference_internal,
+          "Bilinear storeys (kinematic hardening b = hardening in [0, 1)), yielding at yield_force [N] (every storey), "
+          "yield_forces [N] (storey 1 first) or yield_drift_ratio [-] (F_y = k x ratio x h: needs heights); one of the three.")
       .def_property_readonly("path", &BuildingBuilder::path, "The building's field path, \"building.A\".")
       .def_property_readonly("storeys", &BuildingBuilder::storeys, "The number of storeys.");
 

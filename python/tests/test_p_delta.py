@@ -39,3 +39,28 @@ def test_p_delta_without_heights_is_refused_by_build():
     with pytest.raises(adjoin.InputError) as e:
         s.build()
     assert e.value.field == "building.A.p_delta"
+
+
+def test_bilinear_storeys_name_their_fields():
+    """bilinear() takes one of yield_force, yield_forces, yield_drift_ratio (F_y = k x ratio x h,
+    needs heights), as the scene's hysteresis table does; each problem names its field."""
+    m, k, h = 1.0e4, 1.0e6, 3.5
+    s = adjoin.StructureBuilder()
+    s.building("A", 2).mass(m).stiffness(k).height(h).bilinear(yield_drift_ratio=0.01, hardening=0.03)
+    assert s.build().dofs == 2
+    s = adjoin.StructureBuilder()
+    s.building("A", 2).mass(m).stiffness(k).bilinear(yield_drift_ratio=0.01)
+    with pytest.raises(adjoin.InputError) as e:
+        s.build()
+    assert e.value.field == "building.A.hysteresis.yield_drift_ratio"  # no heights
+    cases = [
+        (lambda b: b.bilinear(yield_force=1e5, yield_drift_ratio=0.01), "building.A.hysteresis"),
+        (lambda b: b.bilinear(hardening=0.1), "building.A.hysteresis"),
+        (lambda b: b.bilinear(yield_forces=[1e5]), "building.A.hysteresis.yield_forces"),
+        (lambda b: b.bilinear(yield_force=1e5, hardening=1.0), "building.A.hysteresis.hardening"),
+        (lambda b: b.bilinear(yield_drift_ratio=0.0), "building.A.hysteresis.yield_drift_ratio"),
+    ]
+    for make, field in cases:
+        with pytest.raises(adjoin.InputError) as e:
+            make(adjoin.StructureBuilder().building("A", 2))
+        assert e.value.field == field

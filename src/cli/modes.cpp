@@ -5,7 +5,8 @@
 // complex stiffness at the mode's frequency), participation factors, effective modal masses
 // (and their share of the total mass, cumulated) and mode shapes scaled to 1 at the roof, for
 // every mode or the first N; the coupled system's periods with the friction links free and
-// locked (with P-Delta, SPEC §7: of the tangent K0 + K_G, and said so). Every number has its unit. A two-block scene (SPEC §3) is the structure of one floor
+// locked (with P-Delta, SPEC §7: of the tangent K0 + K_G, and said so; a building whose storeys
+// yield: of the initial stiffness, and said so). Every number has its unit. A two-block scene (SPEC §3) is the structure of one floor
 // per building, a Zener storey each, one friction link (dimensionless: time in T0, mass in m1).
 #include <algorithm>
 #include <cstdio>
@@ -45,6 +46,9 @@ void print_building(const structure::Building& b, const Units& u, int shown) {
   if (m.p_delta)
     std::printf("  with P-Delta: periods and shapes of K0 + K_G (each storey's geometric stiffness -P_i/h_i, P_i the weight "
                 "it carries); inherent damping from K0; a period inf is a mode the gravity load makes unstable\n");
+  if (b.yields())
+    std::printf("  yielding storeys: periods, shapes and damping ratios of the initial (elastic) stiffness; they hold until "
+                "a storey yields, and the inherent damping stays the initial stiffness's throughout the run\n");
   std::printf("  %4s %12s %12s %12s %12s %12s %12s %14s %16s %12s %12s\n", "mode", bracketed("period", u.time).c_str(),
               bracketed("freq", u.frequency).c_str(), "inherent [-]", "devices [-]", "total [-]", "zener K' [-]",
               "Gamma_roof [-]", bracketed("eff. mass", u.mass).c_str(), "eff. [%]", "cumul. [%]");

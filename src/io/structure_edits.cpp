@@ -82,8 +82,9 @@ std::vector<std::string> alternatives(const std::string& key) {
   if (key == "heights") return {"height"};
   if (key == "slip_force") return {"slip_ratio", "of"};
   if (key == "slip_ratio") return {"slip_force"};
-  if (key == "yield_force") return {"yield_forces"};  // (building.X.hysteresis)
-  if (key == "yield_forces") return {"yield_force"};
+  if (key == "yield_force") return {"yield_forces", "yield_drift_ratio"};  // (building.X.hysteresis)
+  if (key == "yield_forces") return {"yield_force", "yield_drift_ratio"};
+  if (key == "yield_drift_ratio") return {"yield_force", "yield_forces"};
   return {};
 }
 

@@ -244,12 +244,14 @@ void read_bouc_wen_shape(const TableReader& r, double* n, double* beta, double* 
 }
 
 // A building's storey law (SPEC §7): hysteresis = { model = "bilinear", yield_force = ...,
-// hardening = 0.05 } (or yield_forces = [...] per storey); model = "elastic" is the default.
+// hardening = 0.05 } (or yield_forces = [...] per storey, or yield_drift_ratio = 0.01: its
+// forces need the springs and heights, so read_building turns it into forces last);
+// model = "elastic" is the default.
 structure::StoreyHysteresis read_hysteresis(const toml::table& building, const TableReader& r, int n) {
   const toml::table* h = building.get_as<toml::table>("hysteresis");
   if (!h) r.fail("hysteresis", "expected a table: { model = \"bilinear\", yield_force = 160.0e3, hardening = 0.05 }");
   const TableReader hr = r.inner(*h, r.path() + ".hysteresis");
-  hr.only({"model", "yield_force", "yield_forces", "hardening", "n", "beta", "gamma"});
+  hr.only({"model", "yield_force", "yield_forces", "yield_drift_ratio", "hardening", "n", "beta", "gamma"});
   structure::StoreyHysteresis y;
   y.model = hr.choice<structure::HysteresisModel>("model");
   if (y.model == structure::HysteresisModel::elastic) {
@@ -257,9 +259,15 @@ structure::StoreyHysteresis read_hysteresis(const toml::table& building, const T
     return y;
   }
   if (y.model == structure::HysteresisModel::bouc_wen) read_bouc_wen_shape(hr, &y.n, &y.beta, &y.gamma);
-  else hr.only_with({"model", "yield_force", "yield_forces", "hardening"}, "the model \"bilinear\" (n, beta, gamma are Bouc-Wen's)");
-  if (hr.has("yield_force") == hr.has("yield_forces"))
-    hr.fail("", "give the yield force as yield_force (every storey) or yield_forces (a list), one of them");
+  else hr.only_with({"model", "yield_force", "yield_forces", "yield_drift_ratio", "hardening"}, "the model \"bilinear\" (n, beta, gamma are Bouc-Wen's)");
+  if (hr.has("yield_force") + hr.has("yield_forces") + hr.has("yield_drift_ratio") != 1)
+    hr.fail("", "give the yield force as yield_force (every storey), yield_forces (a list) or yield_drift_ratio "
+                "(F_y = k x ratio x h, needs heights), one of them");
+  y.hardening = read_hardening(hr);
+  if (hr.has("yield_drift_ratio")) {
+    y.yield_drift_ratio = hr.bounded("yield_drift_ratio", structure::kDriftRatioRange);
+    return y;
+  }
   if (hr.has("yield_force")) {
     y.yield_forces = Eigen::VectorXd::Constant(n, hr.bounded("yield_force", kForceRange));
   } else {
@@ -269,7 +277,6 @@ structure::StoreyHysteresis read_hysteresis(const toml::table& building, const T
       if (const std::string problem = bounded_problem(f[static_cast<std::size_t>(i)], kForceRange); !problem.empty())
         hr.fail("yield_forces", "storey " + std::to_string(i + 1) + ": " + problem);
   }
-  y.hardening = read_hardening(hr);
   return y;
 }
 
@@ -295,6 +302,14 @@ structure::Base read_base(const toml::table& building, const TableReader& r) {
     br.fail("radius", "a flat slider has no radius; remove it, or use model = \"friction-pendulum\"");
   }
   return base;
+}
+
+// The yield forces of a law given by its yield drift ratio, from the building's final springs
+// and heights; the problem (no heights, a storey without a spring) blamed on the key.
+void resolve_yield_drift_ratio(const toml::table& building, const TableReader& r, Building* b) {
+  const TableReader hr = r.inner(*building.get_as<toml::table>("hysteresis"), r.path() + ".hysteresis");
+  if (const std::string problem = structure::yield_forces_from_drift_ratio(b, b->hysteresis.yield_drift_ratio); !problem.empty())
+    hr.fail("yield_drift_ratio", problem);
 }
 
 Building read_building(const toml::table& root, const std::string& name, const TableReader& top) {
@@ -400,6 +415,7 @@ Building read_building(const toml::table& root, const std::string& name, const T
   if (const std::string problem = structure::storey_stiffness_problem(b); !problem.empty()) r.fail("", problem);
   read_heights(r, &b);
   if (r.has("base")) b.base = read_base(*t, r);
+  if (b.hysteresis.yield_drift_ratio > 0.0) resolve_yield_drift_ratio(*t, r, &b);
   return b;
 }
 

@@ -182,8 +182,12 @@ std::string structure_summary_json(const RunSpec& scene, const Report& r, const 
       o["slip_force"] = link.slip_force;
       o["switches"] = lr.switches;
       o["switch_times"] = lr.switch_times;
-      o["energy"] = lr.friction_energy;
     }
+    if (link.type == structure::LinkType::dashpot) {
+      o["c"] = link.c;
+      o["alpha"] = link.alpha;
+    }
+    o["energy"] = lr.energy;  // dissipated, whatever the type (SPEC §7)
     links.push_back(o);
   }
   j["links"] = links;
@@ -279,9 +283,11 @@ std::string structure_brief_report(const RunSpec& scene, const Report& r, const 
       o << line;
       continue;
     }
-    std::snprintf(line, sizeof line, "building %s: T1 = %.4g s, modal damping %.3g (inherent %.3g, devices %.3g)%s\n",
+    const bool yields = (b == 0 ? s.a : *s.b).yields();  // its periods are the initial stiffness's (SPEC §7)
+    std::snprintf(line, sizeof line, "building %s: T1 = %.4g s, modal damping %.3g (inherent %.3g, devices %.3g)%s%s\n",
                   b == 0 ? "A" : "B", r.modes[b].periods[0], r.modes[b].total_ratio[0], r.modes[b].inherent_ratio[0],
-                  r.modes[b].device_ratio[0], r.modes[b].p_delta ? " with P-Delta" : "");
+                  r.modes[b].device_ratio[0], r.modes[b].p_delta ? " with P-Delta" : "",
+                  yields ? "; of the initial stiffness (the storeys yield)" : "");
     o << line;
   }
   if (r.collapse) {

@@ -123,6 +123,35 @@ BuildingBuilder& BuildingBuilder::collapse_drift_ratio(double ratio) {
   return *this;
 }
 
+BuildingBuilder& BuildingBuilder::bilinear(double yield_force, double hardening) {
+  return bilinear_per_storey(std::vector<double>(static_cast<std::size_t>(b_.floors()), yield_force), hardening);
+}
+
+BuildingBuilder& BuildingBuilder::bilinear_per_storey(const std::vector<double>& yield_forces, double hardening) {
+  const std::string path = path_ + ".hysteresis";
+  const auto n = static_cast<std::size_t>(b_.floors());
+  if (yield_forces.size() != n)
+    throw FieldError(path + ".yield_forces", "expected " + std::to_string(n) + " values, one per storey (bottom up)");
+  for (std::size_t i = 0; i < n; ++i) check(item(path + ".yield_forces", i), bounded_problem(yield_forces[i], kForceRange));
+  if (!(hardening >= 0.0 && hardening < 1.0)) throw FieldError(path + ".hardening", "expected a post-yield stiffness ratio in [0, 1)");
+  b_.hysteresis = StoreyHysteresis{};
+  b_.hysteresis.model = HysteresisModel::bilinear;
+  b_.hysteresis.yield_forces = Eigen::Map<const Eigen::VectorXd>(yield_forces.data(), static_cast<Eigen::Index>(n));
+  b_.hysteresis.hardening = hardening;
+  return *this;
+}
+
+BuildingBuilder& BuildingBuilder::bilinear_drift_ratio(double yield_drift_ratio, double hardening) {
+  const std::string path = path_ + ".hysteresis";
+  check(path + ".yield_drift_ratio", bounded_problem(yield_drift_ratio, kDriftRatioRange));
+  if (!(hardening >= 0.0 && hardening < 1.0)) throw FieldError(path + ".hardening", "expected a post-yield stiffness ratio in [0, 1)");
+  b_.hysteresis = StoreyHysteresis{};
+  b_.hysteresis.model = HysteresisModel::bilinear;
+  b_.hysteresis.hardening = hardening;
+  b_.hysteresis.yield_drift_ratio = yield_drift_ratio;
+  return *this;
+}
+
 std::string BuildingBuilder::device_path() const { return item(path_ + ".device", b_.devices.size()); }
 
 void BuildingBuilder::add_device(StoreyDevice device, const std::vector<int>& storeys) {
@@ -177,6 +206,8 @@ Building BuildingBuilder::build() const {
   std::string key;
   if (const std::string problem = heights_problem(b, collapse_given_, &key); !problem.empty())
     throw FieldError(path_ + "." + key, problem);
+  if (b.hysteresis.yield_drift_ratio > 0.0)
+    check(path_ + ".hysteresis.yield_drift_ratio", yield_forces_from_drift_ratio(&b, b.hysteresis.yield_drift_ratio));
   return b;
 }
 

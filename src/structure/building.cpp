@@ -129,6 +129,13 @@ Eigen::VectorXd Building::static_stiffness() const {
   return k;
 }
 
+bool Building::yields() const {
+  if (hysteresis.model != HysteresisModel::elastic) return true;
+  for (const StoreyDevice& d : devices)
+    if (d.type != DeviceType::spring && d.type != DeviceType::dashpot && d.type != DeviceType::zener) return true;
+  return false;
+}
+
 Eigen::VectorXd Building::geometric_stiffness() const {
   Eigen::VectorXd k = Eigen::VectorXd::Zero(floors());
   if (!p_delta || heights.size() != floors()) return k;

@@ -134,4 +134,23 @@ std::string heights_problem(const Building& b, bool collapse_given, std::string*
   return "";
 }
 
+std::string yield_forces_from_drift_ratio(Building* b, double ratio) {
+  if (const std::string problem = bounded_problem(ratio, kDriftRatioRange); !problem.empty()) return problem;
+  if (!b->has_heights())
+    return "the yield drift ratio needs the storey heights: give height (every storey) or heights (a list) [m], or "
+           "give the yield force (yield_force or yield_forces) instead";
+  const int n = b->floors();
+  Eigen::VectorXd forces(n);
+  for (int i = 0; i < n; ++i) {
+    if (!(b->springs[i] > 0.0))
+      return "storey " + std::to_string(i + 1) + " has no spring to yield (give its stiffness)";
+    forces[i] = b->springs[i] * ratio * b->heights[i];
+    if (const std::string problem = kForceRange.problem(forces[i]); !problem.empty())
+      return "storey " + std::to_string(i + 1) + "'s yield force k x ratio x h: " + problem;
+  }
+  b->hysteresis.yield_forces = forces;
+  b->hysteresis.yield_drift_ratio = ratio;
+  return "";
+}
+
 }  // namespace adjoin::structure

@@ -36,6 +36,7 @@ class ChannelObserver final : public StructureObserver {
     for (std::size_t i = 0; i < values_.size(); ++i)
       is_smooth_[i] = structure::info(values_.channels()[i].quantity).peak == structure::PeakRule::refined;
     links_.assign(s.links.size(), LinkReport{});
+    last_force_stroke_.assign(s.links.size(), 0.0);
     contacts_.assign(s.contacts.size(), ContactReport{});
     for (std::size_t k = 0; k < s.contacts.size(); ++k) contacts_[k].model = s.contacts[k].law.model;
     contact_work_.assign(s.contacts.size(), 0.0);
@@ -71,14 +72,14 @@ class ChannelObserver final : public StructureObserver {
       LinkReport& r = links_[l];
       r.force_max = std::max(r.force_max, std::abs(st.link_force[l]));
       r.stroke_max = std::max(r.stroke_max, std::abs(st.link_stroke[l]));
-      if (s_.links[l].type == structure::LinkType::friction && !first_) {
-        if (st.link_phase[l] != last_phase_[l]) {
-          ++r.switches;
-          r.switch_times.push_back(std::isnan(st.link_switch[l]) ? st.t : st.link_switch[l]);
-        }
-        // Work of the friction force on the link's relative motion (trapezoidal in time).
-        r.friction_energy += 0.5 * (st.t - last_t_) * (st.link_force[l] * st.link_velocity[l] + last_power_[l]);
+      if (s_.links[l].type == structure::LinkType::friction && !first_ && st.link_phase[l] != last_phase_[l]) {
+        ++r.switches;
+        r.switch_times.push_back(std::isnan(st.link_switch[l]) ? st.t : st.link_switch[l]);
       }
+      // Work of the link's force on its relative motion (trapezoidal in time); links() takes
+      // off what an elastic link still holds.
+      if (!first_) r.energy += 0.5 * (st.t - last_t_) * (st.link_force[l] * st.link_velocity[l] + last_power_[l]);
+      last_force_stroke_[l] = 0.5 * st.link_force[l] * st.link_stroke[l];
     }
     const auto n_contacts = static_cast<Eigen::Index>(s_.contacts.size());
     for (std::size_t k = 0; k < s_.contacts.size(); ++k) {
@@ -247,7 +248,16 @@ class ChannelObserver final : public StructureObserver {
     }
     return out;
   }
-  const std::vector<LinkReport>& links() const { return links_; }
+  // The links, each with the work dissipated in it (LinkReport::energy): the work done on it,
+  // less what a spring or a Zener link still holds at the last grid point.
+  std::vector<LinkReport> links() const {
+    std::vector<LinkReport> out = links_;
+    for (std::size_t l = 0; l < out.size(); ++l) {
+      if (s_.links[l].type == structure::LinkType::spring) out[l].energy = 0.0;
+      if (s_.links[l].type == structure::LinkType::zener) out[l].energy -= last_force_stroke_[l];
+    }
+    return out;
+  }
   // The contact pairs with their impacts' totals (in the order the impacts started).
   std::vector<ContactReport> contacts() const {
     std::vector<ContactReport> out = contacts_;
@@ -288,6 +298,7 @@ class ChannelObserver final : public StructureObserver {
   std::vector<Peak> sampled_;        // accelerations, shears, link forces: kinks at switches
   std::vector<bool> is_smooth_;
   std::vector<LinkReport> links_;
+  std::vector<double> last_force_stroke_;  // per link, 1/2 F s at the last grid point [J]
   std::vector<ContactReport> contacts_;
   std::vector<double> contact_work_;  // the solver's contact_work at the last grid point
   std::vector<Phase> last_phase_;

@@ -88,7 +88,7 @@ std::vector<QuantityError> structure_quantities(const RunSpec& spec, const Repor
     value(link + " force_max", r.links[l].force_max);
     value(link + " stroke_max", r.links[l].stroke_max);
     if (spec.structure.links[l].type == structure::LinkType::friction) {
-      value(link + " energy", r.links[l].friction_energy);
+      value(link + " energy", r.links[l].energy);
       for (std::size_t i = 0; i < r.links[l].switch_times.size(); ++i)
         instant(link + " switch " + std::to_string(i + 1), r.links[l].switch_times[i]);
     }

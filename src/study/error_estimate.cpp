@@ -49,7 +49,7 @@ void compare_channels(const RunSpec& spec, const Report& fine, const Report& c, 
     le.force_max = error(f.force_max, g.force_max);
     le.stroke_max = error(f.stroke_max, g.stroke_max);
     if (spec.structure.links.at(l).type == structure::LinkType::friction) {
-      le.energy = error(f.friction_energy, g.friction_energy);
+      le.energy = error(f.energy, g.energy);
       le.switches_matched = f.switch_times.size() == g.switch_times.size();
       if (le.switches_matched) {
         for (std::size_t k = 0; k < f.switch_times.size(); ++k) le.switches.push_back(error(f.switch_times[k], g.switch_times[k]));

@@ -57,6 +57,13 @@ class BuildingBuilder {
   BuildingBuilder& heights(const std::vector<double>& m);
   BuildingBuilder& p_delta(bool on);
   BuildingBuilder& collapse_drift_ratio(double ratio);
+  // The storey springs' own law (SPEC §7): bilinear, kinematic hardening b in [0, 1) (0:
+  // elastic-perfectly-plastic), yielding at F_y [N] (every storey), at F_y,i (a list bottom
+  // up), or at a drift ratio: F_y,i = k_i x ratio x h_i with k_i the storey spring's initial
+  // stiffness (needs the heights; checked by build(), after a period gave the springs).
+  BuildingBuilder& bilinear(double yield_force, double hardening = 0.0);
+  BuildingBuilder& bilinear_per_storey(const std::vector<double>& yield_forces, double hardening = 0.0);
+  BuildingBuilder& bilinear_drift_ratio(double yield_drift_ratio, double hardening = 0.0);
 
   const std::string& path() const { return path_; }  // "building.A"
   int storeys() const { return b_.floors(); }

@@ -47,6 +47,9 @@ struct StoreyHysteresis {
   // bouc-wen: force = b k d + (1 - b) k z, z' = d' - beta'|d'||z|^(n-1) z - gamma' d' |z|^n,
   // beta' = beta / u_y^n, gamma' = gamma / u_y^n, u_y = F_y / k (n > 0, beta + gamma > 0).
   double n = 2.0, beta = 0.5, gamma = 0.5;
+  // > 0 when the law was given by its yield drift ratio: yield_forces are then k_i x ratio x h_i
+  // (yield_forces_from_drift_ratio, structure/rules.hpp); 0 when the forces were given.
+  double yield_drift_ratio = 0.0;
 };
 
 // Classical damping from the building's mass and elastic (static) stiffness.
@@ -102,6 +105,9 @@ struct Building {
   // An isolated base's slip force mu W and pendulum stiffness W / R (0 for a flat slider).
   double base_slip_force() const;
   double base_stiffness() const;
+  // Whether its storeys can yield (a hysteresis law, or a device that is not a spring, a dashpot
+  // or a Zener element): its periods are then those of the initial stiffness (SPEC §7).
+  bool yields() const;
 };
 
 // LinkType (friction, dashpot, spring, zener): core/enum_names.hpp.

@@ -89,6 +89,13 @@ double slip_force_from_ratio(double ratio, const Building& of);
 // and collapse_drift_ratio need the heights. "" or the problem, and the key to blame in *key.
 std::string heights_problem(const Building& b, bool collapse_given, std::string* key);
 
+// A bilinear storey law given by its yield drift ratio (SPEC §7): sets each storey's yield force
+// F_y,i = k_i x ratio x h_i (k_i the storey spring's initial stiffness, h_i its height), so that
+// the spring yields when its drift ratio reaches `ratio`. Needs the heights and a spring in
+// every storey, so call it once both are final (after a period was turned into springs).
+// "" or the problem.
+std::string yield_forces_from_drift_ratio(Building* b, double ratio);
+
 // The storey that has no static stiffness (no spring and no spring or Zener device), as
 // "storey i has no stiffness: ...", or "".
 std::string storey_stiffness_problem(const Building& b);

@@ -45,7 +45,11 @@ struct LinkReport {
   double force_max = 0.0, stroke_max = 0.0;
   std::size_t switches = 0;              // friction links: phase changes
   std::vector<double> switch_times;      // located instants [s]
-  double friction_energy = 0.0;          // friction links: dissipated work [J] (trapezoidal)
+  // The work dissipated in the link [J] (trapezoidal in time), whatever its type: a friction
+  // link's or a dashpot's is all the work done on it; a spring dissipates nothing (0); a Zener
+  // link's is the work done on it less 1/2 F s at the last grid point (what a spring carrying
+  // its last force at its last stroke holds: its stored energy once it has relaxed).
+  double energy = 0.0;
 };
 
 // Contact pairs (SPEC §6): each pair's gap on the grid and, with a contact law, its impacts as
