@@ -2,6 +2,7 @@
 // run on it: tests/test_two_block_outputs.cpp), a light block through its restarts, a linear building's steady
 // state against its frequency response (a complex linear solve), its order 2, and the friction
 // dampers' box QP against its optimality conditions.
+#include <array>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <complex>
@@ -219,6 +220,48 @@ TEST_CASE("the dampers' box QP meets its optimality conditions", "[structure_sol
       const double stuck = w0[0] / s(0, 0);
       CHECK(r.q[0] == Approx(std::clamp(stuck, -limit[0], limit[0])).epsilon(1e-14));
     }
+  }
+}
+
+TEST_CASE("held-set inverses updated by bordering equal those inverted from scratch", "[structure_solver][box_qp]") {
+  // A walk over index sets, each one or two elements from the last (as sticking dampers and
+  // yielding storeys change them), on a symmetric positive definite matrix and on one with
+  // negative diagonal entries (slipping bilinear elements' rows); each set's inverse against
+  // a direct inversion of its submatrix.
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 30;
+  Eigen::MatrixXd g(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) g(i, j) = u(random);
+  const Eigen::MatrixXd spd = g * g.transpose() + 0.5 * Eigen::MatrixXd::Identity(n, n);
+  Eigen::MatrixXd indefinite = spd;
+  for (int i = 0; i < n; i += 5) indefinite(i, i) = -indefinite(i, i);
+  const std::array<const Eigen::MatrixXd*, 2> matrices = {&spd, &indefinite};
+  for (const Eigen::MatrixXd* s : matrices) {
+    detail::SubsetInverses inverses(*s);
+    std::vector<char> in(n, 1);
+    int updated = 0;
+    for (int step = 0; step < 300; ++step) {
+      const int changes = 1 + step % 2;
+      for (int c = 0; c < changes; ++c) in[static_cast<std::size_t>(random() % n)] ^= 1;
+      std::vector<int> set;
+      for (int i = 0; i < n; ++i)
+        if (in[i]) set.push_back(i);
+      if (set.empty()) continue;
+      const auto& sys = inverses.of(set);
+      if (sys.generation > 0) ++updated;
+      const int m = static_cast<int>(set.size());
+      Eigen::MatrixXd a(m, m);
+      for (int i = 0; i < m; ++i)
+        for (int j = 0; j < m; ++j) a(i, j) = (*s)(set[i], set[j]);
+      const Eigen::MatrixXd direct = a.partialPivLu().inverse();
+      INFO("step " << step << ", generation " << sys.generation);
+      CHECK((sys.inverse - direct).cwiseAbs().maxCoeff() <= 1e-9 * direct.cwiseAbs().maxCoeff());
+      CHECK((a * sys.inverse - Eigen::MatrixXd::Identity(m, m)).cwiseAbs().maxCoeff() <= 1e-9);
+    }
+    // Most new sets came from the last by an update (the walk revisits few sets).
+    CHECK(updated > 150);
   }
 }
 

@@ -505,6 +505,26 @@ TEST_CASE("Matching a recorded motion keeps its length and phases' timing", "[sy
   CHECK(ab / std::sqrt(aa * bb) > 0.7);
 }
 
+TEST_CASE("Matching refuses a record shorter than the band's longest period", "[synth]") {
+  // A 1 s record cannot shape the response at 3 s: every correction would miss, and the
+  // matching would run all its iterations and attempts before giving up.
+  SynthesisOptions o;
+  o.duration = 1.0;
+  o.dt = 0.01;
+  o.target_pga = 0.2;
+  MatchOptions m;
+  m.target = TargetSpectrum::ec8('B', 0.25);
+  m.period_max = 3.0;
+  CHECK_THROWS_WITH(synthesize_matched(o, m, nullptr), Contains("lasts 1 s") && Contains("match.period_max = 3 s"));
+  Record seed;
+  seed.dt = 0.01;
+  seed.accel.assign(201, 0.1);  // 2 s
+  seed.source = "seed";
+  CHECK_THROWS_WITH(match_spectrum(seed, m, nullptr), Contains("lasts 2 s"));
+  m.period_max = 2.0;  // a band no longer than the record is accepted
+  CHECK_NOTHROW(m.IsValid(nullptr));
+}
+
 TEST_CASE("adjoin synth writes a readable record and reports the match", "[synth][cli]") {
   const auto dir = adjoin::test::write_temp("synth_cli_dir_marker", "").parent_path();
   const auto out = dir / "synth_cli.txt";

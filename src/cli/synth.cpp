@@ -155,6 +155,10 @@ int synth_command(SynthArgs& a) {
       else if (error.rfind("match.damping", 0) == 0) error.replace(0, 13, "--damping");
       throw InputError(error);
     }
+    const double lasts = static_cast<double>(synthesis_samples(o.duration, o.dt) - 1) * o.dt;
+    if (!(lasts >= m.period_max))
+      throw InputError("--duration " + num(o.duration) + ": shorter than the band's longest period (--band " + a.band +
+                       "): spectrum matching needs a record at least that long");
   }
 
   // The complete command, every option spelled out.

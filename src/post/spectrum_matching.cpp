@@ -242,6 +242,13 @@ double gain_factor(double lf, const std::vector<double>& x, const std::vector<do
 // (SIMQKE's way). Without it, gains change the record as given.
 Record match_core(std::vector<double> buffer, std::size_t n, double dt, const MatchOptions& o, MatchReport* report,
                   Record prototype, const std::vector<double>& envelope = {}) {
+  // A record shorter than a band period cannot shape that period's response: the corrections
+  // would never converge, and each of the up to max_iterations x attempts would still cost a
+  // whole spectrum (found by the scene fuzzer: a 0.01 s record took seconds to fail).
+  const double duration = static_cast<double>(n - 1) * dt;
+  if (!(duration >= o.period_max))
+    throw InputError("spectrum matching: the record lasts " + num(duration) + " s, less than the band's longest period " +
+                     "(match.period_max = " + num(o.period_max) + " s); give a record at least that long or a shorter band");
   const std::size_t m = buffer.size();
   const std::size_t half = m / 2;
   detail::RealArray real = detail::real_array(m);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
 namespace adjoin::detail {
 namespace {
@@ -16,18 +17,78 @@ BoxQpResult solve_box_qp(const Eigen::MatrixXd& s, const Eigen::VectorXd& w0, co
   return qp.solve(w0, limit, hint);
 }
 
+Eigen::MatrixXd SubsetInverses::invert(const std::vector<int>& set) const {
+  const int m = static_cast<int>(set.size());
+  Eigen::MatrixXd a(m, m);
+  for (int i = 0; i < m; ++i)
+    for (int j = 0; j < m; ++j) a(i, j) = s_(set[i], set[j]);
+  // (A negative diagonal: a slipping bilinear element's row, whose compliance is negative;
+  // the set's matrix is then symmetric indefinite, and LU with partial pivoting inverts it.)
+  if ((a.diagonal().array() < 0.0).any()) return a.partialPivLu().inverse();
+  return a.ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+}
+
+bool SubsetInverses::update_from_last(const std::vector<int>& set, Eigen::MatrixXd* inverse) const {
+  if (last_ == nullptr || last_->generation >= kMaxGeneration || set.size() < kMinUpdateSize) return false;
+  std::vector<int> removed, added;
+  std::set_difference(last_key_->begin(), last_key_->end(), set.begin(), set.end(), std::back_inserter(removed));
+  std::set_difference(set.begin(), set.end(), last_key_->begin(), last_key_->end(), std::back_inserter(added));
+  if (removed.size() + added.size() > static_cast<std::size_t>(kMaxChanges)) return false;
+  // A pivot below this fraction of its element's own scale loses digits: invert instead.
+  constexpr double kSmallPivot = 1e-6;
+  std::vector<int> key = *last_key_;
+  Eigen::MatrixXd w = last_->inverse;
+  for (int r : removed) {
+    // Removing element r (at p): the Schur complement of W's p-th pivot.
+    const auto p = static_cast<Eigen::Index>(std::lower_bound(key.begin(), key.end(), r) - key.begin());
+    const double pivot = w(p, p);
+    if (!(std::abs(pivot * s_(r, r)) > kSmallPivot)) return false;
+    const Eigen::Index m = w.rows() - 1;
+    Eigen::MatrixXd next(m, m);
+    for (Eigen::Index j = 0, jj = 0; j <= m; ++j) {
+      if (j == p) continue;
+      for (Eigen::Index i = 0, ii = 0; i <= m; ++i) {
+        if (i == p) continue;
+        next(ii++, jj) = w(i, j) - w(i, p) * w(p, j) / pivot;
+      }
+      ++jj;
+    }
+    w = std::move(next);
+    key.erase(key.begin() + p);
+  }
+  for (int a : added) {
+    // Adding element a (at p): the bordered inverse, with the Schur complement d - c'W c.
+    const auto p = static_cast<Eigen::Index>(std::lower_bound(key.begin(), key.end(), a) - key.begin());
+    const Eigen::Index m = w.rows();
+    Eigen::VectorXd c(m);
+    for (Eigen::Index i = 0; i < m; ++i) c[i] = s_(key[static_cast<std::size_t>(i)], a);
+    const Eigen::VectorXd u = w * c;
+    const double schur = s_(a, a) - c.dot(u);
+    if (!(std::abs(schur) > kSmallPivot * std::abs(s_(a, a)))) return false;
+    Eigen::MatrixXd next(m + 1, m + 1);
+    auto at = [p](Eigen::Index i) { return i < p ? i : i + 1; };
+    for (Eigen::Index j = 0; j < m; ++j)
+      for (Eigen::Index i = 0; i < m; ++i) next(at(i), at(j)) = w(i, j) + u[i] * u[j] / schur;
+    for (Eigen::Index i = 0; i < m; ++i) next(at(i), p) = next(p, at(i)) = -u[i] / schur;
+    next(p, p) = 1.0 / schur;
+    w = std::move(next);
+    key.insert(key.begin() + p, a);
+  }
+  *inverse = std::move(w);
+  return true;
+}
+
 SubsetInverses::System& SubsetInverses::find(const std::vector<int>& set) {
   auto it = cache_.find(set);
   if (it == cache_.end()) {
     const int m = static_cast<int>(set.size());
-    Eigen::MatrixXd a(m, m);
-    for (int i = 0; i < m; ++i)
-      for (int j = 0; j < m; ++j) a(i, j) = s_(set[i], set[j]);
     System entry;
-    // (A negative diagonal: a slipping bilinear element's row, whose compliance is negative;
-    // the set's matrix is then symmetric indefinite, and LU with partial pivoting inverts it.)
-    if ((a.diagonal().array() < 0.0).any()) entry.inverse = a.partialPivLu().inverse();
-    else entry.inverse = a.ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+    if (update_from_last(set, &entry.inverse)) {
+      entry.generation = last_->generation + 1;
+    } else {
+      entry.inverse = invert(set);
+      entry.generation = 0;
+    }
     entry.b.resize(m);
     entry.x.resize(m);
     it = cache_.emplace(set, std::move(entry)).first;

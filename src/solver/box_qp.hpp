@@ -33,16 +33,26 @@ struct BoxQpResult {
 BoxQpResult solve_box_qp(const Eigen::MatrixXd& s, const Eigen::VectorXd& w0, const Eigen::VectorXd& limit,
                          const std::vector<DamperState>& hint = {});
 
-// The inverses of a symmetric positive definite matrix's principal submatrices S_ss, one per
-// index set s, each computed when its set is first met and kept (a time loop meets a handful
-// of sets again and again; at most 2^n).
+// The inverses of a symmetric matrix's principal submatrices S_ss, one per index set s, each
+// computed when its set is first met and kept (a time loop meets a handful of sets again and
+// again; at most 2^n). A new set mostly differs from the last one used by an element or two (a
+// damper that sticks, a storey that yields): its inverse is then the last one's bordered
+// update, O(m^2) a changed element instead of O(m^3) (kMaxChanges elements at most, and at most
+// kMaxGeneration updates in a row before an inversion from scratch, so rounding cannot pile up;
+// a small pivot also falls back to the inversion). Sets below kMinUpdateSize are inverted: it
+// costs little there, and a few dampers' systems keep the inversion's rounding (a block held by
+// its sliders comes to rest with velocities 0 bit for bit).
 class SubsetInverses {
  public:
   SubsetInverses() = default;
   explicit SubsetInverses(Eigen::MatrixXd s) : s_(std::move(s)) {}
+  static constexpr int kMaxChanges = 2;
+  static constexpr int kMaxGeneration = 4;
+  static constexpr std::size_t kMinUpdateSize = 8;
   struct System {
     Eigen::MatrixXd inverse;  // S_ss^-1
     Eigen::VectorXd b, x;     // work vectors of the set's size
+    int generation = 0;       // bordered updates since the last inversion from scratch
     // x = S_ss^-1 b, each x_i summed over the columns in order (as Eigen's lazyProduct sums
     // it), in plain loops: the sets are small, where Eigen's dynamic-size setup dominates.
     void solve() {
@@ -69,6 +79,10 @@ class SubsetInverses {
 
  private:
   System& find(const std::vector<int>& set);
+  Eigen::MatrixXd invert(const std::vector<int>& set) const;
+  // The inverse for `set` from the last set's by bordered updates; false where not worth it or
+  // not safe (too many changes, a small pivot).
+  bool update_from_last(const std::vector<int>& set, Eigen::MatrixXd* inverse) const;
   Eigen::MatrixXd s_;
   std::map<std::vector<int>, System> cache_;
   const std::vector<int>* last_key_ = nullptr;  // the last set's key in cache_

@@ -6,6 +6,7 @@
 #include <string>
 
 #include "../ground_cache.hpp"
+#include "adjoin/core/number_text.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/ground/record_motion.hpp"
 #include "adjoin/ground/synthesis.hpp"
@@ -127,6 +128,10 @@ std::shared_ptr<const GroundMotion> read_filtered_noise(const SceneReader& r, co
                                                                      : "ground.match_band";
     r.fail(key, "ground matching: " + error);
   }
+  const double samples_duration = static_cast<double>(synthesis_samples(o.duration, o.dt) - 1) * o.dt;
+  if (!(samples_duration >= m.period_max))
+    r.fail("ground.duration", "ground.duration = " + number_text(o.duration, 12) + " s is shorter than the matching band's longest period (" +
+                                  number_text(m.period_max, 12) + " s): spectrum matching needs a record at least that long");
   const std::string table_stamp = r.has("ground.match_ec8") ? std::string() : file_stamp(m.target.name);
   return cached_ground(ground_key(r, time_scale, table_stamp), [&]() -> std::shared_ptr<const GroundMotion> {
     MatchReport report;
