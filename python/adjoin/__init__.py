@@ -449,7 +449,10 @@ def modes(scene: Scene | Structure | Mapping[str, Any] | str | os.PathLike[str])
         dict: ``{"A": {...}, "B": {...}, "coupled": {...}}``; per building ``periods`` [s],
         ``omega`` [rad/s], ``shapes`` (floors x modes, mass-normalised, floor 1 first),
         ``damping`` (total ratio), ``inherent_damping``, ``device_damping``, ``zener_stiffening``,
-        ``participation`` (of the shape scaled to 1 at the roof), ``effective_mass`` [kg];
+        ``participation`` (of the shape scaled to 1 at the roof), ``effective_mass`` [kg],
+        ``p_delta``; an isolated building also ``isolated_period`` [s] (a friction pendulum's
+        2 pi sqrt(R/g), NaN for a flat slider) and ``isolated_period_flexible`` [s] (the base
+        and the storeys at their initial stiffness on the pendulum's W/R);
         ``coupled``: ``periods_free`` and ``periods_locked`` [s] of both buildings with the
         links' friction dampers free or locked.
 

@@ -45,6 +45,11 @@ py::dict modes_dict(const structure::Building& b) {
   d["participation"] = vector_of(m.participation);
   d["effective_mass"] = vector_of(m.effective_mass);
   d["p_delta"] = m.p_delta;  // the periods are K0 + K_G's (inf: a mode P-Delta made unstable)
+  if (b.base) {  // (SPEC §7: an isolated base; NaN for a flat slider, which has no period)
+    const structure::IsolatedPeriod p = structure::isolated_period(b);
+    d["isolated_period"] = p.rigid;
+    d["isolated_period_flexible"] = p.flexible;
+  }
   return d;
 }
 

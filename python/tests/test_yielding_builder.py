@@ -2,6 +2,8 @@
 builder's keywords are the scene's keys, a structure built in code runs (adjoin.run_structure)
 to the very numbers of the equivalent scene run through adjoin.run, and a bad value names its
 keyword."""
+import math
+
 import pytest
 
 import adjoin
@@ -108,3 +110,18 @@ def test_a_bad_run_keyword_is_named():
             adjoin.run_structure(s.build(), NORTHRIDGE, **kwargs)
         assert e.value.field == keyword
         assert str(e.value).startswith(keyword + ": ")
+
+
+def test_modes_state_the_isolated_period():
+    """adjoin.modes, as adjoin modes: a friction pendulum's 2 pi sqrt(R/g), NaN for a flat slider."""
+    s = adjoin.StructureBuilder()
+    s.building("A", 2).mass(5e4).stiffness(5e7).friction_pendulum(mass=5e4, friction=0.05, radius=2.0)
+    b = s.build().modes()["A"]
+    assert b["isolated_period"] == pytest.approx(2 * math.pi * math.sqrt(2.0 / 9.80665), rel=1e-14)
+    assert b["isolated_period_flexible"] > b["isolated_period"]
+    s = adjoin.StructureBuilder()
+    s.building("A", 2).mass(5e4).stiffness(5e7).flat_slider(mass=5e4, friction=0.05)
+    assert math.isnan(s.build().modes()["A"]["isolated_period"])
+    s = adjoin.StructureBuilder()
+    s.building("A", 2).mass(5e4).stiffness(5e7)
+    assert "isolated_period" not in s.build().modes()["A"]
