@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <atomic>
 #include <charconv>
-#include <cstring>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -207,11 +206,9 @@ py::dict run_structure_py(const structure::Structure& structure, const std::stri
     texts = run_structure(structure, StructureRun{name, record, scale_pga, h, t_end, tolerance},
                           request_of(timeseries, every, allow_long));
   } catch (const FieldError& e) {
-    for (const char* keyword : {"h", "t_end", "tolerance", "scale_pga"}) {
-      const std::string& f = e.field();
-      if (f.size() > std::strlen(keyword) && f.ends_with(std::string(".") + keyword))
-        throw InputError(std::string(keyword) + ": " + e.problem(), keyword);
-    }
+    // "solver.h", "solver.t_end", "solver.tolerance", "ground.scale_pga": the keyword after the dot.
+    for (const std::string keyword : {"h", "t_end", "tolerance", "scale_pga"})
+      if (e.field().ends_with("." + keyword)) throw InputError(keyword + ": " + e.problem(), keyword);
     throw;
   }
   return result_of(std::move(texts));
