@@ -504,6 +504,7 @@ TEST_CASE("builder: a bad Bouc-Wen, yielding device or base value is named by it
   CHECK(field_error([] { BuildingBuilder('A', 2).bouc_wen(1e5, 0.0, {2.0, 0.5, -0.5}); }).field() == "building.A.hysteresis.gamma");
   CHECK(field_error([] { BuildingBuilder('A', 2).bouc_wen(1e5, 0.0, {2.0, -0.5, 0.5}); }).field() == "building.A.hysteresis.beta");
   CHECK(field_error([] { BuildingBuilder('A', 2).bouc_wen_per_storey({1e5}); }).field() == "building.A.hysteresis.yield_forces");
+  CHECK(field_error([] { BuildingBuilder('A', 2).bilinear_per_storey({}); }).field() == "building.A.hysteresis.yield_forces");
   CHECK(field_error([] { BuildingBuilder('A', 2).bouc_wen(1e5, -0.1); }).field() == "building.A.hysteresis.hardening");
   CHECK(field_error([] { BuildingBuilder('A', 2).mass(1e4).stiffness(1e7).bouc_wen_drift_ratio(0.01).build(); }).field() ==
         "building.A.hysteresis.yield_drift_ratio");  // no heights

@@ -128,11 +128,11 @@ BuildingBuilder& BuildingBuilder::bilinear(double yield_force, double hardening)
 }
 
 BuildingBuilder& BuildingBuilder::bilinear_per_storey(const std::vector<double>& yield_forces, double hardening) {
-  return hysteresis(HysteresisModel::bilinear, yield_forces, 0.0, hardening, {});
+  return hysteresis(HysteresisModel::bilinear, &yield_forces, 0.0, hardening, {});
 }
 
 BuildingBuilder& BuildingBuilder::bilinear_drift_ratio(double yield_drift_ratio, double hardening) {
-  return hysteresis(HysteresisModel::bilinear, {}, yield_drift_ratio, hardening, {});
+  return hysteresis(HysteresisModel::bilinear, nullptr, yield_drift_ratio, hardening, {});
 }
 
 BuildingBuilder& BuildingBuilder::bouc_wen(double yield_force, double hardening, BoucWenShape shape) {
@@ -140,11 +140,11 @@ BuildingBuilder& BuildingBuilder::bouc_wen(double yield_force, double hardening,
 }
 
 BuildingBuilder& BuildingBuilder::bouc_wen_per_storey(const std::vector<double>& yield_forces, double hardening, BoucWenShape shape) {
-  return hysteresis(HysteresisModel::bouc_wen, yield_forces, 0.0, hardening, shape);
+  return hysteresis(HysteresisModel::bouc_wen, &yield_forces, 0.0, hardening, shape);
 }
 
 BuildingBuilder& BuildingBuilder::bouc_wen_drift_ratio(double yield_drift_ratio, double hardening, BoucWenShape shape) {
-  return hysteresis(HysteresisModel::bouc_wen, {}, yield_drift_ratio, hardening, shape);
+  return hysteresis(HysteresisModel::bouc_wen, nullptr, yield_drift_ratio, hardening, shape);
 }
 
 namespace {
@@ -158,21 +158,21 @@ void check_bouc_wen_shape(const std::string& path, const BoucWenShape& shape) {
 
 }  // namespace
 
-BuildingBuilder& BuildingBuilder::hysteresis(HysteresisModel model, const std::vector<double>& yield_forces,
+BuildingBuilder& BuildingBuilder::hysteresis(HysteresisModel model, const std::vector<double>* yield_forces,
                                              double yield_drift_ratio, double hardening, const BoucWenShape& shape) {
   const std::string path = path_ + ".hysteresis";
   const auto n = static_cast<std::size_t>(b_.floors());
   if (model == HysteresisModel::bouc_wen) check_bouc_wen_shape(path, shape);
   StoreyHysteresis y;
   y.model = model;
-  if (yield_forces.empty()) {
+  if (!yield_forces) {
     check(path + ".yield_drift_ratio", bounded_problem(yield_drift_ratio, kDriftRatioRange));
     y.yield_drift_ratio = yield_drift_ratio;  // its forces need the final springs and heights: build()
   } else {
-    if (yield_forces.size() != n)
+    if (yield_forces->size() != n)
       throw FieldError(path + ".yield_forces", "expected " + std::to_string(n) + " values, one per storey (bottom up)");
-    for (std::size_t i = 0; i < n; ++i) check(item(path + ".yield_forces", i), bounded_problem(yield_forces[i], kForceRange));
-    y.yield_forces = Eigen::Map<const Eigen::VectorXd>(yield_forces.data(), static_cast<Eigen::Index>(n));
+    for (std::size_t i = 0; i < n; ++i) check(item(path + ".yield_forces", i), bounded_problem((*yield_forces)[i], kForceRange));
+    y.yield_forces = Eigen::Map<const Eigen::VectorXd>(yield_forces->data(), static_cast<Eigen::Index>(n));
   }
   check(path + ".hardening", hardening_problem(hardening));
   y.hardening = hardening;

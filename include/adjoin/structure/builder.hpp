@@ -93,9 +93,9 @@ class BuildingBuilder {
 
  private:
   void add_device(StoreyDevice device, const std::vector<int>& storeys);
-  // A yielding storey law (bilinear or Bouc-Wen): its forces (one per storey) or, when empty,
+  // A yielding storey law (bilinear or Bouc-Wen): its forces (one per storey) or, when null,
   // its yield drift ratio; the shape is checked for Bouc-Wen only.
-  BuildingBuilder& hysteresis(HysteresisModel model, const std::vector<double>& yield_forces, double yield_drift_ratio,
+  BuildingBuilder& hysteresis(HysteresisModel model, const std::vector<double>* yield_forces, double yield_drift_ratio,
                               double hardening, const BoucWenShape& shape);
   BuildingBuilder& isolated_base(const Base& base);
   std::string device_path() const;  // the next device's
