@@ -373,6 +373,167 @@ TEST_CASE("builder: bilinear storeys by yield force or by yield drift ratio are 
   CHECK(field_error([] { BuildingBuilder('A', 2).bilinear_drift_ratio(-0.01); }).field() == "building.A.hysteresis.yield_drift_ratio");
 }
 
+TEST_CASE("builder: Bouc-Wen storeys, yielding devices and an isolated base are the scene's, run, and peaks", "[builder][hysteresis][base]") {
+  // A: Bouc-Wen storeys by drift ratio (with a shape that is not the default), a bilinear brace
+  // and a Bouc-Wen damper; B: bilinear storeys by force, on a friction pendulum.
+  const std::string text = R"(name = "t"
+[model]
+units = "SI"
+[building.A]
+storeys = 4
+mass = 40.0e3
+period = 0.6
+height = 3.2
+damping = { model = "modal", ratio = 0.03 }
+hysteresis = { model = "bouc-wen", yield_drift_ratio = 0.004, hardening = 0.05, n = 1.5, beta = 0.6, gamma = 0.4 }
+[[building.A.device]]
+storeys = [1, 2]
+type = "bilinear"
+stiffness = 2.0e7
+yield_force = 4.0e4
+hardening = 0.02
+[[building.A.device]]
+storeys = [3]
+type = "bouc-wen"
+stiffness = 1.0e7
+yield_force = 2.0e4
+n = 3.0
+[building.B]
+storeys = 3
+masses = [60.0e3, 60.0e3, 50.0e3]
+stiffnesses = [9.0e7, 8.0e7, 7.0e7]
+hysteresis = { model = "bilinear", yield_forces = [2.0e5, 1.8e5, 1.5e5], hardening = 0.03 }
+[building.B.base]
+mass = 60.0e3
+model = "friction-pendulum"
+friction = 0.06
+radius = 2.5
+[[link]]
+floors = [3, 3]
+type = "dashpot"
+c = 2.0e5
+alpha = 0.5
+[ground]
+source = "decaying-sine"
+u0 = 0.08
+omega = 6.0
+k = 0.2
+[solver]
+h = 0.005
+t_end = 8.0
+)";
+  const BuildingScene scene = parse_building_scene(text, "t.toml");
+  StructureBuilder s;
+  s.building('A', 4).mass(40.0e3).period(0.6).height(3.2).modal_damping(0.03)
+      .bouc_wen_drift_ratio(0.004, 0.05, {1.5, 0.6, 0.4})
+      .bilinear_device({1, 2}, 2.0e7, 4.0e4, 0.02)
+      .bouc_wen_device({3}, 1.0e7, 2.0e4, 0.0, {3.0, 0.5, 0.5});
+  s.building('B', 3).masses({60.0e3, 60.0e3, 50.0e3}).stiffnesses({9.0e7, 8.0e7, 7.0e7})
+      .bilinear_per_storey({2.0e5, 1.8e5, 1.5e5}, 0.03).friction_pendulum(60.0e3, 0.06, 2.5);
+  s.dashpot_link(3, 3, 2.0e5, 0.5);
+  BuildingRunOptions o;
+  o.name = "t";
+  o.h = 0.005;
+  o.t_end = 8.0;
+  const RunSpec spec = building_run_spec(s.build(), decaying_sine_ground(0.08, 6.0, 0.2), o);
+
+  const structure::Structure& file = scene.structure;
+  const structure::Structure& code = spec.structure;
+  check_same_building(file.a, code.a);
+  REQUIRE(file.b);
+  check_same_building(*file.b, *code.b);
+  for (const auto& [f, c] : {std::pair{&file.a, &code.a}, std::pair{&*file.b, &*code.b}}) {
+    INFO("building " << f->name);
+    CHECK(c->hysteresis.model == f->hysteresis.model);
+    CHECK(c->hysteresis.yield_forces == f->hysteresis.yield_forces);  // bit for bit
+    CHECK(c->hysteresis.hardening == f->hysteresis.hardening);
+    CHECK(c->hysteresis.n == f->hysteresis.n);
+    CHECK(c->hysteresis.beta == f->hysteresis.beta);
+    CHECK(c->hysteresis.gamma == f->hysteresis.gamma);
+    CHECK(c->heights == f->heights);
+    for (std::size_t i = 0; i < f->devices.size(); ++i) {
+      CHECK(c->devices[i].k == f->devices[i].k);
+      CHECK(c->devices[i].yield_force == f->devices[i].yield_force);
+      CHECK(c->devices[i].hardening == f->devices[i].hardening);
+      CHECK(c->devices[i].n == f->devices[i].n);
+      CHECK(c->devices[i].beta == f->devices[i].beta);
+      CHECK(c->devices[i].gamma == f->devices[i].gamma);
+    }
+    REQUIRE(c->base.has_value() == f->base.has_value());
+  }
+  CHECK(code.a.hysteresis.model == structure::HysteresisModel::bouc_wen);
+  CHECK(code.a.hysteresis.n == 1.5);
+  CHECK(code.a.devices[0].type == structure::DeviceType::bilinear);
+  CHECK(code.a.devices[1].type == structure::DeviceType::bouc_wen);
+  CHECK(code.a.devices[1].n == 3.0);
+  REQUIRE(code.b->base);
+  CHECK(code.b->base->model == structure::BaseModel::friction_pendulum);
+  CHECK(code.b->base->mass == file.b->base->mass);
+  CHECK(code.b->base->friction == file.b->base->friction);
+  CHECK(code.b->base->radius == 2.5);
+  CHECK(code.b->base_stiffness() == Approx((60.0e3 + 170.0e3) * kStandardGravity / 2.5).epsilon(1e-15));
+
+  const Report from_file = run(scene);
+  const Report in_code = run(spec);
+  REQUIRE(from_file.peaks.size() == in_code.peaks.size());
+  for (std::size_t i = 0; i < from_file.peaks.size(); ++i) {
+    INFO(from_file.peaks[i].channel);
+    CHECK(in_code.peaks[i].channel == from_file.peaks[i].channel);
+    CHECK(in_code.peaks[i].peak.max_abs == Approx(from_file.peaks[i].peak.max_abs).epsilon(1e-12).margin(0.0));
+    CHECK(in_code.peaks[i].peak.t == from_file.peaks[i].peak.t);
+  }
+  // The run did what the test is about: A's storeys yielded, B's base slid.
+  REQUIRE(in_code.yield.size() == from_file.yield.size());
+  REQUIRE(!in_code.yield.empty());
+  CHECK(in_code.yield[0].storeys[0].yielded);
+  CHECK(in_code.yield[0].storeys[0].plastic_work == Approx(from_file.yield[0].storeys[0].plastic_work).epsilon(1e-12));
+  REQUIRE(in_code.bases.size() == 1);
+  REQUIRE(from_file.bases.size() == 1);
+  CHECK(in_code.bases[0].building == 'B');
+  CHECK(in_code.bases[0].switches > 0);
+  CHECK(in_code.bases[0].max_abs > 1e-3);
+  CHECK(in_code.bases[0].max_abs == Approx(from_file.bases[0].max_abs).epsilon(1e-12));
+  CHECK(in_code.bases[0].residual == Approx(from_file.bases[0].residual).epsilon(1e-12).margin(1e-15));
+  CHECK(in_code.bases[0].switches == from_file.bases[0].switches);
+  CHECK(in_code.bases[0].energy == Approx(from_file.bases[0].energy).epsilon(1e-12));
+}
+
+TEST_CASE("builder: a bad Bouc-Wen, yielding device or base value is named by its field path", "[builder][errors][base]") {
+  using structure::BuildingBuilder;
+  CHECK(field_error([] { BuildingBuilder('A', 2).bouc_wen(1e5, 0.0, {0.5, 0.5, 0.5}); }).field() == "building.A.hysteresis.n");
+  CHECK(field_error([] { BuildingBuilder('A', 2).bouc_wen(1e5, 0.0, {2.0, 0.5, -0.5}); }).field() == "building.A.hysteresis.gamma");
+  CHECK(field_error([] { BuildingBuilder('A', 2).bouc_wen(1e5, 0.0, {2.0, -0.5, 0.5}); }).field() == "building.A.hysteresis.beta");
+  CHECK(field_error([] { BuildingBuilder('A', 2).bouc_wen_per_storey({1e5}); }).field() == "building.A.hysteresis.yield_forces");
+  CHECK(field_error([] { BuildingBuilder('A', 2).bilinear_per_storey({}); }).field() == "building.A.hysteresis.yield_forces");
+  CHECK(field_error([] { BuildingBuilder('A', 2).bouc_wen(1e5, -0.1); }).field() == "building.A.hysteresis.hardening");
+  CHECK(field_error([] { BuildingBuilder('A', 2).mass(1e4).stiffness(1e7).bouc_wen_drift_ratio(0.01).build(); }).field() ==
+        "building.A.hysteresis.yield_drift_ratio");  // no heights
+  CHECK(field_error([] { BuildingBuilder('A', 2).bilinear_device({1}, 1e7, 0.0); }).field() == "building.A.device[1].yield_force");
+  CHECK(field_error([] { BuildingBuilder('A', 2).spring({1}, 1e6).bilinear_device({2}, -1e7, 1e4); }).field() ==
+        "building.A.device[2].stiffness");
+  CHECK(field_error([] { BuildingBuilder('A', 2).bilinear_device({1}, 1e7, 1e4, 1.0); }).field() == "building.A.device[1].hardening");
+  CHECK(field_error([] { BuildingBuilder('A', 2).bouc_wen_device({1}, 1e7, 1e4, 0.0, {25.0, 0.5, 0.5}); }).field() ==
+        "building.A.device[1].n");
+  CHECK(field_error([] { BuildingBuilder('A', 2).bouc_wen_device({3}, 1e7, 1e4); }).field() == "building.A.device[1].storeys");
+  CHECK(field_error([] { BuildingBuilder('B', 2).flat_slider(0.0, 0.05); }).field() == "building.B.base.mass");
+  CHECK(field_error([] { BuildingBuilder('B', 2).flat_slider(5e4, 1.0); }).field() == "building.B.base.friction");
+  CHECK(field_error([] { BuildingBuilder('B', 2).friction_pendulum(5e4, 0.05, 0.0); }).field() == "building.B.base.radius");
+  CHECK(field_error([] { BuildingBuilder('B', 2).friction_pendulum(5e4, -0.05, 2.0); }).field() == "building.B.base.friction");
+
+  // The words are the scene reader's: one rule, two callers.
+  const std::string scene = "name = \"t\"\n[model]\nunits = \"SI\"\n[building.A]\nstoreys = 2\nmass = 1e4\nstiffness = 1e7\n"
+                            "[building.A.base]\nmass = 5e4\nmodel = \"flat-slider\"\nfriction = 1.5\n";
+  std::string from_file;
+  try {
+    parse_structure(scene, "t.toml");
+  } catch (const InputError& e) {
+    from_file = e.what();
+  }
+  const FieldError e = field_error([] { BuildingBuilder('A', 2).flat_slider(5e4, 1.5); });
+  CHECK(from_file == "t.toml:11: building.A.base.friction: " + e.problem());
+  CHECK(e.problem().find("(0, 1)") != std::string::npos);
+}
+
 TEST_CASE("builder: a channel recorder keeps the times and the asked channels as arrays", "[builder][recorder]") {
   BuildingRunOptions o;
   o.h = 0.005;

@@ -275,3 +275,51 @@ stiffness = 3.0e8
   CHECK(zero.status == 2);
   CHECK(zero.err.find("--modes") != std::string::npos);
 }
+
+TEST_CASE("an isolated building's period on friction pendulums: 2 pi sqrt(R/g), and the flexible storeys' two-mass closed form",
+          "[modal][base]") {
+  // One storey (m1, k1) on a base m_b on the pendulum's W/R: the 2-dof closed form
+  // m_b m1 w^4 - (m_b k1 + m1 (k_p + k1)) w^2 + k_p k1 = 0, its smaller root.
+  Building b = uniform(1, 4.0e4, 3.0e7);
+  b.base = Base{6.0e4, BaseModel::friction_pendulum, 0.05, 2.0};
+  const double g = 9.80665, mb = 6.0e4, m1 = 4.0e4, k1 = 3.0e7, kp = (mb + m1) * g / 2.0;
+  CHECK(b.base_stiffness() == Approx(kp).epsilon(1e-15));
+  const double p = mb * k1 + m1 * (kp + k1), w2 = (p - std::sqrt(p * p - 4.0 * mb * m1 * kp * k1)) / (2.0 * mb * m1);
+  const IsolatedPeriod t = isolated_period(b);
+  CHECK(t.rigid == Approx(2.0 * M_PI * std::sqrt(2.0 / g)).epsilon(1e-14));  // 2.8375 s, whatever the masses
+  CHECK(t.flexible == Approx(2.0 * M_PI / std::sqrt(w2)).epsilon(1e-10));
+  CHECK(t.flexible > t.rigid);
+  // Storeys a thousand times stiffer: the superstructure is rigid, the period 2 pi sqrt(R/g).
+  b.springs *= 1e3;
+  CHECK(isolated_period(b).flexible == Approx(t.rigid).epsilon(1e-5));
+  // A flat slider and a fixed base have no isolated period.
+  b.base->model = BaseModel::flat_slider;
+  CHECK(std::isnan(isolated_period(b).rigid));
+  b.base.reset();
+  CHECK(std::isnan(isolated_period(b).flexible));
+}
+
+TEST_CASE("adjoin modes states an isolated building's friction-pendulum period, or that a flat slider has none", "[modal][cli][base]") {
+  const std::string scene = std::string(ADJOIN_SOURCE_DIR) + "/examples/buildings/yielding-frames-b-isolated.toml";
+  const test::CliResult r = test::run_cli("modes '" + scene + "'");
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  const std::size_t b = r.out.find("building B");
+  REQUIRE(b != std::string::npos);
+  CHECK(r.out.substr(0, b).find("isolated base") == std::string::npos);  // A stands on the ground
+  const std::string tail = r.out.substr(b);
+  // R = 2.5 m: 2 pi sqrt(2.5 / 9.80665) = 3.17241 s, beside the fixed-base 0.5 s.
+  CHECK(tail.find("isolated base (friction-pendulum, mu = 0.06, base mass 60000 kg)") != std::string::npos);
+  CHECK(tail.find("isolated period 2 pi sqrt(R/g) = 3.17241 s (R = 2.5 m") != std::string::npos);
+  CHECK(tail.find("the periods below are the fixed-base superstructure's") != std::string::npos);
+  CHECK(tail.find("     1          0.5            2") != std::string::npos);  // the fixed-base mode 1 still shown
+  // mu W = 0.06 x (60 t + 170 t) x g = 135332 N.
+  CHECK(tail.find("mu W = 135332 N") != std::string::npos);
+
+  const test::CliResult flat = test::run_cli("modes '" + scene + "' --set building.B.base.model='\"flat-slider\"' --unset building.B.base.radius");
+  INFO(flat.out << flat.err);
+  REQUIRE(flat.status == 0);
+  CHECK(flat.out.find("isolated base (flat-slider") != std::string::npos);
+  CHECK(flat.out.find("no isolated period: a flat slider has no restoring force") != std::string::npos);
+  CHECK(flat.out.find("isolated period 2 pi") == std::string::npos);
+}

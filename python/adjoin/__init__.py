@@ -11,7 +11,8 @@ exceptions. The numbers are those of ``adjoin run`` on the same scene, bit for b
     >>> result.timeseries["x1"]                          # numpy array, as in timeseries.csv
 
 Scenes (SPEC §3, §5): ``load_scene``, ``Scene.from_dict``, ``Scene.to_dict``, ``Scene.to_toml``.
-Runs: ``run``, ``run_many`` (native threads, the GIL released), ``Result``.
+Runs: ``run``, ``run_many`` (native threads, the GIL released), ``run_structure`` (a
+structure built in code, on a record), ``Result``.
 Ground motions and spectra: ``read_record``, ``Record``, ``spectrum``, ``rotd``,
 ``ductility_spectrum``, ``default_periods``.
 Structures: ``modes``, ``joint`` (the minimum seismic joint), ``StructureBuilder``.
@@ -39,7 +40,7 @@ from ._adjoin import (  # noqa: F401  (re-exported)
 )
 
 __all__ = [
-    "InputError", "NumericalError", "Scene", "load_scene", "run", "run_many", "Result",
+    "InputError", "NumericalError", "Scene", "load_scene", "run", "run_many", "run_structure", "Result",
     "Record", "read_record", "spectrum", "rotd", "ductility_spectrum", "default_periods",
     "modes", "joint", "Structure", "StructureBuilder", "BuildingBuilder", "ContactBuilder",
 ]
@@ -284,6 +285,33 @@ def run_many(scenes: Sequence[Scene | Mapping[str, Any] | str | os.PathLike[str]
     return [Result(r) for r in raw]
 
 
+def run_structure(structure: Structure, record: str | os.PathLike[str], *, scale_pga: float | None = None,
+                  h: float | None = None, t_end: float | None = None, tolerance: float | None = None,
+                  name: str = "building", timeseries: bool = True, every: int | None = None,
+                  allow_long: bool = False) -> Result:
+    """Runs a structure built in code (``StructureBuilder.build()``) on a record, as a building
+    scene with ``[ground] source = "record"`` runs: the same numbers as that scene's run.
+
+    Args:
+        structure: an ``adjoin.Structure``.
+        record: a record file's path (the format from the file, as a scene's ``ground.file``).
+        scale_pga: scale the record to this peak ground acceleration [g] (``ground.scale_pga``).
+        h, t_end: the step and the horizon [s] (``solver.h``, ``solver.t_end``); None chooses
+            them by a scene's rules (the step for ``tolerance``, the horizon from the record's
+            duration and the longest period).
+        tolerance: the relative error of the peaks the step is chosen for (not with ``h``).
+        name: the run's name (summary.json ``scene``).
+        timeseries, every, allow_long: as in ``run``.
+
+    Raises:
+        InputError: a bad value; ``.field`` names the keyword (``"h"``, ``"scale_pga"``).
+        NumericalError: the computation failed; ``.time`` says when.
+    """
+    return Result(_adjoin.run_structure(structure, os.fspath(record), scale_pga=scale_pga, h=h, t_end=t_end,
+                                        tolerance=tolerance, name=name, timeseries=timeseries, every=_every(every),
+                                        allow_long=allow_long))
+
+
 def _every(every):
     if every is None:
         return 0
@@ -421,7 +449,10 @@ def modes(scene: Scene | Structure | Mapping[str, Any] | str | os.PathLike[str])
         dict: ``{"A": {...}, "B": {...}, "coupled": {...}}``; per building ``periods`` [s],
         ``omega`` [rad/s], ``shapes`` (floors x modes, mass-normalised, floor 1 first),
         ``damping`` (total ratio), ``inherent_damping``, ``device_damping``, ``zener_stiffening``,
-        ``participation`` (of the shape scaled to 1 at the roof), ``effective_mass`` [kg];
+        ``participation`` (of the shape scaled to 1 at the roof), ``effective_mass`` [kg],
+        ``p_delta``; an isolated building also ``isolated_period`` [s] (a friction pendulum's
+        2 pi sqrt(R/g), NaN for a flat slider) and ``isolated_period_flexible`` [s] (the base
+        and the storeys at their initial stiffness on the pendulum's W/R);
         ``coupled``: ``periods_free`` and ``periods_locked`` [s] of both buildings with the
         links' friction dampers free or locked.
 

@@ -19,6 +19,7 @@
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/structure_file.hpp"
 #include "adjoin/io/summary.hpp"
+#include "adjoin/study/builder.hpp"
 #include "adjoin/study/run.hpp"
 #include "adjoin/study/run_watch.hpp"
 #include "adjoin/study/seismic_joint.hpp"
@@ -113,6 +114,15 @@ void edit_structure_keys(toml::table& root, const std::vector<std::string>& over
 }
 
 RunTexts run(const LoadedScene& scene, const RunRequest& request) { return run_scene(scene.impl().spec, request); }
+
+RunTexts run_structure(const structure::Structure& structure, const StructureRun& how, const RunRequest& request) {
+  BuildingRunOptions options;
+  options.name = how.name;
+  options.h = how.h;
+  options.t_end = how.t_end;
+  options.tolerance = how.tolerance;
+  return run_scene(building_run_spec(structure, record_ground(how.record, how.scale_pga), options), request);
+}
 
 const structure::Structure* structure_of(const LoadedScene& scene) {
   return scene.building() ? &scene.impl().spec.structure : nullptr;

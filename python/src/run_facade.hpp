@@ -9,6 +9,7 @@
 // (io/run_outputs.hpp MemoryOutputs) instead of a folder; no file is touched.
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -72,6 +73,18 @@ struct RunRequest {
 // Throws InputError / NumericalError as the library does. Safe to call from several threads at
 // once (each run has its own folder).
 RunTexts run(const LoadedScene& scene, const RunRequest& request);
+
+// A structure built in code (structure/builder.hpp) run on a record as study/builder.hpp's
+// building_run_spec makes the run: the step and horizon given, or chosen by a scene's rules.
+// Errors name the fields as that does ("solver.h", "ground.scale_pga").
+struct StructureRun {
+  std::string name = "building";
+  std::filesystem::path record;      // a record file (its format from the file)
+  std::optional<double> scale_pga;   // [g]
+  std::optional<double> h, t_end;    // [s]
+  std::optional<double> tolerance;   // the peaks' relative error the step is chosen for (not with h)
+};
+RunTexts run_structure(const structure::Structure& structure, const StructureRun& how, const RunRequest& request);
 
 // The structure of a building scene (its buildings, links, contact pairs); null for a
 // two-block scene. Valid as long as `scene` is.

@@ -45,6 +45,11 @@ py::dict modes_dict(const structure::Building& b) {
   d["participation"] = vector_of(m.participation);
   d["effective_mass"] = vector_of(m.effective_mass);
   d["p_delta"] = m.p_delta;  // the periods are K0 + K_G's (inf: a mode P-Delta made unstable)
+  if (b.base) {  // (SPEC §7: an isolated base; NaN for a flat slider, which has no period)
+    const structure::IsolatedPeriod p = structure::isolated_period(b);
+    d["isolated_period"] = p.rigid;
+    d["isolated_period_flexible"] = p.flexible;
+  }
   return d;
 }
 
@@ -74,6 +79,13 @@ py::dict scene_modes(const SceneObject& scene) {
 char building_name(const std::string& name) {
   if (name != "A" && name != "B") throw InputError("building '" + name + "': expected 'A' or 'B'", "building");
   return name[0];
+}
+
+// A yielding law's yield force: one of the three ways (as a scene's hysteresis table says it).
+void check_one_yield(const BuildingBuilder& b, const std::optional<double>& yield_force,
+                     const std::optional<std::vector<double>>& yield_forces, const std::optional<double>& yield_drift_ratio) {
+  if (yield_force.has_value() + yield_forces.has_value() + yield_drift_ratio.has_value() != 1)
+    throw InputError(b.path() + ".hysteresis: give one of yield_force, yield_forces or yield_drift_ratio", b.path() + ".hysteresis");
 }
 
 structure::Zener zener_of(double stiffness, double order, double tau_x, double tau_f) {
@@ -114,9 +126,7 @@ void bind_structure(py::module_& m) {
           "bilinear",
           [](BuildingBuilder& b, std::optional<double> yield_force, std::optional<std::vector<double>> yield_forces,
              std::optional<double> yield_drift_ratio, double hardening) -> BuildingBuilder& {
-            if (yield_force.has_value() + yield_forces.has_value() + yield_drift_ratio.has_value() != 1)
-              throw InputError(b.path() + ".hysteresis: give one of yield_force, yield_forces or yield_drift_ratio",
-                               b.path() + ".hysteresis");
+            check_one_yield(b, yield_force, yield_forces, yield_drift_ratio);
             if (yield_force) return b.bilinear(*yield_force, hardening);
             if (yield_forces) return b.bilinear_per_storey(*yield_forces, hardening);
             return b.bilinear_drift_ratio(*yield_drift_ratio, hardening);
@@ -125,6 +135,45 @@ void bind_structure(py::module_& m) {
           py::arg("yield_drift_ratio") = py::none(), py::arg("hardening") = 0.0, py::return_value_policy::reference_internal,
           "Bilinear storeys (kinematic hardening b = hardening in [0, 1)), yielding at yield_force [N] (every storey), "
           "yield_forces [N] (storey 1 first) or yield_drift_ratio [-] (F_y = k x ratio x h: needs heights); one of the three.")
+      .def(
+          "bouc_wen",
+          [](BuildingBuilder& b, std::optional<double> yield_force, std::optional<std::vector<double>> yield_forces,
+             std::optional<double> yield_drift_ratio, double hardening, double n, double beta,
+             double gamma) -> BuildingBuilder& {
+            check_one_yield(b, yield_force, yield_forces, yield_drift_ratio);
+            const structure::BoucWenShape shape{n, beta, gamma};
+            if (yield_force) return b.bouc_wen(*yield_force, hardening, shape);
+            if (yield_forces) return b.bouc_wen_per_storey(*yield_forces, hardening, shape);
+            return b.bouc_wen_drift_ratio(*yield_drift_ratio, hardening, shape);
+          },
+          py::kw_only(), py::arg("yield_force") = py::none(), py::arg("yield_forces") = py::none(),
+          py::arg("yield_drift_ratio") = py::none(), py::arg("hardening") = 0.0, py::arg("n") = 2.0, py::arg("beta") = 0.5,
+          py::arg("gamma") = 0.5, py::return_value_policy::reference_internal,
+          "Bouc-Wen storeys (force = b k d + (1 - b) k z, b = hardening in [0, 1); shape n in [1, 20], beta + gamma > 0 [-]), "
+          "yielding at yield_force [N] (every storey), yield_forces [N] (storey 1 first) or yield_drift_ratio [-] "
+          "(F_y = k x ratio x h: needs heights); one of the three.")
+      .def("bilinear_device", &BuildingBuilder::bilinear_device, py::arg("storeys"), py::kw_only(), py::arg("stiffness"),
+           py::arg("yield_force"), py::arg("hardening") = 0.0, py::return_value_policy::reference_internal,
+           "A bilinear device (a metallic damper, a buckling-restrained brace) in each listed storey: initial stiffness [N/m], "
+           "yield_force [N], hardening b in [0, 1).")
+      .def(
+          "bouc_wen_device",
+          [](BuildingBuilder& b, const std::vector<int>& storeys, double stiffness, double yield_force, double hardening,
+             double n, double beta, double gamma) -> BuildingBuilder& {
+            return b.bouc_wen_device(storeys, stiffness, yield_force, hardening, {n, beta, gamma});
+          },
+          py::arg("storeys"), py::kw_only(), py::arg("stiffness"), py::arg("yield_force"), py::arg("hardening") = 0.0,
+          py::arg("n") = 2.0, py::arg("beta") = 0.5, py::arg("gamma") = 0.5, py::return_value_policy::reference_internal,
+          "A Bouc-Wen device in each listed storey: initial stiffness [N/m], yield_force [N], hardening b in [0, 1), "
+          "shape n, beta, gamma [-].")
+      .def("flat_slider", &BuildingBuilder::flat_slider, py::kw_only(), py::arg("mass"), py::arg("friction"),
+           py::return_value_policy::reference_internal,
+           "An isolated base under floor 1: a base floor of mass [kg] sliding on the ground with friction mu in (0, 1) [-] "
+           "of the weight of the base and every floor above.")
+      .def("friction_pendulum", &BuildingBuilder::friction_pendulum, py::kw_only(), py::arg("mass"), py::arg("friction"),
+           py::arg("radius"), py::return_value_policy::reference_internal,
+           "An isolated base on a friction pendulum: base mass [kg], friction mu in (0, 1), radius of curvature R [m] "
+           "(restoring stiffness W / R, isolated period 2 pi sqrt(R / g)).")
       .def_property_readonly("path", &BuildingBuilder::path, "The building's field path, \"building.A\".")
       .def_property_readonly("storeys", &BuildingBuilder::storeys, "The number of storeys.");
 

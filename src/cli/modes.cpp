@@ -6,7 +6,8 @@
 // (and their share of the total mass, cumulated) and mode shapes scaled to 1 at the roof, for
 // every mode or the first N; the coupled system's periods with the friction links free and
 // locked (with P-Delta, SPEC §7: of the tangent K0 + K_G, and said so; a building whose storeys
-// yield: of the initial stiffness, and said so). Every number has its unit. A two-block scene (SPEC §3) is the structure of one floor
+// yield: of the initial stiffness, and said so; an isolated building: its friction pendulum's
+// isolated period 2 pi sqrt(R/g) beside them, or that a flat slider has none). Every number has its unit. A two-block scene (SPEC §3) is the structure of one floor
 // per building, a Zener storey each, one friction link (dimensionless: time in T0, mass in m1).
 #include <algorithm>
 #include <cstdio>
@@ -36,6 +37,24 @@ struct Units {
 
 std::string bracketed(const std::string& what, const std::string& unit) { return what + " [" + unit + "]"; }
 
+// An isolated base (SPEC §7): the period of a friction pendulum while it slides, or why a flat
+// slider has none; the table below is the fixed-base superstructure's (the base stuck).
+void print_base(const structure::Building& b, const Units& u) {
+  const structure::Base& base = *b.base;
+  std::printf("  isolated base (%s, mu = %.4g, base mass %.6g %s): it slides when the force holding it to the ground would exceed mu W = %.6g N "
+              "(W the weight of the base and the floors)\n",
+              structure::to_string(base.model).c_str(), base.friction, base.mass, u.mass.c_str(), b.base_slip_force());
+  if (base.model == structure::BaseModel::friction_pendulum) {
+    const structure::IsolatedPeriod p = structure::isolated_period(b);
+    std::printf("    isolated period 2 pi sqrt(R/g) = %.6g %s (R = %.4g m; the superstructure rigid), %.6g %s with the storeys' "
+                "initial stiffness on the pendulum's W/R = %.6g N/m\n",
+                p.rigid, u.time.c_str(), base.radius, p.flexible, u.time.c_str(), b.base_stiffness());
+  } else {
+    std::printf("    no isolated period: a flat slider has no restoring force (the base stops wherever it sticks)\n");
+  }
+  std::printf("    the periods below are the fixed-base superstructure's: the building's while its base sticks\n");
+}
+
 void print_building(const structure::Building& b, const Units& u, int shown) {
   const structure::Modes m = structure::building_modes(b);
   const int n = static_cast<int>(m.omega.size());
@@ -49,6 +68,7 @@ void print_building(const structure::Building& b, const Units& u, int shown) {
   if (b.yields())
     std::printf("  yielding storeys: periods, shapes and damping ratios of the initial (elastic) stiffness; they hold until "
                 "a storey yields, and the inherent damping stays the initial stiffness's throughout the run\n");
+  if (b.base) print_base(b, u);
   std::printf("  %4s %12s %12s %12s %12s %12s %12s %14s %16s %12s %12s\n", "mode", bracketed("period", u.time).c_str(),
               bracketed("freq", u.frequency).c_str(), "inherent [-]", "devices [-]", "total [-]", "zener K' [-]",
               "Gamma_roof [-]", bracketed("eff. mass", u.mass).c_str(), "eff. [%]", "cumul. [%]");

@@ -228,7 +228,7 @@ void read_heights(const TableReader& r, Building* b) {
 // A bilinear law's post-yield stiffness ratio b, in [0, 1) (default 0: elastic-perfectly-plastic).
 double read_hardening(const TableReader& r) {
   const double b = r.number("hardening", 0.0);
-  if (!(b >= 0.0 && b < 1.0)) r.fail("hardening", "expected a post-yield stiffness ratio in [0, 1)");
+  if (const std::string problem = structure::hardening_problem(b); !problem.empty()) r.fail("hardening", problem);
   return b;
 }
 
@@ -236,11 +236,11 @@ double read_hardening(const TableReader& r) {
 // with beta + gamma > 0, into (n, beta, gamma).
 void read_bouc_wen_shape(const TableReader& r, double* n, double* beta, double* gamma) {
   *n = r.number("n", 2.0);
-  if (!(*n >= 1.0 && *n <= 20.0)) r.fail("n", "expected the Bouc-Wen exponent n in [1, 20]");
+  if (const std::string problem = structure::bouc_wen_exponent_problem(*n); !problem.empty()) r.fail("n", problem);
   *beta = r.number("beta", 0.5);
   *gamma = r.number("gamma", 0.5);
-  if (!(*beta + *gamma > 0.0))
-    r.fail(r.has("gamma") ? "gamma" : "beta", "expected beta + gamma > 0 (else the Bouc-Wen law never yields)");
+  if (const std::string problem = structure::bouc_wen_shape_problem(*beta, *gamma); !problem.empty())
+    r.fail(r.has("gamma") ? "gamma" : "beta", problem);
 }
 
 // A building's storey law (SPEC §7): hysteresis = { model = "bilinear", yield_force = ...,
@@ -289,15 +289,13 @@ structure::Base read_base(const toml::table& building, const TableReader& r) {
   br.only({"mass", "model", "friction", "radius"});
   structure::Base base;
   base.mass = br.number("mass");
-  if (!(base.mass > 0.0)) br.fail("mass", "expected a positive base mass (kg)");
-  if (const std::string problem = kMassRange.problem(base.mass); !problem.empty()) br.fail("mass", problem);
+  if (const std::string problem = structure::base_mass_problem(base.mass); !problem.empty()) br.fail("mass", problem);
   base.model = br.choice<structure::BaseModel>("model");
   base.friction = br.number("friction");
-  if (!(base.friction > 0.0 && base.friction < 1.0))
-    br.fail("friction", "expected a friction coefficient mu in (0, 1) (of the weight of the base and the floors above)");
+  if (const std::string problem = structure::base_friction_problem(base.friction); !problem.empty()) br.fail("friction", problem);
   if (base.model == structure::BaseModel::friction_pendulum) {
     base.radius = br.number("radius");
-    if (!(base.radius > 0.0)) br.fail("radius", "expected a positive radius of curvature (m)");
+    if (const std::string problem = structure::base_radius_problem(base.radius); !problem.empty()) br.fail("radius", problem);
   } else if (br.has("radius")) {
     br.fail("radius", "a flat slider has no radius; remove it, or use model = \"friction-pendulum\"");
   }

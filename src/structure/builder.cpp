@@ -128,27 +128,76 @@ BuildingBuilder& BuildingBuilder::bilinear(double yield_force, double hardening)
 }
 
 BuildingBuilder& BuildingBuilder::bilinear_per_storey(const std::vector<double>& yield_forces, double hardening) {
-  const std::string path = path_ + ".hysteresis";
-  const auto n = static_cast<std::size_t>(b_.floors());
-  if (yield_forces.size() != n)
-    throw FieldError(path + ".yield_forces", "expected " + std::to_string(n) + " values, one per storey (bottom up)");
-  for (std::size_t i = 0; i < n; ++i) check(item(path + ".yield_forces", i), bounded_problem(yield_forces[i], kForceRange));
-  if (!(hardening >= 0.0 && hardening < 1.0)) throw FieldError(path + ".hardening", "expected a post-yield stiffness ratio in [0, 1)");
-  b_.hysteresis = StoreyHysteresis{};
-  b_.hysteresis.model = HysteresisModel::bilinear;
-  b_.hysteresis.yield_forces = Eigen::Map<const Eigen::VectorXd>(yield_forces.data(), static_cast<Eigen::Index>(n));
-  b_.hysteresis.hardening = hardening;
-  return *this;
+  return hysteresis(HysteresisModel::bilinear, &yield_forces, 0.0, hardening, {});
 }
 
 BuildingBuilder& BuildingBuilder::bilinear_drift_ratio(double yield_drift_ratio, double hardening) {
+  return hysteresis(HysteresisModel::bilinear, nullptr, yield_drift_ratio, hardening, {});
+}
+
+BuildingBuilder& BuildingBuilder::bouc_wen(double yield_force, double hardening, BoucWenShape shape) {
+  return bouc_wen_per_storey(std::vector<double>(static_cast<std::size_t>(b_.floors()), yield_force), hardening, shape);
+}
+
+BuildingBuilder& BuildingBuilder::bouc_wen_per_storey(const std::vector<double>& yield_forces, double hardening, BoucWenShape shape) {
+  return hysteresis(HysteresisModel::bouc_wen, &yield_forces, 0.0, hardening, shape);
+}
+
+BuildingBuilder& BuildingBuilder::bouc_wen_drift_ratio(double yield_drift_ratio, double hardening, BoucWenShape shape) {
+  return hysteresis(HysteresisModel::bouc_wen, nullptr, yield_drift_ratio, hardening, shape);
+}
+
+namespace {
+
+// A Bouc-Wen shape's fields under `path` (".n", ".beta" or ".gamma"); beta + gamma is blamed on
+// gamma when it was changed from its default, as a scene blames the key it was given.
+void check_bouc_wen_shape(const std::string& path, const BoucWenShape& shape) {
+  check(path + ".n", bouc_wen_exponent_problem(shape.n));
+  check(path + (shape.gamma != BoucWenShape{}.gamma ? ".gamma" : ".beta"), bouc_wen_shape_problem(shape.beta, shape.gamma));
+}
+
+}  // namespace
+
+BuildingBuilder& BuildingBuilder::hysteresis(HysteresisModel model, const std::vector<double>* yield_forces,
+                                             double yield_drift_ratio, double hardening, const BoucWenShape& shape) {
   const std::string path = path_ + ".hysteresis";
-  check(path + ".yield_drift_ratio", bounded_problem(yield_drift_ratio, kDriftRatioRange));
-  if (!(hardening >= 0.0 && hardening < 1.0)) throw FieldError(path + ".hardening", "expected a post-yield stiffness ratio in [0, 1)");
-  b_.hysteresis = StoreyHysteresis{};
-  b_.hysteresis.model = HysteresisModel::bilinear;
-  b_.hysteresis.hardening = hardening;
-  b_.hysteresis.yield_drift_ratio = yield_drift_ratio;
+  const auto n = static_cast<std::size_t>(b_.floors());
+  if (model == HysteresisModel::bouc_wen) check_bouc_wen_shape(path, shape);
+  StoreyHysteresis y;
+  y.model = model;
+  if (!yield_forces) {
+    check(path + ".yield_drift_ratio", bounded_problem(yield_drift_ratio, kDriftRatioRange));
+    y.yield_drift_ratio = yield_drift_ratio;  // its forces need the final springs and heights: build()
+  } else {
+    if (yield_forces->size() != n)
+      throw FieldError(path + ".yield_forces", "expected " + std::to_string(n) + " values, one per storey (bottom up)");
+    for (std::size_t i = 0; i < n; ++i) check(item(path + ".yield_forces", i), bounded_problem((*yield_forces)[i], kForceRange));
+    y.yield_forces = Eigen::Map<const Eigen::VectorXd>(yield_forces->data(), static_cast<Eigen::Index>(n));
+  }
+  check(path + ".hardening", hardening_problem(hardening));
+  y.hardening = hardening;
+  if (model == HysteresisModel::bouc_wen) {
+    y.n = shape.n;
+    y.beta = shape.beta;
+    y.gamma = shape.gamma;
+  }
+  b_.hysteresis = y;
+  return *this;
+}
+
+BuildingBuilder& BuildingBuilder::flat_slider(double base_mass, double friction) {
+  return isolated_base({base_mass, BaseModel::flat_slider, friction, 0.0});
+}
+
+BuildingBuilder& BuildingBuilder::friction_pendulum(double base_mass, double friction, double radius) {
+  check(path_ + ".base.radius", base_radius_problem(radius));
+  return isolated_base({base_mass, BaseModel::friction_pendulum, friction, radius});
+}
+
+BuildingBuilder& BuildingBuilder::isolated_base(const Base& base) {
+  check(path_ + ".base.mass", base_mass_problem(base.mass));
+  check(path_ + ".base.friction", base_friction_problem(base.friction));
+  b_.base = base;
   return *this;
 }
 
@@ -176,6 +225,37 @@ BuildingBuilder& BuildingBuilder::dashpot(const std::vector<int>& storeys, doubl
   d.type = DeviceType::dashpot;
   d.c = c;
   d.alpha = alpha;
+  add_device(d, storeys);
+  return *this;
+}
+
+BuildingBuilder& BuildingBuilder::bilinear_device(const std::vector<int>& storeys, double k, double yield_force, double hardening) {
+  check(device_path() + ".stiffness", bounded_problem(k, kStiffnessRange));
+  check(device_path() + ".yield_force", bounded_problem(yield_force, kForceRange));
+  check(device_path() + ".hardening", hardening_problem(hardening));
+  StoreyDevice d;
+  d.type = DeviceType::bilinear;
+  d.k = k;
+  d.yield_force = yield_force;
+  d.hardening = hardening;
+  add_device(d, storeys);
+  return *this;
+}
+
+BuildingBuilder& BuildingBuilder::bouc_wen_device(const std::vector<int>& storeys, double k, double yield_force, double hardening,
+                                                  BoucWenShape shape) {
+  check(device_path() + ".stiffness", bounded_problem(k, kStiffnessRange));
+  check(device_path() + ".yield_force", bounded_problem(yield_force, kForceRange));
+  check(device_path() + ".hardening", hardening_problem(hardening));
+  check_bouc_wen_shape(device_path(), shape);
+  StoreyDevice d;
+  d.type = DeviceType::bouc_wen;
+  d.k = k;
+  d.yield_force = yield_force;
+  d.hardening = hardening;
+  d.n = shape.n;
+  d.beta = shape.beta;
+  d.gamma = shape.gamma;
   add_device(d, storeys);
   return *this;
 }

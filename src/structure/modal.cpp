@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/units.hpp"
 
 namespace adjoin::structure {
 namespace {
@@ -95,6 +96,22 @@ Eigen::MatrixXd inherent_damping_matrix(const Building& b) {
   const double wi = omega[d.mode_i - 1], wj = omega[d.mode_j - 1];
   const double a0 = 2.0 * d.ratio * wi * wj / (wi + wj), a1 = 2.0 * d.ratio / (wi + wj);
   return a0 * m + a1 * k;
+}
+
+IsolatedPeriod isolated_period(const Building& b) {
+  IsolatedPeriod p;
+  if (!b.base || b.base->model != BaseModel::friction_pendulum) return p;
+  p.rigid = 2.0 * M_PI * std::sqrt(b.base->radius / kStandardGravity);
+  // The base below floor 1, on the pendulum's stiffness as a storey 0 to the ground.
+  const int n = b.floors();
+  Eigen::VectorXd masses = Eigen::VectorXd::Constant(n + 1, b.base->mass);
+  Eigen::VectorXd storeys = Eigen::VectorXd::Constant(n + 1, b.base_stiffness());
+  masses.tail(n) = b.masses;
+  storeys.tail(n) = b.static_stiffness() + b.geometric_stiffness();
+  Eigen::VectorXd omega;
+  solve(stiffness_matrix(storeys), Eigen::MatrixXd(masses.asDiagonal()), &omega, nullptr);
+  p.flexible = periods_of(omega)[0];
+  return p;
 }
 
 Modes building_modes(const Building& b) {

@@ -112,6 +112,33 @@ double spring_for_period_with_devices(const Building& building, double period, d
 
 double slip_force_from_ratio(double ratio, const Building& of) { return ratio * (of.masses.sum() * kStandardGravity); }
 
+std::string hardening_problem(double b) {
+  return b >= 0.0 && b < 1.0 ? "" : "expected a post-yield stiffness ratio in [0, 1)";
+}
+
+std::string bouc_wen_exponent_problem(double n) {
+  return n >= 1.0 && n <= 20.0 ? "" : "expected the Bouc-Wen exponent n in [1, 20]";
+}
+
+std::string bouc_wen_shape_problem(double beta, double gamma) {
+  if (std::isfinite(beta) && std::isfinite(gamma) && beta + gamma > 0.0) return "";
+  return "expected beta + gamma > 0 (else the Bouc-Wen law never yields)";
+}
+
+std::string base_mass_problem(double kg) {
+  if (!(kg > 0.0)) return "expected a positive base mass (kg)";
+  return kMassRange.problem(kg);
+}
+
+std::string base_friction_problem(double mu) {
+  if (mu > 0.0 && mu < 1.0) return "";
+  return "expected a friction coefficient mu in (0, 1) (of the weight of the base and the floors above)";
+}
+
+std::string base_radius_problem(double m) {
+  return std::isfinite(m) && m > 0.0 ? "" : "expected a positive radius of curvature (m)";
+}
+
 std::string storey_stiffness_problem(const Building& b) {
   const Eigen::VectorXd k = b.static_stiffness();
   for (Eigen::Index i = 0; i < k.size(); ++i)

@@ -14,7 +14,7 @@
 //
 // Errors are FieldError (adjoin/core/errors.hpp) naming the field by its path, counted from 1 as a
 // scene's tables are: "building.A.period", "building.A.masses[3]", "building.A.device[1].tau_x",
-// "link[2].slip_force", "contact[1].restitution". SI units throughout.
+// "building.B.base.friction", "link[2].slip_force", "contact[1].restitution". SI units throughout.
 #include <deque>
 #include <optional>
 #include <string>
@@ -23,6 +23,11 @@
 #include "adjoin/structure/building.hpp"
 
 namespace adjoin::structure {
+
+// A Bouc-Wen law's shape (SPEC §7): z' = d' - beta'|d'||z|^(n-1) z - gamma' d' |z|^n.
+struct BoucWenShape {
+  double n = 2.0, beta = 0.5, gamma = 0.5;
+};
 
 class BuildingBuilder {
  public:
@@ -64,6 +69,22 @@ class BuildingBuilder {
   BuildingBuilder& bilinear(double yield_force, double hardening = 0.0);
   BuildingBuilder& bilinear_per_storey(const std::vector<double>& yield_forces, double hardening = 0.0);
   BuildingBuilder& bilinear_drift_ratio(double yield_drift_ratio, double hardening = 0.0);
+  // Or Bouc-Wen's smooth law, yielding at the same three kinds of yield force, with its shape
+  // (n in [1, 20], beta + gamma > 0; the defaults saturate z at u_y = F_y / k).
+  BuildingBuilder& bouc_wen(double yield_force, double hardening = 0.0, BoucWenShape shape = {});
+  BuildingBuilder& bouc_wen_per_storey(const std::vector<double>& yield_forces, double hardening = 0.0, BoucWenShape shape = {});
+  BuildingBuilder& bouc_wen_drift_ratio(double yield_drift_ratio, double hardening = 0.0, BoucWenShape shape = {});
+  // Yielding storey devices (a scene's type = "bilinear" / "bouc-wen"): a metallic damper or a
+  // buckling-restrained brace of initial stiffness k [N/m], yield force F_y [N], hardening b.
+  BuildingBuilder& bilinear_device(const std::vector<int>& storeys, double k, double yield_force, double hardening = 0.0);
+  BuildingBuilder& bouc_wen_device(const std::vector<int>& storeys, double k, double yield_force, double hardening = 0.0,
+                                   BoucWenShape shape = {});
+  // An isolated base under floor 1 (SPEC §7; a scene's [building.X.base]): a base floor of mass
+  // m_b [kg] sliding on the ground with friction mu in (0, 1) of the weight of the base and every
+  // floor above, on a flat slider, or on a friction pendulum of radius R [m] that adds the
+  // restoring stiffness W / R (isolated period 2 pi sqrt(R / g)). The last call counts.
+  BuildingBuilder& flat_slider(double base_mass, double friction);
+  BuildingBuilder& friction_pendulum(double base_mass, double friction, double radius);
 
   const std::string& path() const { return path_; }  // "building.A"
   int storeys() const { return b_.floors(); }
@@ -72,6 +93,11 @@ class BuildingBuilder {
 
  private:
   void add_device(StoreyDevice device, const std::vector<int>& storeys);
+  // A yielding storey law (bilinear or Bouc-Wen): its forces (one per storey) or, when null,
+  // its yield drift ratio; the shape is checked for Bouc-Wen only.
+  BuildingBuilder& hysteresis(HysteresisModel model, const std::vector<double>* yield_forces, double yield_drift_ratio,
+                              double hardening, const BoucWenShape& shape);
+  BuildingBuilder& isolated_base(const Base& base);
   std::string device_path() const;  // the next device's
 
   std::string path_;

@@ -21,6 +21,7 @@
 // depend on the scaling, and the modes' effective masses sum to the total mass.
 #include <Eigen/Dense>
 #include <complex>
+#include <limits>
 
 #include "adjoin/structure/building.hpp"
 
@@ -52,6 +53,18 @@ Eigen::MatrixXcd complex_stiffness_matrix(const Building& b, double w);
 std::complex<double> zener_stiffness(const Zener& z, double w);
 
 Modes building_modes(const Building& b);
+
+// An isolated building's period while its base slides (SPEC §7). A friction pendulum's restoring
+// stiffness W / R makes the whole a pendulum of length R: `rigid` = 2 pi sqrt(R / g), the
+// period with a rigid superstructure, whatever the masses; `flexible` is the first period of
+// the base and the floors on W / R with the storeys at their initial stiffness (K0, + K_G with
+// P-Delta), which the storeys' flexibility lengthens a little. While the base sticks (the
+// ground's push below mu W) the building has its fixed-base periods (building_modes). NaN for
+// both with a flat slider (no restoring force: it has no period) or a fixed base.
+struct IsolatedPeriod {
+  double rigid = std::numeric_limits<double>::quiet_NaN(), flexible = std::numeric_limits<double>::quiet_NaN();
+};
+IsolatedPeriod isolated_period(const Building& b);
 
 struct CoupledModes {
   Eigen::VectorXd periods_free;    // links' friction dampers free (springs and Zener links at relaxed k)

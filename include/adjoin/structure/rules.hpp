@@ -96,6 +96,22 @@ std::string heights_problem(const Building& b, bool collapse_given, std::string*
 // "" or the problem.
 std::string yield_forces_from_drift_ratio(Building* b, double ratio);
 
+// A bilinear or Bouc-Wen law's post-yield stiffness ratio b, in [0, 1) (0: elastic-perfectly-
+// plastic; 1 would be no yielding at all).
+std::string hardening_problem(double b);
+// A Bouc-Wen law's shape (SPEC §7): the exponent n in [1, 20] (below 1, |z|^(n-1) and so the
+// implicit step's derivative are unbounded at z = 0), and beta + gamma > 0 (else z never
+// saturates: the law never yields).
+std::string bouc_wen_exponent_problem(double n);
+std::string bouc_wen_shape_problem(double beta, double gamma);
+
+// An isolated base (SPEC §7): its mass [kg] (positive, within kMassRange), its friction
+// coefficient mu in (0, 1) (of the weight of the base and every floor above) and a friction
+// pendulum's radius of curvature R > 0 [m].
+std::string base_mass_problem(double kg);
+std::string base_friction_problem(double mu);
+std::string base_radius_problem(double m);
+
 // The storey that has no static stiffness (no spring and no spring or Zener device), as
 // "storey i has no stiffness: ...", or "".
 std::string storey_stiffness_problem(const Building& b);
