@@ -32,17 +32,21 @@ class ChannelObserver final : public StructureObserver {
     row_.assign(values_.size(), 0.0);
     smooth_.assign(values_.size(), SmoothPeak{});
     sampled_.assign(values_.size(), Peak{});
-    is_smooth_.assign(values_.size(), true);
-    for (std::size_t i = 0; i < values_.size(); ++i)
+    is_smooth_.assign(values_.size(), 1);
+    smooth_channels_.clear();
+    sampled_channels_.clear();
+    for (std::size_t i = 0; i < values_.size(); ++i) {
       is_smooth_[i] = structure::info(values_.channels()[i].quantity).peak == structure::PeakRule::refined;
+      (is_smooth_[i] ? smooth_channels_ : sampled_channels_).push_back(i);
+    }
     links_.assign(s.links.size(), LinkReport{});
     last_force_stroke_.assign(s.links.size(), 0.0);
     contacts_.assign(s.contacts.size(), ContactReport{});
     for (std::size_t k = 0; k < s.contacts.size(); ++k) contacts_[k].model = s.contacts[k].law.model;
     contact_work_.assign(s.contacts.size(), 0.0);
-    c_.clear();
-    c_.push_back(structure::inherent_damping_matrix(s.a));
-    if (s.b) c_.push_back(structure::inherent_damping_matrix(*s.b));
+    parts_.clear();
+    parts_.push_back(EnergyPart(s, s.a, 0));
+    if (s.b) parts_.push_back(EnergyPart(s, *s.b, s.a.floors()));
     // The isolated bases (SPEC §7): each slider's place in the state's link arrays (after the
     // links) and its X.x0 channel.
     // (A base friction under floor 1, the two-block scene's, is a slider with no X.x0.)
@@ -58,16 +62,22 @@ class ChannelObserver final : public StructureObserver {
         if (values_.channels()[i].name == std::string(1, slider.building) + ".x0") base.channel = i;
       bases_.push_back(base);
     }
+    std::size_t powers = s.links.size() + bases_.size();
+    for (const EnergyPart& p : parts_) powers += 2 + p.masses.size();
+    power_.assign(powers, 0.0);
+    last_powers_.assign(powers, 0.0);
+    work_.assign(powers, 0.0);
+    kinetic_.assign(parts_.size(), 0.0);
+    last_phase_.assign(s.links.size() + bases_.size(), Phase::stick);
+    last_power_.assign(s.links.size(), 0.0);
     input_scale_ = 0.0;
     first_ = true;
   }
 
   void observe(const StructureState& st) override {
     values_.read(st, row_.data());
-    for (std::size_t c = 0; c < row_.size(); ++c) {
-      if (is_smooth_[c]) smooth_[c].update(row_[c], st.t);
-      else sampled_[c].update(row_[c], st.t);
-    }
+    for (std::size_t c : smooth_channels_) smooth_[c].update(row_[c], st.t);
+    for (std::size_t c : sampled_channels_) sampled_[c].update(row_[c], st.t);
     for (std::size_t l = 0; l < s_.links.size(); ++l) {
       LinkReport& r = links_[l];
       r.force_max = std::max(r.force_max, std::abs(st.link_force[l]));
@@ -104,8 +114,7 @@ class ChannelObserver final : public StructureObserver {
     }
     energy_step(st);
     check_contact_energy(st.t);
-    last_phase_ = st.link_phase;
-    last_power_.resize(s_.links.size());
+    last_phase_.assign(st.link_phase.begin(), st.link_phase.end());  // (same size: no allocation)
     for (std::size_t l = 0; l < s_.links.size(); ++l) last_power_[l] = st.link_force[l] * st.link_velocity[l];
     last_t_ = st.t;
     first_ = false;
@@ -117,39 +126,37 @@ class ChannelObserver final : public StructureObserver {
   }
 
   // Powers at a grid point, integrated by the trapezoidal rule between grid points: per
-  // building its input, its inherent damping and each storey, then each link. Everything is
-  // kept in arrays sized at the first grid point, so a step allocates nothing.
+  // building its input, its inherent damping and each storey, then each link. Plain loops over
+  // arrays sized in begin(): the buildings are small (Eigen's dynamic-size products cost more
+  // to set up than to do here), and a step allocates nothing.
   void energy_step(const StructureState& st) {
     std::size_t k = 0;
-    std::size_t part = 0;
-    auto building = [&](const structure::Building& b, int offset, const Eigen::MatrixXd& c) {
-      const int n = b.floors();
+    for (std::size_t part = 0; part < parts_.size(); ++part) {
+      EnergyPart& p = parts_[part];
+      const std::size_t n = p.masses.size();
+      const double* v_abs = st.v.data() + p.offset;
       // An isolated base (SPEC §7): its mass takes input and kinetic energy, the inherent
       // damping acts on the floors' velocities relative to it, storey 1 deforms against it.
-      const int base = s_.base_dof(offset == 0 ? 'A' : 'B');
-      const double vb = base >= 0 ? st.v[base] : 0.0, mb = base >= 0 ? b.base->mass : 0.0;
-      Eigen::VectorXd& v = v_[part];
-      v = st.v.segment(offset, n);
-      power_[k++] = st.ag * (b.masses.dot(v) + mb * vb);  // input
-      kinetic_[part] = 0.5 * (v.dot(b.masses.cwiseProduct(v)) + mb * vb * vb);
-      if (base >= 0) v.array() -= vb;
-      cv_[part].noalias() = c * v;
-      power_[k++] = v.dot(cv_[part]);         // inherent damping
-      for (int i = 0; i < n; ++i) power_[k++] = st.storey_force[offset + i] * (v[i] - (i > 0 ? v[i - 1] : 0.0));
-      ++part;
-    };
-    if (first_) {
-      std::size_t count = 2 + static_cast<std::size_t>(s_.a.floors()) + s_.links.size() + bases_.size();
-      if (s_.b) count += 2 + static_cast<std::size_t>(s_.b->floors());
-      power_.assign(count, 0.0);
-      last_powers_.assign(count, 0.0);
-      work_.assign(count, 0.0);
-      kinetic_.assign(s_.b ? 2 : 1, 0.0);
-      v_.assign(kinetic_.size(), Eigen::VectorXd());
-      cv_.assign(kinetic_.size(), Eigen::VectorXd());
+      const double vb = p.base >= 0 ? st.v[p.base] : 0.0;
+      double momentum = p.base_mass * vb, twice_kinetic = p.base_mass * vb * vb;
+      for (std::size_t i = 0; i < n; ++i) {
+        momentum += p.masses[i] * v_abs[i];
+        twice_kinetic += p.masses[i] * v_abs[i] * v_abs[i];
+        p.v[i] = v_abs[i] - vb;
+      }
+      power_[k++] = st.ag * momentum;  // input
+      kinetic_[part] = 0.5 * twice_kinetic;
+      double damping = 0.0;  // v' C v, C row-major
+      for (std::size_t i = 0; i < n; ++i) {
+        const double* row = p.c.data() + i * n;
+        double cv = 0.0;
+        for (std::size_t j = 0; j < n; ++j) cv += row[j] * p.v[j];
+        damping += p.v[i] * cv;
+      }
+      power_[k++] = damping;  // inherent damping
+      const double* force = st.storey_force.data() + p.offset;
+      for (std::size_t i = 0; i < n; ++i) power_[k++] = force[i] * (p.v[i] - (i > 0 ? p.v[i - 1] : 0.0));
     }
-    building(s_.a, 0, c_[0]);
-    if (s_.b) building(*s_.b, s_.a.floors(), c_[1]);
     for (std::size_t l = 0; l < s_.links.size(); ++l) power_[k++] = st.link_force[l] * st.link_velocity[l];
     // Each isolator: its slider's power and its pendulum's, k_p x_b v_b.
     for (const Base& b : bases_) {
@@ -296,16 +303,34 @@ class ChannelObserver final : public StructureObserver {
   std::vector<double> row_;          // the channels' values at the current grid point
   std::vector<SmoothPeak> smooth_;   // displacements, drifts, strokes: refined between samples
   std::vector<Peak> sampled_;        // accelerations, shears, link forces: kinks at switches
-  std::vector<bool> is_smooth_;
+  std::vector<char> is_smooth_;
+  std::vector<std::size_t> smooth_channels_, sampled_channels_;  // the indices of each kind
   std::vector<LinkReport> links_;
   std::vector<double> last_force_stroke_;  // per link, 1/2 F s at the last grid point [J]
   std::vector<ContactReport> contacts_;
   std::vector<double> contact_work_;  // the solver's contact_work at the last grid point
   std::vector<Phase> last_phase_;
-  std::vector<Eigen::MatrixXd> c_;  // inherent damping matrices
+  // A building's part of the energy balance: its floors' masses and inherent damping matrix
+  // (row-major), and its velocities relative to its base (a work array).
+  struct EnergyPart {
+    EnergyPart(const structure::Structure& s, const structure::Building& b, int first) : offset(first) {
+      const int n = b.floors();
+      base = s.base_dof(first == 0 ? 'A' : 'B');
+      base_mass = base >= 0 ? b.base->mass : 0.0;
+      masses.assign(b.masses.data(), b.masses.data() + n);
+      const Eigen::MatrixXd damping = structure::inherent_damping_matrix(b);
+      c.resize(static_cast<std::size_t>(n) * static_cast<std::size_t>(n));
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) c[static_cast<std::size_t>(i * n + j)] = damping(i, j);
+      v.assign(static_cast<std::size_t>(n), 0.0);
+    }
+    int offset = 0, base = -1;
+    double base_mass = 0.0;
+    std::vector<double> masses, c, v;
+  };
+  std::vector<EnergyPart> parts_;                    // A's, then B's
   std::vector<double> power_, last_powers_, work_;  // per power term (energy_step)
   std::vector<double> kinetic_;                      // per building, at the last grid point
-  std::vector<Eigen::VectorXd> v_, cv_;              // per building: its velocities, C v
   double input_ = 0.0;                               // the input so far [J]
   std::vector<double> last_power_;
   double last_t_ = 0.0;
