@@ -147,6 +147,7 @@ IdaRow ida_row(const SweepSpec& spec, const std::vector<std::string>& cells, con
   row.im = level;
   row.scale = scale;
   for (const auto& e : edps) row.edps.push_back(cells[column_of(spec, e)]);
+  row.units = cells[column_of(spec, "units")];
   row.error = cells.back();
   row.event = capacity(cells);
   return row;
@@ -276,7 +277,10 @@ void summary(const IdaArgs& args, const std::vector<SuiteRecord>& records, const
                 g(records[k].im).c_str(), runs, edps.empty() ? "" : edps[0].c_str(), g(edp_max).c_str());
     if (args.trace) {
       const Trace& t = found[k];
-      if (t.bracketed()) std::printf(", capacity between %s and %s g", g(*t.low).c_str(), g(*t.high).c_str());
+      if (t.bracketed()) {
+        std::printf(", capacity between %s and %s g", g(*t.low).c_str(), g(*t.high).c_str());
+        if (*t.high - *t.low > args.trace_options.tolerance * *t.low) std::printf(" (wider than --trace-tol: the run budget ran out)");
+      }
       else std::printf(", no capacity event up to %s g (the run budget)", g(t.low ? *t.low : 0.0).c_str());
     } else {
       std::printf(", capacity events at %zu of %zu levels", events, runs);
@@ -318,8 +322,8 @@ int ida_command(const IdaArgs& args) {
   const fs::path image = dir / ("ida" + extension);
   PlotStyle style;
   style.format = args.format;
-  const bool si = true;  // ida.csv's demands are in the scene's units; a building scene's are SI
-  const int status = edps.empty() ? 0 : draw_figure([&] { plot_ida(rows, 0, edps[0], im.text(), si, image, style); },
+  const bool si = rows.empty() || rows[0].units == "SI";  // the demands are in the scene's units
+  const int status = edps.empty() ? 0 : draw_figure([&] { plot_ida(rows, 0, edps[0], im.text(), si, "IDA of " + fs::path(args.scene).stem().string(), image, style); },
                                                     (dir / "ida.csv").string() + " written");
   if (!args.quiet)
     std::printf("ida: %zu runs in %.3g s (%.3g runs/s)\nwrote %s%s\n", rows.size(), seconds,

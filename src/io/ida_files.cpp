@@ -190,7 +190,7 @@ std::string ida_csv(const std::vector<std::string>& edps, const std::vector<IdaR
 // ---- the figure ----
 
 void plot_ida(const std::vector<IdaRow>& rows, std::size_t edp, const std::string& edp_name, const std::string& im,
-              bool si, const fs::path& image, const PlotStyle& style) {
+              bool si, const std::string& title, const fs::path& image, const PlotStyle& style) {
   // The curves by record, in the order the records first appear.
   std::vector<std::string> records;
   std::vector<IdaCurve> curves;
@@ -251,7 +251,7 @@ void plot_ida(const std::vector<IdaRow>& rows, std::size_t edp, const std::strin
     gnuplot_datablock(s, "f" + std::to_string(f), cols);
   }
   const std::string im_label = im == "pga" ? "peak ground acceleration [g]" : "S_a(T = " + im.substr(3) + " s, 5 %) [g]";
-  s << "set title " << gnuplot_quote("IDA curves: " + std::to_string(records.size()) + " records") << " noenhanced font ',12'\n"
+  s << "set title " << gnuplot_quote(title + ": " + std::to_string(records.size()) + " records") << " noenhanced font ',12'\n"
     << "set xlabel " << gnuplot_quote(table_column_label(edp_name, si)) << " noenhanced\n"
     << "set ylabel " << gnuplot_quote(im_label) << "\n"
     << "set key outside right top vertical Left reverse noenhanced\n"

@@ -53,6 +53,7 @@ struct IdaRow {
   std::string record;
   double im = 0.0, scale = 1.0;
   std::vector<std::string> edps;  // cells, as the sweep table has them
+  std::string units;              // the run's: "SI" or "dimensionless"
   std::string error;              // a numerical failure's message
   bool event = false;             // --trace: the capacity event happened
 };
@@ -63,8 +64,9 @@ std::string ida_csv(const std::vector<std::string>& edps, const std::vector<IdaR
 
 // The figure of the first demand `edp`: each record's curve (its runs by IM; a run with the
 // capacity event, or one that failed, ends it: a flat line to the right at the last IM without), and the
-// 16/50/84 % fractiles (study/ida.hpp ida_fractile) at the runs' IMs. `si`: the units.
+// 16/50/84 % fractiles (study/ida.hpp ida_fractile) at the runs' IMs. `si`: the units; the
+// title is followed by the count of records.
 void plot_ida(const std::vector<IdaRow>& rows, std::size_t edp, const std::string& edp_name, const std::string& im,
-              bool si, const std::filesystem::path& image, const PlotStyle& style);
+              bool si, const std::string& title, const std::filesystem::path& image, const PlotStyle& style);
 
 }  // namespace adjoin
