@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <sstream>
 
 #include "adjoin/core/csv_line.hpp"
@@ -220,6 +221,51 @@ TEST_CASE("ida stripes equal the same runs done by adjoin sweep with ground.scal
                              " --units m/s2 --im sa:0.3 --levels 0.2,0.5,1.1 --edp A.drift_max,A.roof_max --quiet --out " + q(dir));
   REQUIRE(again.status == 0);
   CHECK(read_table(dir / "ida.csv").rows == table.rows);
+}
+
+TEST_CASE("an interrupted ida resumes from its sweep journal", "[ida][cli]") {
+  const fs::path r1 = record_file("resume_r1.txt", 1.0, 2.0), r2 = record_file("resume_r2.txt", 1.0, 3.1);
+  const fs::path scene = tiny_scene("resume.toml", r1);
+  const fs::path dir = out_dir("resume");
+  const std::string command = "ida " + q(scene) + " --suite " + q(r1) + " " + q(r2) +
+                              " --units m/s2 --im pga --levels 0.1,0.3 --edp A.drift_max --out " + q(dir);
+  REQUIRE(run_cli(command + " --quiet").status == 0);
+  const Table whole = read_table(dir / "ida.csv");
+  // The journal an interruption after two runs leaves: the preamble with the sweep's
+  // fingerprint, the header and runs 0 and 2, run 2's demand altered so that its use shows.
+  const std::string json = slurp(dir / "sweep.json");
+  const auto at = json.find("\"fingerprint\"");
+  REQUIRE(at != std::string::npos);
+  const auto open = json.find('"', json.find(':', at)) + 1;
+  const std::string fingerprint = json.substr(open, json.find('"', open) - open);
+  std::istringstream sweep(slurp(dir / "sweep.csv"));
+  std::string header, row0, row1, row2;
+  REQUIRE(std::getline(sweep, header));
+  REQUIRE(std::getline(sweep, row0));
+  REQUIRE(std::getline(sweep, row1));
+  REQUIRE(std::getline(sweep, row2));
+  std::vector<std::string> cells, names;
+  REQUIRE(split_csv_line(header, &names));
+  REQUIRE(split_csv_line(row2, &cells));
+  const std::size_t drift = static_cast<std::size_t>(std::find(names.begin(), names.end(), "A.drift_max") - names.begin());
+  cells[drift] = "0.125";
+  {
+    std::ofstream journal(dir / "sweep.partial.csv", std::ios::binary);
+    journal << "# adjoin sweep journal fingerprint=" << fingerprint << " runs=4 shard=0/1\n" << header << "\n" << row0 << "\n"
+            << csv_line(cells) << "\n";
+  }
+  fs::remove(dir / "ida.csv");
+  const auto resumed = run_cli(command);
+  INFO(resumed.err);
+  REQUIRE(resumed.status == 0);
+  CHECK(resumed.err.find("resuming: 2 runs from the journal") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "sweep.partial.csv"));
+  const Table again = read_table(dir / "ida.csv");
+  REQUIRE(again.rows.size() == 4);
+  CHECK(again.rows[0] == whole.rows[0]);
+  CHECK(again.rows[1] == whole.rows[1]);  // run again
+  CHECK(again.rows[2][3] == "0.125");     // taken from the journal
+  CHECK(again.rows[3] == whole.rows[3]);
 }
 
 TEST_CASE("ida --trace brackets the first capacity event within its tolerance of a fine grid", "[ida][cli][trace]") {

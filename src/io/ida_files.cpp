@@ -37,12 +37,18 @@ std::uint64_t fnv1a(std::uint64_t hash, const std::string& text) {
 SweepValue text_value(const std::string& text) { return SweepValue{text, "\"" + text + "\""}; }
 SweepValue number_value(double v) { return SweepValue{v, sweep_number_cell(v)}; }
 
-// The base scene's ground.source ("" if it has none; its syntax errors are the scene reader's).
-std::string base_source(const std::string& text, const fs::path& scene) {
+// The base scene's ground.source ("" if it has none) and ground.time_scale (a dimensionless
+// scene's unit of time, which its records keep). Its syntax errors are the scene reader's.
+struct BaseGround {
+  std::string source;
+  std::optional<double> time_scale;
+};
+BaseGround base_ground(const std::string& text, const fs::path& scene) {
   try {
-    return toml::parse(text, scene.string()).at_path("ground.source").value_or(std::string());
+    const toml::table t = toml::parse(text, scene.string());
+    return {t.at_path("ground.source").value_or(std::string()), t.at_path("ground.time_scale").value<double>()};
   } catch (const toml::parse_error&) {
-    return "";
+    return {};
   }
 }
 
@@ -101,7 +107,8 @@ SweepSpec ida_sweep(const fs::path& scene, const std::vector<IdaMotion>& motions
   const std::string base_text = read_text_file(scene, "scene");
   // The base's own record, its processing and scale_pga do not carry over: its [ground] goes
   // (setting another source than the base's drops it already, io/scene.hpp implied_unsets).
-  const bool base_is_record = base_source(base_text, scene) == "record";
+  const BaseGround base = base_ground(base_text, scene);
+  const bool base_is_record = base.source == "record";
   std::string described;
   for (const IdaMotion& m : motions) {
     SweepSetting s;
@@ -111,6 +118,7 @@ SweepSpec ida_sweep(const fs::path& scene, const std::vector<IdaMotion>& motions
              {"ground.file", text_value(fs::absolute(m.file).lexically_normal().string())},
              {"ground.scale", number_value(m.scale)}};
     if (!units.empty()) s.set.emplace_back("ground.units", text_value(units));
+    if (base_is_record && base.time_scale) s.set.emplace_back("ground.time_scale", number_value(*base.time_scale));
     for (const auto& o : s.overrides()) described += o + "\n";
     spec.motions.push_back(std::move(s));
   }

@@ -5,7 +5,8 @@
 //    record reader recognises, as `adjoin spectrum --suite` takes them);
 //  - the sweep of the runs: the base scene with, per run, its ground replaced by one record
 //    scaled by a factor — exactly `adjoin run SCENE --unset ground --set ground.source=record
-//    --set ground.file=F --set ground.scale=S` (and ground.units when given);
+//    --set ground.file=F --set ground.scale=S` (and ground.units when given; a dimensionless
+//    scene's ground.time_scale is kept);
 //  - ida.csv: `record,im,scale,<edp>...`, one row per run, the demands named as the sweep
 //    table's columns (study/sweep_columns.hpp), numbers in their shortest round-trip form;
 //  - the figure: the IDA curves (EDP on x, IM on y), one per record, with the 16/50/84 %
