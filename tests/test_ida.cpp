@@ -8,14 +8,17 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include "adjoin/core/csv_line.hpp"
+#include "adjoin/core/errors.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "adjoin/study/ida.hpp"
+#include "adjoin/study/builder.hpp"
 #include "adjoin/study/run.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "cli_helpers.hpp"
@@ -115,6 +118,22 @@ TEST_CASE("ground.scale refuses a factor that is not a positive number, naming t
     CHECK(r.status == 2);
     CHECK(r.err.rfind("error:", 0) == 0);
     CHECK(r.err.find("ground.scale") != std::string::npos);
+  }
+}
+
+TEST_CASE("scale_ground, the typed ground.scale, wraps any source and names the field", "[ida][ground.scale]") {
+  const auto sine = decaying_sine_ground(0.01, 5.0, 0.5);
+  CHECK(scale_ground(sine, 1.0) == sine);  // a factor of 1 leaves the source as it is
+  const auto scaled = scale_ground(sine, 3.0);
+  for (double t : {0.1, 0.7, 2.3}) CHECK(scaled->ag(t) == 3.0 * sine->ag(t));
+  CHECK(&unscaled_ground(*scaled) == sine.get());
+  for (double bad : {0.0, -2.0, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN()}) {
+    try {
+      (void)scale_ground(sine, bad);
+      FAIL("accepted " << bad);
+    } catch (const FieldError& e) {
+      CHECK(e.field() == "ground.scale");
+    }
   }
 }
 
