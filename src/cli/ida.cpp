@@ -323,8 +323,9 @@ int ida_command(const IdaArgs& args) {
   PlotStyle style;
   style.format = args.format;
   const bool si = rows.empty() || rows[0].units == "SI";  // the demands are in the scene's units
-  const int status = edps.empty() ? 0 : draw_figure([&] { plot_ida(rows, 0, edps[0], im.text(), si, "IDA of " + fs::path(args.scene).stem().string(), image, style); },
-                                                    (dir / "ida.csv").string() + " written");
+  const std::string title = "IDA of " + fs::path(args.scene).stem().string();
+  const auto draw = [&] { plot_ida(rows, 0, edps[0], im.text(), si, title, image, style); };
+  const int status = edps.empty() ? 0 : draw_figure(draw, (dir / "ida.csv").string() + " written");
   if (!args.quiet)
     std::printf("ida: %zu runs in %.3g s (%.3g runs/s)\nwrote %s%s\n", rows.size(), seconds,
                 static_cast<double>(rows.size()) / seconds, (dir / "ida.csv").string().c_str(),

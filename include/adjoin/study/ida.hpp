@@ -14,8 +14,9 @@
 //           a first run that already shows the event halves the IM until one does not;
 //   bracket: bisection between the highest IM without the event below the first event and that
 //           event, until (high - low) <= tolerance x low (or the budget);
-//   fill:   the runs left in the budget halve the widest gaps between the IMs run below the
-//           bracket, widest first, so the curve below the capacity is drawn evenly.
+//   fill:   the runs left in the budget halve the widest gaps between 0 and the IMs run
+//           without the event below the bracket, widest first, so the curve below the
+//           capacity is drawn evenly.
 // A record that shows no event within the budget reports none (its highest IM is a lower bound).
 #include <cstddef>
 #include <functional>
