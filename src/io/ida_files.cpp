@@ -173,16 +173,6 @@ void check_ida_edps(const SweepSpec& spec, const std::vector<std::string>& edps,
     }
 }
 
-std::vector<std::string> ida_cells(const SweepSpec& spec, const SweepRow& row, const std::vector<std::string>& columns) {
-  const auto all = sweep_columns(spec);
-  const auto cells = sweep_cells(spec, row);
-  std::vector<std::string> out;
-  for (const auto& name : columns)
-    for (std::size_t c = 0; c < all.size(); ++c)
-      if (all[c].name == name) out.push_back(cells[c]);
-  return out;
-}
-
 std::string ida_csv(const std::vector<std::string>& edps, const std::vector<IdaRow>& rows) {
   std::vector<std::string> header{"record", "im", "scale"};
   header.insert(header.end(), edps.begin(), edps.end());

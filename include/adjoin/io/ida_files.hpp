@@ -58,8 +58,6 @@ struct IdaRow {
   std::string error;              // a numerical failure's message
   bool event = false;             // --trace: the capacity event happened
 };
-// The cells of `columns` of a sweep row (sweep_cells order).
-std::vector<std::string> ida_cells(const SweepSpec& spec, const SweepRow& row, const std::vector<std::string>& columns);
 // ida.csv's text.
 std::string ida_csv(const std::vector<std::string>& edps, const std::vector<IdaRow>& rows);
 
