@@ -286,7 +286,7 @@ def run_many(scenes: Sequence[Scene | Mapping[str, Any] | str | os.PathLike[str]
 
 
 def run_structure(structure: Structure, record: str | os.PathLike[str], *, scale_pga: float | None = None,
-                  h: float | None = None, t_end: float | None = None, tolerance: float | None = None,
+                  scale: float = 1.0, h: float | None = None, t_end: float | None = None, tolerance: float | None = None,
                   name: str = "building", timeseries: bool = True, every: int | None = None,
                   allow_long: bool = False) -> Result:
     """Runs a structure built in code (``StructureBuilder.build()``) on a record, as a building
@@ -296,6 +296,8 @@ def run_structure(structure: Structure, record: str | os.PathLike[str], *, scale
         structure: an ``adjoin.Structure``.
         record: a record file's path (the format from the file, as a scene's ``ground.file``).
         scale_pga: scale the record to this peak ground acceleration [g] (``ground.scale_pga``).
+        scale: a plain factor on the record's acceleration, after ``scale_pga`` (``ground.scale``;
+            a suite's scale factor).
         h, t_end: the step and the horizon [s] (``solver.h``, ``solver.t_end``); None chooses
             them by a scene's rules (the step for ``tolerance``, the horizon from the record's
             duration and the longest period).
@@ -304,10 +306,10 @@ def run_structure(structure: Structure, record: str | os.PathLike[str], *, scale
         timeseries, every, allow_long: as in ``run``.
 
     Raises:
-        InputError: a bad value; ``.field`` names the keyword (``"h"``, ``"scale_pga"``).
+        InputError: a bad value; ``.field`` names the keyword (``"h"``, ``"scale_pga"``, ``"scale"``).
         NumericalError: the computation failed; ``.time`` says when.
     """
-    return Result(_adjoin.run_structure(structure, os.fspath(record), scale_pga=scale_pga, h=h, t_end=t_end,
+    return Result(_adjoin.run_structure(structure, os.fspath(record), scale_pga=scale_pga, scale=scale, h=h, t_end=t_end,
                                         tolerance=tolerance, name=name, timeseries=timeseries, every=_every(every),
                                         allow_long=allow_long))
 

@@ -121,7 +121,7 @@ RunTexts run_structure(const structure::Structure& structure, const StructureRun
   options.h = how.h;
   options.t_end = how.t_end;
   options.tolerance = how.tolerance;
-  return run_scene(building_run_spec(structure, record_ground(how.record, how.scale_pga), options), request);
+  return run_scene(building_run_spec(structure, scale_ground(record_ground(how.record, how.scale_pga), how.scale), options), request);
 }
 
 const structure::Structure* structure_of(const LoadedScene& scene) {

@@ -81,6 +81,7 @@ struct StructureRun {
   std::string name = "building";
   std::filesystem::path record;      // a record file (its format from the file)
   std::optional<double> scale_pga;   // [g]
+  double scale = 1.0;                // ground.scale: a plain factor, after scale_pga
   std::optional<double> h, t_end;    // [s]
   std::optional<double> tolerance;   // the peaks' relative error the step is chosen for (not with h)
 };

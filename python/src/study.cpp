@@ -198,16 +198,17 @@ py::dict joint_py(const SceneObject& scene, int contact, std::optional<double> t
 // A structure built in code, run on a record (run_facade.hpp run_structure). A bad run value
 // names its keyword ("h", "scale_pga"), not the scene key building_run_spec blames.
 py::dict run_structure_py(const structure::Structure& structure, const std::string& record, std::optional<double> scale_pga,
+                          double scale,
                           std::optional<double> h, std::optional<double> t_end, std::optional<double> tolerance,
                           const std::string& name, bool timeseries, std::size_t every, bool allow_long) {
   RunTexts texts;
   try {
     py::gil_scoped_release unlocked;
-    texts = run_structure(structure, StructureRun{name, record, scale_pga, h, t_end, tolerance},
+    texts = run_structure(structure, StructureRun{name, record, scale_pga, scale, h, t_end, tolerance},
                           request_of(timeseries, every, allow_long));
   } catch (const FieldError& e) {
-    // "solver.h", "solver.t_end", "solver.tolerance", "ground.scale_pga": the keyword after the dot.
-    for (const std::string keyword : {"h", "t_end", "tolerance", "scale_pga"})
+    // "solver.h", "solver.t_end", "solver.tolerance", "ground.scale_pga", "ground.scale": the keyword after the dot.
+    for (const std::string keyword : {"h", "t_end", "tolerance", "scale_pga", "scale"})
       if (e.field().ends_with("." + keyword)) throw InputError(keyword + ": " + e.problem(), keyword);
     throw;
   }
@@ -218,7 +219,7 @@ py::dict run_structure_py(const structure::Structure& structure, const std::stri
 
 void bind_study(py::module_& m) {
   m.def("run_structure", &run_structure_py, py::arg("structure"), py::arg("record"), py::kw_only(),
-        py::arg("scale_pga") = py::none(), py::arg("h") = py::none(), py::arg("t_end") = py::none(),
+        py::arg("scale_pga") = py::none(), py::arg("scale") = 1.0, py::arg("h") = py::none(), py::arg("t_end") = py::none(),
         py::arg("tolerance") = py::none(), py::arg("name") = "building", py::arg("timeseries") = true,
         py::arg("every") = 0u, py::arg("allow_long") = false);
   m.def("run", &run_py, py::arg("scene"), py::kw_only(), py::arg("timeseries") = true, py::arg("every") = 0u,

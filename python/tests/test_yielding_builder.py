@@ -105,11 +105,27 @@ def test_a_bad_keyword_names_its_field(make, field):
 def test_a_bad_run_keyword_is_named():
     s = adjoin.StructureBuilder()
     s.building("A", 1).mass(1e4).stiffness(1e6)
-    for kwargs, keyword in (({"h": -0.01}, "h"), ({"scale_pga": -0.3}, "scale_pga")):
+    for kwargs, keyword in (({"h": -0.01}, "h"), ({"scale_pga": -0.3}, "scale_pga"), ({"scale": 0.0}, "scale")):
         with pytest.raises(adjoin.InputError) as e:
             adjoin.run_structure(s.build(), NORTHRIDGE, **kwargs)
         assert e.value.field == keyword
         assert str(e.value).startswith(keyword + ": ")
+
+
+def test_scale_keyword_is_the_scene_key_ground_scale():
+    """run_structure(..., scale=f) runs as the scene with ground.scale = f: the same peaks."""
+    scene = adjoin.Scene.from_dict({
+        "name": "frame", "model": {"units": "SI"},
+        "building": {"A": {"storeys": 2, "mass": 40.0e3, "period": 0.5, "damping": {"model": "modal", "ratio": 0.05}}},
+        "ground": {**ground(0.3), "scale": 1.7},
+        "solver": RUN,
+    })
+    s = adjoin.StructureBuilder()
+    s.building("A", 2).mass(40.0e3).period(0.5).modal_damping(0.05)
+    code = adjoin.run_structure(s.build(), NORTHRIDGE, scale_pga=0.3, scale=1.7, timeseries=False, **RUN)
+    same_results(code, adjoin.run(scene, timeseries=False))
+    plain = adjoin.run_structure(s.build(), NORTHRIDGE, scale_pga=0.3, timeseries=False, **RUN)
+    assert code.summary["peaks"]["A.x2"]["max_abs"] == pytest.approx(1.7 * plain.summary["peaks"]["A.x2"]["max_abs"], rel=1e-12)
 
 
 def test_modes_state_the_isolated_period():

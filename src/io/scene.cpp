@@ -55,6 +55,7 @@ const std::vector<KeySpec>& schema() {
       {"model.contact.damping", Kind::number},   {"model.contact.tension_cut", Kind::boolean},
     };
     out.push_back({"ground.source", Kind::string});
+    out.push_back({"ground.scale", Kind::number});
     for (const detail::GroundSource& source : detail::ground_sources())
       for (const KeySpec& key : source.keys())
         if (std::none_of(out.begin(), out.end(), [&](const KeySpec& k) { return std::string_view(k.path) == key.path; }))

@@ -192,7 +192,7 @@ SweepRow run_sweep_point(const SweepSpec& spec, std::size_t index) {
     row.pga_g = ground.pga_g();
     if (!spec.im_periods.empty()) {
       // The step in seconds (a dimensionless scene's time unit: a record's time scale).
-      const auto* record = dynamic_cast<const RecordMotion*>(scene.ground.get());
+      const auto* record = dynamic_cast<const RecordMotion*>(&unscaled_ground(*scene.ground));
       const double seconds = !scene.two_block() ? 1.0 : record ? record->time_scale() : scene.scales.time;
       SpectrumOptions options;
       options.dampings = {spec.im_damping};

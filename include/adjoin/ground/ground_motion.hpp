@@ -10,6 +10,7 @@
 #include <limits>
 #include <memory>
 #include <string>
+#include <utility>
 
 namespace adjoin {
 
@@ -40,5 +41,30 @@ class ScaledGround final : public GroundMotion {
   const GroundMotion& inner_;
   double factor_;
 };
+
+// A source times a plain factor, owning it: the scene's `ground.scale` (a suite's scale factor,
+// an IDA's intensity level) on any source, applied after everything the source does (its
+// processing, its ground.scale_pga). A factor of 2 doubles every a_g exactly.
+class ScaledMotion final : public GroundMotion {
+ public:
+  ScaledMotion(std::shared_ptr<const GroundMotion> inner, double factor) : inner_(std::move(inner)), factor_(factor) {}
+  double ag(double t) const override { return inner_->ag(t) * factor_; }
+  std::string describe() const override;
+  double duration() const override { return inner_->duration(); }
+  double sample_interval() const override { return inner_->sample_interval(); }
+  const GroundMotion& inner() const { return *inner_; }
+  double factor() const { return factor_; }
+
+ private:
+  std::shared_ptr<const GroundMotion> inner_;
+  double factor_;
+};
+
+// The source times `factor` (ground.scale): `ground` itself for 1, a ScaledMotion otherwise.
+// FieldError("ground.scale") unless factor is a finite number > 0.
+std::shared_ptr<const GroundMotion> scale_ground(std::shared_ptr<const GroundMotion> ground, double factor);
+
+// The source under any ScaledMotion wrappers (what a source was built as, e.g. a RecordMotion).
+const GroundMotion& unscaled_ground(const GroundMotion& ground);
 
 }  // namespace adjoin

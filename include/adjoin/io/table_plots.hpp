@@ -27,4 +27,8 @@ struct SweepPlotOptions {
 std::vector<std::string> plot_sweep_csv(const std::filesystem::path& csv, const SweepPlotOptions& options,
                                         const std::filesystem::path& image, const PlotStyle& style);
 
+// The axis label of a table's column: "peak storey drift, building A [m]" (units only when
+// `si`); a column adjoin does not know keeps its name.
+std::string table_column_label(const std::string& column, bool si);
+
 }  // namespace adjoin

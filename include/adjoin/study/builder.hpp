@@ -34,6 +34,8 @@ inline constexpr double kBuildingDefaultTolerance = 1e-3;
 // given (the scene's ground.scale_pga).
 std::shared_ptr<const GroundMotion> record_ground(const std::filesystem::path& file, std::optional<double> scale_pga = {},
                                                   const RecordFormat& format = {});
+// (Any ground times a plain factor, the scene's ground.scale: scale_ground(ground, factor),
+// ground/ground_motion.hpp.)
 // The paper's decaying sine a_g = u0 omega^2 e^{-k t} sin(omega t), in SI: u0 [m],
 // omega [rad/s], k [1/s] (the scene's source = "decaying-sine").
 std::shared_ptr<const GroundMotion> decaying_sine_ground(double u0, double omega, double k);

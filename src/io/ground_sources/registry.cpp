@@ -48,15 +48,27 @@ std::shared_ptr<const GroundMotion> read_ground(const SceneReader& r, const Scal
   const std::span<const KeySpec> allowed = entry->keys();
   for (const auto& [key, node] : *r.table()["ground"].as_table()) {
     const std::string k(key.str()), path = "ground." + k;
-    if (k != "source" && std::none_of(allowed.begin(), allowed.end(), [&](const KeySpec& s) { return path == s.path; }))
+    if (k != "source" && k != "scale" && std::none_of(allowed.begin(), allowed.end(), [&](const KeySpec& s) { return path == s.path; }))
       r.fail(path, text_excerpt(path) + " is not a key of source \"" + source + "\"");
   }
-  return entry->read(r, scales);
+  return scale_ground(entry->read(r, scales), read_ground_scale(r));
+}
+
+double read_ground_scale(const SceneReader& r) {
+  const double factor = r.number("ground.scale", 1.0);
+  if (!(std::isfinite(factor) && factor > 0.0))
+    r.fail("ground.scale", "ground.scale = " + format_scene_number(factor) +
+                               " must be a finite number > 0 (a plain factor on the ground's acceleration)");
+  return factor;
 }
 
 std::string ground_key(const SceneReader& r, double time_scale, const std::string& extra) {
   std::ostringstream key;
-  key << toml::toml_formatter(*r.table()["ground"].as_table());
+  // Without ground.scale, applied after the cache (read_ground): a record read once serves
+  // every scale of it (an IDA's levels, a suite's factors).
+  toml::table ground = *r.table()["ground"].as_table();
+  ground.erase("scale");
+  key << toml::toml_formatter(ground);
   char scale[32];
   std::snprintf(scale, sizeof scale, "%.17g", time_scale);
   key << "\n" << scale << "\n" << extra;

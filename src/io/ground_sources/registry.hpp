@@ -38,6 +38,11 @@ std::span<const GroundSource> ground_sources();
 // the motion with that source.
 std::shared_ptr<const GroundMotion> read_ground(const SceneReader& r, const Scales& scales);
 
+// ground.scale (default 1), which every source takes: a plain factor applied to the motion the
+// source built (ScaledMotion, ground/ground_motion.hpp); r.fail names the key unless it is a
+// finite number > 0.
+double read_ground_scale(const SceneReader& r);
+
 // Shared by the sources that build a motion once per process (ground_cache.hpp): the cache
 // key (the [ground] table after the overrides, the time scale, and `extra`: file stamps).
 std::string ground_key(const SceneReader& r, double time_scale, const std::string& extra);

@@ -30,6 +30,7 @@ constexpr ColumnLabel kColumnLabels[] = {
     {"X.T1", "fundamental period, building X", "s"},
     {"X.roof_max", "peak roof displacement, building X", "m"},
     {"X.drift_max", "peak storey drift, building X", "m"},
+    {"X.drift_ratio_max", "peak storey drift ratio, building X", ""},
     {"X.drift_storey", "storey of the peak drift, building X", ""},
     {"X.accel_max", "peak floor acceleration, building X", "m/s²"},
     {"X.base_shear_max", "peak base shear, building X", "N"},
@@ -44,6 +45,7 @@ constexpr ColumnLabel kColumnLabels[] = {
     {"contactN.penetration_max", "peak penetration, contact pair N", "m"},
     {"contactN.energy_share", "share of the input energy in impacts, contact pair N", ""},
     {"energy_input", "input energy", "J"},
+    {"collapse_t", "time of the collapse", "s"},
     {"share_residual", "energy balance residual / input", ""},
     {"x1", "peak displacement of block 1", "m"},
     {"x2", "peak displacement of block 2", "m"},
@@ -293,6 +295,8 @@ std::string sweep_script(const fs::path& csv, const SweepPlotOptions& options, c
 }
 
 }  // namespace
+
+std::string table_column_label(const std::string& column, bool si) { return column_label(column, si); }
 
 std::vector<std::string> plot_sweep_csv(const fs::path& csv, const SweepPlotOptions& options, const fs::path& image,
                                         const PlotStyle& style) {
