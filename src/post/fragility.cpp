@@ -13,6 +13,8 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <optional>
+#include <utility>
 
 #include "adjoin/core/errors.hpp"
 
@@ -80,8 +82,11 @@ void gsl_fdf(const gsl_vector* x, void* params, double* f, gsl_vector* g) {
 
 // The start: the observed fractions, made non-decreasing, read as a distribution function of
 // ln IM over the levels (the rest of the probability at the highest level); its mean and
-// standard deviation (at least 0.1, so the start is never a step).
-std::pair<double, double> moment_start(const std::vector<FragilityLevel>& levels) {
+// standard deviation (at least 0.1, so the start is never a step). With few runs per level
+// (IDA traces: one) that can be far off, so the best point of a coarse grid over the levels'
+// range and beta in [0.05, 3] is taken instead when its likelihood is higher: BFGS from a far
+// start can take a first step into the flat region beta -> infinity and stall there.
+std::pair<double, double> start_point(const std::vector<FragilityLevel>& levels) {
   double previous = 0.0, mean = 0.0, square = 0.0;
   for (std::size_t j = 0; j < levels.size(); ++j) {
     const double p = j + 1 == levels.size() ? 1.0 : std::max(previous, double(levels[j].events) / double(levels[j].n));
@@ -90,8 +95,19 @@ std::pair<double, double> moment_start(const std::vector<FragilityLevel>& levels
     square += w * x * x;
     previous = p;
   }
-  const double sd = std::sqrt(std::max(0.0, square - mean * mean));
-  return {mean, std::log(std::max(sd, 0.1))};
+  std::pair<double, double> best{mean, std::log(std::max(std::sqrt(std::max(0.0, square - mean * mean)), 0.1))};
+  double best_f = negative_log_likelihood(levels, best.first, best.second, nullptr, nullptr);
+  const double lo = std::log(levels.front().im) - 0.5, hi = std::log(levels.back().im) + 0.5;
+  for (int i = 0; i <= 20; ++i)
+    for (int j = 0; j <= 14; ++j) {
+      const double u = lo + (hi - lo) * i / 20.0, v = std::log(0.05) + (std::log(3.0) - std::log(0.05)) * j / 14.0;
+      const double f = negative_log_likelihood(levels, u, v, nullptr, nullptr);
+      if (f < best_f) {
+        best_f = f;
+        best = {u, v};
+      }
+    }
+  return best;
 }
 
 // Newton's method on the gradient of -ln L, with its Hessian by central differences of the
@@ -212,16 +228,14 @@ std::string fragility_degeneracy(const std::vector<FragilityLevel>& levels) {
   return "";
 }
 
-FragilityFit fit_fragility_mle(const std::vector<FragilityLevel>& levels) {
-  FragilityFit fit;
-  fit.problem = fragility_degeneracy(levels);
-  if (!fit.problem.empty()) return fit;
+namespace {
+
+// BFGS (GSL) from (u, v), then Newton: true with fit->theta, beta when the gradient of ln L
+// went below the tolerance.
+bool maximise(const std::vector<FragilityLevel>& levels, double u0, double v0, FragilityFit* fit) {
   std::size_t runs = 0;
   for (const FragilityLevel& l : levels) runs += l.n;
-  const double tolerance = kGradientTolerance * double(runs);
-
   gsl_multimin_function_fdf function{&gsl_f, &gsl_df, &gsl_fdf, 2, const_cast<std::vector<FragilityLevel>*>(&levels)};
-  const auto [u0, v0] = moment_start(levels);
   std::unique_ptr<gsl_vector, decltype(&gsl_vector_free)> x(gsl_vector_alloc(2), &gsl_vector_free);
   gsl_vector_set(x.get(), 0, u0);
   gsl_vector_set(x.get(), 1, v0);
@@ -233,7 +247,7 @@ FragilityFit fit_fragility_mle(const std::vector<FragilityLevel>& levels) {
   for (int restart = 0; restart < 5 && status != GSL_SUCCESS; ++restart) {
     gsl_multimin_fdfminimizer_set(m.s, &function, x.get(), 0.1, 0.1);
     for (int iteration = 0; iteration < 500; ++iteration) {
-      ++fit.iterations;
+      ++fit->iterations;
       const int step = gsl_multimin_fdfminimizer_iterate(m.s);
       status = gsl_multimin_test_gradient(m.s->gradient, kBfgsTolerance * double(runs));
       if (status == GSL_SUCCESS || step != GSL_SUCCESS) break;
@@ -241,14 +255,28 @@ FragilityFit fit_fragility_mle(const std::vector<FragilityLevel>& levels) {
     gsl_vector_memcpy(x.get(), m.s->x);
   }
   double u = gsl_vector_get(x.get(), 0), v = gsl_vector_get(x.get(), 1);
-  status = newton_polish(levels, tolerance, u, v, fit.iterations) ? GSL_SUCCESS : GSL_CONTINUE;
-  if (status != GSL_SUCCESS || !std::isfinite(u) || !std::isfinite(v))
+  const bool converged = newton_polish(levels, kGradientTolerance * double(runs), u, v, fit->iterations);
+  fit->theta = std::exp(u);
+  fit->beta = std::exp(v);
+  return converged && std::isfinite(fit->theta) && fit->theta > 0.0 && std::isfinite(fit->beta) && fit->beta > 0.0;
+}
+
+}  // namespace
+
+FragilityFit fit_fragility_mle(const std::vector<FragilityLevel>& levels, std::optional<std::pair<double, double>> start) {
+  FragilityFit fit;
+  fit.problem = fragility_degeneracy(levels);
+  if (!fit.problem.empty()) return fit;
+  bool done = start && maximise(levels, std::log(start->first), std::log(start->second), &fit);
+  if (!done) {
+    const auto [u0, v0] = start_point(levels);
+    done = maximise(levels, u0, v0, &fit);
+  }
+  if (!done)
     throw NumericalError("fragility fit: the likelihood's maximiser stopped after " + std::to_string(fit.iterations) +
-                         " iterations with a gradient above " + number(tolerance) + " (at theta = " + number(std::exp(u)) +
-                         ", beta = " + number(std::exp(v)) + ")", 0.0);
+                         " iterations with a gradient of ln L above " + number(kGradientTolerance) + " per run (at theta = " +
+                         number(fit.theta) + ", beta = " + number(fit.beta) + ")", 0.0);
   fit.fitted = true;
-  fit.theta = std::exp(u);
-  fit.beta = std::exp(v);
   fit.log_likelihood = fragility_log_likelihood(levels, fit.theta, fit.beta);
   return fit;
 }
@@ -274,6 +302,9 @@ FragilityBounds bootstrap_fragility(const std::vector<FragilityRun>& runs, std::
     at->events += r.event ? 1 : 0;
   }
   if (samples == 0 || records.empty()) return bounds;
+  const FragilityFit whole = fit_fragility_mle(levels);
+  const std::optional<std::pair<double, double>> estimate =
+      whole.fitted ? std::optional<std::pair<double, double>>({whole.theta, whole.beta}) : std::nullopt;
 
   std::unique_ptr<gsl_rng, decltype(&gsl_rng_free)> rng(gsl_rng_alloc(gsl_rng_mt19937), &gsl_rng_free);
   gsl_rng_set(rng.get(), static_cast<unsigned long>(seed));
@@ -292,7 +323,8 @@ FragilityBounds bootstrap_fragility(const std::vector<FragilityRun>& runs, std::
     used.clear();
     for (const FragilityLevel& l : sample)
       if (l.n > 0) used.push_back(l);
-    const FragilityFit fit = fit_fragility_mle(used);
+    // From the estimate of every record's runs: a resample's maximum is near it.
+    const FragilityFit fit = fit_fragility_mle(used, estimate);
     if (!fit.fitted) {
       ++bounds.degenerate;
       continue;

@@ -23,7 +23,9 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace adjoin {
@@ -64,7 +66,10 @@ double fragility_log_likelihood(const std::vector<FragilityLevel>& levels, doubl
 // "" when the counts have a maximum-likelihood fit, otherwise why not (see above).
 std::string fragility_degeneracy(const std::vector<FragilityLevel>& levels);
 // The maximum-likelihood fit; NumericalError if the optimiser fails on data that has a fit.
-FragilityFit fit_fragility_mle(const std::vector<FragilityLevel>& levels);
+// `start` (theta, beta): where to start (a bootstrap resample starts at the estimate); without
+// it, or if the optimiser fails from there, the start described above.
+FragilityFit fit_fragility_mle(const std::vector<FragilityLevel>& levels,
+                               std::optional<std::pair<double, double>> start = std::nullopt);
 
 struct FragilityBounds {
   std::size_t samples = 0;     // resamples drawn
