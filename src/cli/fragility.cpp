@@ -32,6 +32,10 @@ namespace {
 namespace fs = std::filesystem;
 using nlohmann::ordered_json;
 
+// More resamples than this would only spend time: the percentiles' own sampling error is
+// already far below the bounds' width.
+constexpr std::size_t kMostResamples = 100000;
+
 struct FragilityArgs {
   std::vector<std::string> tables, labels;
   std::string event, out, plot;
@@ -160,8 +164,11 @@ ordered_json design_json(const Design& d, const FragilityArgs& args) {
   return out;
 }
 
+// The table's file, and its label where that says more.
+std::string who(const Design& d) { return d.file + (d.label == d.file || d.label == fs::path(d.file).filename().string() ? "" : " (" + d.label + ")"); }
+
 void print_design(const Design& d, const FragilityArgs& args) {
-  std::printf("%s (%s): %zu runs of %zu levels", d.label.c_str(), d.file.c_str(), d.runs.size(), d.levels.size());
+  std::printf("%s: %zu runs at %zu levels", who(d).c_str(), d.runs.size(), d.levels.size());
   if (d.failed || d.unknown) std::printf(", %zu failed and %zu unknown runs left out", d.failed, d.unknown);
   std::printf("\n");
   if (d.fit.fitted) {
@@ -181,7 +188,7 @@ void print_design(const Design& d, const FragilityArgs& args) {
 }
 
 void warn(const Design& d) {
-  const std::string who = d.file + " (" + d.label + ")";
+  const std::string who = cli::who(d);
   if (!d.fit.fitted)
     std::cerr << "warning: " << printable_message(who + ": not fitted: " + d.fit.problem) << " (fitted = false in --out)\n";
   if (d.unknown)
@@ -207,6 +214,9 @@ int fragility_command(const FragilityArgs& args) {
   if (!args.labels.empty() && args.labels.size() != args.tables.size())
     throw InputError("--label: " + std::to_string(args.labels.size()) + " labels for " + std::to_string(args.tables.size()) +
                      " tables (give one per table, in order)");
+  if (args.bootstrap > kMostResamples)
+    throw InputError("--bootstrap " + std::to_string(args.bootstrap) + ": at most " + std::to_string(kMostResamples) +
+                     " resamples (1000 give the 5 % and 95 % percentiles to about 1 %)");
   if (args.at && !(*args.at > 0.0 && std::isfinite(*args.at))) throw InputError("--at: expected an intensity > 0 (in g)");
   PlotStyle style;
   if (!args.plot.empty()) plot_target(args.plot, {}, "", &style, "--plot");
