@@ -326,12 +326,17 @@ TEST_CASE("fragility: event expressions", "[fragility]") {
 namespace {
 
 // An ida.csv of `records` records at kLevels: the event (pounding) at and above each record's
-// capacity, theta exp(beta z_r); the drift grows with IM.
-fs::path ida_table(const std::string& name, std::size_t records, double theta, double beta) {
-  std::string text = "record,im,scale,contact1.impacts,A.drift_ratio_max\n";
+// capacity, theta exp(beta z_r); the drift grows with IM. The run `failed` (record, IM) is
+// written as a failed run: empty values and an error.
+fs::path ida_table(const std::string& name, std::size_t records, double theta, double beta,
+                   const std::pair<std::string, double>& failed = {}) {
+  std::string text = "record,im,scale,contact1.impacts,A.drift_ratio_max,error\n";
   for (const FragilityRun& r : stripes(records, kLevels, theta, beta)) {
     char line[160];
-    std::snprintf(line, sizeof line, "%s.AT2,%g,%g,%d,%g\n", r.record.c_str(), r.im, 3.0 * r.im, r.event ? 2 : 0, 0.05 * r.im);
+    if (r.record == failed.first && r.im == failed.second)
+      std::snprintf(line, sizeof line, "%s.AT2,%g,%g,,,diverged\n", r.record.c_str(), r.im, 3.0 * r.im);
+    else
+      std::snprintf(line, sizeof line, "%s.AT2,%g,%g,%d,%g,\n", r.record.c_str(), r.im, 3.0 * r.im, r.event ? 2 : 0, 0.05 * r.im);
     text += line;
   }
   return write_temp(name, text);
@@ -341,7 +346,9 @@ fs::path ida_table(const std::string& name, std::size_t records, double theta, d
 
 TEST_CASE("fragility: the command end to end", "[fragility][cli]") {
   const fs::path table = ida_table("none.csv", 15, 0.45, 0.4);
-  const fs::path out = fs::path(ADJOIN_TEST_TMP) / "fragility.json";
+  // --out in a folder that is not there yet: made for the file.
+  const fs::path out = fs::path(ADJOIN_TEST_TMP) / "made" / "fragility.json";
+  fs::remove_all(out.parent_path());
   const auto r = run_cli("fragility '" + table.string() + "' --event 'contact1.impacts > 0' --bootstrap 200 --seed 3 --at 0.5 --out '" +
                          out.string() + "'");
   INFO(r.err);
@@ -389,6 +396,16 @@ TEST_CASE("fragility: the command end to end", "[fragility][cli]") {
     CHECK(j["designs"][1]["theta"].get<double>() > j["designs"][0]["theta"].get<double>());
     CHECK(j["designs"][1]["at"]["probability"].get<double>() < j["designs"][0]["at"]["probability"].get<double>());
     adjoin::test::require_png(image, 900, 600);
+  }
+  SECTION("stripes with a failed run are still stripes") {
+    const fs::path failed = ida_table("failed.csv", 15, 0.45, 0.4, {"rec3", 0.5});
+    const auto f = run_cli("fragility '" + failed.string() + "' --event 'contact1.impacts > 0' --bootstrap 0 --out '" + out.string() + "'");
+    INFO(f.err);
+    REQUIRE(f.status == 0);
+    const auto j = nlohmann::json::parse(slurp(out));
+    CHECK(j["skipped"]["failed"] == 1);
+    CHECK(j["runs"] == 119);
+    CHECK_FALSE(j.contains("first_event"));
   }
   SECTION("an unknown column: exit 2 naming it and listing the table's") {
     const auto bad = run_cli("fragility '" + table.string() + "' --event 'contact2.impacts > 0' --out '" + out.string() + "'");

@@ -14,6 +14,7 @@
 #include <iostream>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include <nlohmann/json.hpp>
 
@@ -21,6 +22,7 @@
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/csv_table.hpp"
 #include "adjoin/io/fragility_plot.hpp"
+#include "adjoin/io/output_place.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/post/fragility.hpp"
 #include "adjoin/post/fragility_event.hpp"
@@ -49,6 +51,7 @@ struct Design {
   std::string file, label;
   std::vector<FragilityRun> runs;
   std::size_t failed = 0, unknown = 0, first_unknown_line = 0;
+  bool trace = false;  // records with their own IM levels (failed runs counted: they were run there)
   std::vector<FragilityLevel> levels;
   FragilityFit fit;
   std::optional<FragilityBounds> bounds;
@@ -75,11 +78,13 @@ Design read_design(const std::string& file, const std::string& event_text) {
   for (std::size_t c : event.columns_used()) values[c] = table.numbers(table.columns[c], "--event " + event_text);
   const std::vector<std::string> errors = table.has("error") ? table.texts("error") : std::vector<std::string>();
   std::vector<double> row(table.columns.size(), std::nan(""));
+  std::vector<FragilityRun> every;  // every row's record and IM, to tell traces from stripes
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
     const std::string where = file + ":" + std::to_string(table.lines[r]);
     if (!(im[r] > 0.0) || !std::isfinite(im[r]))
       throw InputError(where + ": im " + text_excerpt(table.rows[r][table.column("im")]) + ": expected an intensity > 0");
     if (records[r].empty()) throw InputError(where + ": an empty record name");
+    every.push_back({records[r], im[r], false});
     if (!errors.empty() && !errors[r].empty()) {
       ++d.failed;
       continue;
@@ -94,6 +99,7 @@ Design read_design(const std::string& file, const std::string& event_text) {
   }
   if (d.runs.empty()) throw InputError(file + ": no run with a known outcome of the event (" + std::to_string(d.failed) +
                                        " failed, " + std::to_string(d.unknown) + " with an empty value the event reads)");
+  d.trace = fragility_is_trace(every);
   return d;
 }
 
@@ -101,7 +107,7 @@ void fit_design(Design& d, const FragilityArgs& args) {
   d.levels = fragility_levels(d.runs);
   d.fit = fit_fragility_mle(d.levels);
   if (d.fit.fitted && args.bootstrap > 0) d.bounds = bootstrap_fragility(d.runs, args.bootstrap, args.seed);
-  if (fragility_is_trace(d.runs)) d.first_event = fit_first_event(d.runs);
+  if (d.trace) d.first_event = fit_first_event(d.runs);
 }
 
 ordered_json number_or_null(double v) { return std::isfinite(v) ? ordered_json(v) : ordered_json(nullptr); }
@@ -113,13 +119,8 @@ ordered_json design_json(const Design& d, const FragilityArgs& args) {
     n.push_back(l.n);
     events.push_back(l.events);
   }
-  std::size_t records = 0;
-  {
-    std::vector<std::string> seen;
-    for (const FragilityRun& r : d.runs)
-      if (std::find(seen.begin(), seen.end(), r.record) == seen.end()) seen.push_back(r.record);
-    records = seen.size();
-  }
+  std::set<std::string> records;
+  for (const FragilityRun& r : d.runs) records.insert(r.record);
   ordered_json out{{"file", d.file},
                    {"label", d.label},
                    {"event", args.event},
@@ -132,7 +133,7 @@ ordered_json design_json(const Design& d, const FragilityArgs& args) {
                    {"levels", levels},
                    {"n", n},
                    {"events", events},
-                   {"records", records},
+                   {"records", records.size()},
                    {"runs", d.runs.size()},
                    {"skipped", {{"failed", d.failed}, {"unknown", d.unknown}}}};
   if (d.bounds) {
@@ -218,6 +219,9 @@ int fragility_command(const FragilityArgs& args) {
     throw InputError("--bootstrap " + std::to_string(args.bootstrap) + ": at most " + std::to_string(kMostResamples) +
                      " resamples (1000 give the 5 % and 95 % percentiles to about 1 %)");
   if (args.at && !(*args.at > 0.0 && std::isfinite(*args.at))) throw InputError("--at: expected an intensity > 0 (in g)");
+  // The places of the outputs, before any work; a missing folder of --out is made to write it.
+  const fs::path out_folder = fs::path(args.out).parent_path();
+  if (!out_folder.empty()) check_output_folder(out_folder, "--out");
   PlotStyle style;
   if (!args.plot.empty()) plot_target(args.plot, {}, "", &style, "--plot");
 
@@ -239,9 +243,12 @@ int fragility_command(const FragilityArgs& args) {
     json = {{"event", args.event}, {"designs", ordered_json::array()}};
     for (const Design& d : designs) json["designs"].push_back(design_json(d, args));
   }
+  std::optional<OutputFolder> folder;
+  if (!out_folder.empty()) folder.emplace(out_folder, "--out");
   AtomicFile file(args.out);
   file.stream() << json.dump(2) << "\n";
   file.commit();
+  if (folder) folder->keep();
 
   std::printf("event: %s\n", args.event.c_str());
   for (const Design& d : designs) {
