@@ -152,6 +152,25 @@ TEST_CASE("fragility: small random datasets, fitted or reported, agree with the 
   CHECK(compared > 40);
 }
 
+TEST_CASE("fragility: a nearly flat maximum is found through the probit coordinates", "[fragility]") {
+  // The fraction hardly grows with IM (positively correlated, so a maximum exists), at a beta
+  // so large that BFGS in (ln theta, ln beta) cannot converge: Newton in (a, b) =
+  // (-ln theta / beta, 1 / beta), where ln L is concave, finds it.
+  const std::vector<FragilityLevel> levels{{0.668516, 1, 1}, {1.25817, 3, 1}, {1.61069, 3, 3},
+                                           {2.11135, 3, 1},  {2.27375, 4, 4}, {4.20359, 3, 2}};
+  const FragilityFit fit = fit_fragility_mle(levels);
+  REQUIRE(fit.fitted);
+  CHECK(fit.beta > 50.0);
+  // A maximum in (a, b): no neighbour is higher.
+  const double b = 1.0 / fit.beta, a = -std::log(fit.theta) * b;
+  const double at = grid_log_likelihood(levels, -a / b, -std::log(b));
+  for (double da : {-1e-4, 0.0, 1e-4})
+    for (double db : {-1e-5, 0.0, 1e-5}) {
+      if (da == 0.0 && db == 0.0) continue;
+      CHECK(grid_log_likelihood(levels, -(a + da) / (b + db), -std::log(b + db)) <= at + 1e-12);
+    }
+}
+
 TEST_CASE("fragility: counts from a known lognormal give back its theta and beta", "[fragility]") {
   // The expected counts of a million runs per level of theta = 0.45 g, beta = 0.35, rounded:
   // the fractions are the curve's to 5e-7, so the fit is the curve to about 1e-5.

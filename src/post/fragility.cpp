@@ -263,14 +263,79 @@ bool maximise(const std::vector<FragilityLevel>& levels, double u0, double v0, F
 
 }  // namespace
 
+namespace {
+
+// The fallback: Newton's method with a backtracking line search in the probit coordinates
+// (a, b) = (-ln theta / beta, 1 / beta), p_j = Phi(a + b ln x_j), where ln L is concave, so it
+// converges from any start on data that has a maximum. Used where the maximum lies at a beta so
+// large (the fraction hardly grows with IM) that (ln theta, ln beta) are badly scaled. The
+// result is (ln theta, ln beta) = (-a / b, -ln b); false if it did not converge.
+bool maximise_probit(const std::vector<FragilityLevel>& levels, double u0, double v0, double* u, double* v,
+                     std::size_t* iterations) {
+  std::size_t runs = 0;
+  for (const FragilityLevel& l : levels) runs += l.n;
+  const auto log_likelihood = [&](double a, double b) {
+    double sum = 0.0;
+    for (const FragilityLevel& l : levels) {
+      const double z = a + b * std::log(l.im);
+      sum += (l.events ? double(l.events) * log_phi_cdf(z) : 0.0) + (l.n > l.events ? double(l.n - l.events) * log_phi_cdf(-z) : 0.0);
+    }
+    return sum;
+  };
+  double b = std::exp(-v0), a = -u0 * b;
+  for (int i = 0; i < 200; ++i) {
+    double g[2] = {0.0, 0.0}, h[3] = {0.0, 0.0, 0.0};  // gradient; Hessian aa, ab, bb
+    for (const FragilityLevel& l : levels) {
+      const double s = std::log(l.im), z = a + b * s;
+      const double k = double(l.events), m = double(l.n - l.events);
+      const double up = k > 0 ? mills(z) : 0.0, down = m > 0 ? mills(-z) : 0.0;
+      const double dz = k * up - m * down;                           // d ln L / dz
+      const double d2z = -k * up * (z + up) - m * down * (down - z);  // d2 ln L / dz2 (< 0)
+      g[0] += dz;
+      g[1] += dz * s;
+      h[0] += d2z;
+      h[1] += d2z * s;
+      h[2] += d2z * s * s;
+    }
+    if (std::hypot(g[0], g[1]) < kGradientTolerance * double(runs) && b > 0.0) {
+      *u = -a / b;
+      *v = -std::log(b);
+      return std::isfinite(*u) && std::isfinite(*v);
+    }
+    ++*iterations;
+    const double det = h[0] * h[2] - h[1] * h[1];
+    if (!(h[0] < 0.0 && det > 0.0)) return false;
+    const double da = -(h[2] * g[0] - h[1] * g[1]) / det, db = -(h[0] * g[1] - h[1] * g[0]) / det;
+    const double before = log_likelihood(a, b);
+    double step = 1.0;
+    while (step > 1e-12 && !(b + step * db > 0.0 && log_likelihood(a + step * da, b + step * db) >= before)) step *= 0.5;
+    if (step <= 1e-12) return false;
+    a += step * da;
+    b += step * db;
+  }
+  return false;
+}
+
+}  // namespace
+
 FragilityFit fit_fragility_mle(const std::vector<FragilityLevel>& levels, std::optional<std::pair<double, double>> start) {
   FragilityFit fit;
   fit.problem = fragility_degeneracy(levels);
   if (!fit.problem.empty()) return fit;
   bool done = start && maximise(levels, std::log(start->first), std::log(start->second), &fit);
+  const auto [u0, v0] = start_point(levels);
+  if (!done) done = maximise(levels, u0, v0, &fit);
   if (!done) {
-    const auto [u0, v0] = start_point(levels);
-    done = maximise(levels, u0, v0, &fit);
+    double u = 0.0, v = 0.0;
+    done = maximise_probit(levels, u0, v0, &u, &v, &fit.iterations);
+    if (done && std::abs(u) > 700.0) {
+      // The maximum exists but theta = e^u is beyond double range: as good as no curve.
+      fit.problem = "the fraction of runs with the event hardly grows with IM: the likelihood's maximum is at beta = " +
+                    number(std::exp(v)) + " and ln theta = " + number(u) + ", a nearly flat curve that says nothing";
+      return fit;
+    }
+    fit.theta = std::exp(u);
+    fit.beta = std::exp(v);
   }
   if (!done)
     throw NumericalError("fragility fit: the likelihood's maximiser stopped after " + std::to_string(fit.iterations) +
