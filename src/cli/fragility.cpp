@@ -75,7 +75,7 @@ Design read_design(const std::string& file, const std::string& event_text) {
     throw InputError(file + ": " + e.what());
   }
   std::vector<std::vector<double>> values(table.columns.size());
-  for (std::size_t c : event.columns_used()) values[c] = table.numbers(table.columns[c], "--event " + event_text);
+  for (std::size_t c : event.columns_used()) values[c] = table.numbers(table.columns[c], "--event " + text_excerpt(event_text));
   const std::vector<std::string> errors = table.has("error") ? table.texts("error") : std::vector<std::string>();
   std::vector<double> row(table.columns.size(), std::nan(""));
   std::vector<FragilityRun> every;  // every row's record and IM, to tell traces from stripes
