@@ -122,7 +122,8 @@ class EventParser {
     }
     ++next_;
     const Token& op = tokens_[next_];
-    if (op.kind != Token::comparison) fail("expected one of > >= < <= after " + t.text);
+    if (op.kind != Token::comparison)
+      fail("expected one of > >= < <= after " + t.text + " (a true/false column reads as 1/0: " + t.text + " > 0)");
     ++next_;
     const Token& value = tokens_[next_];
     double number = 0.0;
