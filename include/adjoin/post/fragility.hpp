@@ -7,7 +7,10 @@
 //    runs had the event, and the likelihood is the product of binomial probabilities
 //    C(n_j, k_j) p_j^k_j (1 - p_j)^(n_j - k_j), p_j = Phi(ln(x_j / theta) / beta). Maximised
 //    over (ln theta, ln beta) by GSL's BFGS from the moments of ln IM under the observed
-//    fractions, until the gradient of ln L is below 1e-9 per run.
+//    fractions (or a coarse grid's best point, when better), then Newton's method, until the
+//    gradient of ln L is below 1e-9 per run; where that fails (a maximum at a very large beta)
+//    by Newton's method in the probit coordinates (-ln theta / beta, 1 / beta), where ln L is
+//    concave (docs/explanation/fragility.md).
 //  - Degenerate data has no maximum: no event at any level, the event at every level, or a
 //    perfect separation (no event below some level, the event in every run above it, at most
 //    one level in between with a mixed count) drives beta to 0; and fractions that do not
