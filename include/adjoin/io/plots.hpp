@@ -25,6 +25,8 @@
 //    header, optionally one curve per value of a grouping column (for `adjoin sweep` tables,
 //    or any other).
 //  - plot_record (io/record_plot.hpp): one accelerogram.
+//  - plot_fragility (io/fragility_plot.hpp): fragility curves and observed fractions against IM,
+//    one colour per design (`adjoin fragility --plot`).
 //
 // Bad input (missing file or column, non-numeric cell, unknown format) throws InputError that
 // names the file, line or column and what was expected.
