@@ -76,6 +76,9 @@ class Run:
                 self.link_stroke.append([a - b for a, b in zip(xa, xb)])
         self.laws = scene_numbers(self.path / "pair.tcl")
 
+    def steps(self):
+        return len(self.x["A"][0]) - 1
+
     def drift(self, b, i):
         upper = self.x[b][i]
         lower = self.x[b][i - 1] if i > 0 else [0.0] * len(upper)
@@ -169,11 +172,13 @@ def main():
     ref = Run(ref_path, h)
     print(f"reference {ref_path}: h/{every}; roof peaks A {peak(ref.x['A'][-1]):.6g} m, B {peak(ref.x['B'][-1]):.6g} m; "
           f"plastic work {sum(ref.plastic_work(b) for b in 'AB'):.6g} J, links {ref.link_energy():.6g} J")
-    results = {}
+
     for arg in sys.argv[2:]:
         run = Run(pathlib.Path(arg), h)
+        if run.steps() != ref.steps():
+            fail(f"{arg}: {run.steps()} steps of h, the reference {ref.steps()} (did the run stop early?)")
         e = errors(run, ref)
-        results[arg] = e
+
         line = (f"{run.kind:8s} {arg}: roof history {e['roof_history']:.3g} m ({e['roof_history_rel']:.2e} of the peak), "
                 f"peak drift {e['peak_drift']:.3g} m ({e['peak_drift_rel']:.2e})")
         if "peak_drift_refined" in e:
@@ -181,7 +186,6 @@ def main():
         line += (f", final drift {e['final_drift']:.3g} m, plastic work {e['plastic_work']:.6g} J ({e['plastic_work_rel']:+.2e}),"
                  f" links {e['link_energy']:.6g} J ({e['link_energy_rel']:+.2e})")
         print(line)
-    print(json.dumps(results))
 
 
 if __name__ == "__main__":

@@ -2,7 +2,7 @@
 """Write the OpenSees model of an adjoin building-pair scene (README.md here).
 
     python3 bench/opensees/pair_to_tcl.py bench/opensees/pair.toml OUT [--refine N]
-        [--slider-stiffness K] [--steps N] [--no-eigen-order]
+        [--slider-stiffness K] [--steps N] [--no-recorders]
 
 reads the scene (the keys of pair.toml only: two shear buildings with bilinear or elastic
 storeys and modal damping, friction links, a PEER AT2 record in g, solver.h and t_end) and
@@ -15,7 +15,8 @@ link force q, for the stroke x_A - x_B, is -F), all at the scene's step h whatev
 --refine N       OpenSees's step is h/N (the records stay at h: recorder -dT h)
 --slider-stiffness K   the friction links' elastic stiffness [N/m] (OpenSees regularises
                  the Coulomb slider as an elastic-perfectly-plastic spring; default 1e11)
---steps N        analyse N steps of h/refine instead of t_end/h x refine (0: start-up only)
+--steps N        analyse N steps of h/refine instead of t_end/h x refine (1: the start-up)
+--no-recorders   write nothing (the solve alone, for timing)
 Python 3.11 or later (tomllib); nothing outside the standard library.
 """
 import argparse
@@ -123,7 +124,68 @@ def storeys_tcl(name, b):
     return out
 
 
-def model_tcl(m, out_dir, refine, slider_k, steps):
+def recorder_tcl(m, d, node_list, storey_list, link_list):
+    """Floors' displacements, storeys' and links' forces at every h from t = 0 (record: t = 0)."""
+    every = f"-time -precision 12 -dT {m['h']!r}"
+    out = [f"recorder Node -file {d / 'disp.out'} {every} -node {node_list} -dof 1 disp",
+           f"recorder Element -file {d / 'storeys.out'} {every} -ele {storey_list} basicForce"]
+    if link_list:
+        out.append(f"recorder Element -file {d / 'links.out'} {every} -ele {link_list} basicForce")
+    return out + ["record"]  # the t = 0 row; the next one at t = h (the recorders' -dT)
+
+
+def links_tcl(links, slider_k):
+    """Each friction link: a zeroLength from floor i of A to floor j of B (deformation x_B - x_A)."""
+    out = []
+    for i, (fa, fb, slip) in enumerate(links):
+        tag = LINK_TAG + i
+        out.append(f"uniaxialMaterial ElasticPP {tag} {slider_k!r} {slip / slider_k!r}")
+        out.append(f"element zeroLength {tag} {FIRST_NODE['A'] + fa} {FIRST_NODE['B'] + fb} -mat {tag} -dir 1")
+    return out
+
+
+def analysis_tcl(steps, dt):
+    """Newmark average acceleration (adjoin's trapezoidal rule), Newton, a banded solver.
+
+    A step where Newton fails (it can cycle between a slider's stick and slip states) is
+    retried as OpenSees users do: other algorithms on the same step, then 4 and 16 sub-steps;
+    the count of retried steps goes to stderr."""
+    return [
+        "constraints Plain",
+        "numberer Plain",  # A's floors, then B's: the links' band (n) holds each building's dense modal block
+        "system BandGeneral",
+        "test NormDispIncr 1.0e-10 50",
+        "algorithm Newton",
+        "integrator Newmark 0.5 0.25",
+        "analysis Transient",
+        f"set steps {steps}",
+        f"set dt {dt!r}",
+        "set retried 0",
+        "proc retry {dt} {",
+        "  foreach algo {{NewtonLineSearch 0.8} {KrylovNewton} {ModifiedNewton -initial}} {",
+        "    algorithm {*}$algo",
+        "    set ok [analyze 1 $dt]",
+        "    algorithm Newton",
+        "    if {$ok == 0} { return 0 }",
+        "  }",
+        "  foreach n {4 16} {",
+        "    if {[analyze $n [expr {$dt / $n}]] == 0} { return 0 }",
+        "  }",
+        "  return -1",
+        "}",
+        "set done 0",
+        "while {$done < $steps} {",
+        "  if {[analyze [expr {$steps - $done}] $dt] == 0} { break }",
+        "  incr retried",
+        "  if {[retry $dt] != 0} { puts stderr \"error: analyze failed at t = [getTime]\"; exit 3 }",
+        "  set done [expr {round([getTime] / $dt)}]",
+        "}",
+        "puts stderr \"steps retried: $retried\"",
+        "wipe",  # closes the recorders' files
+    ]
+
+
+def model_tcl(m, out_dir, refine, slider_k, steps, recorders):
     a, b = m["A"], m["B"]
     if a["zeta"] != b["zeta"]:
         fail("building.A/B.damping.ratio: this generator needs one ratio for both (OpenSees's modalDamping factor)")
@@ -147,32 +209,14 @@ def model_tcl(m, out_dir, refine, slider_k, steps):
         f"# Friction links: elastic-perfectly-plastic springs of stiffness {slider_k:.6g} N/m",
         "# (OpenSees's regularised Coulomb slider; adjoin's stick is exact).",
     ]
-    for i, (fa, fb, slip) in enumerate(m["links"]):
-        tag = LINK_TAG + i
-        lines.append(f"uniaxialMaterial ElasticPP {tag} {slider_k!r} {slip / slider_k!r}")
-        # deformation = u(B floor) - u(A floor): the force on A's floor is +F, adjoin's -q.
-        lines.append(f"element zeroLength {tag} {FIRST_NODE['A'] + fa} {FIRST_NODE['B'] + fb} -mat {tag} -dir 1")
+    lines += links_tcl(m["links"], slider_k)
     lines += [
         f"timeSeries Path 1 -dt {record_dt!r} -filePath {d / 'ground.txt'} -factor {GRAVITY!r}",
         "pattern UniformExcitation 1 1 -accel 1",
-        f"recorder Node -file {d / 'disp.out'} -time -precision 12 -dT {m['h']!r} -node {node_list} -dof 1 disp",
-        f"recorder Element -file {d / 'storeys.out'} -time -precision 12 -dT {m['h']!r} -ele {storey_list} basicForce",
     ]
-    if link_list:
-        lines.append(f"recorder Element -file {d / 'links.out'} -time -precision 12 -dT {m['h']!r} -ele {link_list} basicForce")
-    lines += [
-        "record",  # the t = 0 row; the next one at t = h (the recorders' -dT)
-        "constraints Plain",
-        "numberer Plain",  # A's floors, then B's: the links' band (n) holds each building's dense modal block
-        "system BandGeneral",
-        "test NormDispIncr 1.0e-10 50",
-        "algorithm Newton",
-        "integrator Newmark 0.5 0.25",
-        "analysis Transient",
-        f"set ok [analyze {steps} {dt!r}]",
-        "if {$ok != 0} { puts stderr \"error: analyze failed at t = [getTime]\"; exit 3 }",
-        "wipe",
-    ]
+    if recorders:
+        lines += recorder_tcl(m, d, node_list, storey_list, link_list)
+    lines += analysis_tcl(steps, dt)
     return "\n".join(lines) + "\n"
 
 
@@ -183,6 +227,7 @@ def main():
     parser.add_argument("--refine", type=int, default=1)
     parser.add_argument("--slider-stiffness", type=float, default=1e11)
     parser.add_argument("--steps", type=int, default=None)
+    parser.add_argument("--no-recorders", action="store_true")
     args = parser.parse_args()
     if args.refine < 1:
         fail("--refine: expected an integer >= 1")
@@ -192,7 +237,8 @@ def main():
     args.out.mkdir(parents=True, exist_ok=True)
     _, accel = model["record"]
     (args.out / "ground.txt").write_text("".join(f"{v!r}\n" for v in accel))
-    (args.out / "pair.tcl").write_text(model_tcl(model, args.out, args.refine, args.slider_stiffness, args.steps))
+    tcl = model_tcl(model, args.out, args.refine, args.slider_stiffness, args.steps, not args.no_recorders)
+    (args.out / "pair.tcl").write_text(tcl)
 
 
 if __name__ == "__main__":
