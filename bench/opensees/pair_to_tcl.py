@@ -12,7 +12,7 @@ then writes OUT/disp.out (t and every floor's displacement relative to the groun
 OUT/links.out (t and each friction link's force F for the deformation x_B - x_A: adjoin's
 link force q, for the stroke x_A - x_B, is -F), all at the scene's step h whatever --refine.
 
---refine N       OpenSees's step is h/N (the records stay at h: recorder -dT h)
+--refine N       OpenSees's step is h/N (the output rows stay at h: recorder -dT h)
 --slider-stiffness K   the friction links' elastic stiffness [N/m] (OpenSees regularises
                  the Coulomb slider as an elastic-perfectly-plastic spring; default 1e11)
 --steps N        analyse N steps of h/refine instead of t_end/h x refine (1: the start-up)
@@ -39,7 +39,7 @@ def fail(message):
 def expect_keys(table, allowed, where):
     for key in table:
         if key not in allowed:
-            fail(f"{where}.{key}: not supported by this generator (keys: {', '.join(sorted(allowed))})")
+            fail(f"{where}: key {key} is not supported by this generator (keys: {', '.join(sorted(allowed))})")
 
 
 def building_of(scene, name, path):
