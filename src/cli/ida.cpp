@@ -33,6 +33,7 @@
 #include "adjoin/study/ida.hpp"
 #include "command.hpp"
 #include "progress.hpp"
+#include "sweep_shard.hpp"
 
 namespace adjoin::cli {
 namespace {
@@ -169,27 +170,7 @@ std::vector<IdaRow> stripes(const IdaArgs& args, const std::vector<SuiteRecord>&
   check_ida_edps(spec, *edps, "--edp");
   const Capacity capacity = capacity_of(spec, args);
   check_sweep_memory(spec, spec.runs());
-  std::vector<std::string> dropped;
-  SweepJournal journal(spec, SweepShard{}, dir, &dropped);
-  for (const auto& d : dropped) std::cerr << "warning: " << printable_message(d) << "; that row is dropped and its run done again\n";
-  if (journal.from_journal() && !args.quiet)
-    std::cerr << "resuming: " << journal.from_journal() << " runs from the journal " << journal.path().string() << "\n";
-  if (!journal.pending().empty()) {
-    Progress progress(!args.quiet, journal.from_journal(), spec.runs());
-    SweepOptions options;
-    options.jobs = args.jobs;
-    options.indices = journal.pending();
-    options.sink = &journal;
-    options.on_row = [&](const SweepRow&) { progress.tick(); };
-    try {
-      run_sweep(spec, options);
-    } catch (...) {
-      progress.finish();
-      throw;
-    }
-    progress.finish();
-  }
-  auto cells = journal.rows();
+  auto cells = run_shard(spec, SweepShard{}, dir, args.jobs, !args.quiet, !args.quiet).rows;
   std::vector<IdaRow> rows;
   for (const auto& c : cells) {
     std::size_t index = 0;
@@ -198,7 +179,7 @@ std::vector<IdaRow> stripes(const IdaArgs& args, const std::vector<SuiteRecord>&
   }
   write_sweep_table(sweep_table_file(spec, SweepTable{sweep_columns(spec), std::move(cells)}, SweepShard{}), dir / "sweep.csv",
                     dir / "sweep.json");
-  journal.remove();
+  std::filesystem::remove(dir / (sweep_file_stem(SweepShard{}) + ".partial.csv"));  // the journal
   return rows;
 }
 

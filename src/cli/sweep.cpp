@@ -38,52 +38,14 @@
 #include "adjoin/study/sweep.hpp"
 #include "command.hpp"
 #include "progress.hpp"
+#include "sweep_shard.hpp"
 
 #ifdef ADJOIN_WITH_MPI
 #include <mpi.h>
 #endif
 
 namespace adjoin::cli {
-namespace {
 
-struct SweepArgs {
-  std::string sweep, out, shard;
-  unsigned jobs = 0;
-  bool quiet = false;
-};
-
-struct MergeArgs {
-  std::vector<std::string> inputs;
-  std::string out;
-};
-
-SweepShard parse_shard(const std::string& text) {
-  SweepShard shard;
-  const auto slash = text.find('/');
-  if (slash == std::string::npos || !parse_count(std::string_view(text).substr(0, slash), &shard.index) ||
-      !parse_count(std::string_view(text).substr(slash + 1), &shard.count) || shard.count < 1 || shard.index >= shard.count)
-    throw InputError("--shard " + text_excerpt(text) + ": expected I/N with 0 <= I < N (0-based: --shard 0/2 and --shard 1/2 make a whole)");
-  return shard;
-}
-
-// The command as the lock file records it, for the message of a second sweep that finds it.
-std::string command_text(const SweepArgs& args, const SweepShard& shard) {
-  std::string text = "adjoin sweep " + args.sweep;
-  if (!args.out.empty()) text += " --out " + args.out;
-  if (!shard.whole()) text += " --shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count);
-  return text;
-}
-
-// The rows of a shard: those taken from the journal and those run now.
-struct ShardRows {
-  std::vector<std::vector<std::string>> rows;  // ordered by index
-  std::size_t from_journal = 0;
-};
-
-// Runs the shard's runs that its journal does not hold yet; returns every row of the shard
-// (journal + new), ordered by index. The journal stays until the caller removes it. Journal
-// rows that are not this sweep's (a value that is not finite, an axis value the sweep does not
-// have, ...) are dropped with a warning and run again.
 ShardRows run_shard(const SweepSpec& spec, const SweepShard& shard, const std::filesystem::path& dir, unsigned jobs,
                     bool progress_bar, bool verbose) {
   std::vector<std::string> dropped;
@@ -114,6 +76,37 @@ ShardRows run_shard(const SweepSpec& spec, const SweepShard& shard, const std::f
   }
   return ShardRows{journal.rows(), from_journal};
 }
+
+namespace {
+
+struct SweepArgs {
+  std::string sweep, out, shard;
+  unsigned jobs = 0;
+  bool quiet = false;
+};
+
+struct MergeArgs {
+  std::vector<std::string> inputs;
+  std::string out;
+};
+
+SweepShard parse_shard(const std::string& text) {
+  SweepShard shard;
+  const auto slash = text.find('/');
+  if (slash == std::string::npos || !parse_count(std::string_view(text).substr(0, slash), &shard.index) ||
+      !parse_count(std::string_view(text).substr(slash + 1), &shard.count) || shard.count < 1 || shard.index >= shard.count)
+    throw InputError("--shard " + text_excerpt(text) + ": expected I/N with 0 <= I < N (0-based: --shard 0/2 and --shard 1/2 make a whole)");
+  return shard;
+}
+
+// The command as the lock file records it, for the message of a second sweep that finds it.
+std::string command_text(const SweepArgs& args, const SweepShard& shard) {
+  std::string text = "adjoin sweep " + args.sweep;
+  if (!args.out.empty()) text += " --out " + args.out;
+  if (!shard.whole()) text += " --shard " + std::to_string(shard.index) + "/" + std::to_string(shard.count);
+  return text;
+}
+
 
 // The runs of one shard (all runs for a whole sweep).
 std::size_t shard_runs(const SweepSpec& spec, const SweepShard& shard) {

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstdio>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -14,6 +13,7 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/io/gnuplot.hpp"
+#include "adjoin/io/sweep_file.hpp"
 #include "adjoin/io/sweep_scenes.hpp"
 #include "adjoin/io/table_plots.hpp"
 #include "adjoin/io/text_file.hpp"
@@ -26,13 +26,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
-std::uint64_t fnv1a(std::uint64_t hash, const std::string& text) {
-  for (const char c : text) {
-    hash ^= static_cast<unsigned char>(c);
-    hash *= 1099511628211ull;
-  }
-  return hash;
-}
 
 SweepValue text_value(const std::string& text) { return SweepValue{text, "\"" + text + "\""}; }
 SweepValue number_value(double v) { return SweepValue{v, sweep_number_cell(v)}; }
@@ -126,12 +119,7 @@ SweepSpec ida_sweep(const fs::path& scene, const std::vector<IdaMotion>& motions
   spec.scenes = scenes;
   if (scenes->building()) prepare_building_sweep(spec, scenes->base().structure);
   else (void)scenes->base();  // checked as `adjoin run` would
-  std::uint64_t hash = fnv1a(14695981039346656037ull, "adjoin ida\n" + described);
-  hash = fnv1a(hash, std::string(1, '\0') + base_text);
-  hash = fnv1a(hash, std::string(1, '\0') + ADJOIN_VERSION);
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
-  spec.fingerprint = hex;
+  spec.fingerprint = sweep_fingerprint("adjoin ida\n" + described, base_text);
   return spec;
 }
 

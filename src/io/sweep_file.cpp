@@ -429,14 +429,18 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   } else {
     (void)scenes->base();
   }
+  spec.fingerprint = sweep_fingerprint(text, base_text);
+  return spec;
+}
+
+std::string sweep_fingerprint(const std::string& text, const std::string& base_text) {
   std::uint64_t hash = 14695981039346656037ull;
   hash = fnv1a(hash, text);
   hash = fnv1a(hash, std::string(1, '\0') + base_text);
   hash = fnv1a(hash, std::string(1, '\0') + ADJOIN_VERSION);
   char hex[17];
   std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(hash));
-  spec.fingerprint = hex;
-  return spec;
+  return hex;
 }
 
 SweepSpec load_sweep(const std::filesystem::path& file) {

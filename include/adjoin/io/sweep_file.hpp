@@ -18,5 +18,8 @@ namespace adjoin {
 SweepSpec load_sweep(const std::filesystem::path& file);
 // The same from text; `name` stands for the file in messages and paths are relative to its folder.
 SweepSpec parse_sweep(const std::string& text, const std::string& name);
+// A sweep's fingerprint (its journal's key: a resumed run must be the same sweep): 16 hex
+// digits of FNV-1a over the study's text, the base scene's text and the version.
+std::string sweep_fingerprint(const std::string& text, const std::string& base_text);
 
 }  // namespace adjoin
