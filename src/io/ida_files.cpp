@@ -11,6 +11,7 @@
 
 #include "adjoin/core/csv_line.hpp"
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/io/gnuplot.hpp"
 #include "adjoin/io/sweep_file.hpp"
@@ -252,6 +253,90 @@ void plot_ida(const std::vector<IdaRow>& rows, std::size_t edp, const std::strin
     << "$f1 using 1:2 with lines lc rgb '#d62728' lw 3 title '50 %', "
     << "$f2 using 1:2 with lines lc rgb '#1f77b4' lw 2.5 dt 4 title '84 %'\n";
   render_gnuplot(s.str(), image, style);
+}
+
+// ---- the runs, without files ----
+
+std::vector<IdaRecord> read_ida_suite(const std::vector<std::string>& inputs, const std::string& units,
+                                      const IntensityMeasure& im, std::vector<std::string>* skipped,
+                                      const std::string& units_option) {
+  const auto files = ida_suite(inputs, skipped);
+  RecordFormat format;
+  if (!units.empty()) {
+    AccelUnit unit;
+    if (!parse_accel_unit(units, &unit))
+      throw InputError(units_option + " " + text_excerpt(units) + ": expected g, m/s2, cm/s2 (or gal) or mm/s2");
+    format.units = unit;
+  }
+  std::vector<IdaRecord> records;
+  for (const auto& f : files) records.push_back({f, f.filename().string(), record_intensity(read_record(f, format), im)});
+  return records;
+}
+
+namespace {
+// The column index of `name` in the sweep's table (the count of columns if none).
+std::size_t column_of(const SweepSpec& spec, const std::string& name) {
+  const auto columns = sweep_columns(spec);
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    if (columns[c].name == name) return c;
+  return columns.size();
+}
+}  // namespace
+
+bool IdaCapacity::operator()(const std::vector<std::string>& cells) const {
+  if (!cells[error_column].empty()) return true;
+  if (collapse && !cells[collapse_column].empty()) return true;
+  if (!limit) return false;
+  double v = 0.0;
+  return parse_finite(cells[limit_column], &v) && limit->holds(v);
+}
+
+IdaCapacity ida_capacity(const SweepSpec& spec, const std::string& limit, const std::string& option) {
+  IdaCapacity c;
+  const auto columns = sweep_columns(spec);
+  c.error_column = columns.size() - 1;
+  c.collapse_column = column_of(spec, "collapse_t");
+  c.collapse = c.collapse_column < columns.size();
+  if (!limit.empty()) {
+    c.limit = parse_demand_limit(limit, option);
+    check_ida_edps(spec, {c.limit->column}, option);
+    c.limit_column = column_of(spec, c.limit->column);
+  }
+  return c;
+}
+
+IdaRow ida_row(const SweepSpec& spec, const std::vector<std::string>& cells, const std::vector<std::string>& edps,
+               const IdaRecord& record, double level, double scale, const IdaCapacity& capacity) {
+  IdaRow row;
+  row.record = record.name;
+  row.im = level;
+  row.scale = scale;
+  for (const auto& e : edps) row.edps.push_back(cells[column_of(spec, e)]);
+  row.units = cells[column_of(spec, "units")];
+  row.error = cells.back();
+  row.event = capacity(cells);
+  return row;
+}
+
+std::vector<IdaMotion> ida_stripe_motions(const std::vector<IdaRecord>& records, const std::vector<double>& levels) {
+  std::vector<IdaMotion> motions;
+  for (const auto& r : records)
+    for (double level : levels) motions.push_back({r.name, r.file, level / r.im});
+  return motions;
+}
+
+std::vector<IdaRow> ida_stripe_rows(const SweepSpec& spec, const std::vector<std::vector<std::string>>& cells,
+                                    const std::vector<IdaRecord>& records, const std::vector<double>& levels,
+                                    const std::vector<std::string>& edps, const IdaCapacity& capacity) {
+  std::vector<IdaRow> rows;
+  for (const auto& c : cells) {
+    std::size_t index = 0;
+    parse_count(c.at(0), &index);
+    const IdaRecord& record = records[index / levels.size()];
+    const double level = levels[index % levels.size()];
+    rows.push_back(ida_row(spec, c, edps, record, level, level / record.im, capacity));
+  }
+  return rows;
 }
 
 }  // namespace adjoin

@@ -58,6 +58,43 @@ struct IdaRow {
   std::string error;              // a numerical failure's message
   bool event = false;             // --trace: the capacity event happened
 };
+// ---- the runs, without files (`adjoin ida` and adjoin.ida) ----
+
+// A record of the suite: its file, the name ida.csv gives it, its IM as read (g).
+struct IdaRecord {
+  std::filesystem::path file;
+  std::string name;
+  double im = 0.0;
+};
+// The suite (ida_suite) read with `units` ("" or g, m/s2, cm/s2, gal, mm/s2: for records that
+// do not state theirs; InputError naming `units_option` otherwise) and each record's IM.
+std::vector<IdaRecord> read_ida_suite(const std::vector<std::string>& inputs, const std::string& units,
+                                      const IntensityMeasure& im, std::vector<std::string>* skipped,
+                                      const std::string& units_option);
+
+// Whether a row of the sweep's table shows the capacity event: a numerical failure, the run's
+// collapse (collapse_t has a value), or the demand limit.
+struct IdaCapacity {
+  std::optional<DemandLimit> limit;
+  std::size_t limit_column = 0, collapse_column = 0, error_column = 0;
+  bool collapse = false;
+  bool operator()(const std::vector<std::string>& cells) const;
+};
+// `limit` "" (no limit) or "COLUMN OP X" (InputError naming `option`).
+IdaCapacity ida_capacity(const SweepSpec& spec, const std::string& limit, const std::string& option);
+
+// The row of one run (`cells` its sweep-table cells).
+IdaRow ida_row(const SweepSpec& spec, const std::vector<std::string>& cells, const std::vector<std::string>& edps,
+               const IdaRecord& record, double level, double scale, const IdaCapacity& capacity);
+
+// Stripes: one motion per (record, level), record-major (record k at level j is run
+// k x levels + j), each scaled by level / record IM.
+std::vector<IdaMotion> ida_stripe_motions(const std::vector<IdaRecord>& records, const std::vector<double>& levels);
+// The rows of the stripes' sweep table (`cells`: its rows, cell 0 the run's index), in order.
+std::vector<IdaRow> ida_stripe_rows(const SweepSpec& spec, const std::vector<std::vector<std::string>>& cells,
+                                    const std::vector<IdaRecord>& records, const std::vector<double>& levels,
+                                    const std::vector<std::string>& edps, const IdaCapacity& capacity);
+
 // ida.csv's text.
 std::string ida_csv(const std::vector<std::string>& edps, const std::vector<IdaRow>& rows);
 
