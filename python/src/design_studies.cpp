@@ -113,6 +113,21 @@ py::dict fragility_py(const std::vector<std::string>& records, const std::vector
 
 // ---- ida ----
 
+// `work()`, an InputError without a field given the keyword its message starts with (the
+// library names the option it was given: "edp ...", "capacity ...", "units ..."), else `fallback`.
+template <class Work>
+auto naming_keyword(const std::vector<std::string>& keywords, const std::string& fallback, Work&& work) {
+  try {
+    return work();
+  } catch (const InputError& e) {
+    if (!e.field().empty()) throw;
+    const std::string message = e.what();
+    for (const std::string& k : keywords)
+      if (message.rfind(k + " ", 0) == 0 || message.rfind(k + ":", 0) == 0) throw InputError(message, k);
+    throw InputError(fallback + ": " + message, fallback);
+  }
+}
+
 // A demand's cells as numbers (an empty cell NaN, true/false 1/0), or as words if one is not.
 py::object demand_column(const std::vector<IdaRow>& rows, std::size_t e) {
   std::vector<double> numbers;
@@ -145,11 +160,13 @@ py::dict ida_stripes_py(const std::string& scene, const std::vector<std::string>
     } catch (const InputError& e) {
       throw InputError(std::string("im: ") + e.what(), "im");
     }
-    const std::vector<IdaRecord> records = read_ida_suite(suite, units, im, &skipped, "units");
+    const std::vector<IdaRecord> records =
+        naming_keyword({"units"}, "suite", [&] { return read_ida_suite(suite, units, im, &skipped, "units"); });
     const SweepSpec spec = ida_sweep(scene, ida_stripe_motions(records, levels), units, "adjoin.ida " + scene);
     if (edps.empty()) edps = ida_default_edps(spec);
-    check_ida_edps(spec, edps, "edp");
-    const IdaCapacity capacity = ida_capacity(spec, capacity_text, "capacity");
+    naming_keyword({"edp"}, "edp", [&] { check_ida_edps(spec, edps, "edp"); });
+    const IdaCapacity capacity =
+        naming_keyword({"capacity"}, "capacity", [&] { return ida_capacity(spec, capacity_text, "capacity"); });
     check_sweep_memory(spec, spec.runs());
     SweepOptions options;
     options.jobs = jobs;
