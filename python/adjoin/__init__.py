@@ -629,20 +629,24 @@ def fragility(table: str | os.PathLike[str] | Mapping[str, Any] | np.ndarray, ev
 def ida(scene: str | os.PathLike[str], suite: str | os.PathLike[str] | Sequence[str | os.PathLike[str]], *,
         im: str = "pga", levels: Sequence[float] | None = None, trace: bool = False,
         edp: Sequence[str] | None = None, capacity: str | None = None, units: str | None = None,
-        jobs: int = 0) -> dict:
-    """Incremental dynamic analysis by stripes, as ``adjoin ida SCENE --suite ... --im IM
-    --levels ...`` runs it (study/ida.hpp, io/ida_files.hpp): each record of the suite scaled
-    (``ground.scale``) so that its IM, of the record as read, equals each level, one sweep
-    over the (record, level) pairs in native threads with the GIL released. The rows equal
-    that command's ida.csv, bit for bit; no file is written.
+        jobs: int = 0, trace_start: float = 0.1, trace_factor: float = 1.5, trace_tol: float = 0.05,
+        trace_runs: int = 20) -> dict:
+    """Incremental dynamic analysis, as ``adjoin ida SCENE --suite ... --im IM --levels
+    ...|--trace`` runs it (study/ida.hpp, io/ida_files.hpp): each record of the suite scaled
+    (``ground.scale``) so that its IM, of the record as read, equals a level. Stripes (``levels``):
+    one sweep over the (record, level) pairs; tracing (``trace=True``): hunt and fill per
+    record up to its capacity event. Native threads, the GIL released. The rows equal that
+    command's ida.csv, bit for bit; no file is written.
 
     Args:
         scene: the base scene's TOML file (its ground is replaced by each record).
         suite: record files, or folders of them (every file a reader recognises).
         im: ``"pga"`` or ``"sa:T"`` (the 5 %-damped PSA at T s), in g.
-        levels: the IM levels (g), each > 0, each once.
-        trace: hunt-and-fill tracing per record is ``adjoin ida --trace`` only for now: True
-            raises InputError.
+        levels: stripes: the IM levels (g), each > 0, each once (not with ``trace``).
+        trace: hunt and fill per record (Vamvatsikos & Cornell) up to the capacity event (the
+            run's collapse, a failed run, or ``capacity``), starting at ``trace_start`` (g),
+            stepping by ``trace_factor``, bracketing to ``trace_tol`` (relative), at most
+            ``trace_runs`` runs per record.
         edp: the demands, sweep-table column names (default: as ``adjoin ida``; see
             docs/reference/cli.md#adjoin-ida).
         capacity: a demand limit ``"COLUMN OP X"`` that marks the capacity event
@@ -651,7 +655,8 @@ def ida(scene: str | os.PathLike[str], suite: str | os.PathLike[str] | Sequence[
         jobs: threads (0: one per core).
 
     Returns:
-        dict of columns, one row per run (record-major, levels in the order given):
+        dict of columns, one row per run (record by record; stripes: the levels in the order
+        given, traces: each record's runs by IM):
         ``record`` (file names), ``im`` (g), ``scale``, one numpy array per demand (NaN
         where the run has no value), ``error`` (a failed run's message, else ""),
         ``capacity_event`` (bool). ``fragility(result, event)`` fits it directly.
@@ -659,26 +664,34 @@ def ida(scene: str | os.PathLike[str], suite: str | os.PathLike[str] | Sequence[
     Raises:
         InputError: with ``.field`` the keyword at fault (``levels``, ``im``, ``edp``, ...).
     """
-    if trace:
-        raise _bad("trace", "tracing (hunt and fill) is not in the Python package yet; "
-                            "run `adjoin ida SCENE ... --trace` and read its ida.csv with fragility()")
     if not isinstance(scene, (str, os.PathLike)):
         raise _bad("scene", f"a {type(scene).__name__}: expected the base scene's TOML file (a path)")
     if not isinstance(im, str):
         raise _bad("im", f"{im!r}: expected pga or sa:T")
-    if levels is None:
-        raise _bad("levels", "expected the IM levels in g (stripes), e.g. levels=[0.1, 0.2, 0.4]")
-    try:
-        level_list = [float(v) for v in np.atleast_1d(np.asarray(levels, dtype=float))]
-    except (TypeError, ValueError):
-        raise _bad("levels", f"{levels!r}: expected numbers > 0 (g)") from None
-    if not level_list:
-        raise _bad("levels", "empty: expected at least one IM level (g)")
-    for v in level_list:
-        if not (v > 0.0 and np.isfinite(v)):
-            raise _bad("levels", f"{v!r}: expected IM levels in g, numbers > 0")
-        if level_list.count(v) > 1:
-            raise _bad("levels", f"the level {v!r} appears twice")
+    if trace and levels is not None:
+        raise _bad("levels", "levels and trace: give one (stripes at given levels, or tracing per record)")
+    if not trace and levels is None:
+        raise _bad("levels", "expected the IM levels in g (stripes), e.g. levels=[0.1, 0.2, 0.4], or trace=True")
+    level_list = []
+    if not trace:
+        try:
+            level_list = [float(v) for v in np.atleast_1d(np.asarray(levels, dtype=float))]
+        except (TypeError, ValueError):
+            raise _bad("levels", f"{levels!r}: expected numbers > 0 (g)") from None
+        if not level_list:
+            raise _bad("levels", "empty: expected at least one IM level (g)")
+        for v in level_list:
+            if not (v > 0.0 and np.isfinite(v)):
+                raise _bad("levels", f"{v!r}: expected IM levels in g, numbers > 0")
+            if level_list.count(v) > 1:
+                raise _bad("levels", f"the level {v!r} appears twice")
+    options = {}
+    for name, value in (("trace_start", trace_start), ("trace_factor", trace_factor), ("trace_tol", trace_tol)):
+        try:
+            options[name] = float(value)
+        except (TypeError, ValueError):
+            raise _bad(name, f"{value!r}: expected a number") from None
+    trace_runs = _whole(trace_runs, "trace_runs", 0)
     suite_list = [os.fspath(suite)] if isinstance(suite, (str, os.PathLike)) else [os.fspath(s) for s in suite]
     if not suite_list:
         raise _bad("suite", "empty: expected record files or folders of them")
@@ -686,7 +699,8 @@ def ida(scene: str | os.PathLike[str], suite: str | os.PathLike[str] | Sequence[
         edp = [edp]
     edps = [] if edp is None else [str(e) for e in edp]
     jobs = _whole(jobs, "jobs", 0)
-    out = _adjoin.ida_stripes(os.fspath(scene), suite_list, im, level_list, edps, capacity or "", units or "", jobs)
+    out = _adjoin.ida(os.fspath(scene), suite_list, im, level_list, bool(trace), options["trace_start"],
+                      options["trace_factor"], options["trace_tol"], trace_runs, edps, capacity or "", units or "", jobs)
     return _arrays(out["columns"])
 
 

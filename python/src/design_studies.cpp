@@ -113,17 +113,22 @@ py::dict fragility_py(const std::vector<std::string>& records, const std::vector
 
 // ---- ida ----
 
-// `work()`, an InputError without a field given the keyword its message starts with (the
-// library names the option it was given: "edp ...", "capacity ...", "units ..."), else `fallback`.
+// `work()`, with an InputError without a field given the keyword its message starts with: the
+// library names the option it was given ("edp ...", "capacity ...") or the command's
+// ("--trace-start ...", spelt here as the keyword), else `fallback`.
+struct Spelling {
+  std::string prefix, keyword;
+};
 template <class Work>
-auto naming_keyword(const std::vector<std::string>& keywords, const std::string& fallback, Work&& work) {
+auto naming_keyword(const std::vector<Spelling>& spellings, const std::string& fallback, Work&& work) {
   try {
     return work();
   } catch (const InputError& e) {
     if (!e.field().empty()) throw;
     const std::string message = e.what();
-    for (const std::string& k : keywords)
-      if (message.rfind(k + " ", 0) == 0 || message.rfind(k + ":", 0) == 0) throw InputError(message, k);
+    for (const Spelling& s : spellings)
+      if (message.rfind(s.prefix + " ", 0) == 0 || message.rfind(s.prefix + ":", 0) == 0)
+        throw InputError(s.keyword + message.substr(s.prefix.size()), s.keyword);
     throw InputError(fallback + ": " + message, fallback);
   }
 }
@@ -145,34 +150,49 @@ py::object demand_column(const std::vector<IdaRow>& rows, std::size_t e) {
   return numeric ? py::object(to_array(std::move(numbers))) : py::object(py::cast(words));
 }
 
-// Stripes: the runs of `adjoin ida SCENE --suite ... --im IM --levels ...` (one sweep over the
-// (record, level) pairs, in threads with the GIL released), as columns.
-py::dict ida_stripes_py(const std::string& scene, const std::vector<std::string>& suite, const std::string& im_text,
-                        const std::vector<double>& levels, std::vector<std::string> edps, const std::string& capacity_text,
-                        const std::string& units, unsigned jobs) {
+// The runs of `adjoin ida SCENE --suite ... --im IM --levels ...|--trace` as columns, in threads
+// with the GIL released: stripes (one sweep over the (record, level) pairs) or traces.
+py::dict ida_py(const std::string& scene, const std::vector<std::string>& suite, const std::string& im_text,
+                const std::vector<double>& levels, bool trace, const TraceOptions& trace_options,
+                std::vector<std::string> edps, const std::string& capacity_text, const std::string& units, unsigned jobs) {
   std::vector<IdaRow> rows;
   std::vector<std::string> skipped;
+  std::vector<Trace> traces;
   {
     py::gil_scoped_release unlocked;
-    IntensityMeasure im;
-    try {
-      im = parse_intensity_measure(im_text);
-    } catch (const InputError& e) {
-      throw InputError(std::string("im: ") + e.what(), "im");
-    }
+    const IntensityMeasure im = naming_keyword({{"--im", "im"}}, "im", [&] { return parse_intensity_measure(im_text); });
     const std::vector<IdaRecord> records =
-        naming_keyword({"units"}, "suite", [&] { return read_ida_suite(suite, units, im, &skipped, "units"); });
-    const SweepSpec spec = ida_sweep(scene, ida_stripe_motions(records, levels), units, "adjoin.ida " + scene);
-    if (edps.empty()) edps = ida_default_edps(spec);
-    naming_keyword({"edp"}, "edp", [&] { check_ida_edps(spec, edps, "edp"); });
-    const IdaCapacity capacity =
-        naming_keyword({"capacity"}, "capacity", [&] { return ida_capacity(spec, capacity_text, "capacity"); });
-    check_sweep_memory(spec, spec.runs());
-    SweepOptions options;
-    options.jobs = jobs;
-    std::vector<std::vector<std::string>> cells;
-    for (const SweepRow& row : run_sweep(spec, options)) cells.push_back(sweep_cells(spec, row));
-    rows = ida_stripe_rows(spec, cells, records, levels, edps, capacity);
+        naming_keyword({{"units", "units"}}, "suite", [&] { return read_ida_suite(suite, units, im, &skipped, "units"); });
+    if (trace) {
+      naming_keyword({{"--trace-start", "trace_start"}, {"--trace-factor", "trace_factor"}, {"--trace-tol", "trace_tol"},
+                      {"--trace-runs", "trace_runs"}},
+                     "trace", [&] { trace_options.check(); });
+      IdaTraceRequest request;
+      request.scene = scene;
+      request.units = units;
+      request.capacity = capacity_text;
+      request.options = trace_options;
+      request.jobs = jobs;
+      request.name = "adjoin.ida " + scene;
+      request.edp_option = "edp";
+      request.capacity_option = "capacity";
+      request.trace_option = "trace";
+      naming_keyword({{"edp", "edp"}, {"capacity", "capacity"}, {"trace", "trace"}}, "scene", [&] { rows = ida_traces(request, records, &edps, &traces); });
+    } else {
+      const SweepSpec spec = naming_keyword({}, "scene", [&] {
+        return ida_sweep(scene, ida_stripe_motions(records, levels), units, "adjoin.ida " + scene);
+      });
+      if (edps.empty()) edps = ida_default_edps(spec);
+      naming_keyword({{"edp", "edp"}}, "edp", [&] { check_ida_edps(spec, edps, "edp"); });
+      const IdaCapacity capacity =
+          naming_keyword({{"capacity", "capacity"}}, "capacity", [&] { return ida_capacity(spec, capacity_text, "capacity"); });
+      check_sweep_memory(spec, spec.runs());
+      SweepOptions options;
+      options.jobs = jobs;
+      std::vector<std::vector<std::string>> cells;
+      for (const SweepRow& row : run_sweep(spec, options)) cells.push_back(sweep_cells(spec, row));
+      rows = ida_stripe_rows(spec, cells, records, levels, edps, capacity);
+    }
   }
   py::dict d;
   std::vector<std::string> record;
@@ -199,6 +219,11 @@ py::dict ida_stripes_py(const std::string& scene, const std::vector<std::string>
   out["edps"] = edps;
   out["skipped"] = skipped;
   out["units"] = rows.empty() ? std::string() : rows[0].units;
+  py::list brackets;  // traces: each record's (low, high) bracket of its first capacity event
+  for (const Trace& t : traces)
+    brackets.append(py::make_tuple(t.low ? py::object(py::float_(*t.low)) : py::object(py::none()),
+                                   t.high ? py::object(py::float_(*t.high)) : py::object(py::none())));
+  out["brackets"] = brackets;
   return out;
 }
 
@@ -207,8 +232,17 @@ py::dict ida_stripes_py(const std::string& scene, const std::vector<std::string>
 void bind_design_studies(py::module_& m) {
   m.def("fragility", &fragility_py, py::arg("records"), py::arg("im"), py::arg("columns"), py::arg("values"),
         py::arg("errors"), py::arg("event"), py::arg("bootstrap"), py::arg("seed"), py::arg("at") = py::none());
-  m.def("ida_stripes", &ida_stripes_py, py::arg("scene"), py::arg("suite"), py::arg("im"), py::arg("levels"),
-        py::arg("edp"), py::arg("capacity"), py::arg("units"), py::arg("jobs"));
+  m.def(
+      "ida",
+      [](const std::string& scene, const std::vector<std::string>& suite, const std::string& im,
+         const std::vector<double>& levels, bool trace, double start, double factor, double tolerance, std::size_t runs,
+         const std::vector<std::string>& edps, const std::string& capacity, const std::string& units, unsigned jobs) {
+        return ida_py(scene, suite, im, levels, trace, TraceOptions{start, factor, tolerance, runs}, edps, capacity, units,
+                      jobs);
+      },
+      py::arg("scene"), py::arg("suite"), py::arg("im"), py::arg("levels"), py::arg("trace"), py::arg("trace_start"),
+      py::arg("trace_factor"), py::arg("trace_tol"), py::arg("trace_runs"), py::arg("edp"), py::arg("capacity"),
+      py::arg("units"), py::arg("jobs"));
 }
 
 }  // namespace adjoin::python

@@ -109,54 +109,17 @@ std::vector<IdaRow> stripes(const IdaArgs& args, const std::vector<IdaRecord>& r
 
 std::vector<IdaRow> traces(const IdaArgs& args, const std::vector<IdaRecord>& records, std::vector<std::string>* edps,
                            std::vector<Trace>* found) {
-  std::vector<SweepSpec> specs;
-  for (const auto& r : records) specs.push_back(ida_sweep(args.scene, {{r.name, r.file, 1.0}}, args.units, "adjoin ida " + args.scene));
-  if (edps->empty()) *edps = ida_default_edps(specs[0]);
-  check_ida_edps(specs[0], *edps, "--edp");
-  const IdaCapacity capacity = ida_capacity(specs[0], args.capacity, "--capacity");
-  if (!capacity.collapse && !capacity.limit)
-    throw InputError("--trace: this scene has no collapse check (storey heights give one: collapse_drift_ratio); "
-                     "give the capacity event with --capacity \"COLUMN OP X\", e.g. --capacity \"drift > 0.05\"");
-  std::vector<std::vector<IdaRow>> per_record(records.size());
-  found->assign(records.size(), Trace{});
-  std::atomic<std::size_t> next{0};
-  std::mutex lock;
-  std::exception_ptr failure;
   Progress progress(!args.quiet, 0, records.size(), "records");
-  auto work = [&] {
-    for (std::size_t k; (k = next.fetch_add(1)) < records.size();) {
-      try {
-        SweepSpec spec = specs[k];
-        (*found)[k] = hunt_and_fill(
-            [&](double level) {
-              const double scale = level / records[k].im;
-              set_ida_scale(spec, 0, scale);
-              const SweepRow row = run_sweep_point(spec, 0);
-              per_record[k].push_back(ida_row(spec, sweep_cells(spec, row), *edps, records[k], level, scale, capacity));
-              return per_record[k].back().event;
-            },
-            args.trace_options);
-        std::lock_guard<std::mutex> guard(lock);
-        progress.tick();
-      } catch (...) {
-        std::lock_guard<std::mutex> guard(lock);
-        if (!failure) failure = std::current_exception();
-        next = records.size();
-      }
-    }
-  };
-  const unsigned jobs = std::max(1u, std::min<unsigned>(args.jobs ? args.jobs : std::thread::hardware_concurrency(),
-                                                        static_cast<unsigned>(records.size())));
-  std::vector<std::thread> threads;
-  for (unsigned j = 0; j < jobs; ++j) threads.emplace_back(work);
-  for (auto& t : threads) t.join();
+  IdaTraceRequest request;
+  request.scene = args.scene;
+  request.units = args.units;
+  request.capacity = args.capacity;
+  request.options = args.trace_options;
+  request.jobs = args.jobs;
+  request.name = "adjoin ida " + args.scene;
+  request.on_record = [&] { progress.tick(); };
+  std::vector<IdaRow> rows = ida_traces(request, records, edps, found);
   progress.finish();
-  if (failure) std::rethrow_exception(failure);
-  std::vector<IdaRow> rows;
-  for (auto& r : per_record) {
-    std::stable_sort(r.begin(), r.end(), [](const IdaRow& a, const IdaRow& b) { return a.im < b.im; });
-    rows.insert(rows.end(), r.begin(), r.end());
-  }
   return rows;
 }
 

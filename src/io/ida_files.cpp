@@ -1,11 +1,14 @@
 #include "adjoin/io/ida_files.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 #include <toml++/toml.h>
 
@@ -335,6 +338,58 @@ std::vector<IdaRow> ida_stripe_rows(const SweepSpec& spec, const std::vector<std
     const IdaRecord& record = records[index / levels.size()];
     const double level = levels[index % levels.size()];
     rows.push_back(ida_row(spec, c, edps, record, level, level / record.im, capacity));
+  }
+  return rows;
+}
+
+std::vector<IdaRow> ida_traces(const IdaTraceRequest& request, const std::vector<IdaRecord>& records,
+                               std::vector<std::string>* edps, std::vector<Trace>* found) {
+  std::vector<SweepSpec> specs;
+  for (const auto& r : records) specs.push_back(ida_sweep(request.scene, {{r.name, r.file, 1.0}}, request.units, request.name));
+  if (edps->empty()) *edps = ida_default_edps(specs[0]);
+  check_ida_edps(specs[0], *edps, request.edp_option);
+  const IdaCapacity capacity = ida_capacity(specs[0], request.capacity, request.capacity_option);
+  if (!capacity.collapse && !capacity.limit)
+    throw InputError(request.trace_option + ": this scene has no collapse check (storey heights give one: collapse_drift_ratio); "
+                     "give the capacity event with " + request.capacity_option + " \"COLUMN OP X\", e.g. " +
+                     request.capacity_option + " \"drift > 0.05\"");
+  std::vector<std::vector<IdaRow>> per_record(records.size());
+  found->assign(records.size(), Trace{});
+  std::atomic<std::size_t> next{0};
+  std::mutex lock;
+  std::exception_ptr failure;
+  auto work = [&] {
+    for (std::size_t k; (k = next.fetch_add(1)) < records.size();) {
+      try {
+        SweepSpec spec = specs[k];
+        (*found)[k] = hunt_and_fill(
+            [&](double level) {
+              const double scale = level / records[k].im;
+              set_ida_scale(spec, 0, scale);
+              const SweepRow row = run_sweep_point(spec, 0);
+              per_record[k].push_back(ida_row(spec, sweep_cells(spec, row), *edps, records[k], level, scale, capacity));
+              return per_record[k].back().event;
+            },
+            request.options);
+        std::lock_guard<std::mutex> guard(lock);
+        if (request.on_record) request.on_record();
+      } catch (...) {
+        std::lock_guard<std::mutex> guard(lock);
+        if (!failure) failure = std::current_exception();
+        next = records.size();
+      }
+    }
+  };
+  const unsigned jobs = std::max(1u, std::min<unsigned>(request.jobs ? request.jobs : std::thread::hardware_concurrency(),
+                                                        static_cast<unsigned>(records.size())));
+  std::vector<std::thread> threads;
+  for (unsigned j = 0; j < jobs; ++j) threads.emplace_back(work);
+  for (auto& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+  std::vector<IdaRow> rows;
+  for (auto& r : per_record) {
+    std::stable_sort(r.begin(), r.end(), [](const IdaRow& a, const IdaRow& b) { return a.im < b.im; });
+    rows.insert(rows.end(), r.begin(), r.end());
   }
   return rows;
 }

@@ -12,6 +12,7 @@
 //  - the figure: the IDA curves (EDP on x, IM on y), one per record, with the 16/50/84 %
 //    fractile curves.
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -94,6 +95,23 @@ std::vector<IdaMotion> ida_stripe_motions(const std::vector<IdaRecord>& records,
 std::vector<IdaRow> ida_stripe_rows(const SweepSpec& spec, const std::vector<std::vector<std::string>>& cells,
                                     const std::vector<IdaRecord>& records, const std::vector<double>& levels,
                                     const std::vector<std::string>& edps, const IdaCapacity& capacity);
+
+// Tracing: hunt and fill per record (study/ida.hpp hunt_and_fill) up to its capacity event,
+// the records in threads. The option names appear in messages (the command's or the keywords).
+struct IdaTraceRequest {
+  std::filesystem::path scene;
+  std::string units, capacity;  // capacity: "" (collapse or failure only) or "COLUMN OP X"
+  TraceOptions options;
+  unsigned jobs = 0;  // 0: one thread per local core
+  std::string name;   // the sweep's, in messages
+  std::string edp_option = "--edp", capacity_option = "--capacity", trace_option = "--trace";
+  std::function<void()> on_record;  // after each record is traced (one call at a time)
+};
+// The rows, record by record in the suite's order, each record's by IM; `edps` empty: the
+// default demands (filled in); `found` each record's trace. InputError if the scene has no
+// collapse check and no capacity is given.
+std::vector<IdaRow> ida_traces(const IdaTraceRequest& request, const std::vector<IdaRecord>& records,
+                               std::vector<std::string>* edps, std::vector<Trace>* found);
 
 // ida.csv's text.
 std::string ida_csv(const std::vector<std::string>& edps, const std::vector<IdaRow>& rows);
