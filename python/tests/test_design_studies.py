@@ -93,25 +93,48 @@ def test_fragility_of_columns_equals_that_of_the_file(tmp_path):
     assert list(a["n"]) == [6, 6, 6, 6] and list(a["events"]) == [1, 2, 4, 5]
 
 
-def test_ida_stripes_equal_the_cli(tmp_path, adjoin_cli):
-    out = tmp_path / "ida"
-    subprocess.run([adjoin_cli, "ida", str(SCENE), "--suite", *map(str, SUITE), "--im", "pga", "--levels", "0.2,0.5",
-                    "--jobs", "2", "--out", str(out), "-q"], check=True, capture_output=True)
-    lines = (out / "ida.csv").read_text().splitlines()
-    header, rows = lines[0].split(","), [line.split(",") for line in lines[1:]]
-    py = adjoin.ida(SCENE, SUITE, im="pga", levels=[0.2, 0.5], jobs=2)
+def read_ida_csv(path):
+    lines = path.read_text().splitlines()
+    return lines[0].split(","), [line.split(",") for line in lines[1:]]
+
+
+def assert_rows_equal(py, header, rows):
+    """The Python columns hold the CLI's ida.csv, bit for bit (the CLI writes the shortest text
+    that reads back to the same double)."""
     assert list(py)[:len(header)] == header
-    assert len(rows) == 4 and len(py["im"]) == 4
+    assert len(py["im"]) == len(rows)
     for k, name in enumerate(header):
         cells = [r[k] for r in rows]
         if name == "record":
             assert list(py[name]) == cells
-        else:  # bit for bit: the CLI writes the shortest text that reads back to the same double
-            expected = [float(c) if c else math.nan for c in cells]
-            np.testing.assert_array_equal(py[name], np.array(expected), err_msg=name)
+        else:
+            np.testing.assert_array_equal(py[name], np.array([float(c) if c else math.nan for c in cells]), err_msg=name)
+
+
+def test_ida_stripes_equal_the_cli(tmp_path, adjoin_cli):
+    out = tmp_path / "ida"
+    subprocess.run([adjoin_cli, "ida", str(SCENE), "--suite", *map(str, SUITE), "--im", "pga", "--levels", "0.2,0.5",
+                    "--jobs", "2", "--out", str(out), "-q"], check=True, capture_output=True)
+    header, rows = read_ida_csv(out / "ida.csv")
+    py = adjoin.ida(SCENE, SUITE, im="pga", levels=[0.2, 0.5], jobs=2)
+    assert len(rows) == 4
+    assert_rows_equal(py, header, rows)
     assert list(py["error"]) == [""] * 4 and not py["capacity_event"].any()
     fit = adjoin.fragility(py, "contact1.impacts > 10", bootstrap=0)
     assert list(fit["n"]) == [2, 2] and list(fit["events"]) == [1, 1]
+
+
+def test_ida_traces_equal_the_cli(tmp_path, adjoin_cli):
+    out = tmp_path / "ida"
+    capacity = "A.drift_ratio_max > 0.03"
+    subprocess.run([adjoin_cli, "ida", str(SCENE), "--suite", *map(str, SUITE), "--im", "pga", "--trace", "--capacity",
+                    capacity, "--trace-runs", "5", "--out", str(out), "-q"], check=True, capture_output=True)
+    header, rows = read_ida_csv(out / "ida.csv")
+    py = adjoin.ida(SCENE, SUITE, im="pga", trace=True, capacity=capacity, trace_runs=5)
+    assert len(rows) == 10
+    assert_rows_equal(py, header, rows)
+    np.testing.assert_array_equal(py["capacity_event"], py["A.drift_ratio_max"] > 0.03)
+    assert py["capacity_event"].any() and not py["capacity_event"].all()
 
 
 @pytest.mark.parametrize("keywords, field", [
@@ -143,7 +166,9 @@ def test_fragility_names_a_bad_keyword(tmp_path, keywords, field):
     ({"edp": ["no.such_column"]}, "edp"),
     ({"capacity": "A.drift_ratio_max >> 1"}, "capacity"),
     ({"jobs": -1}, "jobs"),
-    ({"trace": True}, "trace"),
+    ({"trace": True}, "levels"),
+    ({"trace": True, "levels": None, "trace_runs": 1}, "trace_runs"),
+    ({"trace": True, "levels": None, "trace_factor": 0.5}, "trace_factor"),
     ({"units": "furlongs"}, "units"),
 ])
 def test_ida_names_a_bad_keyword(keywords, field):
