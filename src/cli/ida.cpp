@@ -11,19 +11,15 @@
 // Writes DIR/ida.csv (record,im,scale,<edp>...) and DIR/ida.png (the curves with their 16/50/84 %
 // fractiles), and a line per record on the terminal.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <mutex>
-#include <thread>
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/core/parse_number.hpp"
-#include "adjoin/ground/record_file.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/folder_lock.hpp"
 #include "adjoin/io/ida_files.hpp"
