@@ -16,6 +16,7 @@ structure built in code, on a record), ``Result``.
 Ground motions and spectra: ``read_record``, ``Record``, ``spectrum``, ``rotd``,
 ``ductility_spectrum``, ``default_periods``.
 Structures: ``modes``, ``joint`` (the minimum seismic joint), ``StructureBuilder``.
+Design studies (SPEC §9): ``ida`` (stripes over a suite), ``fragility`` (lognormal fits).
 Errors: ``InputError`` (a ValueError, with ``.field``), ``NumericalError`` (an
 ArithmeticError, with ``.time``).
 Plots (matplotlib, when installed): ``adjoin.plot``.
@@ -42,7 +43,7 @@ from ._adjoin import (  # noqa: F401  (re-exported)
 __all__ = [
     "InputError", "NumericalError", "Scene", "load_scene", "run", "run_many", "run_structure", "Result",
     "Record", "read_record", "spectrum", "rotd", "ductility_spectrum", "default_periods",
-    "modes", "joint", "Structure", "StructureBuilder", "BuildingBuilder", "ContactBuilder",
+    "modes", "joint", "ida", "fragility", "Structure", "StructureBuilder", "BuildingBuilder", "ContactBuilder",
 ]
 
 
@@ -491,6 +492,217 @@ def joint(scene: Scene | Mapping[str, Any] | str | os.PathLike[str], *, contact:
         ``gap_key``, ``length_unit``, ``time_unit``, ``notes``, ``wall_seconds``.
     """
     return _adjoin.joint(_as_scene(scene)._scene, contact=contact, tol=tol, allow_long=allow_long)
+
+
+# ---- design studies (SPEC §9) ----
+
+def _bad(field: str, message: str) -> InputError:
+    """An InputError about keyword ``field``, its message starting with it."""
+    error = InputError(f"{field}: {message}")
+    error.field = field
+    return error
+
+
+def _whole(value, field: str, least: int, most: int | None = None) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < least \
+            or (most is not None and value > most):
+        upto = f" and at most {most}" if most is not None else ""
+        raise _bad(field, f"{value!r}: expected a whole number >= {least}{upto}")
+    return int(value)
+
+
+def _ida_csv_columns(path) -> dict:
+    """ida.csv (or any table with a header) as {column: list of str}."""
+    import csv
+    try:
+        with open(path, newline="", encoding="utf-8") as f:
+            rows = list(csv.reader(f))
+    except OSError as e:
+        raise _bad("table", f"{os.fspath(path)}: cannot be read ({e.strerror})") from None
+    if not rows:
+        raise _bad("table", f"{os.fspath(path)}: empty (expected ida.csv: record,im,scale,<edp>...)")
+    header, body = rows[0], [r for r in rows[1:] if r]
+    for line, r in enumerate(body, start=2):
+        if len(r) != len(header):
+            raise _bad("table", f"{os.fspath(path)}:{line}: {len(r)} cells, the header has {len(header)}")
+    return {name: [r[k] for r in body] for k, name in enumerate(header)}
+
+
+def _table_columns(table) -> dict:
+    if isinstance(table, (str, os.PathLike)):
+        return _ida_csv_columns(table)
+    names = getattr(getattr(table, "dtype", None), "names", None)
+    if names:  # a numpy structured array
+        return {name: table[name] for name in names}
+    if isinstance(table, Mapping):
+        return dict(table)
+    raise _bad("table", f"a {type(table).__name__}: expected an ida.csv path, a mapping of columns "
+                        "(record, im, <edp>...) or a structured array")
+
+
+def _cell_number(value) -> float:
+    if value is None:
+        return float("nan")
+    if isinstance(value, (bool, np.bool_)):
+        return 1.0 if value else 0.0
+    if isinstance(value, str):
+        text = value.strip()
+        if text == "":
+            return float("nan")
+        if text in ("true", "false"):
+            return 1.0 if text == "true" else 0.0
+        return float(text)
+    return float(value)
+
+
+def fragility(table: str | os.PathLike[str] | Mapping[str, Any] | np.ndarray, event: str, *,
+              bootstrap: int = 1000, seed: int = 1, at: float | None = None) -> dict:
+    """The lognormal fragility P(event | IM = x) = Phi(ln(x / theta) / beta) of the runs of an
+    IDA, fitted as ``adjoin fragility`` fits it (post/fragility.hpp: maximum likelihood on the
+    counts per IM level, bootstrap bounds over records, and for IDA traces the IM at first
+    event). The numbers equal that command's fragility.json on the same table.
+
+    Args:
+        table: an ida.csv path, or its columns: a mapping (e.g. what ``ida`` returns) or a
+            structured array with ``im`` (g), the columns the event reads, and ``record`` (the
+            runs of one record are resampled together; without it each run is its own
+            record). An ``error`` column marks failed runs (left out, counted).
+        event: a condition on the columns, ``COLUMN > NUMBER`` (>, >=, <, <=) joined by
+            ``and``/``or``, e.g. ``"contact1.impacts > 0"``. A run whose event reads an empty
+            value (NaN) is left out and counted.
+        bootstrap: resamples of the records for the 5 %/95 % bounds (0: none; at most 100000).
+        seed: the bootstrap's seed (the same seed gives the same bounds on every machine).
+        at: an IM (g) at which to give the fitted probability of the event.
+
+    Returns:
+        dict: ``fitted`` (False for data without a fit: no events, events everywhere, perfect
+        separation; ``problem`` says which and theta, beta are None), ``theta`` (g),
+        ``beta``, ``log_likelihood``, ``levels`` (g), ``n`` and ``events`` per level (numpy
+        arrays), ``records``, ``runs``, ``skipped`` (``failed``, ``unknown``), ``bootstrap``
+        (``samples``, ``seed``, ``degenerate``, ``percentiles``, ``theta`` and ``beta``
+        (low, high)) or None, ``first_event`` (traces: ``theta``, ``beta``, ``records``,
+        ``censored``...) or None, and with ``at`` its ``im`` and ``probability``.
+
+    Raises:
+        InputError: with ``.field`` the keyword at fault (``table``, ``event``, ``bootstrap``,
+        ``seed``, ``at``).
+    """
+    if not isinstance(event, str) or not event.strip():
+        raise _bad("event", f"{event!r}: expected a condition such as \"contact1.impacts > 0\"")
+    bootstrap = _whole(bootstrap, "bootstrap", 0, 100000)
+    seed = _whole(seed, "seed", 0, 2**64 - 1)
+    if at is not None:
+        try:
+            at = float(at)
+        except (TypeError, ValueError):
+            raise _bad("at", f"{at!r}: expected an intensity > 0 (g)") from None
+        if not (at > 0.0 and np.isfinite(at)):
+            raise _bad("at", f"{at!r}: expected an intensity > 0 (g)")
+    columns = _table_columns(table)
+    if "im" not in columns:
+        raise _bad("table", f"no column im; its columns are {', '.join(map(str, columns))}")
+    count = len(columns["im"])
+    names, values = [], []
+    for name, column in columns.items():
+        if name in ("record", "error"):
+            continue
+        if len(column) != count:
+            raise _bad("table", f"column {name} has {len(column)} values, im has {count}")
+        try:
+            values.append([_cell_number(v) for v in column])
+        except (TypeError, ValueError):
+            continue  # words (not a demand): the event cannot read it, and says which columns it can
+        names.append(str(name))
+    if "im" not in names:
+        raise _bad("table", "im: expected numbers (the intensity of each run, g)")
+    im = values[names.index("im")]
+    for r, v in enumerate(im):
+        if not (v > 0.0 and np.isfinite(v)):
+            raise _bad("table", f"row {r + 1}: im {v!r}: expected an intensity > 0")
+    records = [str(r) for r in columns["record"]] if "record" in columns else [str(r) for r in range(count)]
+    if any(r == "" for r in records):
+        raise _bad("table", "an empty record name")
+    errors = [str(e) for e in columns["error"]] if "error" in columns else []
+    return _adjoin.fragility(records, im, names, values, errors, event, bootstrap, seed, at)
+
+
+def ida(scene: str | os.PathLike[str], suite: str | os.PathLike[str] | Sequence[str | os.PathLike[str]], *,
+        im: str = "pga", levels: Sequence[float] | None = None, trace: bool = False,
+        edp: Sequence[str] | None = None, capacity: str | None = None, units: str | None = None,
+        jobs: int = 0, trace_start: float = 0.1, trace_factor: float = 1.5, trace_tol: float = 0.05,
+        trace_runs: int = 20) -> dict:
+    """Incremental dynamic analysis, as ``adjoin ida SCENE --suite ... --im IM --levels
+    ...|--trace`` runs it (study/ida.hpp, io/ida_files.hpp): each record of the suite scaled
+    (``ground.scale``) so that its IM, of the record as read, equals a level. Stripes (``levels``):
+    one sweep over the (record, level) pairs; tracing (``trace=True``): hunt and fill per
+    record up to its capacity event. Native threads, the GIL released. The rows equal that
+    command's ida.csv, bit for bit; no file is written.
+
+    Args:
+        scene: the base scene's TOML file (its ground is replaced by each record).
+        suite: record files, or folders of them (every file a reader recognises).
+        im: ``"pga"`` or ``"sa:T"`` (the 5 %-damped PSA at T s), in g.
+        levels: stripes: the IM levels (g), each > 0, each once (not with ``trace``).
+        trace: hunt and fill per record (Vamvatsikos & Cornell) up to the capacity event (the
+            run's collapse, a failed run, or ``capacity``), starting at ``trace_start`` (g),
+            stepping by ``trace_factor``, bracketing to ``trace_tol`` (relative), at most
+            ``trace_runs`` runs per record.
+        edp: the demands, sweep-table column names (default: as ``adjoin ida``; see
+            docs/reference/cli.md#adjoin-ida).
+        capacity: a demand limit ``"COLUMN OP X"`` that marks the capacity event
+            (``capacity_event``; a failed run or the run's collapse marks it too).
+        units: the units of records that do not state theirs (g, m/s2, cm/s2, mm/s2).
+        jobs: threads (0: one per core).
+
+    Returns:
+        dict of columns, one row per run (record by record; stripes: the levels in the order
+        given, traces: each record's runs by IM):
+        ``record`` (file names), ``im`` (g), ``scale``, one numpy array per demand (NaN
+        where the run has no value), ``error`` (a failed run's message, else ""),
+        ``capacity_event`` (bool). ``fragility(result, event)`` fits it directly.
+
+    Raises:
+        InputError: with ``.field`` the keyword at fault (``levels``, ``im``, ``edp``, ...).
+    """
+    if not isinstance(scene, (str, os.PathLike)):
+        raise _bad("scene", f"a {type(scene).__name__}: expected the base scene's TOML file (a path)")
+    if not isinstance(im, str):
+        raise _bad("im", f"{im!r}: expected pga or sa:T")
+    if trace and levels is not None:
+        raise _bad("levels", "levels and trace: give one (stripes at given levels, or tracing per record)")
+    if not trace and levels is None:
+        raise _bad("levels", "expected the IM levels in g (stripes), e.g. levels=[0.1, 0.2, 0.4], or trace=True")
+    level_list = []
+    if not trace:
+        try:
+            level_list = [float(v) for v in np.atleast_1d(np.asarray(levels, dtype=float))]
+        except (TypeError, ValueError):
+            raise _bad("levels", f"{levels!r}: expected numbers > 0 (g)") from None
+        if not level_list:
+            raise _bad("levels", "empty: expected at least one IM level (g)")
+        for v in level_list:
+            if not (v > 0.0 and np.isfinite(v)):
+                raise _bad("levels", f"{v!r}: expected IM levels in g, numbers > 0")
+            if level_list.count(v) > 1:
+                raise _bad("levels", f"the level {v!r} appears twice")
+    options = {}
+    for name, value in (("trace_start", trace_start), ("trace_factor", trace_factor), ("trace_tol", trace_tol)):
+        try:
+            options[name] = float(value)
+        except (TypeError, ValueError):
+            raise _bad(name, f"{value!r}: expected a number") from None
+    trace_runs = _whole(trace_runs, "trace_runs", 0)
+    suite_list = [os.fspath(suite)] if isinstance(suite, (str, os.PathLike)) else [os.fspath(s) for s in suite]
+    if not suite_list:
+        raise _bad("suite", "empty: expected record files or folders of them")
+    if isinstance(edp, str):
+        edp = [edp]
+    edps = [] if edp is None else [str(e) for e in edp]
+    jobs = _whole(jobs, "jobs", 0)
+    out = _adjoin.ida(os.fspath(scene), suite_list, im, level_list, bool(trace), options["trace_start"],
+                      options["trace_factor"], options["trace_tol"], trace_runs, edps, capacity or "", units or "", jobs)
+    return _arrays(out["columns"])
+
 
 
 def _list_or_none(values):

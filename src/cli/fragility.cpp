@@ -77,29 +77,20 @@ Design read_design(const std::string& file, const std::string& event_text) {
   std::vector<std::vector<double>> values(table.columns.size());
   for (std::size_t c : event.columns_used()) values[c] = table.numbers(table.columns[c], "--event " + text_excerpt(event_text));
   const std::vector<std::string> errors = table.has("error") ? table.texts("error") : std::vector<std::string>();
-  std::vector<double> row(table.columns.size(), std::nan(""));
-  std::vector<FragilityRun> every;  // every row's record and IM, to tell traces from stripes
   for (std::size_t r = 0; r < table.rows.size(); ++r) {
     const std::string where = file + ":" + std::to_string(table.lines[r]);
     if (!(im[r] > 0.0) || !std::isfinite(im[r]))
       throw InputError(where + ": im " + text_excerpt(table.rows[r][table.column("im")]) + ": expected an intensity > 0");
     if (records[r].empty()) throw InputError(where + ": an empty record name");
-    every.push_back({records[r], im[r], false});
-    if (!errors.empty() && !errors[r].empty()) {
-      ++d.failed;
-      continue;
-    }
-    for (std::size_t c : event.columns_used()) row[c] = values[c][r];
-    const std::optional<bool> happened = event.evaluate(row);
-    if (!happened) {
-      if (d.unknown++ == 0) d.first_unknown_line = table.lines[r];
-      continue;
-    }
-    d.runs.push_back({records[r], im[r], *happened});
   }
+  FragilityOutcomes outcomes = fragility_outcomes(event, records, im, values, errors);
+  d.runs = std::move(outcomes.runs);
+  d.failed = outcomes.failed;
+  d.unknown = outcomes.unknown;
+  if (d.unknown) d.first_unknown_line = table.lines[outcomes.first_unknown];
+  d.trace = outcomes.trace;
   if (d.runs.empty()) throw InputError(file + ": no run with a known outcome of the event (" + std::to_string(d.failed) +
                                        " failed, " + std::to_string(d.unknown) + " with an empty value the event reads)");
-  d.trace = fragility_is_trace(every);
   return d;
 }
 

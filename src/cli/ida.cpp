@@ -11,19 +11,15 @@
 // Writes DIR/ida.csv (record,im,scale,<edp>...) and DIR/ida.png (the curves with their 16/50/84 %
 // fractiles), and a line per record on the terminal.
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
-#include <mutex>
-#include <thread>
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/core/parse_number.hpp"
-#include "adjoin/ground/record_file.hpp"
 #include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/folder_lock.hpp"
 #include "adjoin/io/ida_files.hpp"
@@ -46,13 +42,6 @@ struct IdaArgs {
   bool trace = false, quiet = false;
   unsigned jobs = 0;
   TraceOptions trace_options;
-};
-
-// The suite as read: file, name, IM.
-struct SuiteRecord {
-  fs::path file;
-  std::string name;
-  double im = 0.0;
 };
 
 std::vector<double> parse_levels(const std::string& text) {
@@ -82,57 +71,11 @@ std::vector<std::string> split_names(const std::string& text) {
   return out;
 }
 
-std::vector<SuiteRecord> read_suite(const IdaArgs& args, const IntensityMeasure& im) {
+std::vector<IdaRecord> read_suite(const IdaArgs& args, const IntensityMeasure& im) {
   std::vector<std::string> skipped;
-  const auto files = ida_suite(args.suite, &skipped);
+  auto records = read_ida_suite(args.suite, args.units, im, &skipped, "--units");
   for (const auto& s : skipped) std::cerr << "warning: --suite: " << s << " is not a record a reader recognises; skipped\n";
-  RecordFormat format;
-  if (!args.units.empty()) {
-    AccelUnit unit;
-    if (!parse_accel_unit(args.units, &unit))
-      throw InputError("--units " + text_excerpt(args.units) + ": expected g, m/s2, cm/s2 (or gal) or mm/s2");
-    format.units = unit;
-  }
-  std::vector<SuiteRecord> records;
-  for (const auto& f : files) records.push_back({f, f.filename().string(), record_intensity(read_record(f, format), im)});
   return records;
-}
-
-// The column index of `name` in the sweep's table.
-std::size_t column_of(const SweepSpec& spec, const std::string& name) {
-  const auto columns = sweep_columns(spec);
-  for (std::size_t c = 0; c < columns.size(); ++c)
-    if (columns[c].name == name) return c;
-  return columns.size();
-}
-
-// Whether a row of the sweep shows the capacity event: a numerical failure, the run's
-// collapse (collapse_t has a value), or the demand limit.
-struct Capacity {
-  std::optional<DemandLimit> limit;
-  std::size_t limit_column = 0, collapse_column = 0, error_column = 0;
-  bool collapse = false;
-  bool operator()(const std::vector<std::string>& cells) const {
-    if (!cells[error_column].empty()) return true;
-    if (collapse && !cells[collapse_column].empty()) return true;
-    if (!limit) return false;
-    double v = 0.0;
-    return parse_finite(cells[limit_column], &v) && limit->holds(v);
-  }
-};
-
-Capacity capacity_of(const SweepSpec& spec, const IdaArgs& args) {
-  Capacity c;
-  const auto columns = sweep_columns(spec);
-  c.error_column = columns.size() - 1;
-  c.collapse_column = column_of(spec, "collapse_t");
-  c.collapse = c.collapse_column < columns.size();
-  if (!args.capacity.empty()) {
-    c.limit = parse_demand_limit(args.capacity, "--capacity");
-    check_ida_edps(spec, {c.limit->column}, "--capacity");
-    c.limit_column = column_of(spec, c.limit->column);
-  }
-  return c;
 }
 
 std::string g(double v) {
@@ -141,42 +84,17 @@ std::string g(double v) {
   return s;
 }
 
-IdaRow ida_row(const SweepSpec& spec, const std::vector<std::string>& cells, const std::vector<std::string>& edps,
-               const SuiteRecord& record, double level, double scale, const Capacity& capacity) {
-  IdaRow row;
-  row.record = record.name;
-  row.im = level;
-  row.scale = scale;
-  for (const auto& e : edps) row.edps.push_back(cells[column_of(spec, e)]);
-  row.units = cells[column_of(spec, "units")];
-  row.error = cells.back();
-  row.event = capacity(cells);
-  return row;
-}
-
 // ---- stripes ----
 
-std::vector<IdaRow> stripes(const IdaArgs& args, const std::vector<SuiteRecord>& records, const std::vector<double>& levels,
+std::vector<IdaRow> stripes(const IdaArgs& args, const std::vector<IdaRecord>& records, const std::vector<double>& levels,
                             std::vector<std::string>* edps, const fs::path& dir) {
-  std::vector<IdaMotion> motions;
-  std::vector<double> scales;
-  for (const auto& r : records)
-    for (double level : levels) {
-      motions.push_back({r.name, r.file, level / r.im});
-      scales.push_back(level / r.im);
-    }
-  const SweepSpec spec = ida_sweep(args.scene, motions, args.units, "adjoin ida " + args.scene);
+  const SweepSpec spec = ida_sweep(args.scene, ida_stripe_motions(records, levels), args.units, "adjoin ida " + args.scene);
   if (edps->empty()) *edps = ida_default_edps(spec);
   check_ida_edps(spec, *edps, "--edp");
-  const Capacity capacity = capacity_of(spec, args);
+  const IdaCapacity capacity = ida_capacity(spec, args.capacity, "--capacity");
   check_sweep_memory(spec, spec.runs());
   auto cells = run_shard(spec, SweepShard{}, dir, args.jobs, !args.quiet, !args.quiet).rows;
-  std::vector<IdaRow> rows;
-  for (const auto& c : cells) {
-    std::size_t index = 0;
-    parse_count(c.at(0), &index);
-    rows.push_back(ida_row(spec, c, *edps, records[index / levels.size()], levels[index % levels.size()], scales[index], capacity));
-  }
+  std::vector<IdaRow> rows = ida_stripe_rows(spec, cells, records, levels, *edps, capacity);
   write_sweep_table(sweep_table_file(spec, SweepTable{sweep_columns(spec), std::move(cells)}, SweepShard{}), dir / "sweep.csv",
                     dir / "sweep.json");
   std::filesystem::remove(dir / (sweep_file_stem(SweepShard{}) + ".partial.csv"));  // the journal
@@ -185,62 +103,25 @@ std::vector<IdaRow> stripes(const IdaArgs& args, const std::vector<SuiteRecord>&
 
 // ---- tracing ----
 
-std::vector<IdaRow> traces(const IdaArgs& args, const std::vector<SuiteRecord>& records, std::vector<std::string>* edps,
+std::vector<IdaRow> traces(const IdaArgs& args, const std::vector<IdaRecord>& records, std::vector<std::string>* edps,
                            std::vector<Trace>* found) {
-  std::vector<SweepSpec> specs;
-  for (const auto& r : records) specs.push_back(ida_sweep(args.scene, {{r.name, r.file, 1.0}}, args.units, "adjoin ida " + args.scene));
-  if (edps->empty()) *edps = ida_default_edps(specs[0]);
-  check_ida_edps(specs[0], *edps, "--edp");
-  const Capacity capacity = capacity_of(specs[0], args);
-  if (!capacity.collapse && !capacity.limit)
-    throw InputError("--trace: this scene has no collapse check (storey heights give one: collapse_drift_ratio); "
-                     "give the capacity event with --capacity \"COLUMN OP X\", e.g. --capacity \"drift > 0.05\"");
-  std::vector<std::vector<IdaRow>> per_record(records.size());
-  found->assign(records.size(), Trace{});
-  std::atomic<std::size_t> next{0};
-  std::mutex lock;
-  std::exception_ptr failure;
   Progress progress(!args.quiet, 0, records.size(), "records");
-  auto work = [&] {
-    for (std::size_t k; (k = next.fetch_add(1)) < records.size();) {
-      try {
-        SweepSpec spec = specs[k];
-        (*found)[k] = hunt_and_fill(
-            [&](double level) {
-              const double scale = level / records[k].im;
-              set_ida_scale(spec, 0, scale);
-              const SweepRow row = run_sweep_point(spec, 0);
-              per_record[k].push_back(ida_row(spec, sweep_cells(spec, row), *edps, records[k], level, scale, capacity));
-              return per_record[k].back().event;
-            },
-            args.trace_options);
-        std::lock_guard<std::mutex> guard(lock);
-        progress.tick();
-      } catch (...) {
-        std::lock_guard<std::mutex> guard(lock);
-        if (!failure) failure = std::current_exception();
-        next = records.size();
-      }
-    }
-  };
-  const unsigned jobs = std::max(1u, std::min<unsigned>(args.jobs ? args.jobs : std::thread::hardware_concurrency(),
-                                                        static_cast<unsigned>(records.size())));
-  std::vector<std::thread> threads;
-  for (unsigned j = 0; j < jobs; ++j) threads.emplace_back(work);
-  for (auto& t : threads) t.join();
+  IdaTraceRequest request;
+  request.scene = args.scene;
+  request.units = args.units;
+  request.capacity = args.capacity;
+  request.options = args.trace_options;
+  request.jobs = args.jobs;
+  request.name = "adjoin ida " + args.scene;
+  request.on_record = [&] { progress.tick(); };
+  std::vector<IdaRow> rows = ida_traces(request, records, edps, found);
   progress.finish();
-  if (failure) std::rethrow_exception(failure);
-  std::vector<IdaRow> rows;
-  for (auto& r : per_record) {
-    std::stable_sort(r.begin(), r.end(), [](const IdaRow& a, const IdaRow& b) { return a.im < b.im; });
-    rows.insert(rows.end(), r.begin(), r.end());
-  }
   return rows;
 }
 
 // ---- the terminal ----
 
-void summary(const IdaArgs& args, const std::vector<SuiteRecord>& records, const std::vector<IdaRow>& rows,
+void summary(const IdaArgs& args, const std::vector<IdaRecord>& records, const std::vector<IdaRow>& rows,
              const std::vector<std::string>& edps, const std::vector<Trace>& found, const IntensityMeasure& im) {
   if (args.quiet) return;
   for (std::size_t k = 0; k < records.size(); ++k) {
@@ -285,7 +166,7 @@ int ida_command(const IdaArgs& args) {
   if (!args.edp.empty()) edps = split_names(args.edp);
   const std::string extension = plot_extension(args.format);
   check_output_folder(args.out);
-  const std::vector<SuiteRecord> records = read_suite(args, im);
+  const std::vector<IdaRecord> records = read_suite(args, im);
   const fs::path dir(args.out);
   OutputFolder folder(dir);
   folder.keep();

@@ -1,16 +1,20 @@
 #include "adjoin/io/ida_files.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <limits>
 #include <map>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 #include <toml++/toml.h>
 
 #include "adjoin/core/csv_line.hpp"
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/parse_number.hpp"
 #include "adjoin/ground/record_file.hpp"
 #include "adjoin/io/gnuplot.hpp"
 #include "adjoin/io/sweep_file.hpp"
@@ -252,6 +256,142 @@ void plot_ida(const std::vector<IdaRow>& rows, std::size_t edp, const std::strin
     << "$f1 using 1:2 with lines lc rgb '#d62728' lw 3 title '50 %', "
     << "$f2 using 1:2 with lines lc rgb '#1f77b4' lw 2.5 dt 4 title '84 %'\n";
   render_gnuplot(s.str(), image, style);
+}
+
+// ---- the runs, without files ----
+
+std::vector<IdaRecord> read_ida_suite(const std::vector<std::string>& inputs, const std::string& units,
+                                      const IntensityMeasure& im, std::vector<std::string>* skipped,
+                                      const std::string& units_option) {
+  const auto files = ida_suite(inputs, skipped);
+  RecordFormat format;
+  if (!units.empty()) {
+    AccelUnit unit;
+    if (!parse_accel_unit(units, &unit))
+      throw InputError(units_option + " " + text_excerpt(units) + ": expected g, m/s2, cm/s2 (or gal) or mm/s2");
+    format.units = unit;
+  }
+  std::vector<IdaRecord> records;
+  for (const auto& f : files) records.push_back({f, f.filename().string(), record_intensity(read_record(f, format), im)});
+  return records;
+}
+
+namespace {
+// The column index of `name` in the sweep's table (the count of columns if none).
+std::size_t column_of(const SweepSpec& spec, const std::string& name) {
+  const auto columns = sweep_columns(spec);
+  for (std::size_t c = 0; c < columns.size(); ++c)
+    if (columns[c].name == name) return c;
+  return columns.size();
+}
+}  // namespace
+
+bool IdaCapacity::operator()(const std::vector<std::string>& cells) const {
+  if (!cells[error_column].empty()) return true;
+  if (collapse && !cells[collapse_column].empty()) return true;
+  if (!limit) return false;
+  double v = 0.0;
+  return parse_finite(cells[limit_column], &v) && limit->holds(v);
+}
+
+IdaCapacity ida_capacity(const SweepSpec& spec, const std::string& limit, const std::string& option) {
+  IdaCapacity c;
+  const auto columns = sweep_columns(spec);
+  c.error_column = columns.size() - 1;
+  c.collapse_column = column_of(spec, "collapse_t");
+  c.collapse = c.collapse_column < columns.size();
+  if (!limit.empty()) {
+    c.limit = parse_demand_limit(limit, option);
+    check_ida_edps(spec, {c.limit->column}, option);
+    c.limit_column = column_of(spec, c.limit->column);
+  }
+  return c;
+}
+
+IdaRow ida_row(const SweepSpec& spec, const std::vector<std::string>& cells, const std::vector<std::string>& edps,
+               const IdaRecord& record, double level, double scale, const IdaCapacity& capacity) {
+  IdaRow row;
+  row.record = record.name;
+  row.im = level;
+  row.scale = scale;
+  for (const auto& e : edps) row.edps.push_back(cells[column_of(spec, e)]);
+  row.units = cells[column_of(spec, "units")];
+  row.error = cells.back();
+  row.event = capacity(cells);
+  return row;
+}
+
+std::vector<IdaMotion> ida_stripe_motions(const std::vector<IdaRecord>& records, const std::vector<double>& levels) {
+  std::vector<IdaMotion> motions;
+  for (const auto& r : records)
+    for (double level : levels) motions.push_back({r.name, r.file, level / r.im});
+  return motions;
+}
+
+std::vector<IdaRow> ida_stripe_rows(const SweepSpec& spec, const std::vector<std::vector<std::string>>& cells,
+                                    const std::vector<IdaRecord>& records, const std::vector<double>& levels,
+                                    const std::vector<std::string>& edps, const IdaCapacity& capacity) {
+  std::vector<IdaRow> rows;
+  for (const auto& c : cells) {
+    std::size_t index = 0;
+    parse_count(c.at(0), &index);
+    const IdaRecord& record = records[index / levels.size()];
+    const double level = levels[index % levels.size()];
+    rows.push_back(ida_row(spec, c, edps, record, level, level / record.im, capacity));
+  }
+  return rows;
+}
+
+std::vector<IdaRow> ida_traces(const IdaTraceRequest& request, const std::vector<IdaRecord>& records,
+                               std::vector<std::string>* edps, std::vector<Trace>* found) {
+  std::vector<SweepSpec> specs;
+  for (const auto& r : records) specs.push_back(ida_sweep(request.scene, {{r.name, r.file, 1.0}}, request.units, request.name));
+  if (edps->empty()) *edps = ida_default_edps(specs[0]);
+  check_ida_edps(specs[0], *edps, request.edp_option);
+  const IdaCapacity capacity = ida_capacity(specs[0], request.capacity, request.capacity_option);
+  if (!capacity.collapse && !capacity.limit)
+    throw InputError(request.trace_option + ": this scene has no collapse check (storey heights give one: collapse_drift_ratio); "
+                     "give the capacity event with " + request.capacity_option + " \"COLUMN OP X\", e.g. " +
+                     request.capacity_option + " \"drift > 0.05\"");
+  std::vector<std::vector<IdaRow>> per_record(records.size());
+  found->assign(records.size(), Trace{});
+  std::atomic<std::size_t> next{0};
+  std::mutex lock;
+  std::exception_ptr failure;
+  auto work = [&] {
+    for (std::size_t k; (k = next.fetch_add(1)) < records.size();) {
+      try {
+        SweepSpec spec = specs[k];
+        (*found)[k] = hunt_and_fill(
+            [&](double level) {
+              const double scale = level / records[k].im;
+              set_ida_scale(spec, 0, scale);
+              const SweepRow row = run_sweep_point(spec, 0);
+              per_record[k].push_back(ida_row(spec, sweep_cells(spec, row), *edps, records[k], level, scale, capacity));
+              return per_record[k].back().event;
+            },
+            request.options);
+        std::lock_guard<std::mutex> guard(lock);
+        if (request.on_record) request.on_record();
+      } catch (...) {
+        std::lock_guard<std::mutex> guard(lock);
+        if (!failure) failure = std::current_exception();
+        next = records.size();
+      }
+    }
+  };
+  const unsigned jobs = std::max(1u, std::min<unsigned>(request.jobs ? request.jobs : std::thread::hardware_concurrency(),
+                                                        static_cast<unsigned>(records.size())));
+  std::vector<std::thread> threads;
+  for (unsigned j = 0; j < jobs; ++j) threads.emplace_back(work);
+  for (auto& t : threads) t.join();
+  if (failure) std::rethrow_exception(failure);
+  std::vector<IdaRow> rows;
+  for (auto& r : per_record) {
+    std::stable_sort(r.begin(), r.end(), [](const IdaRow& a, const IdaRow& b) { return a.im < b.im; });
+    rows.insert(rows.end(), r.begin(), r.end());
+  }
+  return rows;
 }
 
 }  // namespace adjoin

@@ -203,4 +203,28 @@ std::vector<std::size_t> FragilityEvent::columns_used() const {
   return used;
 }
 
+FragilityOutcomes fragility_outcomes(const FragilityEvent& event, const std::vector<std::string>& records,
+                                     const std::vector<double>& im, const std::vector<std::vector<double>>& values,
+                                     const std::vector<std::string>& errors) {
+  FragilityOutcomes out;
+  std::vector<double> row(values.size(), std::nan(""));
+  std::vector<FragilityRun> every;
+  for (std::size_t r = 0; r < records.size(); ++r) {
+    every.push_back({records[r], im[r], false});
+    if (!errors.empty() && !errors[r].empty()) {
+      ++out.failed;
+      continue;
+    }
+    for (std::size_t c : event.columns_used()) row[c] = values[c][r];
+    const std::optional<bool> happened = event.evaluate(row);
+    if (!happened) {
+      if (out.unknown++ == 0) out.first_unknown = r;
+      continue;
+    }
+    out.runs.push_back({records[r], im[r], *happened});
+  }
+  out.trace = fragility_is_trace(every);
+  return out;
+}
+
 }  // namespace adjoin

@@ -12,6 +12,7 @@
 //  - the figure: the IDA curves (EDP on x, IM on y), one per record, with the 16/50/84 %
 //    fractile curves.
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -58,6 +59,60 @@ struct IdaRow {
   std::string error;              // a numerical failure's message
   bool event = false;             // --trace: the capacity event happened
 };
+// ---- the runs, without files (`adjoin ida` and adjoin.ida) ----
+
+// A record of the suite: its file, the name ida.csv gives it, its IM as read (g).
+struct IdaRecord {
+  std::filesystem::path file;
+  std::string name;
+  double im = 0.0;
+};
+// The suite (ida_suite) read with `units` ("" or g, m/s2, cm/s2, gal, mm/s2: for records that
+// do not state theirs; InputError naming `units_option` otherwise) and each record's IM.
+std::vector<IdaRecord> read_ida_suite(const std::vector<std::string>& inputs, const std::string& units,
+                                      const IntensityMeasure& im, std::vector<std::string>* skipped,
+                                      const std::string& units_option);
+
+// Whether a row of the sweep's table shows the capacity event: a numerical failure, the run's
+// collapse (collapse_t has a value), or the demand limit.
+struct IdaCapacity {
+  std::optional<DemandLimit> limit;
+  std::size_t limit_column = 0, collapse_column = 0, error_column = 0;
+  bool collapse = false;
+  bool operator()(const std::vector<std::string>& cells) const;
+};
+// `limit` "" (no limit) or "COLUMN OP X" (InputError naming `option`).
+IdaCapacity ida_capacity(const SweepSpec& spec, const std::string& limit, const std::string& option);
+
+// The row of one run (`cells` its sweep-table cells).
+IdaRow ida_row(const SweepSpec& spec, const std::vector<std::string>& cells, const std::vector<std::string>& edps,
+               const IdaRecord& record, double level, double scale, const IdaCapacity& capacity);
+
+// Stripes: one motion per (record, level), record-major (record k at level j is run
+// k x levels + j), each scaled by level / record IM.
+std::vector<IdaMotion> ida_stripe_motions(const std::vector<IdaRecord>& records, const std::vector<double>& levels);
+// The rows of the stripes' sweep table (`cells`: its rows, cell 0 the run's index), in order.
+std::vector<IdaRow> ida_stripe_rows(const SweepSpec& spec, const std::vector<std::vector<std::string>>& cells,
+                                    const std::vector<IdaRecord>& records, const std::vector<double>& levels,
+                                    const std::vector<std::string>& edps, const IdaCapacity& capacity);
+
+// Tracing: hunt and fill per record (study/ida.hpp hunt_and_fill) up to its capacity event,
+// the records in threads. The option names appear in messages (the command's or the keywords).
+struct IdaTraceRequest {
+  std::filesystem::path scene;
+  std::string units, capacity;  // capacity: "" (collapse or failure only) or "COLUMN OP X"
+  TraceOptions options;
+  unsigned jobs = 0;  // 0: one thread per local core
+  std::string name;   // the sweep's, in messages
+  std::string edp_option = "--edp", capacity_option = "--capacity", trace_option = "--trace";
+  std::function<void()> on_record;  // after each record is traced (one call at a time)
+};
+// The rows, record by record in the suite's order, each record's by IM; `edps` empty: the
+// default demands (filled in); `found` each record's trace. InputError if the scene has no
+// collapse check and no capacity is given.
+std::vector<IdaRow> ida_traces(const IdaTraceRequest& request, const std::vector<IdaRecord>& records,
+                               std::vector<std::string>* edps, std::vector<Trace>* found);
+
 // ida.csv's text.
 std::string ida_csv(const std::vector<std::string>& edps, const std::vector<IdaRow>& rows);
 

@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "adjoin/post/fragility.hpp"
+
 namespace adjoin {
 
 class FragilityEvent {
@@ -49,5 +51,20 @@ class FragilityEvent {
   int root_ = -1;
   friend class EventParser;
 };
+
+// The runs of a table with the event evaluated (`adjoin fragility` and adjoin.fragility):
+// row r is record `records[r]` at `im[r]`, `values[c][r]` its value in the event's column c
+// (NaN for an empty cell; only the columns the event reads need values), `errors[r]` non-empty
+// for a run that failed (`errors` may be empty: none failed). A failed run, or one whose event
+// reads a missing value, is left out and counted. The caller checks the IMs and record names.
+struct FragilityOutcomes {
+  std::vector<FragilityRun> runs;
+  std::size_t failed = 0, unknown = 0;
+  std::size_t first_unknown = 0;  // the row of the first unknown run
+  bool trace = false;             // fragility_is_trace of every row (failed ones too: they were run there)
+};
+FragilityOutcomes fragility_outcomes(const FragilityEvent& event, const std::vector<std::string>& records,
+                                     const std::vector<double>& im, const std::vector<std::vector<double>>& values,
+                                     const std::vector<std::string>& errors);
 
 }  // namespace adjoin
