@@ -262,3 +262,90 @@ TEST_CASE("seismic joint: another pair that pounds once is noted as 1 impact, in
   CHECK(notes.find("contact 2 (floors 3, 3) pounds (1 impact)") != std::string::npos);
   CHECK(notes.find("1 impacts") == std::string::npos);
 }
+
+namespace {
+
+// The two frames with a second pair, at floors 2 (no contact laws on either: the response
+// does not depend on the gaps), over the first 10 s of the record.
+BuildingScene two_pairs_scene() {
+  std::ifstream in(kFrames);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string scene = text.str();
+  const std::string relative = "../../records/";
+  scene.replace(scene.find(relative), relative.size(), (fs::path(ADJOIN_SOURCE_DIR) / "records").string() + "/");
+  scene += "\n[[contact]]\nfloors = [2, 2]\ngap = 0.05\n";
+  const fs::path file = fs::path(ADJOIN_TEST_TMP) / ("joint_two_pairs_" + std::to_string(::getpid()) + ".toml");
+  std::ofstream(file) << scene;
+  BuildingScene s = load_building_scene(file, {"solver.t_end=10"});
+  fs::remove(file);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("seismic joint of every pair at once: the uniform joint is the largest pair's own", "[joint]") {
+  const BuildingScene scene = two_pairs_scene();
+  REQUIRE(scene.structure.contacts.size() == 2);
+  SeismicJointOptions every;
+  every.contact = 0;
+  const SeismicJoint all = seismic_joint(scene, every);
+  REQUIRE(all.every_pair);
+  REQUIRE(all.pairs.size() == 2);
+  CHECK(all.gap_key == "contact.*.gap");
+  // Each pair sized alone (the other keeps its gap and no law: the same response) gives that
+  // pair's s_max bit for bit, and its own bisection agrees with it.
+  for (int c = 1; c <= 2; ++c) {
+    SeismicJointOptions one;
+    one.contact = c;
+    const SeismicJoint alone = seismic_joint(scene, one);
+    check_agreement(alone);
+    CHECK(all.pairs[static_cast<std::size_t>(c - 1)].s_max == alone.s_max);
+    CHECK(all.pairs[static_cast<std::size_t>(c - 1)].t_critical == alone.t_critical);
+    CHECK(all.pairs[static_cast<std::size_t>(c - 1)].floor_a == alone.floor_a);
+    CHECK(all.pairs[static_cast<std::size_t>(c - 1)].srss == alone.srss);
+  }
+  // The uniform joint: the bisection over one gap for both pairs finds the larger s_max.
+  const double largest = std::max(all.pairs[0].s_max, all.pairs[1].s_max);
+  CHECK(all.s_max == largest);
+  CHECK(all.contact == (all.pairs[0].s_max >= all.pairs[1].s_max ? 1 : 2));
+  CHECK(all.agree);
+  CHECK(all.joint >= largest);
+  CHECK(all.joint - largest <= all.tol);
+  // At joint + tol neither pair touches; at the smaller pair's s_max the larger one does.
+  BuildingScene s = scene;
+  for (auto& pair : s.structure.contacts) pair.gap = all.joint + all.tol;
+  const Report wide = run(s);
+  CHECK_FALSE(wide.contacts.at(0).contact);
+  CHECK_FALSE(wide.contacts.at(1).contact);
+  for (auto& pair : s.structure.contacts) pair.gap = 0.999 * std::min(all.pairs[0].s_max, all.pairs[1].s_max);
+  const Report narrow = run(s);
+  CHECK((narrow.contacts.at(0).contact || narrow.contacts.at(1).contact));
+}
+
+TEST_CASE("adjoin joint --contact all writes every pair's joint, and a bad --contact is named", "[joint][cli]") {
+  const fs::path dir = fs::path(ADJOIN_TEST_TMP) / ("joint_all_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const auto r = adjoin::test::run_cli("joint '" + kFrames.string() +
+                                       "' --set solver.t_end=10 --contact all --tol 1e-4 --out '" + dir.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("minimum uniform seismic joint of two-frames-one-damper (contact.*.gap, every pair") != std::string::npos);
+  CHECK(r.out.find("contact 1, floors A3-B3: its own joint s_max") != std::string::npos);
+  std::ifstream in(dir / "joint.json");
+  const auto json = nlohmann::json::parse(in);
+  CHECK(json["every_pair"].get<bool>());
+  REQUIRE(json["pairs"].size() == 1);
+  const SeismicJoint one = seismic_joint(frames_scene(), [] { SeismicJointOptions o; o.tol = 1e-4; return o; }());
+  CHECK(json["pairs"][0]["s_max"].get<double>() == Approx(one.s_max).epsilon(1e-12));
+  CHECK(json["joint"].get<double>() == Approx(one.joint).epsilon(1e-12));
+  fs::remove_all(dir);
+  for (const std::string bad : {"0", "x", "2", "1x"}) {
+    const auto b = adjoin::test::run_cli("joint '" + kFrames.string() + "' --set solver.t_end=1 --contact " + bad + " --out '" +
+                                         dir.string() + "'");
+    INFO(bad << ": " << b.err);
+    CHECK(b.status == 2);
+    CHECK(b.err.find("--contact " + bad) != std::string::npos);
+  }
+}
+

@@ -1,9 +1,10 @@
-// adjoin joint SCENE [--set K=V]... [--unset K]... [--contact N] [--tol LENGTH] [--out DIR] [--quiet]
+// adjoin joint SCENE [--set K=V]... [--unset K]... [--contact N|all] [--tol LENGTH] [--out DIR] [--quiet]
 //
 // The minimum seismic joint (study/seismic_joint.hpp): the smallest clear gap at rest with
 // which the scene's floors never touch (a two-block scene's model.gap0, a building scene's
-// contact N's gap), by bisection over runs and directly from one run without contact; the
-// codes' SRSS and absolute-sum rules beside it. Prints the result and writes DIR/joint.json
+// contact N's gap, or with --contact all one uniform gap of every pair and each pair's own),
+// by bisection over runs and directly from one run without contact; the codes' SRSS and
+// absolute-sum rules beside it. Prints the result and writes DIR/joint.json
 // (default out/<scene name>/).
 #include <cmath>
 #include <cstdio>
@@ -31,9 +32,9 @@ using nlohmann::ordered_json;
 struct JointArgs {
   std::string scene, out;
   std::vector<std::string> overrides, unsets;
-  int contact = 1;
+  std::string contact = "1";  // a pair's number, or "all"
   double tol = 0.0;
-  bool contact_given = false, tol_given = false, quiet = false, allow_long = false;
+  bool tol_given = false, quiet = false, allow_long = false;
 };
 
 std::string shortest(double v) {
@@ -48,6 +49,16 @@ constexpr const char* kSrssRule =
 std::string joint_json(const SeismicJoint& j) {
   ordered_json notes = ordered_json::array();
   for (const auto& n : j.notes) notes.push_back(n);
+  ordered_json pairs = ordered_json::array();
+  for (const PairJoint& p : j.pairs)
+    pairs.push_back({{"contact", p.contact},
+                     {"floors", {p.floor_a, p.floor_b}},
+                     {"s_max", p.s_max},
+                     {"t", p.t_critical},
+                     {"peak_a", p.peak_a},
+                     {"peak_b", p.peak_b},
+                     {"srss", p.srss},
+                     {"abs_sum", p.abs_sum}});
   ordered_json out{
       {"scene", j.scene},
       {"units", j.length_unit == "m" ? "SI" : "dimensionless"},
@@ -68,6 +79,8 @@ std::string joint_json(const SeismicJoint& j) {
         {"srss_rule", kSrssRule},
         {"abs_sum", j.abs_sum},
         {"abs_sum_rule", "the absolute sum delta_M1 + delta_M2 (the conservative rule)"}}},
+      {"every_pair", j.every_pair},
+      {"pairs", pairs},
       {"wall_seconds", j.wall_seconds},
       {"notes", notes}};
   return out.dump(2) + "\n";
@@ -79,7 +92,11 @@ void print(const SeismicJoint& j) {
   const std::string pair = j.building ? "contact " + std::to_string(j.contact) + ", floors A" + std::to_string(j.floor_a) +
                                             "-B" + std::to_string(j.floor_b)
                                       : std::string("blocks 1-2");
-  std::printf("minimum seismic joint of %s (%s, %s): %.6g %s\n", j.scene.c_str(), j.gap_key.c_str(), pair.c_str(), j.joint, u);
+  if (j.every_pair)
+    std::printf("minimum uniform seismic joint of %s (%s, every pair; critical: %s): %.6g %s\n", j.scene.c_str(),
+                j.gap_key.c_str(), pair.c_str(), j.joint, u);
+  else
+    std::printf("minimum seismic joint of %s (%s, %s): %.6g %s\n", j.scene.c_str(), j.gap_key.c_str(), pair.c_str(), j.joint, u);
   std::printf("  bisection over runs: %.8g %s (%zu runs, bracket [0, %.6g]%s, tolerance %.3g %s; %.8g %s touches)\n",
               j.joint, u, j.runs, j.bracket_top, j.widenings ? " after widening" : "", j.tol, u, j.joint_low, u);
   std::printf("  direct, one run without contact: s_max = %.8g %s; bisection - direct = %.3g %s (%s)\n", j.s_max, u,
@@ -90,6 +107,10 @@ void print(const SeismicJoint& j) {
   std::printf("    SRSS (ASCE 7-16 12.12.3, same property) %.6g %s (%+.1f %%), absolute sum %.6g %s (%+.1f %%) against s_max\n",
               j.srss, u, j.s_max > 0.0 ? 100.0 * (j.srss / j.s_max - 1.0) : 0.0, j.abs_sum, u,
               j.s_max > 0.0 ? 100.0 * (j.abs_sum / j.s_max - 1.0) : 0.0);
+  if (j.every_pair)
+    for (const PairJoint& p : j.pairs)
+      std::printf("  contact %d, floors A%d-B%d: its own joint s_max = %.8g %s (t = %.6g %s); SRSS %.6g %s, absolute sum %.6g %s\n",
+                  p.contact, p.floor_a, p.floor_b, p.s_max, u, p.t_critical, tu, p.srss, u, p.abs_sum, u);
   for (const auto& n : j.notes) std::printf("  note: %s\n", n.c_str());
   std::printf("  %.3g s for all runs\n", j.wall_seconds);
 }
@@ -106,9 +127,17 @@ int joint_command(const JointArgs& args) {
                        "the scene's length unit: m for building and SI scenes)");
     options.tol = args.tol;
   }
-  if (args.contact_given && args.contact < 1)
-    throw InputError("--contact " + std::to_string(args.contact) + ": expected a contact pair's number 1, 2, ...");
-  options.contact = args.contact;
+  const bool every_pair = args.contact == "all";
+  std::size_t used = 0;
+  int number = 0;
+  try {
+    if (!every_pair) number = std::stoi(args.contact, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (!every_pair && (used != args.contact.size() || number < 1))
+    throw InputError("--contact " + args.contact + ": expected a contact pair's number 1, 2, ... or \"all\" (every pair at one gap)");
+  options.contact = every_pair ? 0 : number;
 
   SeismicJoint j;
   std::string name;
@@ -120,9 +149,9 @@ int joint_command(const JointArgs& args) {
     if (n == 0)
       throw InputError(args.scene + ": no contact pair: adjoin joint needs a [[contact]] with floors = [i, j] (its gap "
                        "is the joint; --contact N chooses among several)");
-    if (static_cast<std::size_t>(args.contact) > n)
-      throw InputError("--contact " + std::to_string(args.contact) + ": the scene has " + std::to_string(n) +
-                       " contact pair" + (n == 1 ? "" : "s") + " (expected 1.." + std::to_string(n) + ")");
+    if (static_cast<std::size_t>(options.contact) > n)
+      throw InputError("--contact " + args.contact + ": the scene has " + std::to_string(n) + " contact pair" +
+                       (n == 1 ? "" : "s") + " (expected 1.." + std::to_string(n) + " or all)");
     name = scene.name;
     check_output_folder(output_folder(args, name));  // before the runs, not after them
     RunWatch watch(watch_options(args.quiet, args.allow_long));
@@ -131,8 +160,8 @@ int joint_command(const JointArgs& args) {
   } else {
     const Scene scene = load_scene(args.scene, args.overrides, args.unsets);
     for (const auto& warning : scene.warnings) std::cerr << "warning: " << warning << "\n";
-    if (args.contact != 1)
-      throw InputError("--contact " + std::to_string(args.contact) +
+    if (options.contact != 1)
+      throw InputError("--contact " + args.contact +
                        ": a two-block scene has one contact pair, the blocks' (its gap is model.gap0; expected 1)");
     name = scene.name;
     check_output_folder(output_folder(args, name));
@@ -158,16 +187,16 @@ const Registration registration(48, [](CLI::App& app) -> Runner {
       ->allow_extra_args(false);
   sub->add_option("--unset", args->unsets, "Remove a scene key or section before the --set overrides")
       ->allow_extra_args(false);
-  auto* contact = sub->add_option("--contact", args->contact,
-                                  "Building scenes: the contact pair whose gap is the joint (default 1)");
+  sub->add_option("--contact", args->contact,
+                                  "Building scenes: the contact pair whose gap is the joint (default 1), or all: every "
+                                  "pair at one uniform gap, and each pair's own joint");
   auto* tol = sub->add_option("--tol", args->tol,
                               "Bisection tolerance in the scene's length unit (m; default 1e-6 of s_max)");
   sub->add_option("--out", args->out, "Output folder for joint.json (default out/<scene name>/)");
   sub->add_flag("--quiet,-q", args->quiet, "Print nothing on success");
   sub->add_flag("--allow-long", args->allow_long,
                 "Building scenes: run even when a run is estimated at more than 2 hours (refused otherwise)");
-  return [args, contact, tol]() {
-    args->contact_given = contact->count() > 0;
+  return [args, tol]() {
     args->tol_given = tol->count() > 0;
     return joint_command(*args);
   };

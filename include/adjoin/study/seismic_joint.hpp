@@ -33,7 +33,13 @@
 //
 // The other contact pairs of a building scene keep their gaps and laws (they do not depend on
 // this pair's gap); one without a law that touches puts the run outside the model from its
-// first contact on, which the notes say. Lengths are in the scene's units (m for building
+// first contact on, which the notes say.
+//
+// Every pair at once (`contact = 0`, a building scene): every pair without its law and at one
+// uniform gap; a run touches when any pair does. The bisection finds the smallest uniform gap;
+// the direct run gives each pair's own s_max (its joint, were the others wide enough: without
+// contact laws the response does not depend on the gaps), and the uniform joint is their
+// largest, the critical pair's. The top-level fields are then the critical pair's. Lengths are in the scene's units (m for building
 // and SI scenes, the scene's length unit for dimensionless ones), times in its time unit.
 #include <cstddef>
 #include <limits>
@@ -45,19 +51,31 @@
 namespace adjoin {
 
 struct SeismicJointOptions {
-  int contact = 1;  // building scenes: the contact pair (1-based) whose gap is the joint
+  // Building scenes: the contact pair (1-based) whose gap is the joint; 0: every pair at once
+  // (one uniform gap).
+  int contact = 1;
   // The bisection's tolerance in the scene's length unit; NaN: 1e-6 of s_max.
   double tol = std::numeric_limits<double>::quiet_NaN();
   int max_runs = 200;  // a bound on the bisection's runs (a guard; ~25 are needed)
   bool IsValid(std::string* error) const;
 };
 
+// One contact pair's own joint, from the direct run: its s_max and the codes' rules.
+struct PairJoint {
+  int contact = 1;                 // 1-based
+  int floor_a = 1, floor_b = 1;
+  double s_max = 0.0, t_critical = 0.0;
+  double peak_a = 0.0, t_peak_a = 0.0, peak_b = 0.0, t_peak_b = 0.0;
+  double srss = 0.0, abs_sum = 0.0;
+};
+
 struct SeismicJoint {
   std::string scene;
   bool building = false;   // a building scene (else two-block)
-  int contact = 1;         // the pair (1 for two-block scenes)
+  bool every_pair = false; // every pair at once, at one uniform gap (options.contact = 0)
+  int contact = 1;         // the pair (1 for two-block scenes); every_pair: the critical pair
   int floor_a = 1, floor_b = 1;
-  std::string gap_key;     // the scene key of the gap: "model.gap0" or "contact.N.gap"
+  std::string gap_key;     // the scene key of the gap: "model.gap0", "contact.N.gap" or "contact.*.gap"
   std::string length_unit, time_unit;  // "m", "s" (or the dimensionless scene's "X0", "T0")
 
   // Bisection.
@@ -80,12 +98,16 @@ struct SeismicJoint {
   double srss = 0.0;                    // sqrt(peak_a^2 + peak_b^2)
   double abs_sum = 0.0;                 // peak_a + peak_b
 
+  // Each pair sized (one, or every pair: each its own s_max from the direct run).
+  std::vector<PairJoint> pairs;
+
   double wall_seconds = 0.0;            // every run together
   std::vector<std::string> notes;       // what the reader should know (other pairs, horizon)
 };
 
-// A building (SPEC §5): the joint is contact `options.contact`'s gap; InputError if the scene
-// has no contact pair or `contact` is out of range (the message names "contact N"). A two-block
+// A building (SPEC §5): the joint is contact `options.contact`'s gap, or every pair's at once
+// (contact 0); InputError if the scene has no contact pair or `contact` is out of range (the
+// message names "contact N"). A two-block
 // spec (SPEC §3): the joint is model.gap0 (the scene's [model.contact] is not used).
 // InputError if the options are not valid.
 SeismicJoint seismic_joint(const RunSpec& scene, const SeismicJointOptions& options = {});
