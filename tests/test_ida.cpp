@@ -15,12 +15,14 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/ground/record_file.hpp"
+#include "adjoin/io/ida_files.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/post/spectrum.hpp"
 #include "adjoin/study/ida.hpp"
 #include "adjoin/study/builder.hpp"
 #include "adjoin/study/run.hpp"
 #include "adjoin/study/sweep.hpp"
+#include "adjoin/study/sweep_columns.hpp"
 #include "cli_helpers.hpp"
 
 using namespace adjoin;
@@ -329,6 +331,69 @@ TEST_CASE("ida --trace brackets the first capacity event within its tolerance of
   CHECK(std::abs(first - high) <= 0.02 * low + 0.002);
 }
 
+TEST_CASE("the capacity is an event expression of fragility's parser: and, or, parentheses, empty cells unknown", "[ida][capacity]") {
+  const fs::path r1 = record_file("capacity_r1.txt", 1.0);
+  const SweepSpec spec = ida_sweep(tiny_scene("capacity.toml", r1), {{"r1", r1, 1.0}}, "m/s2", "capacity");
+  const auto columns = sweep_columns(spec);
+  const auto at = [&](const std::string& name) {
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      if (columns[c].name == name) return c;
+    FAIL("no column " << name);
+    return std::size_t{0};
+  };
+  // A row with the given drift and roof cells ("" = empty), no failure and no collapse.
+  const auto row = [&](const std::string& drift, const std::string& roof) {
+    std::vector<std::string> cells(columns.size());
+    cells[at("A.drift_max")] = drift;
+    cells[at("A.roof_max")] = roof;
+    return cells;
+  };
+  const IdaCapacity either = ida_capacity(spec, "A.drift_max > 0.004 or A.roof_max >= 0.01", "--capacity");
+  CHECK(either(row("0.005", "0")));
+  CHECK(either(row("0.001", "0.01")));
+  CHECK_FALSE(either(row("0.001", "0.009")));
+  CHECK(either(row("", "0.02")));        // unknown or true = true
+  CHECK_FALSE(either(row("", "0.001")));  // unknown stays unknown: not the event
+  const IdaCapacity both = ida_capacity(spec, "(A.drift_max > 0.004) and A.roof_max >= 0.01", "--capacity");
+  CHECK_FALSE(both(row("0.005", "0")));
+  CHECK(both(row("0.005", "0.01")));
+  // A failed run is the event whatever the expression says.
+  auto failed = row("0", "0");
+  failed.back() = "diverged";
+  CHECK(both(failed));
+  // Messages name the option given.
+  for (const char* bad : {"A.drift_max > 0.004 and", "A.nothing > 1", "A.drift_max == 1"}) {
+    INFO(bad);
+    try {
+      ida_capacity(spec, bad, "--capacity");
+      FAIL("accepted");
+    } catch (const InputError& e) {
+      CHECK(std::string(e.what()).rfind("--capacity \"", 0) == 0);
+    }
+  }
+}
+
+TEST_CASE("ida --trace with a compound --capacity traces the same runs as its one deciding limit", "[ida][cli][trace][capacity]") {
+  const fs::path r1 = record_file("compound_r1.txt", 1.0, 2.0);
+  const fs::path scene = tiny_scene("compound.toml", r1);
+  const std::string common = "ida " + q(scene) + " --suite " + q(r1) +
+                             " --units m/s2 --im pga --edp A.drift_max --quiet --trace --trace-start 0.05 --trace-runs 6 ";
+  const fs::path one = out_dir("compound_one"), two = out_dir("compound_two");
+  const auto a = run_cli(common + "--capacity 'A.drift_max > 0.004' --out " + q(one));
+  const auto b = run_cli(common + "--capacity '(A.drift_max > 0.004 or A.drift_max > 99) and A.roof_max >= 0' --out " + q(two));
+  INFO(a.err << b.err);
+  REQUIRE(a.status == 0);
+  REQUIRE(b.status == 0);
+  CHECK(slurp(one / "ida.csv") == slurp(two / "ida.csv"));
+  // and one that can never hold: no event, so the hunt climbs through the whole budget.
+  const fs::path never = out_dir("compound_never");
+  const auto c = run_cli(common + "--capacity 'A.drift_max > 0.004 and A.drift_max < 0.001' --out " + q(never));
+  REQUIRE(c.status == 0);
+  const Table t = read_table(never / "ida.csv");
+  REQUIRE(t.rows.size() == 6);
+  CHECK(std::stod(t.rows.back()[1]) == Approx(0.05 * std::pow(1.5, 5)).epsilon(1e-12));
+}
+
 TEST_CASE("adjoin ida names a bad option (exit 2)", "[ida][cli]") {
   const fs::path r1 = record_file("bad_r1.txt", 1.0);
   const fs::path scene = tiny_scene("bad.toml", r1);
@@ -343,6 +408,8 @@ TEST_CASE("adjoin ida names a bad option (exit 2)", "[ida][cli]") {
       {"--im pga --levels 0.1 --edp A.nothing", "--edp"},
       {"--im pga --trace --capacity 'A.drift_max ~ 3'", "--capacity"},
       {"--im pga --trace --capacity 'A.nothing > 3'", "--capacity"},
+      {"--im pga --trace --capacity 'A.drift_max > 3 or'", "--capacity"},
+      {"--im pga --levels 0.1 --capacity '(A.drift_max > 3'", "--capacity"},
       {"--im pga --trace --trace-factor 1", "--trace-factor"},
       {"--im pga --trace --trace-tol 0", "--trace-tol"},
   };

@@ -649,7 +649,8 @@ def ida(scene: str | os.PathLike[str], suite: str | os.PathLike[str] | Sequence[
             ``trace_runs`` runs per record.
         edp: the demands, sweep-table column names (default: as ``adjoin ida``; see
             docs/reference/cli.md#adjoin-ida).
-        capacity: a demand limit ``"COLUMN OP X"`` that marks the capacity event
+        capacity: an event expression (as ``fragility``'s ``event``: ``"COLUMN OP X"``
+            comparisons joined by ``and``/``or``) that marks the capacity event
             (``capacity_event``; a failed run or the run's collapse marks it too).
         units: the units of records that do not state theirs (g, m/s2, cm/s2, mm/s2).
         jobs: threads (0: one per core).

@@ -1,5 +1,5 @@
 // adjoin ida SCENE --suite RECORD|FOLDER... --im pga|sa:T --levels L1,L2,...|--trace
-//            [--edp CH1,...] [--capacity "COLUMN OP X"] [--units U] [--jobs N] --out DIR
+//            [--edp CH1,...] [--capacity "EXPR"] [--units U] [--jobs N] --out DIR
 //
 // Incremental dynamic analysis (SPEC §9; study/ida.hpp, io/ida_files.hpp). Each record is
 // scaled (ground.scale) so that its IM, of the record as read, equals each level:
@@ -161,7 +161,6 @@ int ida_command(const IdaArgs& args) {
   std::vector<double> levels;
   if (!args.trace) levels = parse_levels(args.levels);
   else args.trace_options.check();
-  if (!args.capacity.empty() && !args.trace) (void)parse_demand_limit(args.capacity, "--capacity");
   std::vector<std::string> edps;
   if (!args.edp.empty()) edps = split_names(args.edp);
   const std::string extension = plot_extension(args.format);
@@ -204,7 +203,7 @@ const Registration registration(49, [](CLI::App& app) -> Runner {
   sub->add_option("--levels", args->levels, "Stripes: IM levels in g, e.g. 0.1,0.2,0.4");
   sub->add_flag("--trace", args->trace, "Hunt and fill per record up to its capacity event");
   sub->add_option("--edp", args->edp, "Demands: sweep-table columns, e.g. A.drift_ratio_max,contact1.impacts (default: docs/reference/cli.md)");
-  sub->add_option("--capacity", args->capacity, "--trace: a demand limit that is the capacity event, e.g. \"A.drift_ratio_max > 0.05\"");
+  sub->add_option("--capacity", args->capacity, "--trace: the capacity event, an expression as fragility's --event, e.g. \"A.drift_ratio_max > 0.05 or contact1.impacts > 0\"");
   sub->add_option("--trace-start", args->trace_options.start, "--trace: the first IM [g] (default 0.1)");
   sub->add_option("--trace-factor", args->trace_options.factor, "--trace: the hunt's step factor (default 1.5)");
   sub->add_option("--trace-tol", args->trace_options.tolerance, "--trace: the capacity bracket's relative width (default 0.05)");

@@ -289,21 +289,29 @@ std::size_t column_of(const SweepSpec& spec, const std::string& name) {
 bool IdaCapacity::operator()(const std::vector<std::string>& cells) const {
   if (!cells[error_column].empty()) return true;
   if (collapse && !cells[collapse_column].empty()) return true;
-  if (!limit) return false;
-  double v = 0.0;
-  return parse_finite(cells[limit_column], &v) && limit->holds(v);
+  if (!event) return false;
+  std::vector<double> values(event_columns.size(), std::nan(""));
+  for (std::size_t c : event->columns_used()) {
+    const std::string& cell = cells[event_columns[c]];
+    if (cell == "true" || cell == "false") values[c] = cell == "true" ? 1.0 : 0.0;  // a boolean reads as 1/0
+    else parse_finite(cell, &values[c]);  // an empty cell stays NaN: unknown
+  }
+  return event->evaluate(values).value_or(false);
 }
 
-IdaCapacity ida_capacity(const SweepSpec& spec, const std::string& limit, const std::string& option) {
+IdaCapacity ida_capacity(const SweepSpec& spec, const std::string& event, const std::string& option) {
   IdaCapacity c;
   const auto columns = sweep_columns(spec);
   c.error_column = columns.size() - 1;
   c.collapse_column = column_of(spec, "collapse_t");
   c.collapse = c.collapse_column < columns.size();
-  if (!limit.empty()) {
-    c.limit = parse_demand_limit(limit, option);
-    check_ida_edps(spec, {c.limit->column}, option);
-    c.limit_column = column_of(spec, c.limit->column);
+  if (!event.empty()) {
+    std::vector<std::string> demands;
+    for (const auto& d : channel_columns(spec)) {
+      demands.push_back(d.name);
+      c.event_columns.push_back(column_of(spec, d.name));
+    }
+    c.event = FragilityEvent::parse(event, demands, option);
   }
   return c;
 }
@@ -349,9 +357,9 @@ std::vector<IdaRow> ida_traces(const IdaTraceRequest& request, const std::vector
   if (edps->empty()) *edps = ida_default_edps(specs[0]);
   check_ida_edps(specs[0], *edps, request.edp_option);
   const IdaCapacity capacity = ida_capacity(specs[0], request.capacity, request.capacity_option);
-  if (!capacity.collapse && !capacity.limit)
+  if (!capacity.collapse && !capacity.event)
     throw InputError(request.trace_option + ": this scene has no collapse check (storey heights give one: collapse_drift_ratio); "
-                     "give the capacity event with " + request.capacity_option + " \"COLUMN OP X\", e.g. " +
+                     "give the capacity event with " + request.capacity_option + " \"COLUMN OP X [and|or ...]\", e.g. " +
                      request.capacity_option + " \"drift > 0.05\"");
   std::vector<std::vector<IdaRow>> per_record(records.size());
   found->assign(records.size(), Trace{});

@@ -151,7 +151,7 @@ class EventParser {
     return tokens_[next_].kind == Token::name && tokens_[next_].text == word;
   }
 
-  std::string prefix() const { return "--event " + quoted(event_.text_) + ": "; }
+  std::string prefix() const { return event_.option_ + " " + quoted(event_.text_) + ": "; }
 
   [[noreturn]] void fail(const std::string& expected) const {
     const Token& t = tokens_[next_];
@@ -165,9 +165,11 @@ class EventParser {
   std::size_t next_ = 0;
 };
 
-FragilityEvent FragilityEvent::parse(const std::string& text, const std::vector<std::string>& columns) {
+FragilityEvent FragilityEvent::parse(const std::string& text, const std::vector<std::string>& columns,
+                                     const std::string& option) {
   FragilityEvent event;
   event.text_ = text;
+  event.option_ = option;
   EventParser parser(event, columns);
   event.root_ = parser.expression();
   parser.expect_end();

@@ -22,12 +22,6 @@ std::string shortest(double v) {
   return std::string(buffer, result.ptr);
 }
 
-std::string trim(const std::string& s) {
-  const auto a = s.find_first_not_of(" \t");
-  if (a == std::string::npos) return "";
-  return s.substr(a, s.find_last_not_of(" \t") - a + 1);
-}
-
 // An option's value in a message: quoted, cut at 60 characters.
 std::string text_excerpt(const std::string& s) { return "\"" + (s.size() > 60 ? s.substr(0, 60) + "..." : s) + "\""; }
 
@@ -61,40 +55,6 @@ double record_intensity(const Record& record, const IntensityMeasure& im) {
   if (!(value > 0.0 && std::isfinite(value)))
     throw InputError(record.source + ": its " + im.text() + " is " + shortest(value) + " g; a record is scaled to a level by it, so it must be > 0");
   return value;
-}
-
-// ---- demand limits ----
-
-bool DemandLimit::holds(double v) const {
-  switch (op) {
-    case Op::gt: return v > value;
-    case Op::ge: return v >= value;
-    case Op::lt: return v < value;
-    case Op::le: return v <= value;
-  }
-  return false;
-}
-
-std::string DemandLimit::text() const {
-  static const char* const ops[] = {">", ">=", "<", "<="};
-  return column + " " + ops[static_cast<int>(op)] + " " + shortest(value);
-}
-
-DemandLimit parse_demand_limit(const std::string& text, const std::string& option) {
-  const auto fail = [&]() -> DemandLimit {
-    throw InputError(option + " " + text_excerpt(text) +
-                     ": expected COLUMN OP NUMBER with OP one of > >= < <= and COLUMN a column of the sweep table, "
-                     "e.g. \"A.drift_ratio_max > 0.1\"");
-  };
-  const auto at = text.find_first_of("<>");
-  if (at == std::string::npos) return fail();
-  DemandLimit limit;
-  const bool equal = at + 1 < text.size() && text[at + 1] == '=';
-  limit.op = text[at] == '>' ? (equal ? DemandLimit::Op::ge : DemandLimit::Op::gt) : (equal ? DemandLimit::Op::le : DemandLimit::Op::lt);
-  limit.column = trim(text.substr(0, at));
-  if (limit.column.empty() || limit.column.find_first_of(" \t") != std::string::npos) return fail();
-  if (!parse_finite(trim(text.substr(at + (equal ? 2 : 1))), &limit.value)) return fail();
-  return limit;
 }
 
 // ---- hunt and fill ----

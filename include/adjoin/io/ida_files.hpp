@@ -19,6 +19,7 @@
 
 #include "adjoin/ground/record.hpp"
 #include "adjoin/io/plot_style.hpp"
+#include "adjoin/post/fragility_event.hpp"
 #include "adjoin/study/ida.hpp"
 #include "adjoin/study/sweep.hpp"
 
@@ -74,15 +75,20 @@ std::vector<IdaRecord> read_ida_suite(const std::vector<std::string>& inputs, co
                                       const std::string& units_option);
 
 // Whether a row of the sweep's table shows the capacity event: a numerical failure, the run's
-// collapse (collapse_t has a value), or the demand limit.
+// collapse (collapse_t has a value), or the event expression (post/fragility_event.hpp, the
+// parser of `adjoin fragility --event`: comparisons of the demands joined by and/or) is true.
+// An expression that reads an empty cell and stays unknown is not the event.
 struct IdaCapacity {
-  std::optional<DemandLimit> limit;
-  std::size_t limit_column = 0, collapse_column = 0, error_column = 0;
+  std::optional<FragilityEvent> event;
+  std::vector<std::size_t> event_columns;  // the sweep-table column of each of the event's columns
+  std::size_t collapse_column = 0, error_column = 0;
   bool collapse = false;
   bool operator()(const std::vector<std::string>& cells) const;
 };
-// `limit` "" (no limit) or "COLUMN OP X" (InputError naming `option`).
-IdaCapacity ida_capacity(const SweepSpec& spec, const std::string& limit, const std::string& option);
+// `event` "" (collapse or failure only) or an event expression over the scene's demands
+// (channel_columns), e.g. "A.drift_ratio_max > 0.05 or contact1.impacts > 0" (InputError
+// naming `option`).
+IdaCapacity ida_capacity(const SweepSpec& spec, const std::string& event, const std::string& option);
 
 // The row of one run (`cells` its sweep-table cells).
 IdaRow ida_row(const SweepSpec& spec, const std::vector<std::string>& cells, const std::vector<std::string>& edps,
@@ -100,7 +106,7 @@ std::vector<IdaRow> ida_stripe_rows(const SweepSpec& spec, const std::vector<std
 // the records in threads. The option names appear in messages (the command's or the keywords).
 struct IdaTraceRequest {
   std::filesystem::path scene;
-  std::string units, capacity;  // capacity: "" (collapse or failure only) or "COLUMN OP X"
+  std::string units, capacity;  // capacity: "" (collapse or failure only) or an event expression
   TraceOptions options;
   unsigned jobs = 0;  // 0: one thread per local core
   std::string name;   // the sweep's, in messages

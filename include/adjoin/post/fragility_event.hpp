@@ -24,9 +24,11 @@ namespace adjoin {
 
 class FragilityEvent {
  public:
-  // InputError (a message starting `--event "TEXT": ...`) naming the unknown column with the
-  // columns there are, or the token that is not what was expected, with its position.
-  static FragilityEvent parse(const std::string& text, const std::vector<std::string>& columns);
+  // InputError (a message starting `OPTION "TEXT": ...`, `--event` unless `option` says
+  // otherwise: ida's `--capacity`) naming the unknown column with the columns there are, or the
+  // token that is not what was expected, with its position.
+  static FragilityEvent parse(const std::string& text, const std::vector<std::string>& columns,
+                              const std::string& option = "--event");
 
   // The event for one run: `values[i]` is the run's value in columns[i] (as given to parse);
   // nullopt when it depends on a missing value.
@@ -46,7 +48,7 @@ class FragilityEvent {
   };
   std::optional<bool> evaluate(int node, const std::vector<double>& values) const;
 
-  std::string text_;
+  std::string text_, option_;
   std::vector<Node> nodes_;
   int root_ = -1;
   friend class EventParser;

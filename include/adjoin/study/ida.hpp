@@ -45,17 +45,6 @@ inline constexpr double kIdaDamping = 0.05;
 // record of zeros cannot be scaled to a level).
 double record_intensity(const Record& record, const IntensityMeasure& im);
 
-// A demand limit, "COLUMN OP NUMBER" with OP one of > >= < <= (e.g. "A.drift_ratio_max > 0.1").
-struct DemandLimit {
-  std::string column;
-  enum class Op { gt, ge, lt, le } op = Op::gt;
-  double value = 0.0;
-  bool holds(double v) const;  // false for NaN (an empty cell)
-  std::string text() const;
-};
-// InputError naming `option` and the expected form.
-DemandLimit parse_demand_limit(const std::string& text, const std::string& option);
-
 struct TraceOptions {
   double start = 0.1;        // the first IM [g], > 0
   double factor = 1.5;       // the hunt's geometric step, > 1
