@@ -13,7 +13,6 @@
 // when matching, the iterations and misfit. A match that does not reach the tolerance is a
 // numerical failure (exit 3) and writes nothing.
 #include <cctype>
-#include <charconv>
 #include <cmath>
 #include <iostream>
 #include <cstdint>
@@ -24,6 +23,7 @@
 #include <vector>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/number_text.hpp"
 #include "adjoin/io/record_writer.hpp"
 #include "adjoin/core/parse_number.hpp"
 #include "adjoin/io/text_file.hpp"
@@ -51,12 +51,6 @@ struct SynthArgs {
   int attempts = 5;
   std::string out;
 };
-
-std::string num(double x) {
-  char buffer[64];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, x);
-  return std::string(buffer, r.ptr);
-}
 
 // Quotes a word for a POSIX shell when it needs it.
 std::string shell_word(const std::string& s) {
@@ -157,36 +151,36 @@ int synth_command(SynthArgs& a) {
     }
     const double lasts = static_cast<double>(synthesis_samples(o.duration, o.dt) - 1) * o.dt;
     if (!(lasts >= m.period_max))
-      throw InputError("--duration " + num(o.duration) + ": shorter than the band's longest period (--band " + a.band +
+      throw InputError("--duration " + shortest_text(o.duration) + ": shorter than the band's longest period (--band " + a.band +
                        "): spectrum matching needs a record at least that long");
   }
 
   // The complete command, every option spelled out.
   std::ostringstream command;
   command << "adjoin synth --spectrum " << (o.spectrum == SpectrumModel::kanai_tajimi ? "kt" : "cp") << " --omega-g "
-          << num(o.omega_g) << " --zeta-g " << num(o.zeta_g);
-  if (o.spectrum == SpectrumModel::clough_penzien) command << " --omega-f " << num(o.omega_f) << " --zeta-f " << num(o.zeta_f);
-  if (a.s0) command << " --s0 " << num(*a.s0);
-  if (a.pga) command << " --pga " << num(*a.pga);
+          << shortest_text(o.omega_g) << " --zeta-g " << shortest_text(o.zeta_g);
+  if (o.spectrum == SpectrumModel::clough_penzien) command << " --omega-f " << shortest_text(o.omega_f) << " --zeta-f " << shortest_text(o.zeta_f);
+  if (a.s0) command << " --s0 " << shortest_text(*a.s0);
+  if (a.pga) command << " --pga " << shortest_text(*a.pga);
   command << " --envelope " << (jht ? "jht" : sh ? "sh" : "none");
-  if (a.t1) command << " --t1 " << num(*a.t1);
-  if (a.t2) command << " --t2 " << num(*a.t2);
-  if (a.decay) command << " --decay " << num(*a.decay);
-  if (a.eps) command << " --eps " << num(*a.eps);
-  if (a.eta) command << " --eta " << num(*a.eta);
-  if (a.tn) command << " --tn " << num(*a.tn);
-  command << " --duration " << num(o.duration) << " --dt " << num(o.dt) << " --seed " << o.seed;
+  if (a.t1) command << " --t1 " << shortest_text(*a.t1);
+  if (a.t2) command << " --t2 " << shortest_text(*a.t2);
+  if (a.decay) command << " --decay " << shortest_text(*a.decay);
+  if (a.eps) command << " --eps " << shortest_text(*a.eps);
+  if (a.eta) command << " --eta " << shortest_text(*a.eta);
+  if (a.tn) command << " --tn " << shortest_text(*a.tn);
+  command << " --duration " << shortest_text(o.duration) << " --dt " << shortest_text(o.dt) << " --seed " << o.seed;
   if (matching)
-    command << " --match " << shell_word(a.match) << " --band " << num(m.period_min) << ":" << num(m.period_max)
-            << " --band-points " << m.band_points << " --tolerance " << num(m.tolerance) << " --max-iterations "
-            << m.max_iterations << " --attempts " << m.attempts << " --damping " << num(m.damping);
+    command << " --match " << shell_word(a.match) << " --band " << shortest_text(m.period_min) << ":" << shortest_text(m.period_max)
+            << " --band-points " << m.band_points << " --tolerance " << shortest_text(m.tolerance) << " --max-iterations "
+            << m.max_iterations << " --attempts " << m.attempts << " --damping " << shortest_text(m.damping);
   command << " --out " << shell_word(a.out);
 
   MatchReport report;
   const Record record = matching ? synthesize_matched(o, m, &report) : synthesize(o);
   if (matching && !report.converged)
-    throw NumericalError("spectrum matching reached max |PSA/target - 1| = " + num(std::round(report.max_misfit * 1e4) / 1e4) +
-                             " at best, above --tolerance " + num(m.tolerance) + " after " +
+    throw NumericalError("spectrum matching reached max |PSA/target - 1| = " + shortest_text(std::round(report.max_misfit * 1e4) / 1e4) +
+                             " at best, above --tolerance " + shortest_text(m.tolerance) + " after " +
                              std::to_string(m.max_iterations) + " iterations and " + std::to_string(m.attempts) +
                              " phase draws: raise --max-iterations or --attempts, narrow --band or change --seed",
                          0.0);
@@ -196,26 +190,26 @@ int synth_command(SynthArgs& a) {
       "adjoin " ADJOIN_VERSION " synthetic ground acceleration",
       "command: " + command.str(),
       record.description,
-      std::to_string(record.accel.size()) + " samples, dt " + num(record.dt) + " s, PGA " + num(im.pga) + " g at t = " +
-          num(std::round(im.t_pga * 1e9) / 1e9) + " s",
+      std::to_string(record.accel.size()) + " samples, dt " + shortest_text(record.dt) + " s, PGA " + shortest_text(im.pga) + " g at t = " +
+          shortest_text(std::round(im.t_pga * 1e9) / 1e9) + " s",
   };
   if (matching) {
     std::ostringstream s;
-    s << "match: " << m.target.name << ", damping " << num(100.0 * m.damping) << " %, " << m.band_points << " log-spaced periods " << num(m.period_min) << "-"
-      << num(m.period_max) << " s, " << report.iterations << " iterations, max |PSA/target - 1| = " << num(report.max_misfit)
-      << ", mean = " << num(report.mean_misfit);
+    s << "match: " << m.target.name << ", damping " << shortest_text(100.0 * m.damping) << " %, " << m.band_points << " log-spaced periods " << shortest_text(m.period_min) << "-"
+      << shortest_text(m.period_max) << " s, " << report.iterations << " iterations, max |PSA/target - 1| = " << shortest_text(report.max_misfit)
+      << ", mean = " << shortest_text(report.mean_misfit);
     if (report.attempt > 0) s << "; phases of attempt " << report.attempt << " (seed " << report.phase_seed << ")";
     header.push_back(s.str());
   }
   header.push_back("columns: t [s], a [g]");
   write_record_g(record, a.out, header);
 
-  std::cout << "wrote " << a.out << ": " << record.accel.size() << " samples, dt = " << num(record.dt) << " s\n";
-  std::cout << "PGA = " << num(std::round(im.pga * 1e6) / 1e6) << " g at t = " << num(std::round(im.t_pga * 1e9) / 1e9) << " s\n";
+  std::cout << "wrote " << a.out << ": " << record.accel.size() << " samples, dt = " << shortest_text(record.dt) << " s\n";
+  std::cout << "PGA = " << shortest_text(std::round(im.pga * 1e6) / 1e6) << " g at t = " << shortest_text(std::round(im.t_pga * 1e9) / 1e9) << " s\n";
   if (matching)
-    std::cout << "match: " << m.target.name << ", damping " << num(100.0 * m.damping) << " %, " << num(m.period_min) << "-" << num(m.period_max) << " s: "
-              << report.iterations << " iterations, max misfit " << num(std::round(report.max_misfit * 1e5) / 1e3)
-              << " %, mean misfit " << num(std::round(report.mean_misfit * 1e5) / 1e3) << " %"
+    std::cout << "match: " << m.target.name << ", damping " << shortest_text(100.0 * m.damping) << " %, " << shortest_text(m.period_min) << "-" << shortest_text(m.period_max) << " s: "
+              << report.iterations << " iterations, max misfit " << shortest_text(std::round(report.max_misfit * 1e5) / 1e3)
+              << " %, mean misfit " << shortest_text(std::round(report.mean_misfit * 1e5) / 1e3) << " %"
               << (report.attempt > 0 ? " (phase draw " + std::to_string(report.attempt) + ")" : std::string()) << "\n";
   std::cout.flush();
   return 0;

@@ -1,26 +1,17 @@
 // ground.scale: a plain factor on any ground source (ground/ground_motion.hpp).
-#include <charconv>
 #include <cmath>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/number_text.hpp"
 #include "adjoin/ground/ground_motion.hpp"
 
 namespace adjoin {
-namespace {
 
-std::string shortest(double v) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
-
-}  // namespace
-
-std::string ScaledMotion::describe() const { return inner_->describe() + " x " + shortest(factor_); }
+std::string ScaledMotion::describe() const { return inner_->describe() + " x " + shortest_text(factor_); }
 
 std::shared_ptr<const GroundMotion> scale_ground(std::shared_ptr<const GroundMotion> ground, double factor) {
   if (!(std::isfinite(factor) && factor > 0.0))
-    throw FieldError("ground.scale", shortest(factor) + " must be a finite number > 0 (a factor on the ground's acceleration)");
+    throw FieldError("ground.scale", shortest_text(factor) + " must be a finite number > 0 (a factor on the ground's acceleration)");
   if (factor == 1.0) return ground;
   return std::make_shared<ScaledMotion>(std::move(ground), factor);
 }

@@ -2,7 +2,6 @@
 #include "adjoin/ground/synthesis.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <numbers>
 #include <random>
@@ -10,6 +9,7 @@
 #include <system_error>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/number_text.hpp"
 #include "adjoin/core/units.hpp"
 #include "synthesis_detail.hpp"
 
@@ -25,12 +25,6 @@ std::string normalise(std::string name) {
     if (c >= 'A' && c <= 'Z') c = static_cast<char>(c - 'A' + 'a');
   }
   return name;
-}
-
-std::string num(double x) {
-  char buffer[64];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, x);
-  return std::string(buffer, r.ptr);
 }
 
 bool positive(double x) { return x > 0.0 && std::isfinite(x); }
@@ -87,15 +81,15 @@ namespace {
 
 bool envelope_valid(const Envelope& e, const std::string& prefix, std::string* error) {
   auto check = [&](const std::optional<double>& v, const char* key, bool ok, const char* expected) {
-    if (v && !ok) return fail(error, prefix + key + " = " + num(*v) + ": expected " + expected);
+    if (v && !ok) return fail(error, prefix + key + " = " + shortest_text(*v) + ": expected " + expected);
     return true;
   };
   if (e.kind == EnvelopeKind::jennings_housner_tsai) {
     if (!check(e.t1, "t1", e.t1 && *e.t1 >= 0.0 && std::isfinite(*e.t1), "a rise time >= 0 s")) return false;
     if (!check(e.t2, "t2", e.t2 && *e.t2 >= 0.0 && std::isfinite(*e.t2), "an end of the plateau >= 0 s")) return false;
     if (e.t1 && e.t2 && *e.t2 < *e.t1)
-      return fail(error, prefix + "t2 = " + num(*e.t2) + ": expected the end of the plateau >= " + prefix +
-                             "t1 = " + num(*e.t1));
+      return fail(error, prefix + "t2 = " + shortest_text(*e.t2) + ": expected the end of the plateau >= " + prefix +
+                             "t1 = " + shortest_text(*e.t1));
     if (!check(e.decay, "decay", e.decay && positive(*e.decay), "a decay rate > 0 [1/s]")) return false;
   } else if (e.kind == EnvelopeKind::saragoni_hart) {
     if (!check(e.eps, "eps", e.eps && *e.eps > 0.0 && *e.eps < 1.0, "a peak-time fraction 0 < eps < 1")) return false;
@@ -108,31 +102,31 @@ bool envelope_valid(const Envelope& e, const std::string& prefix, std::string* e
 }  // namespace
 
 bool SynthesisOptions::IsValid(std::string* error) const {
-  if (!positive(dt)) return fail(error, "ground.dt = " + num(dt) + ": expected a time step > 0 s");
+  if (!positive(dt)) return fail(error, "ground.dt = " + shortest_text(dt) + ": expected a time step > 0 s");
   if (!positive(duration) || duration < dt)
-    return fail(error, "ground.duration = " + num(duration) + ": expected a duration >= ground.dt = " + num(dt) + " s");
+    return fail(error, "ground.duration = " + shortest_text(duration) + ": expected a duration >= ground.dt = " + shortest_text(dt) + " s");
   if (duration / dt >= static_cast<double>(kMaxSamples))
-    return fail(error, "ground.duration = " + num(duration) + ": more than 2^26 samples at ground.dt = " + num(dt));
+    return fail(error, "ground.duration = " + shortest_text(duration) + ": more than 2^26 samples at ground.dt = " + shortest_text(dt));
   const double nyquist = kPi / dt;
-  if (!positive(omega_g)) return fail(error, "ground.omega_g = " + num(omega_g) + ": expected a frequency > 0 rad/s");
+  if (!positive(omega_g)) return fail(error, "ground.omega_g = " + shortest_text(omega_g) + ": expected a frequency > 0 rad/s");
   if (omega_g >= nyquist)
-    return fail(error, "ground.omega_g = " + num(omega_g) + ": expected a frequency below the Nyquist frequency pi/dt = " +
-                           num(nyquist) + " rad/s (reduce ground.dt)");
-  if (!positive(zeta_g)) return fail(error, "ground.zeta_g = " + num(zeta_g) + ": expected a damping ratio > 0");
+    return fail(error, "ground.omega_g = " + shortest_text(omega_g) + ": expected a frequency below the Nyquist frequency pi/dt = " +
+                           shortest_text(nyquist) + " rad/s (reduce ground.dt)");
+  if (!positive(zeta_g)) return fail(error, "ground.zeta_g = " + shortest_text(zeta_g) + ": expected a damping ratio > 0");
   if (spectrum == SpectrumModel::clough_penzien) {
-    if (!positive(omega_f)) return fail(error, "ground.omega_f = " + num(omega_f) + ": expected a frequency > 0 rad/s");
+    if (!positive(omega_f)) return fail(error, "ground.omega_f = " + shortest_text(omega_f) + ": expected a frequency > 0 rad/s");
     if (omega_f >= nyquist)
-      return fail(error, "ground.omega_f = " + num(omega_f) + ": expected a frequency below pi/dt = " + num(nyquist) + " rad/s");
-    if (!positive(zeta_f)) return fail(error, "ground.zeta_f = " + num(zeta_f) + ": expected a damping ratio > 0");
+      return fail(error, "ground.omega_f = " + shortest_text(omega_f) + ": expected a frequency below pi/dt = " + shortest_text(nyquist) + " rad/s");
+    if (!positive(zeta_f)) return fail(error, "ground.zeta_f = " + shortest_text(zeta_f) + ": expected a damping ratio > 0");
   }
   if (s0 && target_pga)
     return fail(error, "ground.s0 and ground.target_pga: give one intensity, not both");
   if (!s0 && !target_pga)
     return fail(error, "ground.s0 / ground.target_pga: missing intensity (expected S0 [m^2/s^3] or a target PGA [g])");
   // Upper bounds that keep every output finite (the accelerations within 1e6 g, as records).
-  if (s0 && !(positive(*s0) && *s0 <= 1e12)) return fail(error, "ground.s0 = " + num(*s0) + ": expected a spectral density > 0 and at most 1e12 m^2/s^3");
+  if (s0 && !(positive(*s0) && *s0 <= 1e12)) return fail(error, "ground.s0 = " + shortest_text(*s0) + ": expected a spectral density > 0 and at most 1e12 m^2/s^3");
   if (target_pga && !(positive(*target_pga) && *target_pga <= 1e6))
-    return fail(error, "ground.target_pga = " + num(*target_pga) + ": expected a PGA > 0 and at most 1e6 g");
+    return fail(error, "ground.target_pga = " + shortest_text(*target_pga) + ": expected a PGA > 0 and at most 1e6 g");
   return envelope_valid(envelope, "ground.", error);
 }
 
@@ -177,16 +171,16 @@ std::string describe(const SynthesisOptions& o, bool intensity) {
   const Envelope envelope = resolve_envelope(o.envelope, o.duration);
   const std::size_t n = synthesis_samples(o.duration, o.dt);
   std::ostringstream d;
-  d << "filtered noise: " << to_string(o.spectrum) << " omega_g=" << num(o.omega_g) << " rad/s zeta_g=" << num(o.zeta_g);
-  if (o.spectrum == SpectrumModel::clough_penzien) d << " omega_f=" << num(o.omega_f) << " rad/s zeta_f=" << num(o.zeta_f);
-  if (intensity && o.s0) d << " S0=" << num(*o.s0) << " m^2/s^3";
-  if (intensity && o.target_pga) d << " target PGA=" << num(*o.target_pga) << " g";
+  d << "filtered noise: " << to_string(o.spectrum) << " omega_g=" << shortest_text(o.omega_g) << " rad/s zeta_g=" << shortest_text(o.zeta_g);
+  if (o.spectrum == SpectrumModel::clough_penzien) d << " omega_f=" << shortest_text(o.omega_f) << " rad/s zeta_f=" << shortest_text(o.zeta_f);
+  if (intensity && o.s0) d << " S0=" << shortest_text(*o.s0) << " m^2/s^3";
+  if (intensity && o.target_pga) d << " target PGA=" << shortest_text(*o.target_pga) << " g";
   d << "; envelope " << to_string(envelope.kind);
   if (envelope.kind == EnvelopeKind::jennings_housner_tsai)
-    d << " t1=" << num(*envelope.t1) << " s t2=" << num(*envelope.t2) << " s decay=" << num(*envelope.decay) << " 1/s";
+    d << " t1=" << shortest_text(*envelope.t1) << " s t2=" << shortest_text(*envelope.t2) << " s decay=" << shortest_text(*envelope.decay) << " 1/s";
   if (envelope.kind == EnvelopeKind::saragoni_hart)
-    d << " eps=" << num(*envelope.eps) << " eta=" << num(*envelope.eta) << " t_n=" << num(*envelope.t_n) << " s";
-  d << "; duration=" << num(static_cast<double>(n - 1) * o.dt) << " s dt=" << num(o.dt) << " s seed=" << o.seed;
+    d << " eps=" << shortest_text(*envelope.eps) << " eta=" << shortest_text(*envelope.eta) << " t_n=" << shortest_text(*envelope.t_n) << " s";
+  d << "; duration=" << shortest_text(static_cast<double>(n - 1) * o.dt) << " s dt=" << shortest_text(o.dt) << " s seed=" << o.seed;
   return d.str();
 }
 

@@ -2,7 +2,6 @@
 #include "adjoin/post/spectrum_matching.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <numbers>
@@ -10,6 +9,7 @@
 #include <string_view>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/number_text.hpp"
 #include "adjoin/core/parse_number.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/post/spectrum.hpp"
@@ -19,12 +19,6 @@ namespace adjoin {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-
-std::string num(double x) {
-  char buffer[64];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, x);
-  return std::string(buffer, r.ptr);
-}
 
 bool fail(std::string* error, const std::string& message) {
   if (error) *error = message;
@@ -52,7 +46,7 @@ Ec8Parameters ec8_parameters(char ground_type, int spectrum_type) {
 
 double ec8_damping_correction(double damping) {
   if (!(damping >= 0.0 && damping < 1.0))
-    throw InputError("EC8 damping correction: damping ratio " + num(damping) + " (expected 0 <= damping < 1)");
+    throw InputError("EC8 damping correction: damping ratio " + shortest_text(damping) + " (expected 0 <= damping < 1)");
   return std::max(std::sqrt(10.0 / (5.0 + 100.0 * damping)), 0.55);
 }
 
@@ -70,13 +64,13 @@ TargetSpectrum TargetSpectrum::ec8(char ground_type, double ag, int spectrum_typ
   ec8_parameters(ground_type, spectrum_type);  // checks both
   // (At most 10 g: beyond any code's design acceleration, and what keeps the matching's
   // corrections, 10x at most each, within its iterations.)
-  if (!(ag > 0.0 && ag <= 10.0)) throw InputError("EC8 ag = " + num(ag) + ": expected a design ground acceleration > 0 and at most 10 g");
+  if (!(ag > 0.0 && ag <= 10.0)) throw InputError("EC8 ag = " + shortest_text(ag) + ": expected a design ground acceleration > 0 and at most 10 g");
   TargetSpectrum t;
   t.kind = Kind::ec8;
   t.ground_type = upper(ground_type);
   t.ag = ag;
   t.ec8_type = spectrum_type;
-  t.name = "EC8 type " + std::to_string(spectrum_type) + ", ground " + t.ground_type + ", ag = " + num(ag) + " g";
+  t.name = "EC8 type " + std::to_string(spectrum_type) + ", ground " + t.ground_type + ", ag = " + shortest_text(ag) + " g";
   return t;
 }
 
@@ -85,11 +79,11 @@ TargetSpectrum TargetSpectrum::table(std::vector<double> periods, std::vector<do
   if (periods.size() < 2) throw InputError(name + ": a target table needs at least two rows (period [s], PSA [g])");
   for (std::size_t i = 0; i < periods.size(); ++i) {
     if (!std::isfinite(periods[i]) || periods[i] < 0.0)
-      throw InputError(name + ": row " + std::to_string(i + 1) + ": period " + num(periods[i]) + " (expected >= 0 s)");
+      throw InputError(name + ": row " + std::to_string(i + 1) + ": period " + shortest_text(periods[i]) + " (expected >= 0 s)");
     if (!(psa[i] > 0.0 && psa[i] <= 100.0))
-      throw InputError(name + ": row " + std::to_string(i + 1) + ": PSA " + num(psa[i]) + " (expected > 0 and at most 100 g)");
+      throw InputError(name + ": row " + std::to_string(i + 1) + ": PSA " + shortest_text(psa[i]) + " (expected > 0 and at most 100 g)");
     if (i > 0 && !(periods[i] > periods[i - 1]))
-      throw InputError(name + ": row " + std::to_string(i + 1) + ": period " + num(periods[i]) +
+      throw InputError(name + ": row " + std::to_string(i + 1) + ": period " + shortest_text(periods[i]) +
                        " (expected periods to increase strictly)");
   }
   TargetSpectrum t;
@@ -103,8 +97,8 @@ TargetSpectrum TargetSpectrum::table(std::vector<double> periods, std::vector<do
 double TargetSpectrum::psa_at(double period, double damping) const {
   if (kind == Kind::ec8) return ec8_psa(period, ground_type, ag, ec8_type, damping);
   if (period < periods.front() || period > periods.back())
-    throw InputError(name + ": period " + num(period) + " s is outside the table (" + num(periods.front()) + " to " +
-                     num(periods.back()) + " s)");
+    throw InputError(name + ": period " + shortest_text(period) + " s is outside the table (" + shortest_text(periods.front()) + " to " +
+                     shortest_text(periods.back()) + " s)");
   const auto it = std::upper_bound(periods.begin(), periods.end(), period);
   if (it == periods.end()) return psa.back();
   const std::size_t i = static_cast<std::size_t>(it - periods.begin());
@@ -145,10 +139,10 @@ TargetSpectrum load_target_spectrum(const std::filesystem::path& path) {
     }
     if (values.size() != 2)
       throw InputError(where + std::to_string(values.size()) + " values (expected two: period [s] and PSA [g])");
-    if (values[0] < 0.0) throw InputError(where + "period " + num(values[0]) + " (expected >= 0 s)");
-    if (!(values[1] > 0.0)) throw InputError(where + "PSA " + num(values[1]) + " (expected > 0 g)");
+    if (values[0] < 0.0) throw InputError(where + "period " + shortest_text(values[0]) + " (expected >= 0 s)");
+    if (!(values[1] > 0.0)) throw InputError(where + "PSA " + shortest_text(values[1]) + " (expected > 0 g)");
     if (!periods.empty() && !(values[0] > periods.back()))
-      throw InputError(where + "period " + num(values[0]) + " after " + num(periods.back()) +
+      throw InputError(where + "period " + shortest_text(values[0]) + " after " + shortest_text(periods.back()) +
                        " (expected periods to increase strictly)");
     periods.push_back(values[0]);
     psa.push_back(values[1]);
@@ -198,18 +192,18 @@ TargetSpectrum parse_target_spectrum(const std::string& text) {
 
 bool MatchOptions::IsValid(std::string* error) const {
   if (!(period_min > 0.0) || !std::isfinite(period_min))
-    return fail(error, "match.period_min = " + num(period_min) + ": expected a period > 0 s");
+    return fail(error, "match.period_min = " + shortest_text(period_min) + ": expected a period > 0 s");
   if (!(period_max > period_min) || !std::isfinite(period_max))
-    return fail(error, "match.period_max = " + num(period_max) + ": expected a period > match.period_min = " +
-                           num(period_min) + " s");
+    return fail(error, "match.period_max = " + shortest_text(period_max) + ": expected a period > match.period_min = " +
+                           shortest_text(period_min) + " s");
   if (period_min < target.min_period() || period_max > target.max_period())
-    return fail(error, "match.period_min/period_max = " + num(period_min) + "/" + num(period_max) +
-                           ": expected a band inside the target's periods (" + num(target.min_period()) + " to " +
-                           num(target.max_period()) + " s of " + target.name + ")");
+    return fail(error, "match.period_min/period_max = " + shortest_text(period_min) + "/" + shortest_text(period_max) +
+                           ": expected a band inside the target's periods (" + shortest_text(target.min_period()) + " to " +
+                           shortest_text(target.max_period()) + " s of " + target.name + ")");
   if (band_points < 2) return fail(error, "match.band_points = " + std::to_string(band_points) + ": expected >= 2");
-  if (!(damping >= 0.0 && damping < 1.0)) return fail(error, "match.damping = " + num(damping) + ": expected 0 <= damping < 1");
+  if (!(damping >= 0.0 && damping < 1.0)) return fail(error, "match.damping = " + shortest_text(damping) + ": expected 0 <= damping < 1");
   if (!(tolerance > 0.0) || !std::isfinite(tolerance))
-    return fail(error, "match.tolerance = " + num(tolerance) + ": expected a relative tolerance > 0");
+    return fail(error, "match.tolerance = " + shortest_text(tolerance) + ": expected a relative tolerance > 0");
   if (max_iterations < 0) return fail(error, "match.max_iterations = " + std::to_string(max_iterations) + ": expected >= 0");
   if (attempts < 1) return fail(error, "match.attempts = " + std::to_string(attempts) + ": expected >= 1");
   return true;
@@ -247,8 +241,8 @@ Record match_core(std::vector<double> buffer, std::size_t n, double dt, const Ma
   // whole spectrum (found by the scene fuzzer: a 0.01 s record took seconds to fail).
   const double duration = static_cast<double>(n - 1) * dt;
   if (!(duration >= o.period_max))
-    throw InputError("spectrum matching: the record lasts " + num(duration) + " s, less than the band's longest period " +
-                     "(match.period_max = " + num(o.period_max) + " s); give a record at least that long or a shorter band");
+    throw InputError("spectrum matching: the record lasts " + shortest_text(duration) + " s, less than the band's longest period " +
+                     "(match.period_max = " + shortest_text(o.period_max) + " s); give a record at least that long or a shorter band");
   const std::size_t m = buffer.size();
   const std::size_t half = m / 2;
   detail::RealArray real = detail::real_array(m);
@@ -335,9 +329,9 @@ Record match_core(std::vector<double> buffer, std::size_t n, double dt, const Ma
   out.dt = dt;
   out.accel = std::move(best);
   std::ostringstream d;
-  d << "; matched to " << o.target.name << ", damping " << num(100.0 * o.damping) << " %, over " << num(o.period_min) << "-" << num(o.period_max) << " s ("
-    << r.iterations << " iterations, max misfit " << num(std::round(r.max_misfit * 1e4) / 1e4) << ", mean "
-    << num(std::round(r.mean_misfit * 1e4) / 1e4) << ")";
+  d << "; matched to " << o.target.name << ", damping " << shortest_text(100.0 * o.damping) << " %, over " << shortest_text(o.period_min) << "-" << shortest_text(o.period_max) << " s ("
+    << r.iterations << " iterations, max misfit " << shortest_text(std::round(r.max_misfit * 1e4) / 1e4) << ", mean "
+    << shortest_text(std::round(r.mean_misfit * 1e4) / 1e4) << ")";
   out.description += d.str();
   return out;
 }

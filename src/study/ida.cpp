@@ -1,11 +1,11 @@
 #include "adjoin/study/ida.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <limits>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/number_text.hpp"
 #include "adjoin/core/parse_number.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/post/spectrum.hpp"
@@ -16,12 +16,6 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-std::string shortest(double v) {
-  char buffer[64];
-  const auto result = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, result.ptr);
-}
-
 // An option's value in a message: quoted, cut at 60 characters.
 std::string text_excerpt(const std::string& s) { return "\"" + (s.size() > 60 ? s.substr(0, 60) + "..." : s) + "\""; }
 
@@ -29,7 +23,7 @@ std::string text_excerpt(const std::string& s) { return "\"" + (s.size() > 60 ? 
 
 // ---- the intensity measure ----
 
-std::string IntensityMeasure::text() const { return kind == Kind::pga ? "pga" : "sa:" + shortest(period); }
+std::string IntensityMeasure::text() const { return kind == Kind::pga ? "pga" : "sa:" + shortest_text(period); }
 
 IntensityMeasure parse_intensity_measure(const std::string& text) {
   IntensityMeasure im;
@@ -53,18 +47,18 @@ double record_intensity(const Record& record, const IntensityMeasure& im) {
     value = spectral_values(record.dt, record.accel, im.period, kIdaDamping).psa;
   }
   if (!(value > 0.0 && std::isfinite(value)))
-    throw InputError(record.source + ": its " + im.text() + " is " + shortest(value) + " g; a record is scaled to a level by it, so it must be > 0");
+    throw InputError(record.source + ": its " + im.text() + " is " + shortest_text(value) + " g; a record is scaled to a level by it, so it must be > 0");
   return value;
 }
 
 // ---- hunt and fill ----
 
 void TraceOptions::check() const {
-  if (!(std::isfinite(start) && start > 0.0)) throw InputError("--trace-start " + shortest(start) + ": expected the first IM in g, > 0");
+  if (!(std::isfinite(start) && start > 0.0)) throw InputError("--trace-start " + shortest_text(start) + ": expected the first IM in g, > 0");
   if (!(std::isfinite(factor) && factor > 1.0 && factor <= 10.0))
-    throw InputError("--trace-factor " + shortest(factor) + ": expected the hunt's step factor, > 1 and <= 10");
+    throw InputError("--trace-factor " + shortest_text(factor) + ": expected the hunt's step factor, > 1 and <= 10");
   if (!(tolerance > 0.0 && tolerance < 1.0))
-    throw InputError("--trace-tol " + shortest(tolerance) + ": expected the bracket's relative width, in (0, 1)");
+    throw InputError("--trace-tol " + shortest_text(tolerance) + ": expected the bracket's relative width, in (0, 1)");
   if (budget < 2 || budget > 10000) throw InputError("--trace-runs " + std::to_string(budget) + ": expected runs per record, 2 to 10000");
 }
 

@@ -10,6 +10,7 @@
 #include <cstring>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/core/number_text.hpp"
 
 namespace adjoin::readers {
 
@@ -90,11 +91,7 @@ std::string quote_token(std::string_view token) {
   return out;
 }
 
-std::string fmt(double x) {
-  std::array<char, 32> buffer{};
-  auto result = std::to_chars(buffer.data(), buffer.data() + buffer.size(), x);
-  return std::string(buffer.data(), result.ptr);
-}
+std::string fmt(double x) { return shortest_text(x); }
 
 void fail(const std::string& name, std::size_t line, const std::string& what) {
   throw InputError(name + ":" + std::to_string(line) + ": " + what);

@@ -50,6 +50,7 @@ bool starts_with_ci(std::string_view text, std::string_view word);
 // Blank, or a '#' / '%' comment.
 bool skippable(std::string_view line);
 std::string quote_token(std::string_view token);
+// A number in a reader's message: its shortest round-trip text (core/number_text.hpp).
 std::string fmt(double x);
 
 [[noreturn]] void fail(const std::string& name, std::size_t line, const std::string& what);
