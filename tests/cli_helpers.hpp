@@ -23,6 +23,14 @@ inline std::string slurp(const std::filesystem::path& file) {
   return s.str();
 }
 
+// `text` (a path, an option's value) as one single-quoted word of a POSIX shell command line.
+inline std::string shell_word(const std::string& text) {
+  std::string word = "'";
+  for (char c : text) word += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return word + "'";
+}
+inline std::string shell_word(const std::filesystem::path& path) { return shell_word(path.string()); }
+
 // `arguments` is pasted into a shell command line after the program path.
 inline CliResult run_cli(const std::string& arguments) {
   static int counter = 0;

@@ -23,6 +23,7 @@ namespace fs = std::filesystem;
 using adjoin::AtomicFile;
 using adjoin::FileSet;
 using adjoin::test::run_cli;
+using adjoin::test::shell_word;
 using adjoin::test::slurp;
 
 namespace {
@@ -39,8 +40,6 @@ int count_temporaries(const fs::path& dir) {
   for (const auto& e : fs::directory_iterator(dir)) n += e.path().filename().string().find(".tmp.") != std::string::npos;
   return n;
 }
-
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
 
 // A symbolic link in `dir` to a system device: written through, it reaches the device; a
 // writer that renamed over it would replace the link (never the device itself), so the tests
@@ -234,17 +233,17 @@ TEST_CASE("AtomicFile writes a device or a pipe in place and never renames over 
 TEST_CASE("commands write a device or pipe named by --out in place: a full device is exit 2", "[atomic_file][cli]") {
   const auto dir = fresh_dir("commands_in_place");
   const fs::path record = fs::path(ADJOIN_SOURCE_DIR) / "records" / "real" / "peer" / "RSN175_IMPVALL.H_H-E12140.AT2";
-  const std::vector<std::string> commands = {"spectrum " + q(record), "record process " + q(record),
-                                             "record fourier " + q(record),
+  const std::vector<std::string> commands = {"spectrum " + shell_word(record), "record process " + shell_word(record),
+                                             "record fourier " + shell_word(record),
                                              "synth --pga 0.3 --duration 2 --dt 0.01 --seed 1"};
   const fs::path full = link_to(dir, "full", "/dev/full"), null = link_to(dir, "null", "/dev/null");
   for (const auto& command : commands) {
     INFO(command);
-    auto r = run_cli(command + " --out " + q(full));
+    auto r = run_cli(command + " --out " + shell_word(full));
     CHECK(r.status == 2);
     CHECK_THAT(r.err, Catch::StartsWith("error: ") && Catch::Contains("No space left on device"));
     CHECK(still_links_to_a_device(full));
-    r = run_cli(command + " --out " + q(null));
+    r = run_cli(command + " --out " + shell_word(null));
     CHECK(r.status == 0);
     CHECK(still_links_to_a_device(null));
     CHECK(count_temporaries(dir) == 0);
@@ -253,7 +252,7 @@ TEST_CASE("commands write a device or pipe named by --out in place: a full devic
   const fs::path fifo = dir / "spectrum.fifo";
   REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
   FifoReader reader(fifo);
-  const auto r = run_cli("spectrum " + q(record) + " --out " + q(fifo));
+  const auto r = run_cli("spectrum " + shell_word(record) + " --out " + shell_word(fifo));
   const std::string text = reader.finish();
   CHECK(r.status == 0);
   CHECK_THAT(text, Catch::StartsWith("period,damping,sd,sv,sa,psv,psa\n"));
@@ -264,11 +263,11 @@ TEST_CASE("commands write a device or pipe named by --out in place: a full devic
   // regression would otherwise replace them: as root, /dev is writable).
   REQUIRE(still_links_to_a_device(full));
   REQUIRE(still_links_to_a_device(null));
-  const auto on_full = run_cli("spectrum " + q(record) + " --out /dev/full");
+  const auto on_full = run_cli("spectrum " + shell_word(record) + " --out /dev/full");
   CHECK(on_full.status == 2);
   CHECK_THAT(on_full.err, Catch::Contains("/dev/full: write failed: No space left on device"));
   require_device_intact("/dev/full", 1, 7);
-  CHECK(run_cli("spectrum " + q(record) + " --out /dev/null").status == 0);
+  CHECK(run_cli("spectrum " + shell_word(record) + " --out /dev/null").status == 0);
   require_device_intact("/dev/null", 1, 3);
 }
 

@@ -25,6 +25,7 @@
 using namespace adjoin;
 using adjoin::test::needs_program;
 using adjoin::test::run_cli;
+using adjoin::test::shell_word;
 using adjoin::test::slurp;
 using adjoin::test::write_temp;
 namespace fs = std::filesystem;
@@ -370,8 +371,8 @@ TEST_CASE("fragility: the command end to end", "[fragility][cli]") {
   // --out in a folder that is not there yet: made for the file.
   const fs::path out = fs::path(ADJOIN_TEST_TMP) / "made" / "fragility.json";
   fs::remove_all(out.parent_path());
-  const auto r = run_cli("fragility '" + table.string() + "' --event 'contact1.impacts > 0' --bootstrap 200 --seed 3 --at 0.5 --out '" +
-                         out.string() + "'");
+  const auto r = run_cli("fragility " + shell_word(table) + " --event 'contact1.impacts > 0' --bootstrap 200 --seed 3 --at 0.5 --out " +
+                         shell_word(out));
   INFO(r.err);
   REQUIRE(r.status == 0);
   const auto json = nlohmann::json::parse(slurp(out));
@@ -403,9 +404,9 @@ TEST_CASE("fragility: the command end to end", "[fragility][cli]") {
     needs_program("gnuplot");
     const fs::path damped = ida_table("damped.csv", 15, 0.7, 0.3);
     const fs::path image = fs::path(ADJOIN_TEST_TMP) / "fragility.png";
-    const auto both = run_cli("fragility '" + table.string() + "' '" + damped.string() +
-                              "' --label none,friction --event 'contact1.impacts > 0' --bootstrap 0 --at 0.5 --out '" +
-                              out.string() + "' --plot '" + image.string() + "'");
+    const auto both = run_cli("fragility " + shell_word(table) + " " + shell_word(damped) +
+                              " --label none,friction --event 'contact1.impacts > 0' --bootstrap 0 --at 0.5 --out " +
+                              shell_word(out) + " --plot " + shell_word(image));
     INFO(both.err);
     REQUIRE(both.status == 0);
     const auto j = nlohmann::json::parse(slurp(out));
@@ -420,7 +421,7 @@ TEST_CASE("fragility: the command end to end", "[fragility][cli]") {
   }
   SECTION("stripes with a failed run are still stripes") {
     const fs::path failed = ida_table("failed.csv", 15, 0.45, 0.4, {"rec3", 0.5});
-    const auto f = run_cli("fragility '" + failed.string() + "' --event 'contact1.impacts > 0' --bootstrap 0 --out '" + out.string() + "'");
+    const auto f = run_cli("fragility " + shell_word(failed) + " --event 'contact1.impacts > 0' --bootstrap 0 --out " + shell_word(out));
     INFO(f.err);
     REQUIRE(f.status == 0);
     const auto j = nlohmann::json::parse(slurp(out));
@@ -429,19 +430,19 @@ TEST_CASE("fragility: the command end to end", "[fragility][cli]") {
     CHECK_FALSE(j.contains("first_event"));
   }
   SECTION("an unknown column: exit 2 naming it and listing the table's") {
-    const auto bad = run_cli("fragility '" + table.string() + "' --event 'contact2.impacts > 0' --out '" + out.string() + "'");
+    const auto bad = run_cli("fragility " + shell_word(table) + " --event 'contact2.impacts > 0' --out " + shell_word(out));
     CHECK(bad.status == 2);
     CHECK(bad.err.rfind("error: ", 0) == 0);
     CHECK(bad.err.find("no column \"contact2.impacts\"") != std::string::npos);
     CHECK(bad.err.find("record, im, scale, contact1.impacts, A.drift_ratio_max") != std::string::npos);
   }
   SECTION("a wrong number of labels: exit 2") {
-    const auto bad = run_cli("fragility '" + table.string() + "' --label a,b --event 'contact1.impacts > 0' --out '" + out.string() + "'");
+    const auto bad = run_cli("fragility " + shell_word(table) + " --label a,b --event 'contact1.impacts > 0' --out " + shell_word(out));
     CHECK(bad.status == 2);
     CHECK(bad.err.find("--label: 2 labels for 1 tables") != std::string::npos);
   }
   SECTION("no events: reported in the JSON and on stderr, not a theta") {
-    const auto none = run_cli("fragility '" + table.string() + "' --event 'A.drift_ratio_max > 1' --out '" + out.string() + "'");
+    const auto none = run_cli("fragility " + shell_word(table) + " --event 'A.drift_ratio_max > 1' --out " + shell_word(out));
     CHECK(none.status == 0);
     CHECK(none.err.find("warning:") != std::string::npos);
     CHECK(none.err.find("no run had the event") != std::string::npos);
@@ -464,8 +465,8 @@ TEST_CASE("fragility: the command on IDA traces, failed runs and empty cells", "
                                     "r4,0.3,1,0.01,\nr4,0.5,1,,\nr4,0.55,1,0.04,\n"
                                     "r5,0.2,1,0.001,\nr5,0.9,1,0.015,\n");
   const fs::path out = fs::path(ADJOIN_TEST_TMP) / "trace.json";
-  const auto r = run_cli("fragility '" + table.string() + "' --event 'A.drift_ratio_max > 0.02' --bootstrap 50 --out '" +
-                         out.string() + "'");
+  const auto r = run_cli("fragility " + shell_word(table) + " --event 'A.drift_ratio_max > 0.02' --bootstrap 50 --out " +
+                         shell_word(out));
   INFO(r.err);
   REQUIRE(r.status == 0);
   const auto j = nlohmann::json::parse(slurp(out));

@@ -15,6 +15,7 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/ground/record_file.hpp"
+#include "adjoin/io/csv_table.hpp"
 #include "adjoin/io/ida_files.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/post/spectrum.hpp"
@@ -24,9 +25,12 @@
 #include "adjoin/study/sweep.hpp"
 #include "adjoin/study/sweep_columns.hpp"
 #include "cli_helpers.hpp"
+#include "report_helpers.hpp"
 
 using namespace adjoin;
+using adjoin::test::peak;
 using adjoin::test::run_cli;
+using adjoin::test::shell_word;
 using adjoin::test::slurp;
 using adjoin::test::write_temp;
 namespace fs = std::filesystem;
@@ -56,39 +60,6 @@ fs::path tiny_scene(const std::string& name, const fs::path& record) {
                           "[solver]\nh = 0.005\nt_end = 4.0\nerror_estimate = false\n");
 }
 
-double peak(const Report& r, const std::string& channel) {
-  for (const auto& p : r.peaks)
-    if (p.channel == channel) return p.peak.max_abs;
-  FAIL("no channel " << channel);
-  return 0.0;
-}
-
-struct Table {
-  std::vector<std::string> header;
-  std::vector<std::vector<std::string>> rows;
-  std::size_t column(const std::string& name) const {
-    const auto it = std::find(header.begin(), header.end(), name);
-    REQUIRE(it != header.end());
-    return static_cast<std::size_t>(it - header.begin());
-  }
-};
-
-Table read_table(const fs::path& csv) {
-  Table t;
-  std::istringstream in(slurp(csv));
-  std::string line;
-  REQUIRE(std::getline(in, line));
-  REQUIRE(split_csv_line(line, &t.header));
-  while (std::getline(in, line)) {
-    std::vector<std::string> cells;
-    REQUIRE(split_csv_line(line, &cells));
-    t.rows.push_back(cells);
-  }
-  return t;
-}
-
-std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
-
 fs::path out_dir(const std::string& name) {
   const fs::path dir = fs::path(ADJOIN_TEST_TMP) / ("ida_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(dir);
@@ -116,7 +87,7 @@ TEST_CASE("ground.scale refuses a factor that is not a positive number, naming t
   const fs::path scene = tiny_scene("scale_bad.toml", record_file("scale_bad.txt", 1.0));
   for (const char* value : {"0", "-1.5", "'\"abc\"'", "nan"}) {
     INFO(value);
-    const auto r = run_cli("run " + q(scene) + " --out " + q(out_dir("bad")) + " --set ground.scale=" + value);
+    const auto r = run_cli("run " + shell_word(scene) + " --out " + shell_word(out_dir("bad")) + " --set ground.scale=" + value);
     CHECK(r.status == 2);
     CHECK(r.err.rfind("error:", 0) == 0);
     CHECK(r.err.find("ground.scale") != std::string::npos);
@@ -205,12 +176,12 @@ TEST_CASE("ida stripes equal the same runs done by adjoin sweep with ground.scal
   const fs::path r1 = record_file("stripe_r1.txt", 1.0, 2.0), r2 = record_file("stripe_r2.txt", 1.0, 3.1);
   const fs::path scene = tiny_scene("stripes.toml", r1);
   const fs::path dir = out_dir("stripes");
-  const auto ida = run_cli("ida " + q(scene) + " --suite " + q(r1) + " " + q(r2) +
-                           " --units m/s2 --im sa:0.3 --levels 0.2,0.5,1.1 --edp A.drift_max,A.roof_max --jobs 2 --out " + q(dir));
+  const auto ida = run_cli("ida " + shell_word(scene) + " --suite " + shell_word(r1) + " " + shell_word(r2) +
+                           " --units m/s2 --im sa:0.3 --levels 0.2,0.5,1.1 --edp A.drift_max,A.roof_max --jobs 2 --out " + shell_word(dir));
   INFO(ida.err);
   REQUIRE(ida.status == 0);
-  const Table table = read_table(dir / "ida.csv");
-  CHECK(table.header == std::vector<std::string>{"record", "im", "scale", "A.drift_max", "A.roof_max"});
+  const CsvTable table = read_csv_table(dir / "ida.csv");
+  CHECK(table.columns == std::vector<std::string>{"record", "im", "scale", "A.drift_max", "A.roof_max"});
   REQUIRE(table.rows.size() == 6);
   CHECK(fs::exists(dir / "ida.png"));
   CHECK_FALSE(fs::exists(dir / "sweep.partial.csv"));
@@ -227,10 +198,10 @@ TEST_CASE("ida stripes equal the same runs done by adjoin sweep with ground.scal
                                                               scales + "]\n[[motion]]\nname = \"r2\"\nset = {\"ground.file\" = \"" +
                                                               r2.string() + "\"}\n");
   const fs::path sweep_dir = out_dir("stripes_sweep");
-  const auto s = run_cli("sweep " + q(sweep) + " --quiet --out " + q(sweep_dir));
+  const auto s = run_cli("sweep " + shell_word(sweep) + " --quiet --out " + shell_word(sweep_dir));
   INFO(s.err);
   REQUIRE(s.status == 0);
-  const Table swept = read_table(sweep_dir / "sweep.csv");
+  const CsvTable swept = read_csv_table(sweep_dir / "sweep.csv");
   REQUIRE(swept.rows.size() == 3);
   for (std::size_t k = 0; k < 3; ++k) {
     CHECK(table.rows[3 + k][0] == "stripe_r2.txt");
@@ -238,20 +209,20 @@ TEST_CASE("ida stripes equal the same runs done by adjoin sweep with ground.scal
     CHECK(table.rows[3 + k][4] == swept.rows[k][swept.column("A.roof_max")]);
   }
   // Run again: the table is the same (no journal left, every run done again).
-  const auto again = run_cli("ida " + q(scene) + " --suite " + q(r1) + " " + q(r2) +
-                             " --units m/s2 --im sa:0.3 --levels 0.2,0.5,1.1 --edp A.drift_max,A.roof_max --quiet --out " + q(dir));
+  const auto again = run_cli("ida " + shell_word(scene) + " --suite " + shell_word(r1) + " " + shell_word(r2) +
+                             " --units m/s2 --im sa:0.3 --levels 0.2,0.5,1.1 --edp A.drift_max,A.roof_max --quiet --out " + shell_word(dir));
   REQUIRE(again.status == 0);
-  CHECK(read_table(dir / "ida.csv").rows == table.rows);
+  CHECK(read_csv_table(dir / "ida.csv").rows == table.rows);
 }
 
 TEST_CASE("an interrupted ida resumes from its sweep journal", "[ida][cli]") {
   const fs::path r1 = record_file("resume_r1.txt", 1.0, 2.0), r2 = record_file("resume_r2.txt", 1.0, 3.1);
   const fs::path scene = tiny_scene("resume.toml", r1);
   const fs::path dir = out_dir("resume");
-  const std::string command = "ida " + q(scene) + " --suite " + q(r1) + " " + q(r2) +
-                              " --units m/s2 --im pga --levels 0.1,0.3 --edp A.drift_max --out " + q(dir);
+  const std::string command = "ida " + shell_word(scene) + " --suite " + shell_word(r1) + " " + shell_word(r2) +
+                              " --units m/s2 --im pga --levels 0.1,0.3 --edp A.drift_max --out " + shell_word(dir);
   REQUIRE(run_cli(command + " --quiet").status == 0);
-  const Table whole = read_table(dir / "ida.csv");
+  const CsvTable whole = read_csv_table(dir / "ida.csv");
   // The journal an interruption after two runs leaves: the preamble with the sweep's
   // fingerprint, the header and runs 0 and 2, run 2's demand altered so that its use shows.
   const std::string json = slurp(dir / "sweep.json");
@@ -281,7 +252,7 @@ TEST_CASE("an interrupted ida resumes from its sweep journal", "[ida][cli]") {
   REQUIRE(resumed.status == 0);
   CHECK(resumed.err.find("resuming: 2 runs from the journal") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "sweep.partial.csv"));
-  const Table again = read_table(dir / "ida.csv");
+  const CsvTable again = read_csv_table(dir / "ida.csv");
   REQUIRE(again.rows.size() == 4);
   CHECK(again.rows[0] == whole.rows[0]);
   CHECK(again.rows[1] == whole.rows[1]);  // run again
@@ -293,12 +264,12 @@ TEST_CASE("ida --trace brackets the first capacity event within its tolerance of
   const fs::path r1 = record_file("trace_r1.txt", 1.0, 2.0);
   const fs::path scene = tiny_scene("trace.toml", r1);
   const double limit = 0.004;  // m of A.drift_max
-  const std::string common = "ida " + q(scene) + " --suite " + q(r1) + " --units m/s2 --im pga --edp A.drift_max --quiet ";
+  const std::string common = "ida " + shell_word(scene) + " --suite " + shell_word(r1) + " --units m/s2 --im pga --edp A.drift_max --quiet ";
   const fs::path trace_dir = out_dir("trace");
-  const auto trace = run_cli(common + "--trace --capacity 'A.drift_max > 0.004' --trace-start 0.05 --trace-tol 0.02 --trace-runs 12 --out " + q(trace_dir));
+  const auto trace = run_cli(common + "--trace --capacity 'A.drift_max > 0.004' --trace-start 0.05 --trace-tol 0.02 --trace-runs 12 --out " + shell_word(trace_dir));
   INFO(trace.err);
   REQUIRE(trace.status == 0);
-  const Table t = read_table(trace_dir / "ida.csv");
+  const CsvTable t = read_csv_table(trace_dir / "ida.csv");
   REQUIRE(t.rows.size() == 12);
   double low = 0.0, high = 1e300;
   for (const auto& row : t.rows) {
@@ -313,9 +284,9 @@ TEST_CASE("ida --trace brackets the first capacity event within its tolerance of
   std::string levels;
   for (int k = 0; k < 40; ++k) levels += (k ? "," : "") + sweep_number_cell(0.92 * low + 0.002 * k);
   const fs::path grid_dir = out_dir("grid");
-  const auto grid = run_cli(common + "--levels " + levels + " --out " + q(grid_dir));
+  const auto grid = run_cli(common + "--levels " + levels + " --out " + shell_word(grid_dir));
   REQUIRE(grid.status == 0);
-  const Table g = read_table(grid_dir / "ida.csv");
+  const CsvTable g = read_csv_table(grid_dir / "ida.csv");
   double first = 0.0, before = 0.0;
   for (const auto& row : g.rows) {
     if (std::stod(row[3]) > limit) {
@@ -376,20 +347,20 @@ TEST_CASE("the capacity is an event expression of fragility's parser: and, or, p
 TEST_CASE("ida --trace with a compound --capacity traces the same runs as its one deciding limit", "[ida][cli][trace][capacity]") {
   const fs::path r1 = record_file("compound_r1.txt", 1.0, 2.0);
   const fs::path scene = tiny_scene("compound.toml", r1);
-  const std::string common = "ida " + q(scene) + " --suite " + q(r1) +
+  const std::string common = "ida " + shell_word(scene) + " --suite " + shell_word(r1) +
                              " --units m/s2 --im pga --edp A.drift_max --quiet --trace --trace-start 0.05 --trace-runs 6 ";
   const fs::path one = out_dir("compound_one"), two = out_dir("compound_two");
-  const auto a = run_cli(common + "--capacity 'A.drift_max > 0.004' --out " + q(one));
-  const auto b = run_cli(common + "--capacity '(A.drift_max > 0.004 or A.drift_max > 99) and A.roof_max >= 0' --out " + q(two));
+  const auto a = run_cli(common + "--capacity 'A.drift_max > 0.004' --out " + shell_word(one));
+  const auto b = run_cli(common + "--capacity '(A.drift_max > 0.004 or A.drift_max > 99) and A.roof_max >= 0' --out " + shell_word(two));
   INFO(a.err << b.err);
   REQUIRE(a.status == 0);
   REQUIRE(b.status == 0);
   CHECK(slurp(one / "ida.csv") == slurp(two / "ida.csv"));
   // and one that can never hold: no event, so the hunt climbs through the whole budget.
   const fs::path never = out_dir("compound_never");
-  const auto c = run_cli(common + "--capacity 'A.drift_max > 0.004 and A.drift_max < 0.001' --out " + q(never));
+  const auto c = run_cli(common + "--capacity 'A.drift_max > 0.004 and A.drift_max < 0.001' --out " + shell_word(never));
   REQUIRE(c.status == 0);
-  const Table t = read_table(never / "ida.csv");
+  const CsvTable t = read_csv_table(never / "ida.csv");
   REQUIRE(t.rows.size() == 6);
   CHECK(std::stod(t.rows.back()[1]) == Approx(0.05 * std::pow(1.5, 5)).epsilon(1e-12));
 }
@@ -397,7 +368,7 @@ TEST_CASE("ida --trace with a compound --capacity traces the same runs as its on
 TEST_CASE("adjoin ida names a bad option (exit 2)", "[ida][cli]") {
   const fs::path r1 = record_file("bad_r1.txt", 1.0);
   const fs::path scene = tiny_scene("bad.toml", r1);
-  const std::string head = "ida " + q(scene) + " --suite " + q(r1) + " --units m/s2 --out " + q(out_dir("bad_options")) + " ";
+  const std::string head = "ida " + shell_word(scene) + " --suite " + shell_word(r1) + " --units m/s2 --out " + shell_word(out_dir("bad_options")) + " ";
   const std::vector<std::pair<std::string, std::string>> cases = {
       {"--im sa:x --levels 0.1", "--im"},
       {"--im pgv --levels 0.1", "--im"},
@@ -420,7 +391,7 @@ TEST_CASE("adjoin ida names a bad option (exit 2)", "[ida][cli]") {
     CHECK(r.err.rfind("error:", 0) == 0);
     CHECK(r.err.find(named) != std::string::npos);
   }
-  const auto missing = run_cli("ida " + q(scene) + " --suite /no/such/record.at2 --im pga --levels 0.1 --out " + q(out_dir("bad_suite")));
+  const auto missing = run_cli("ida " + shell_word(scene) + " --suite /no/such/record.at2 --im pga --levels 0.1 --out " + shell_word(out_dir("bad_suite")));
   CHECK(missing.status == 2);
   CHECK(missing.err.find("--suite") != std::string::npos);
 }

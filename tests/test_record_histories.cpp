@@ -24,6 +24,7 @@
 using namespace adjoin;
 using adjoin::test::run_cli;
 using adjoin::test::sampled_record;
+using adjoin::test::shell_word;
 using adjoin::test::slurp;
 using adjoin::test::write_temp;
 using Catch::Matchers::Contains;
@@ -52,8 +53,6 @@ Errors errors(const MotionHistories& h) {
   }
   return e;
 }
-
-std::string q(const std::string& s) { return "'" + s + "'"; }
 
 // A two-column file in g of a(t) [m/s^2] over [0, T].
 fs::path two_columns(const std::string& name, double dt, double duration, const auto& a) {
@@ -128,7 +127,7 @@ TEST_CASE("baseline correction removes a constant offset's drift", "[record][int
 TEST_CASE("record process --integrate: t, a, v, d that the readers and spectrum take back", "[record][integrate][cli]") {
   const fs::path in = two_columns("sine-offset.txt", 0.01, 4.0, [](double t) { return std::sin(w * t) + 0.05; });
   const fs::path out = fs::path(ADJOIN_TEST_TMP) / std::to_string(::getpid()) / "histories.csv";
-  const auto r = run_cli("record process " + q(in.string()) + " --integrate --out " + q(out.string()));
+  const auto r = run_cli("record process " + shell_word(in) + " --integrate --out " + shell_word(out));
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.out, Contains("t [s], a [g], v [m/s], d [m]"));
@@ -155,14 +154,14 @@ TEST_CASE("record process --integrate: t, a, v, d that the readers and spectrum 
   RecordFormat by_name;
   by_name.accel_column = "a";
   CHECK(read_record(out, by_name).accel == back.accel);
-  const auto spectrum = run_cli("spectrum " + q(out.string()) + " --accel-column 2 --out " + q(out.string() + ".spectrum.csv"));
+  const auto spectrum = run_cli("spectrum " + shell_word(out) + " --accel-column 2 --out " + shell_word(out.string() + ".spectrum.csv"));
   INFO(spectrum.err);
   CHECK(spectrum.status == 0);
-  const auto info = run_cli("record info " + q(out.string()));
+  const auto info = run_cli("record info " + shell_word(out));
   CHECK(info.status == 0);
 
   // With --baseline 0 the offset's drift is gone from the displacement.
-  const auto corrected = run_cli("record process " + q(in.string()) + " --baseline 0 --integrate --out " + q(out.string()));
+  const auto corrected = run_cli("record process " + shell_word(in) + " --baseline 0 --integrate --out " + shell_word(out));
   REQUIRE(corrected.status == 0);
   header.clear();
   const auto rows0 = read_histories(out, &header);
@@ -175,14 +174,14 @@ TEST_CASE("plot record draws acceleration, velocity, displacement and the Husid 
   const fs::path dir = fs::path(ADJOIN_TEST_TMP) / std::to_string(::getpid()) / "plot_record";
   fs::create_directories(dir);
   const fs::path png = dir / "acat.png", svg = dir / "cosmos.svg";
-  const auto r = run_cli("plot record " + q(real + "/smc/A-CAT090.AT2.smc") + " --size 800x700 --out " + q(png.string()));
+  const auto r = run_cli("plot record " + shell_word(real + "/smc/A-CAT090.AT2.smc") + " --size 800x700 --out " + shell_word(png));
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK_THAT(r.out, Contains("wrote") && Contains("acat.png"));
   adjoin::test::require_png(png, 800, 700);
   // SVG of a multi-channel file's channel: the panels' labels and D5-95 in the key.
-  const auto s = run_cli("plot record " + q(std::string(ADJOIN_SOURCE_DIR) + "/tests/data/records/cosmos-v2-two-channels.v2") +
-                         " --channel 1 --out " + q(svg.string()));
+  const auto s = run_cli("plot record " + shell_word(std::string(ADJOIN_SOURCE_DIR) + "/tests/data/records/cosmos-v2-two-channels.v2") +
+                         " --channel 1 --out " + shell_word(svg));
   INFO(s.err);
   REQUIRE(s.status == 0);
   const std::string text = slurp(svg);
@@ -193,16 +192,16 @@ TEST_CASE("plot record draws acceleration, velocity, displacement and the Husid 
 TEST_CASE("plot record on bad input: exit 2, the file or option named, no image left behind", "[record][plot][cli]") {
   const fs::path dir = fs::path(ADJOIN_TEST_TMP) / std::to_string(::getpid()) / "plot_record_bad";
   fs::create_directories(dir);
-  const auto missing = run_cli("plot record " + q((dir / "none.AT2").string()) + " --out " + q((dir / "none.png").string()));
+  const auto missing = run_cli("plot record " + shell_word((dir / "none.AT2").string()) + " --out " + shell_word((dir / "none.png").string()));
   CHECK(missing.status == 2);
   CHECK_THAT(missing.err, Contains("error:") && Contains("none.AT2"));
   CHECK_FALSE(fs::exists(dir / "none.png"));
-  const auto channels = run_cli("plot record " + q(std::string(ADJOIN_SOURCE_DIR) + "/tests/data/records/cosmos-v2-two-channels.v2") +
-                                " --out " + q((dir / "c.png").string()));
+  const auto channels = run_cli("plot record " + shell_word(std::string(ADJOIN_SOURCE_DIR) + "/tests/data/records/cosmos-v2-two-channels.v2") +
+                                " --out " + shell_word((dir / "c.png").string()));
   CHECK(channels.status == 2);
   CHECK_THAT(channels.err, Contains("--channel"));
   CHECK_FALSE(fs::exists(dir / "c.png"));
-  const auto bad = run_cli("plot record " + q(real + "/smc/A-CAT090.AT2.smc") + " --out " + q((dir / "x.gif").string()));
+  const auto bad = run_cli("plot record " + shell_word(real + "/smc/A-CAT090.AT2.smc") + " --out " + shell_word((dir / "x.gif").string()));
   CHECK(bad.status == 2);
   CHECK_THAT(bad.err, Contains("error:") && Contains("x.gif"));
   CHECK_FALSE(fs::exists(dir / "x.gif"));

@@ -19,7 +19,6 @@
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/study/run.hpp"
-#include "adjoin/study/run.hpp"
 #include "adjoin/study/seismic_joint.hpp"
 #include "cli_helpers.hpp"
 
@@ -36,6 +35,24 @@ Scene strong_scene() { return load_scene(kStrong, {"solver.scheme=implicit", "so
 
 // Two frames joined by a friction damper at floor 3, the first 10 s of the Newhall record.
 BuildingScene frames_scene() { return load_building_scene(kFrames, {"solver.t_end=10"}); }
+
+// The two frames of the examples with one more [[contact]] table (its keys `contact`), the
+// record's path made absolute so the scene loads from the test's temporary folder.
+BuildingScene frames_with_contact(const std::string& name, const std::string& contact,
+                                  const std::vector<std::string>& overrides = {}) {
+  std::ifstream in(kFrames);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string scene = text.str();
+  const std::string relative = "../../records/";
+  scene.replace(scene.find(relative), relative.size(), (fs::path(ADJOIN_SOURCE_DIR) / "records").string() + "/");
+  scene += "\n[[contact]]\n" + contact;
+  const fs::path file = fs::path(ADJOIN_TEST_TMP) / (name + "_" + std::to_string(::getpid()) + ".toml");
+  std::ofstream(file) << scene;
+  BuildingScene s = load_building_scene(file, overrides);
+  fs::remove(file);
+  return s;
+}
 
 // A two-block run of `scene` with gap0 = gap (scene units) and the contact law `law`.
 PoundingMargin two_block_run(const Scene& scene, double gap, const structure::ContactLaw& law = {}) {
@@ -240,17 +257,8 @@ TEST_CASE("the impact-force sweep example runs: no impact past the minimum joint
 TEST_CASE("seismic joint: another pair that pounds once is noted as 1 impact, in the singular", "[joint]") {
   // The frames of the examples with a second pair at floors 3 (a Hertzdamp law, gap 0.25 m):
   // under the whole record it pounds once (examples/sweeps/impact-force.toml, slip ratio 0.05).
-  std::ifstream in(kFrames);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string scene = text.str();
-  const std::string relative = "../../records/";
-  scene.replace(scene.find(relative), relative.size(), (fs::path(ADJOIN_SOURCE_DIR) / "records").string() + "/");
-  scene += "\n[[contact]]\nfloors = [3, 3]\ngap = 0.25\nmodel = \"hertzdamp\"\nstiffness = 2e10\nrestitution = 0.65\n";
-  const fs::path file = fs::path(ADJOIN_TEST_TMP) / ("joint_one_impact_" + std::to_string(::getpid()) + ".toml");
-  std::ofstream(file) << scene;
-  const BuildingScene s = load_building_scene(file);
-  fs::remove(file);
+  const BuildingScene s = frames_with_contact("joint_one_impact",
+                                              "floors = [3, 3]\ngap = 0.25\nmodel = \"hertzdamp\"\nstiffness = 2e10\nrestitution = 0.65\n");
   const Report r = run(s);
   REQUIRE(r.contacts.at(1).impacts == 1);
   SeismicJointOptions o;
@@ -267,20 +275,7 @@ namespace {
 
 // The two frames with a second pair, at floors 2 (no contact laws on either: the response
 // does not depend on the gaps), over the first 10 s of the record.
-BuildingScene two_pairs_scene() {
-  std::ifstream in(kFrames);
-  std::stringstream text;
-  text << in.rdbuf();
-  std::string scene = text.str();
-  const std::string relative = "../../records/";
-  scene.replace(scene.find(relative), relative.size(), (fs::path(ADJOIN_SOURCE_DIR) / "records").string() + "/");
-  scene += "\n[[contact]]\nfloors = [2, 2]\ngap = 0.05\n";
-  const fs::path file = fs::path(ADJOIN_TEST_TMP) / ("joint_two_pairs_" + std::to_string(::getpid()) + ".toml");
-  std::ofstream(file) << scene;
-  BuildingScene s = load_building_scene(file, {"solver.t_end=10"});
-  fs::remove(file);
-  return s;
-}
+BuildingScene two_pairs_scene() { return frames_with_contact("joint_two_pairs", "floors = [2, 2]\ngap = 0.05\n", {"solver.t_end=10"}); }
 
 }  // namespace
 

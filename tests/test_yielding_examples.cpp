@@ -21,8 +21,10 @@
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/study/run.hpp"
 #include "cli_helpers.hpp"
+#include "report_helpers.hpp"
 
 using namespace adjoin;
+using adjoin::test::peak;
 namespace fs = std::filesystem;
 
 namespace {
@@ -44,13 +46,6 @@ std::string format(const char* pattern, double v) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, pattern, v);
   return buffer;
-}
-
-double peak(const Report& r, const std::string& channel) {
-  for (const auto& p : r.peaks)
-    if (p.channel == channel) return p.peak.max_abs;
-  FAIL("no peak of " << channel);
-  return 0.0;
 }
 
 double residual(const Report& r, const std::string& channel) {
