@@ -37,6 +37,7 @@
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "command.hpp"
+#include "mpi_ranks.hpp"
 #include "progress.hpp"
 #include "sweep_shard.hpp"
 
@@ -156,68 +157,11 @@ int sweep_local(const SweepArgs& args) {
 }
 
 #ifdef ADJOIN_WITH_MPI
-// MPI is started only when a launcher (mpirun, srun) says so; a plain `adjoin sweep` stays serial.
-bool launched_by_mpi() {
-  for (const char* v : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "MPI_LOCALNRANKS", "SLURM_PROCID"})
-    if (std::getenv(v)) return true;
-  return false;
-}
-
-struct MpiSession {
-  bool active = false;
-  int rank = 0, size = 1, local_size = 1;
-  MpiSession() {
-    if (!launched_by_mpi()) return;
-    int initialized = 0;
-    MPI_Initialized(&initialized);
-    if (!initialized) MPI_Init(nullptr, nullptr);
-    active = true;
-    MPI_Comm_rank(MPI_COMM_WORLD, &rank);
-    MPI_Comm_size(MPI_COMM_WORLD, &size);
-    MPI_Comm local;
-    MPI_Comm_split_type(MPI_COMM_WORLD, MPI_COMM_TYPE_SHARED, rank, MPI_INFO_NULL, &local);
-    MPI_Comm_size(local, &local_size);
-    MPI_Comm_free(&local);
-  }
-  ~MpiSession() {
-    int finalized = 0;
-    if (active && (MPI_Finalized(&finalized), !finalized)) MPI_Finalize();
-  }
-  MpiSession(const MpiSession&) = delete;
-  MpiSession& operator=(const MpiSession&) = delete;
-};
-
-// The run number of a row (rows come from the ranks' journals, checked there).
-std::size_t cell_index(const std::vector<std::string>& cells) {
-  std::size_t index = 0;
-  parse_count(cells.at(0), &index);
-  return index;
-}
-
-// Rank 0 receives every rank's text.
-std::vector<std::string> gather_text(const std::string& mine, const MpiSession& mpi) {
-  const int length = static_cast<int>(mine.size());
-  std::vector<int> lengths(static_cast<std::size_t>(mpi.size)), offsets(static_cast<std::size_t>(mpi.size));
-  MPI_Gather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, 0, MPI_COMM_WORLD);
-  int total = 0;
-  for (int r = 0; r < mpi.size; ++r) {
-    offsets[static_cast<std::size_t>(r)] = total;
-    total += lengths[static_cast<std::size_t>(r)];
-  }
-  std::string all(mpi.rank == 0 ? static_cast<std::size_t>(total) : 0, '\0');
-  MPI_Gatherv(mine.data(), length, MPI_CHAR, all.data(), lengths.data(), offsets.data(), MPI_CHAR, 0, MPI_COMM_WORLD);
-  std::vector<std::string> out;
-  if (mpi.rank == 0)
-    for (int r = 0; r < mpi.size; ++r)
-      out.push_back(all.substr(static_cast<std::size_t>(offsets[static_cast<std::size_t>(r)]),
-                               static_cast<std::size_t>(lengths[static_cast<std::size_t>(r)])));
-  return out;
-}
-
 int sweep_mpi(const SweepArgs& args, const MpiSession& mpi) {
   const auto start = std::chrono::steady_clock::now();
   int status = 0;
-  std::string message, rows_text;
+  std::string message;
+  std::vector<std::vector<std::string>> mine_rows;
   SweepSpec spec;
   std::filesystem::path dir;
   const SweepShard shard{static_cast<std::size_t>(mpi.rank), static_cast<std::size_t>(mpi.size)};
@@ -230,11 +174,10 @@ int sweep_mpi(const SweepArgs& args, const MpiSession& mpi) {
     dir = output_dir(args, spec);
     shard_lock = std::make_unique<FolderLock>(dir, sweep_file_stem(shard) + ".lock", command_text(args, shard));
     if (mpi.rank == 0) table_lock = std::make_unique<FolderLock>(dir, "sweep.lock", command_text(args, SweepShard{}));
-    const unsigned jobs = args.jobs ? args.jobs
-                                    : std::max(1u, std::thread::hardware_concurrency() / static_cast<unsigned>(std::max(1, mpi.local_size)));
+    const unsigned jobs = threads_per_rank(args.jobs, mpi);
     auto result = run_shard(spec, shard, dir, jobs, !args.quiet && mpi.rank == 0, !args.quiet);
     from_journal = result.from_journal;
-    for (const auto& r : result.rows) rows_text += csv_line(r) + "\n";
+    mine_rows = std::move(result.rows);
   } catch (const InputError& e) {
     status = kExitInputError;
     message = e.what();
@@ -242,39 +185,15 @@ int sweep_mpi(const SweepArgs& args, const MpiSession& mpi) {
     status = kExitNumericalError;  // the contract's status for the unforeseen (main.cpp)
     message = std::string("internal: ") + e.what();
   }
-  int worst = 0;
-  MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);
-  const auto messages = gather_text(status ? message : std::string(), mpi);
-  if (worst != 0) {
-    if (mpi.rank != 0) return worst;
-    for (int r = 0; r < mpi.size; ++r)
-      if (!messages[static_cast<std::size_t>(r)].empty()) {
-        const std::string text = mpi.size > 1 ? "rank " + std::to_string(r) + ": " + messages[static_cast<std::size_t>(r)] : messages[0];
-        if (worst == kExitInputError) throw InputError(text);
-        throw std::runtime_error(text);
-      }
-    return worst;
-  }
-  const auto parts = gather_text(rows_text, mpi);
+  if (const int worst = worst_status(status, message, mpi)) return worst;
+  std::vector<std::vector<std::string>> gathered = gather_rows(mine_rows, mpi);
   // Every rank's journal rows, for rank 0's summary line.
   unsigned long long mine = from_journal, journal_rows = 0;
   MPI_Reduce(&mine, &journal_rows, 1, MPI_UNSIGNED_LONG_LONG, MPI_SUM, 0, MPI_COMM_WORLD);
   int written = 0;
   if (mpi.rank == 0) {
     try {
-      std::vector<std::vector<std::string>> rows;
-      for (const auto& part : parts) {
-        std::size_t pos = 0;
-        while (pos < part.size()) {
-          const std::size_t end = part.find('\n', pos);
-          std::vector<std::string> cells;
-          split_csv_line(part.substr(pos, end - pos), &cells);
-          rows.push_back(std::move(cells));
-          pos = end + 1;
-        }
-      }
-      std::sort(rows.begin(), rows.end(), [](const auto& a, const auto& b) { return cell_index(a) < cell_index(b); });
-      const SweepTableFile file = sweep_table_file(spec, SweepTable{sweep_columns(spec), std::move(rows)}, SweepShard{});
+      const SweepTableFile file = sweep_table_file(spec, SweepTable{sweep_columns(spec), std::move(gathered)}, SweepShard{});
       write_sweep_table(file, dir / "sweep.csv", dir / "sweep.json");
       written = 1;
       report(args, spec, file, dir, "sweep", std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
@@ -284,33 +203,12 @@ int sweep_mpi(const SweepArgs& args, const MpiSession& mpi) {
       message = e.what();
     }
   }
-  MPI_Bcast(&written, 1, MPI_INT, 0, MPI_COMM_WORLD);
-  if (!written) {
+  if (!share_status(written, mpi)) {
     if (mpi.rank == 0) throw InputError(message);
     return kExitInputError;
   }
   std::filesystem::remove(dir / (sweep_file_stem(shard) + ".partial.csv"));
   return 0;
-}
-#endif
-
-#ifndef ADJOIN_WITH_MPI
-// A build without MPI under mpirun/srun with several ranks: each rank would run the whole
-// sweep and write the same files. The launchers' variables that say so: a size above 1, or a
-// rank above 0. Returns "NAME=VALUE" of the first one found, or "".
-std::string mpi_launcher_evidence() {
-  const auto above = [](const char* name, long limit) -> std::string {
-    const char* value = std::getenv(name);
-    if (!value) return "";
-    char* end = nullptr;
-    const long n = std::strtol(value, &end, 10);
-    return end != value && n > limit ? std::string(name) + "=" + value : std::string();
-  };
-  for (const char* size : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_SIZE", "MPI_LOCALNRANKS", "MV2_COMM_WORLD_SIZE"})
-    if (auto found = above(size, 1); !found.empty()) return found;
-  for (const char* rank : {"OMPI_COMM_WORLD_RANK", "PMI_RANK", "PMIX_RANK", "MV2_COMM_WORLD_RANK"})
-    if (auto found = above(rank, 0); !found.empty()) return found;
-  return "";
 }
 #endif
 
@@ -320,11 +218,7 @@ int sweep_command(const SweepArgs& args) {
   MpiSession mpi;
   if (mpi.size > 1) return sweep_mpi(args, mpi);
 #else
-  if (const std::string evidence = mpi_launcher_evidence(); !evidence.empty())
-    throw InputError("adjoin sweep: started by an MPI launcher with several ranks (" + evidence +
-                     "), but this adjoin was built without MPI: every rank would run the whole sweep and write the "
-                     "same files. Build it with MPI (scripts/setup.sh --with-mpi, then cmake -DADJOIN_WITH_MPI=ON), or "
-                     "run it without mpirun (it uses every local core; --shard I/N splits a sweep over machines)");
+  refuse_mpi_launcher_without_mpi("adjoin sweep", "sweep", "it uses every local core; --shard I/N splits a sweep over machines");
 #endif
   return sweep_local(args);
 }
