@@ -555,8 +555,9 @@ def _cell_number(value) -> float:
     return float(value)
 
 
-def fragility(table: str | os.PathLike[str] | Mapping[str, Any] | np.ndarray, event: str, *,
-              bootstrap: int = 1000, seed: int = 1, at: float | None = None) -> dict:
+def fragility(table: str | os.PathLike[str] | Mapping[str, Any] | np.ndarray | Sequence[Any], event: str, *,
+              bootstrap: int = 1000, seed: int = 1, at: float | None = None,
+              labels: Sequence[str] | None = None) -> dict:
     """The lognormal fragility P(event | IM = x) = Phi(ln(x / theta) / beta) of the runs of an
     IDA, fitted as ``adjoin fragility`` fits it (post/fragility.hpp: maximum likelihood on the
     counts per IM level, bootstrap bounds over records, and for IDA traces the IM at first
@@ -566,15 +567,20 @@ def fragility(table: str | os.PathLike[str] | Mapping[str, Any] | np.ndarray, ev
         table: an ida.csv path, or its columns: a mapping (e.g. what ``ida`` returns) or a
             structured array with ``im`` (g), the columns the event reads, and ``record`` (the
             runs of one record are resampled together; without it each run is its own
-            record). An ``error`` column marks failed runs (left out, counted).
+            record). An ``error`` column marks failed runs (left out, counted). A list of
+            tables is several designs, as ``adjoin fragility A/ida.csv B/ida.csv`` takes them.
         event: a condition on the columns, ``COLUMN > NUMBER`` (>, >=, <, <=) joined by
             ``and``/``or``, e.g. ``"contact1.impacts > 0"``. A run whose event reads an empty
             value (NaN) is left out and counted.
         bootstrap: resamples of the records for the 5 %/95 % bounds (0: none; at most 100000).
         seed: the bootstrap's seed (the same seed gives the same bounds on every machine).
         at: an IM (g) at which to give the fitted probability of the event.
+        labels: with a list of tables, the designs' names, one per table (default: an ida.csv's
+            folder name, as the command's ``--label``; "design N" for columns).
 
     Returns:
+        With a list of tables, ``{"event": event, "designs": [...]}`` (the command's JSON for
+        several tables), each design a dict as below with its ``label``. Otherwise a
         dict: ``fitted`` (False for data without a fit: no events, events everywhere, perfect
         separation; ``problem`` says which and theta, beta are None), ``theta`` (g),
         ``beta``, ``log_likelihood``, ``levels`` (g), ``n`` and ``events`` per level (numpy
@@ -585,7 +591,7 @@ def fragility(table: str | os.PathLike[str] | Mapping[str, Any] | np.ndarray, ev
 
     Raises:
         InputError: with ``.field`` the keyword at fault (``table``, ``event``, ``bootstrap``,
-        ``seed``, ``at``).
+        ``seed``, ``at``, ``labels``).
     """
     if not isinstance(event, str) or not event.strip():
         raise _bad("event", f"{event!r}: expected a condition such as \"contact1.impacts > 0\"")
@@ -598,6 +604,49 @@ def fragility(table: str | os.PathLike[str] | Mapping[str, Any] | np.ndarray, ev
             raise _bad("at", f"{at!r}: expected an intensity > 0 (g)") from None
         if not (at > 0.0 and np.isfinite(at)):
             raise _bad("at", f"{at!r}: expected an intensity > 0 (g)")
+    if _several_tables(table):
+        tables = list(table)
+        if not tables:
+            raise _bad("table", "an empty list: expected one table per design")
+        names = _design_labels(tables, labels)
+        designs = []
+        for name, one in zip(names, tables):
+            design = {"label": name}
+            if isinstance(one, (str, os.PathLike)):
+                design["file"] = os.fspath(one)
+            design.update(_fragility_of_table(one, event, bootstrap, seed, at))
+            designs.append(design)
+        return {"event": event, "designs": designs}
+    if labels is not None:
+        raise _bad("labels", "labels name several designs: give a list of tables")
+    return _fragility_of_table(table, event, bootstrap, seed, at)
+
+
+def _several_tables(table) -> bool:
+    """A list or tuple of tables (not one table: a path, a mapping of columns, an array)."""
+    return isinstance(table, (list, tuple))
+
+
+def _design_labels(tables, labels) -> list:
+    if labels is None:
+        names = []
+        for k, t in enumerate(tables):
+            if isinstance(t, (str, os.PathLike)):
+                path = os.fspath(t)
+                folder = os.path.basename(os.path.dirname(path))
+                names.append(folder if folder else os.path.basename(path))
+            else:
+                names.append(f"design {k + 1}")
+        return names
+    if isinstance(labels, str):
+        labels = labels.split(",")
+    names = [str(v) for v in labels]
+    if len(names) != len(tables):
+        raise _bad("labels", f"{len(names)} labels for {len(tables)} tables (give one per table, in order)")
+    return names
+
+
+def _fragility_of_table(table, event, bootstrap, seed, at) -> dict:
     columns = _table_columns(table)
     if "im" not in columns:
         raise _bad("table", f"no column im; its columns are {', '.join(map(str, columns))}")
@@ -630,13 +679,13 @@ def ida(scene: str | os.PathLike[str], suite: str | os.PathLike[str] | Sequence[
         im: str = "pga", levels: Sequence[float] | None = None, trace: bool = False,
         edp: Sequence[str] | None = None, capacity: str | None = None, units: str | None = None,
         jobs: int = 0, trace_start: float = 0.1, trace_factor: float = 1.5, trace_tol: float = 0.05,
-        trace_runs: int = 20) -> dict:
+        trace_runs: int = 20, out: str | os.PathLike[str] | None = None) -> dict:
     """Incremental dynamic analysis, as ``adjoin ida SCENE --suite ... --im IM --levels
     ...|--trace`` runs it (study/ida.hpp, io/ida_files.hpp): each record of the suite scaled
     (``ground.scale``) so that its IM, of the record as read, equals a level. Stripes (``levels``):
     one sweep over the (record, level) pairs; tracing (``trace=True``): hunt and fill per
     record up to its capacity event. Native threads, the GIL released. The rows equal that
-    command's ida.csv, bit for bit; no file is written.
+    command's ida.csv, bit for bit; with ``out`` the same ida.csv and ida.png are written.
 
     Args:
         scene: the base scene's TOML file (its ground is replaced by each record).
@@ -654,6 +703,9 @@ def ida(scene: str | os.PathLike[str], suite: str | os.PathLike[str] | Sequence[
             (``capacity_event``; a failed run or the run's collapse marks it too).
         units: the units of records that do not state theirs (g, m/s2, cm/s2, mm/s2).
         jobs: threads (0: one per core).
+        out: a folder (made if missing) for ``ida.csv`` and ``ida.png`` (the IDA curves of the
+            first demand with their 16/50/84 % fractiles), the files of ``adjoin ida --out``
+            (not its sweep.csv, sweep.json or journal); None: no file.
 
     Returns:
         dict of columns, one row per run (record by record; stripes: the levels in the order
@@ -700,9 +752,12 @@ def ida(scene: str | os.PathLike[str], suite: str | os.PathLike[str] | Sequence[
         edp = [edp]
     edps = [] if edp is None else [str(e) for e in edp]
     jobs = _whole(jobs, "jobs", 0)
-    out = _adjoin.ida(os.fspath(scene), suite_list, im, level_list, bool(trace), options["trace_start"],
-                      options["trace_factor"], options["trace_tol"], trace_runs, edps, capacity or "", units or "", jobs)
-    return _arrays(out["columns"])
+    if out is not None and (not isinstance(out, (str, os.PathLike)) or os.fspath(out) == ""):
+        raise _bad("out", f"{out!r}: expected a folder (a path) for ida.csv and ida.png")
+    result = _adjoin.ida(os.fspath(scene), suite_list, im, level_list, bool(trace), options["trace_start"],
+                         options["trace_factor"], options["trace_tol"], trace_runs, edps, capacity or "", units or "",
+                         jobs, os.fspath(out) if out is not None else "")
+    return _arrays(result["columns"])
 
 
 

@@ -5,11 +5,14 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <filesystem>
 #include <set>
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/core/parse_number.hpp"
+#include "adjoin/io/atomic_file.hpp"
 #include "adjoin/io/ida_files.hpp"
+#include "adjoin/io/output_place.hpp"
 #include "adjoin/post/fragility.hpp"
 #include "adjoin/post/fragility_event.hpp"
 #include "adjoin/study/ida.hpp"
@@ -150,17 +153,39 @@ py::object demand_column(const std::vector<IdaRow>& rows, std::size_t e) {
   return numeric ? py::object(to_array(std::move(numbers))) : py::object(py::cast(words));
 }
 
+// `out` (a folder): DIR/ida.csv and DIR/ida.png as `adjoin ida --out DIR` writes them
+// (src/cli/ida.cpp write_ida), the figure of the first demand. InputError naming `out`.
+void write_ida_files(const std::string& out, const std::string& scene, const IntensityMeasure& im,
+                     const std::vector<std::string>& edps, const std::vector<IdaRow>& rows) {
+  const std::filesystem::path dir(out);
+  OutputFolder folder(dir, "out");
+  {
+    AtomicFile csv(dir / "ida.csv");
+    csv.stream() << ida_csv(edps, rows);
+    csv.commit();
+  }
+  folder.keep();
+  if (edps.empty()) return;
+  const bool si = rows.empty() || rows[0].units == "SI";
+  naming_keyword({}, "out", [&] {
+    plot_ida(rows, 0, edps[0], im.text(), si, "IDA of " + std::filesystem::path(scene).stem().string(), dir / "ida.png", PlotStyle{});
+  });
+}
+
 // The runs of `adjoin ida SCENE --suite ... --im IM --levels ...|--trace` as columns, in threads
-// with the GIL released: stripes (one sweep over the (record, level) pairs) or traces.
+// with the GIL released: stripes (one sweep over the (record, level) pairs) or traces; with
+// `out` ("" none) also its ida.csv and ida.png.
 py::dict ida_py(const std::string& scene, const std::vector<std::string>& suite, const std::string& im_text,
                 const std::vector<double>& levels, bool trace, const TraceOptions& trace_options,
-                std::vector<std::string> edps, const std::string& capacity_text, const std::string& units, unsigned jobs) {
+                std::vector<std::string> edps, const std::string& capacity_text, const std::string& units, unsigned jobs,
+                const std::string& out_folder) {
   std::vector<IdaRow> rows;
   std::vector<std::string> skipped;
   std::vector<Trace> traces;
   {
     py::gil_scoped_release unlocked;
     const IntensityMeasure im = naming_keyword({{"--im", "im"}}, "im", [&] { return parse_intensity_measure(im_text); });
+    if (!out_folder.empty()) naming_keyword({}, "out", [&] { check_output_folder(out_folder, "out"); });
     const std::vector<IdaRecord> records =
         naming_keyword({{"units", "units"}}, "suite", [&] { return read_ida_suite(suite, units, im, &skipped, "units"); });
     if (trace) {
@@ -193,6 +218,7 @@ py::dict ida_py(const std::string& scene, const std::vector<std::string>& suite,
       for (const SweepRow& row : run_sweep(spec, options)) cells.push_back(sweep_cells(spec, row));
       rows = ida_stripe_rows(spec, cells, records, levels, edps, capacity);
     }
+    if (!out_folder.empty()) write_ida_files(out_folder, scene, im, edps, rows);
   }
   py::dict d;
   std::vector<std::string> record;
@@ -236,13 +262,14 @@ void bind_design_studies(py::module_& m) {
       "ida",
       [](const std::string& scene, const std::vector<std::string>& suite, const std::string& im,
          const std::vector<double>& levels, bool trace, double start, double factor, double tolerance, std::size_t runs,
-         const std::vector<std::string>& edps, const std::string& capacity, const std::string& units, unsigned jobs) {
+         const std::vector<std::string>& edps, const std::string& capacity, const std::string& units, unsigned jobs,
+         const std::string& out) {
         return ida_py(scene, suite, im, levels, trace, TraceOptions{start, factor, tolerance, runs}, edps, capacity, units,
-                      jobs);
+                      jobs, out);
       },
       py::arg("scene"), py::arg("suite"), py::arg("im"), py::arg("levels"), py::arg("trace"), py::arg("trace_start"),
       py::arg("trace_factor"), py::arg("trace_tol"), py::arg("trace_runs"), py::arg("edp"), py::arg("capacity"),
-      py::arg("units"), py::arg("jobs"));
+      py::arg("units"), py::arg("jobs"), py::arg("out") = "");
 }
 
 }  // namespace adjoin::python

@@ -2,6 +2,7 @@
 same inputs: the same numbers, and bad keywords named by InputError.field."""
 import json
 import math
+import shutil
 import subprocess
 
 import numpy as np
@@ -170,9 +171,61 @@ def test_fragility_names_a_bad_keyword(tmp_path, keywords, field):
     ({"trace": True, "levels": None, "trace_runs": 1}, "trace_runs"),
     ({"trace": True, "levels": None, "trace_factor": 0.5}, "trace_factor"),
     ({"units": "furlongs"}, "units"),
+    ({"out": 3}, "out"),
+    ({"out": ""}, "out"),
 ])
 def test_ida_names_a_bad_keyword(keywords, field):
     args = {"im": "pga", "levels": [0.2], **keywords}
     with pytest.raises(adjoin.InputError) as e:
         adjoin.ida(SCENE, SUITE[:1], **args)
     assert e.value.field == field, str(e.value)
+
+
+@pytest.mark.parametrize("how", [["--levels", "0.2,0.5"], ["--trace", "--trace-runs", "4", "--capacity",
+                                                          "A.drift_ratio_max > 0.03 or contact1.impacts > 50"]])
+def test_ida_out_writes_the_files_of_the_cli(tmp_path, adjoin_cli, how):
+    """ida(out=DIR) writes the command's ida.csv byte for byte, and its figure."""
+    cli_dir, py_dir = tmp_path / "cli", tmp_path / "made" / "py"
+    subprocess.run([adjoin_cli, "ida", str(SCENE), "--suite", *map(str, SUITE), "--im", "pga", *how, "--out", str(cli_dir),
+                    "-q"], check=True, capture_output=True)
+    if how[0] == "--levels":
+        adjoin.ida(SCENE, SUITE, im="pga", levels=[0.2, 0.5], out=py_dir)
+    else:
+        adjoin.ida(SCENE, SUITE, im="pga", trace=True, trace_runs=4, capacity=how[-1], out=py_dir)
+    assert (py_dir / "ida.csv").read_bytes() == (cli_dir / "ida.csv").read_bytes()
+    if shutil.which("gnuplot"):
+        assert (py_dir / "ida.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    assert not (py_dir / "sweep.csv").exists()  # the figure and the table only
+
+
+def test_fragility_of_several_designs_equals_the_cli(tmp_path, adjoin_cli):
+    """A list of tables is several designs: the numbers and labels of `adjoin fragility A B --label`."""
+    (tmp_path / "none").mkdir()
+    (tmp_path / "friction").mkdir()
+    first, second = tmp_path / "none" / "ida.csv", tmp_path / "friction" / "ida.csv"
+    write_table(first, stripe_rows())
+    write_table(second, trace_rows())
+    event = "contact1.impacts > 0 or A.drift_ratio_max > 0.05"
+    cli = cli_fragility(adjoin_cli, first, tmp_path / "f.json", event, str(second), "--label", "bare,damped",
+                        "--bootstrap", "100", "--seed", "5", "--at", "0.3")
+    py = adjoin.fragility([first, second], event, labels=["bare", "damped"], bootstrap=100, seed=5, at=0.3)
+    assert py["event"] == cli["event"] == event
+    assert [d["label"] for d in py["designs"]] == ["bare", "damped"] == [d["label"] for d in cli["designs"]]
+    assert [d["file"] for d in py["designs"]] == [str(first), str(second)]
+    assert_same(py, cli)
+    # Each design alone is the one-table fit; labels default to the tables' folders, as --label does.
+    alone = adjoin.fragility(second, event, bootstrap=100, seed=5, at=0.3)
+    assert py["designs"][1]["theta"] == alone["theta"] and py["designs"][1]["first_event"] == alone["first_event"]
+    default = adjoin.fragility([first, second], event, bootstrap=0)
+    assert [d["label"] for d in default["designs"]] == ["none", "friction"]
+    columns = adjoin.fragility([{"record": ["a", "b"], "im": [0.1, 0.2], "x": [0.0, 1.0]}] * 2, "x > 0.5", bootstrap=0)
+    assert [d["label"] for d in columns["designs"]] == ["design 1", "design 2"]
+
+
+@pytest.mark.parametrize("tables, labels", [(2, ["one"]), (1, ["one"])])
+def test_fragility_labels_are_one_per_table_of_a_list(tmp_path, tables, labels):
+    table = tmp_path / "ida.csv"
+    write_table(table, stripe_rows())
+    with pytest.raises(adjoin.InputError) as e:
+        adjoin.fragility([table] * tables if tables > 1 else table, "contact1.impacts > 0", labels=labels)
+    assert e.value.field == "labels"
