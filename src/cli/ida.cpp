@@ -366,7 +366,7 @@ int ida_mpi(const IdaArgs& args, const MpiSession& mpi) {
   std::vector<std::string> parts;
   if (args.trace) parts = gather_text(traced, mpi);
   else cells = gather_rows(mine, mpi);
-  int outcome = 0;
+  int outcome = 0, failed = 0;  // rank 0's figure status; its failure's exit status
   std::exception_ptr failure;
   if (root) {
     try {
@@ -376,13 +376,14 @@ int ida_mpi(const IdaArgs& args, const MpiSession& mpi) {
       outcome = write_ida(args, plan, rows, edps, found, dir, start, mpi.size);
     } catch (...) {
       failure = std::current_exception();
-      outcome = exit_status_of(failure);
+      failed = exit_status_of(failure);
     }
   }
-  outcome = share_status(outcome, mpi);
-  if (failure) std::rethrow_exception(failure);
-  if (!args.trace && outcome != kExitInputError && outcome != kExitNumericalError)
-    std::filesystem::remove(dir / (sweep_file_stem(shard) + ".partial.csv"));  // this rank's journal
+  if (share_status(failed, mpi)) {
+    if (failure) std::rethrow_exception(failure);
+    return failed;  // the ranks' journals stay: run again, it resumes
+  }
+  if (!args.trace) std::filesystem::remove(dir / (sweep_file_stem(shard) + ".partial.csv"));  // this rank's journal
   return outcome;
 }
 #endif
