@@ -54,12 +54,27 @@ struct SweepColumn {
   bool may_be_empty = false;
 };
 
+// One item of a list value, or a plain value: a number, a string or true/false.
+using SweepScalar = std::variant<std::int64_t, double, bool, std::string>;
+
 // The value an edit gives a scene key: typed, as the sweep file wrote it, with its spelling as
-// a TOML value (what a --set of it would say, for messages).
+// a TOML value (what a --set of it would say, for messages). A list value (link.1.floors =
+// [3, 3]) holds its items; lists of lists are not scene values.
 struct SweepValue {
-  std::variant<std::int64_t, double, bool, std::string> value;
+  std::variant<std::int64_t, double, bool, std::string, std::vector<SweepScalar>> value;
   std::string text;
 };
+
+// Values made in code (adjoin optimize, ida), spelled as a --set of them would be: a double as
+// a TOML float ("2.0e5" stays a float: 200000.0), a string quoted, a list as "[3, 3]".
+//     spec.axes[0].values[0].set.emplace_back("link.1.floors", sweep_value({std::int64_t{2}, std::int64_t{3}}));
+SweepValue sweep_value(double v);
+SweepValue sweep_value(std::int64_t v);
+SweepValue sweep_value(bool v);
+SweepValue sweep_value(const std::string& v);
+SweepValue sweep_value(std::vector<SweepScalar> items);
+// The TOML spelling of one scalar (what sweep_value(...).text is for it).
+std::string sweep_value_text(const SweepScalar& v);
 
 // One value of an axis, or one ground motion: a label for the table and the scene edits it makes.
 struct SweepSetting {
