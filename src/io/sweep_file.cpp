@@ -161,6 +161,43 @@ void read_edits(const SweepReader& r, const toml::table& table, const std::files
   }
 }
 
+// An axis value written as a table, or a [[variant]]: {name = label, set = {...}, unset = [...]}.
+SweepSetting table_value(const SweepReader& r, const toml::table& t, const std::filesystem::path& folder,
+                         const std::string& what, const std::string& where_name) {
+  check_keys(r, t, {"name", "set", "unset"}, where_name);
+  SweepSetting s;
+  s.line = r.line(&t);
+  auto label = t.get("name");
+  if (!label || !label->is_string() || label->as_string()->get().empty())
+    r.fail(&t, what + " needs name = \"label\" (and set = {...}, unset = [...])");
+  s.label = label->as_string()->get();
+  // A name that is a number ({name = "0", unset = ["link"]}: "no damper" as slip 0) keeps
+  // the axis a number column when its other values are numbers.
+  if (double number = 0.0; parse_finite(s.label, &number)) s.number = number;
+  read_edits(r, t, folder, s);
+  return s;
+}
+
+// [[variant]] tables: sugar for a first axis named "variant" whose values are those tables
+// (design variants as named sets of edits).
+SweepAxis read_variants(const SweepReader& r, const toml::node& node, const std::filesystem::path& folder,
+                        std::set<std::string>& column_names) {
+  auto variants = node.as_array();
+  if (!variants || !variants->is_array_of_tables())
+    r.fail(&node, "variant must be written as [[variant]] tables, each name = \"...\", set = {...}, unset = [...]");
+  SweepAxis axis;
+  axis.name = "variant";
+  axis.line = r.line(&node);
+  column_names.insert(axis.name);
+  std::set<std::string> labels;
+  for (auto& element : *variants) {
+    SweepSetting s = table_value(r, *element.as_table(), folder, "[[variant]]", "[[variant]]");
+    if (!labels.insert(s.label).second) r.fail(element.as_table()->get("name"), "variant \"" + s.label + "\" appears twice");
+    axis.values.push_back(std::move(s));
+  }
+  return axis;
+}
+
 std::vector<double> range_values(const SweepReader& r, const toml::table& axis, const std::string& name) {
   auto number = [&](const char* key) -> double {
     auto node = axis.get(key);
@@ -274,15 +311,7 @@ SweepAxis read_axis(const SweepReader& r, const toml::table& t, const std::files
       SweepSetting s;
       s.line = r.line(&v);
       if (auto vt = v.as_table()) {
-        check_keys(r, *vt, {"name", "set", "unset"}, "an axis value");
-        auto label = vt->get("name");
-        if (!label || !label->is_string() || label->as_string()->get().empty())
-          r.fail(&v, "axis " + axis.name + ": a value written as a table needs name = \"label\" (and set = {...}, unset = [...])");
-        s.label = label->as_string()->get();
-        // A name that is a number ({name = "0", unset = ["link"]}: "no damper" as slip 0) keeps
-        // the axis a number column when its other values are numbers.
-        if (double number = 0.0; parse_finite(s.label, &number)) s.number = number;
-        read_edits(r, *vt, folder, s);
+        s = table_value(r, *vt, folder, "axis " + axis.name + ": a value written as a table", "an axis value");
       } else {
         if (axis.key.empty()) r.fail(&v, "axis " + axis.name + ": a plain value needs the axis' key = \"dotted.scene.key\"");
         auto [edit, label] = value_text(r, v, axis.key, &s.number);
@@ -360,7 +389,7 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   } catch (const toml::parse_error& e) {
     throw InputError(name + ":" + std::to_string(e.source().begin.line) + ": not valid TOML: " + std::string(e.description()));
   }
-  check_keys(r, root, {"name", "base", "set", "unset", "axis", "motion", "output"}, "the sweep file");
+  check_keys(r, root, {"name", "base", "set", "unset", "variant", "axis", "motion", "output"}, "the sweep file");
   const std::filesystem::path folder = std::filesystem::path(name).parent_path();
 
   SweepSpec spec;
@@ -385,6 +414,7 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   read_edits(r, root, folder, spec.common);
 
   std::set<std::string> column_names(sweep_fixed_column_names().begin(), sweep_fixed_column_names().end());
+  if (auto node = root.get("variant")) spec.axes.push_back(read_variants(r, *node, folder, column_names));
   if (auto node = root.get("axis")) {
     auto axes = node->as_array();
     if (!axes || !axes->is_array_of_tables()) r.fail(node, "axis must be written as [[axis]] tables");

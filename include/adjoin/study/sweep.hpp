@@ -131,6 +131,9 @@ struct SweepSpec {
   // (without edits), which decides the channel columns; null for a two-block base.
   std::shared_ptr<const structure::Structure> base_structure;
   std::vector<SweepColumn> channel_columns;  // building sweeps: A.roof_max, link1.stroke_max, ...
+  // Building sweeps: how many linkN and contactN column sets the table has: the base's, or
+  // more where an edit adds a table (link.2.* on a base with one link; study/sweep_columns.hpp).
+  std::size_t link_columns = 0, contact_columns = 0;
   bool building() const { return base_structure != nullptr; }
 
   std::size_t runs() const;
