@@ -71,7 +71,7 @@ Parent walk(toml::table& root, const std::vector<std::string>& parts, const std:
       if (adds) array->push_back(toml::table{});
       if (n < 1 || n > array->size())
         throw InputError(origin + ": the scene has " + tables_text(array->size(), path) + ", not a number " +
-                         text_excerpt(part) + (grow && is_growable(parts[i - 1]) ? " (a --set adds the next one, number " +
+                         text_excerpt(part) + (grow && n > array->size() && is_growable(parts[i - 1]) ? " (a --set adds the next one, number " +
                                                                                          std::to_string(array->size() + 1) + ")"
                                                                                    : std::string()));
       next = array->get(n - 1);

@@ -69,8 +69,8 @@ class TableReader {
     // A table a --set added (link.2.floors on a scene with one link) has no file line: blame
     // the --set that made it.
     if (origins_ && source.begin.line == 0)
-      if (const auto made = origins_->lower_bound(full + "."); made != origins_->end() && made->first.rfind(full + ".", 0) == 0) {
-        m << made->second << ": " << text_excerpt(full) << " (a table that --set added): " << message;
+      if (const auto made = origins_->lower_bound(path_ + "."); made != origins_->end() && made->first.rfind(path_ + ".", 0) == 0) {
+        m << made->second << ": " << text_excerpt(full) << ": " << message << " (" << path_ << " is a table --set added)";
         throw InputError(m.str(), full);
       }
     m << file_;

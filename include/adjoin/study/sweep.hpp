@@ -66,7 +66,7 @@ struct SweepValue {
 };
 
 // Values made in code (adjoin optimize, ida), spelled as a --set of them would be: a double as
-// a TOML float ("2.0e5" stays a float: 200000.0), a string quoted, a list as "[3, 3]".
+// a TOML float (2.0 as "2.0", 2e5 as "2e+05"), a string quoted, a list as "[3, 3]".
 //     spec.axes[0].values[0].set.emplace_back("link.1.floors", sweep_value({std::int64_t{2}, std::int64_t{3}}));
 SweepValue sweep_value(double v);
 SweepValue sweep_value(std::int64_t v);
