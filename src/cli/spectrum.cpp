@@ -523,7 +523,7 @@ int suite_spectra(const SpectrumArgs& args, const SpectrumOptions& elastic, Plot
       const auto ends = split(args.band, ',');
       if (ends.size() != 2 || !parse_number(ends[0], &scaling.band_from) || !parse_number(ends[1], &scaling.band_to) ||
           !(scaling.band_from > 0.0 && scaling.band_from < scaling.band_to && scaling.band_to <= 1e4))
-        throw InputError(option + ": expected two periods TA,TB in s, 0 < TA < TB <= 1e4 (e.g. 0.1,3.8: 0.2 of the "
+        throw InputError(option + ": expected two periods TA,TB in s, 0 < TA < TB <= 1e4 (e.g. 0.1,4: 0.2 of the "
                                   "shorter and 2 of the longer fundamental period of two buildings)");
     }
     if (!target) throw InputError(option + ": scales the suite to a target: give --target too");
