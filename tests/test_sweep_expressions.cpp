@@ -258,3 +258,28 @@ values = [[3, 3], [2, 2]]
   CHECK(expected[3][2] == "[3, 3]");
   CHECK(without_wall(slurp(dir / "resumed" / "sweep.csv")) == expected);
 }
+
+TEST_CASE("sweep expressions: the damper-variants example, a row against adjoin run --set by hand", "[sweep_expressions]") {
+  const auto example = std::filesystem::path(ADJOIN_SOURCE_DIR) / "examples" / "sweeps" / "two-frames-damper-variants.toml";
+  const SweepSpec spec = load_sweep(example);
+  REQUIRE(spec.runs() == 12);
+  REQUIRE(spec.axes.size() == 1);
+  CHECK(spec.axes[0].name == "variant");
+  CHECK(spec.link_columns == 2);
+  std::vector<std::string> labels;
+  for (const auto& v : spec.axes[0].values) labels.push_back(v.label);
+  CHECK(labels == std::vector<std::string>{"none", "friction", "viscous", "two-friction"});
+  // Run 6: the viscous variant under the base's record (the whole record: the file's own run).
+  REQUIRE(spec.describe(6) == "variant=viscous, motion=newhall");
+  const SweepRow row = run_sweep_point(spec, 6);
+  REQUIRE(row.error.empty());
+  const BuildingScene scene = load_building_scene(
+      kOneDamper, {"output.timeseries=false", "link.1.type=dashpot", "link.1.c=1.5e5", "link.1.alpha=0.4"});
+  CHECK(row.channels == building_channel_cells(ChannelCounts{2, 2, 1}, scene, run(scene)));
+  // The two-friction variant: two links of half the slip force each.
+  const RunSpec two = sweep_scene(spec, 9);
+  REQUIRE(two.structure.links.size() == 2);
+  CHECK(two.structure.links[1].floor_a == 2);
+  CHECK(two.structure.links[0].slip_force == two.structure.links[1].slip_force);
+  CHECK(two.structure.links[0].slip_force * 2.0 == Approx(sweep_scene(spec, 3).structure.links[0].slip_force).epsilon(1e-15));
+}
