@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "adjoin/core/csv_line.hpp"
 #include "adjoin/core/errors.hpp"
 #include "adjoin/io/building_scene.hpp"
@@ -282,4 +284,55 @@ TEST_CASE("sweep expressions: the damper-variants example, a row against adjoin 
   CHECK(two.structure.links[1].floor_a == 2);
   CHECK(two.structure.links[0].slip_force == two.structure.links[1].slip_force);
   CHECK(two.structure.links[0].slip_force * 2.0 == Approx(sweep_scene(spec, 3).structure.links[0].slip_force).epsilon(1e-15));
+}
+
+TEST_CASE("sweep expressions: adjoin sweep of variants and adjoin run --set of the same edits write the same numbers", "[sweep_expressions][cli]") {
+  // The commands themselves: sweep.csv's cells against summary.json's values, as text (both
+  // write shortest round-trip numbers, so equal text is equal bits).
+  const auto file = sweep_file("cli-variants.toml", kOneDamper, R"(
+[[variant]]
+name = "viscous"
+set = {"link.1.type" = "dashpot", "link.1.c" = 1.5e5, "link.1.alpha" = 0.4}
+[[variant]]
+name = "two-friction"
+[variant.set]
+"link.1.floors" = [3, 3]
+"link.2.floors" = [2, 2]
+"link.2.type" = "friction"
+"link.2.slip_force" = 4.0e4
+)");
+  const std::filesystem::path dir = std::filesystem::path(ADJOIN_TEST_TMP) / "expr-cli-run";
+  std::filesystem::remove_all(dir);
+  REQUIRE(run_cli("sweep " + file.string() + " --out " + (dir / "sweep").string() + " --quiet").status == 0);
+  std::istringstream csv(slurp(dir / "sweep" / "sweep.csv"));
+  std::vector<std::vector<std::string>> rows;
+  for (std::string line; std::getline(csv, line);) {
+    rows.emplace_back();
+    REQUIRE(split_csv_line(line, &rows.back()));
+  }
+  REQUIRE(rows.size() == 3);
+  const auto cell = [&](std::size_t row, const std::string& column) {
+    const auto it = std::find(rows[0].begin(), rows[0].end(), column);
+    REQUIRE(it != rows[0].end());
+    return rows[row][static_cast<std::size_t>(it - rows[0].begin())];
+  };
+  const std::string base = "run " + kOneDamper.string() + " --quiet --set solver.t_end=3.0 --set solver.h=0.004 --set output.timeseries=false";
+  const std::vector<std::string> by_hand = {
+      " --set link.1.type=dashpot --set link.1.c=1.5e5 --set link.1.alpha=0.4",
+      " --set 'link.1.floors=[3, 3]' --set 'link.2.floors=[2,2]' --set link.2.type=friction --set link.2.slip_force=4.0e4"};
+  for (std::size_t v = 0; v < by_hand.size(); ++v) {
+    const std::filesystem::path out = dir / ("run" + std::to_string(v));
+    const auto r = run_cli(base + by_hand[v] + " --out " + out.string());
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const auto summary = nlohmann::json::parse(slurp(out / "summary.json"));
+    const auto text = [](const nlohmann::json& number) { return sweep_number_cell(number.get<double>()); };
+    CHECK(cell(v + 1, "A.roof_max") == text(summary["peaks"]["A.x5"]["max_abs"]));
+    CHECK(cell(v + 1, "link1.force_max") == text(summary["links"][0]["force_max"]));
+    CHECK(cell(v + 1, "link1.stroke_max") == text(summary["links"][0]["stroke_max"]));
+    CHECK(cell(v + 1, "energy_input") == text(summary["energy"]["input"]));
+    CHECK(summary["links"].size() == v + 1);
+    if (v == 1) CHECK(cell(v + 1, "link2.force_max") == text(summary["links"][1]["force_max"]));
+  }
+  CHECK(cell(1, "link2.force_max").empty());
 }
