@@ -66,14 +66,14 @@ Parent walk(toml::table& root, const std::vector<std::string>& parts, const std:
       std::size_t n = 0;
       if (!is_index(part, &n))
         throw InputError(origin + ": " + path + " is a list of tables: number them from 1, e.g. " + path + ".1");
-      const bool adds = grow && n == array->size() + 1 && is_growable(parts[i - 1]) &&
-                        (array->empty() || array->is_array_of_tables());
-      if (adds) array->push_back(toml::table{});
-      if (n < 1 || n > array->size())
+      const bool growable = grow && is_growable(parts[i - 1]) && (array->empty() || array->is_array_of_tables());
+      if (growable && n == array->size() + 1) array->push_back(toml::table{});
+      if (n < 1 || n > array->size()) {
+        const std::string next_one =
+            growable && n > array->size() ? " (a --set adds the next one, number " + std::to_string(array->size() + 1) + ")" : "";
         throw InputError(origin + ": the scene has " + tables_text(array->size(), path) + ", not a number " +
-                         text_excerpt(part) + (grow && n > array->size() && is_growable(parts[i - 1]) ? " (a --set adds the next one, number " +
-                                                                                         std::to_string(array->size() + 1) + ")"
-                                                                                   : std::string()));
+                         text_excerpt(part) + next_one);
+      }
       next = array->get(n - 1);
       path += "[" + part + "]";
     } else if (toml::table* table = current->as_table()) {
