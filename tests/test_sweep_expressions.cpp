@@ -17,6 +17,7 @@
 #include "adjoin/core/csv_line.hpp"
 #include "adjoin/core/errors.hpp"
 #include "adjoin/io/building_scene.hpp"
+#include "adjoin/io/scene.hpp"
 #include "adjoin/io/sweep_file.hpp"
 #include "adjoin/io/sweep_files.hpp"
 #include "adjoin/study/run.hpp"
@@ -335,4 +336,30 @@ name = "two-friction"
     if (v == 1) CHECK(cell(v + 1, "link2.force_max") == text(summary["links"][1]["force_max"]));
   }
   CHECK(cell(1, "link2.force_max").empty());
+}
+
+TEST_CASE("sweep expressions: a list value in a two-block sweep is the --set of the same list", "[sweep_expressions]") {
+  // A two-block scene reads the edits as typed values (io/sweep_scenes.cpp): a list as a TOML array.
+  const auto strong = std::filesystem::path(ADJOIN_SOURCE_DIR) / "records" / "scenes" / "paper-strong.toml";
+  const SweepSpec spec = load_sweep(sweep_file("two-block-list.toml", strong, R"(
+[[axis]]
+key = "output.spectra.damping"
+values = [[0.02, 0.05], [0.1]]
+[[axis]]
+name = "signals"
+values = [{name = "ground-only", set = {"output.spectra.signals" = ["ground"]}}]
+)"));
+  REQUIRE(spec.runs() == 2);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const RunSpec swept = sweep_scene(spec, i);
+    const RunSpec by_hand = load_scene(strong, {"solver.t_end=3.0", "solver.h=0.004", "output.timeseries=false",
+                                                i == 0 ? "output.spectra.damping=[0.02,0.05]" : "output.spectra.damping=[0.1]",
+                                                "output.spectra.signals=[\"ground\"]"});
+    REQUIRE(swept.output.spectra);
+    REQUIRE(by_hand.output.spectra);
+    CHECK(swept.output.spectra->damping == by_hand.output.spectra->damping);
+    CHECK(swept.output.spectra->signals == by_hand.output.spectra->signals);
+  }
+  CHECK(sweep_scene(spec, 0).output.spectra->damping == std::vector<double>{0.02, 0.05});
+  CHECK(sweep_scene(spec, 1).output.spectra->signals == std::vector<std::string>{"ground"});
 }
