@@ -51,7 +51,7 @@ TEST_CASE("a two-block scene's errors name their field, from the file or from a 
 TEST_CASE("a building scene's errors name their field in the builder's spelling", "[errors]") {
   CHECK(field_of([] { load_building_scene(kFrames, {"building.A.perod=1.0"}); }) == "building.A.perod");
   CHECK(field_of([] { load_building_scene(kFrames, {"link.1.slip_force=-1"}); }) == "link[1].slip_force");
-  CHECK(field_of([] { load_building_scene(kFrames, {"link.2.slip_ratio=0.1"}); }) == "link[2].slip_ratio");
+  CHECK(field_of([] { load_building_scene(kFrames, {"link.3.slip_ratio=0.1"}); }) == "link[3].slip_ratio");  // (link.2 would add one)
   CHECK(field_of([] { load_building_scene(kFrames, {}, {"link.9"}); }) == "link[9]");
 }
 

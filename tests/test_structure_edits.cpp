@@ -86,6 +86,45 @@ TEST_CASE("structure edits give what editing the file gives", "[structure_edits]
     CHECK(s.a.floors() == 6);
     CHECK(s.b->damping.ratio == 0.02);
   }
+  SECTION("a new type drops the old type's keys: a friction link made a dashpot, a dashpot device made a spring") {
+    // The file edited by hand: the first link a dashpot, the first device a spring.
+    std::string by_hand = scene("stiffness = 3.0e6", "c = 1.5e5\nalpha = 0.4");
+    const std::string friction = "type = \"friction\"\nc = 1.5e5";
+    by_hand.replace(by_hand.find(friction), friction.size(), "type = \"dashpot\"\nc = 1.5e5");
+    const std::string dashpot = "type = \"dashpot\"\nstoreys = [1, 2]\nc = 1.0e5";
+    by_hand.replace(by_hand.find(dashpot), dashpot.size(), "type = \"spring\"\nstoreys = [1, 2]\nstiffness = 2.0e6");
+    const auto edited = parse_structure(scene(), "s",
+                                        {"link.1.type=dashpot", "link.1.c=1.5e5", "link.1.alpha=0.4",
+                                         "building.A.device.1.type=spring", "building.A.device.1.stiffness=2.0e6"},
+                                        {});
+    const auto file = parse_structure(by_hand, "s");
+    same(edited, file);
+    CHECK(edited.links[0].type == structure::LinkType::dashpot);
+    CHECK(edited.links[0].alpha == file.links[0].alpha);
+    CHECK(edited.a.devices[0].type == structure::DeviceType::spring);
+    CHECK(edited.a.devices[0].k == 2.0e6);
+    // The edit's order does not matter: c set before the type is kept.
+    same(parse_structure(scene(), "s", {"link.1.c=1.5e5", "link.1.alpha=0.4", "link.1.type=dashpot"}, {}), file);
+    // A type set to the one it has keeps its keys.
+    same(parse_structure(scene(), "s", {"link.1.type=friction"}, {}), parse_structure(scene(), "s"));
+  }
+  SECTION("a --set of the next number adds a link, a device, a contact") {
+    const auto s = parse_structure(scene("stiffness = 3.0e6", "slip_ratio = 0.05\nof = \"B\"", false), "s",
+                                   {"link.2.floors=[2, 2]", "link.2.type=dashpot", "link.2.c=2.0e5",
+                                    "building.A.device.3.type=spring", "building.A.device.3.storeys=[4]",
+                                    "building.A.device.3.stiffness=1.0e6", "contact.2.floors=[1, 1]", "contact.2.gap=0.1"},
+                                   {});
+    same(s, parse_structure(scene(), "s", {"contact.2.floors=[1, 1]", "contact.2.gap=0.1", "building.A.device.3.type=spring",
+                                           "building.A.device.3.storeys=[4]", "building.A.device.3.stiffness=1.0e6"}, {}));
+    REQUIRE(s.a.devices.size() == 3);
+    CHECK(s.a.devices[2].storeys == std::vector<int>{4});
+    REQUIRE(s.contacts.size() == 2);
+    CHECK(s.contacts[1].gap == 0.1);
+    // With no link at all, link.1 makes the first.
+    const auto first = parse_structure(scene(), "s", {"link.1.floors=[1, 1]", "link.1.type=spring", "link.1.stiffness=1e6"}, {"link"});
+    REQUIRE(first.links.size() == 1);
+    CHECK(first.links[0].type == structure::LinkType::spring);
+  }
   SECTION("unset first, then set, in that order") {
     const auto s = parse_structure(scene(), "s", {"link.1.c=7e4"}, {"link.1"});  // the dashpot is link 1 now
     REQUIRE(s.links.size() == 1);
@@ -103,13 +142,17 @@ TEST_CASE("structure edits: mistakes are named by the edit or by the file line",
     }
     return std::string("no error");
   };
-  CHECK(message({"link.3.c=1"}, {}) == "--set link.3.c=1: the scene has 2 [[link]] tables, not a number 3");
+  // link.3 adds a third link (one more than the scene has), which then lacks its keys; link.4
+  // is not the next one.
+  CHECK(message({"link.3.c=1"}, {}) == "--set link.3.c=1: link[3].floors: expected 2 whole numbers (link[3] is a table --set added)");
+  CHECK(message({"link.4.c=1"}, {}) ==
+        "--set link.4.c=1: the scene has 2 [[link]] tables, not a number 4 (a --set adds the next one, number 3)");
   CHECK(message({"link.0.c=1"}, {}) == "--set link.0.c=1: the scene has 2 [[link]] tables, not a number 0");
   CHECK(message({"building.A.damping.ratio=1"}, {}).rfind("--set building.A.damping.ratio=1: building.A.damping.ratio: expected", 0) == 0);
   CHECK(message({"link.2.c=-5"}, {}) == "--set link.2.c=-5: link[2].c: expected a positive number");
   // A value the edit did not touch keeps its file line.
   CHECK(message({"building.A.storeys=2"}, {}).rfind("s.toml:", 0) == 0);
-  CHECK(message({}, {"contact.2"}) == "--unset contact.2: the scene has 1 [[contact]] tables");
+  CHECK(message({}, {"contact.2"}) == "--unset contact.2: the scene has 1 [[contact]] table, no number 2 to remove");
   CHECK(message({}, {"building.A.nothing"}) == "--unset building.A.nothing: the scene has no key or section building.A.nothing");
 }
 

@@ -236,6 +236,61 @@ TEST_CASE("scaling lifts the suite mean to 90 percent of the target at its lowes
   CHECK(std::abs(u_lowest - 0.9) < 1e-8);
 }
 
+TEST_CASE("--band scales the suite over a period band of two buildings, as computed here by hand", "[suite][cli]") {
+  // Two buildings, T1 = 0.5 s and 0.95 s: the band 0.2 x 0.5 ... 2 x 0.95 = 0.1 ... 1.9 s.
+  const fs::path out = fresh_dir("suite_band");
+  const std::string target = kRecords + "/targets/ASCE7.txt";
+  const auto r = run_cli("spectrum --suite" + quoted(kSuite) + " --range 0.05:5:25 --target '" + target +
+                         "' --band 0.1,1.9 --out '" + out.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("over 0.1 ... 1.9 s (--band,") != std::string::npos);
+  const std::vector<double> f = read_csv(out / "factors.csv").num("factor");
+  REQUIRE(f.size() == 4);
+  std::vector<std::vector<double>> psa;
+  for (const std::string& record : kSuite) psa.push_back(read_csv(out / (fs::path(record).filename().string() + ".csv")).num("psa"));
+  const std::vector<double> periods = read_csv(out / "suite.csv").num("period");
+  const double band_min = 0.1, band_max = 1.9;
+  CHECK(std::count(periods.begin(), periods.end(), band_min) == 1);  // the band's ends are computed
+  CHECK(std::count(periods.begin(), periods.end(), band_max) == 1);
+  const auto in_band = [&](double t) { return t >= band_min * (1 - 1e-12) && t <= band_max * (1 + 1e-12); };
+
+  // By hand: a_k = exp(mean over the band of ln(target / PSA_k)); c lifts the lowest ratio of
+  // the geometric mean of a_k PSA_k to the target over the band to 0.9; factor_k = c a_k.
+  std::vector<double> a;
+  for (std::size_t k = 0; k < 4; ++k) {
+    double sum = 0.0;
+    int count = 0;
+    for (std::size_t i = 0; i < periods.size(); ++i)
+      if (in_band(periods[i])) sum += std::log(asce7(periods[i]) / psa[k][i]), ++count;
+    REQUIRE(count >= 10);
+    a.push_back(std::exp(sum / count));
+  }
+  double lowest = 1e300;
+  for (std::size_t i = 0; i < periods.size(); ++i) {
+    if (!in_band(periods[i])) continue;
+    double m = 0.0;
+    for (std::size_t k = 0; k < 4; ++k) m += std::log(a[k] * psa[k][i]) / 4.0;
+    lowest = std::min(lowest, std::exp(m) / asce7(periods[i]));
+  }
+  for (std::size_t k = 0; k < 4; ++k) {
+    INFO("record " << kSuite[k]);
+    CHECK(relative(f[k], 0.9 / lowest * a[k]) < 1e-8);
+  }
+  // A different band gives different factors (the band is used), and the band
+  // 0.2 T1 ... 2 T1 the factors --t1 T1 gives, to the last digit written.
+  const fs::path narrow = fresh_dir("suite_band_narrow");
+  REQUIRE(run_cli("spectrum --suite" + quoted(kSuite) + " --range 0.05:5:25 --target '" + target +
+                  "' --band 0.5,1.0 --out '" + narrow.string() + "'").status == 0);
+  CHECK(relative(read_csv(narrow / "factors.csv").num("factor")[0], f[0]) > 1e-3);
+  const fs::path by_band = fresh_dir("suite_band_t1"), by_t1 = fresh_dir("suite_t1_band");
+  REQUIRE(run_cli("spectrum --suite" + quoted(kSuite) + " --range 0.05:5:25 --target '" + target +
+                  "' --band 0.14,1.4 --out '" + by_band.string() + "'").status == 0);
+  REQUIRE(run_cli("spectrum --suite" + quoted(kSuite) + " --range 0.05:5:25 --target '" + target +
+                  "' --t1 0.7 --out '" + by_t1.string() + "'").status == 0);
+  CHECK(read_csv(by_band / "factors.csv").text == read_csv(by_t1 / "factors.csv").text);
+}
+
 TEST_CASE("a record scaled by its factor has its spectrum scaled by exactly that factor", "[suite][cli]") {
   const fs::path out = fresh_dir("suite_factor");
   const std::vector<std::string> pair(kSuite.begin(), kSuite.begin() + 2);
@@ -312,4 +367,20 @@ TEST_CASE("suite_statistics by hand on three spectra, and its refusals", "[suite
   std::string error;
   CHECK(!options.IsValid(&error));
   CHECK(error.find("t1") == 0);
+  // A band given directly: valid alone, not with t1, not reversed; its ends are the band's.
+  options.band_from = 0.4;
+  options.band_to = 1.6;
+  CHECK(options.IsValid(&error));
+  CHECK(options.band_min() == 0.4);
+  CHECK(options.band_max() == 1.6);
+  CHECK(adjoin::suite_periods({0.1, 1.0, 2.0}, options) == std::vector<double>{0.1, 0.4, 1.0, 1.6, 2.0});
+  CHECK_THROWS_WITH(adjoin::scale_suite(three, adjoin::TargetSpectrum::ec8('B', 0.25), options),
+                    Catch::Contains("the band 0.4 ... 1.6 s is not inside the periods computed"));
+  options.t1 = 1.0;
+  CHECK(!options.IsValid(&error));
+  CHECK(error.find("not both") != std::string::npos);
+  options.t1 = 0.0;
+  options.band_to = 0.3;
+  CHECK(!options.IsValid(&error));
+  CHECK(error.find("band_from, band_to") == 0);
 }

@@ -82,7 +82,7 @@ struct SpectrumArgs : ReadingArgs {
   std::string plot;
   std::string target;
   bool suite = false;
-  std::string t1, scaling;  // empty: not given
+  std::string t1, band, scaling;  // empty: not given
 };
 
 std::vector<std::string> split(const std::string& text, char separator) {
@@ -226,8 +226,9 @@ int spectrum_command(const SpectrumArgs& args) {
     if (inelastic) throw InputError("--ductility/--strength-reduction/--yield-coefficient: not available for a --suite");
     return suite_spectra(args, options, style, std::move(target));
   }
-  if (!args.t1.empty() || !args.scaling.empty())
-    throw InputError(std::string(args.t1.empty() ? "--scaling" : "--t1") + ": scales a suite of records (give --suite)");
+  if (!args.t1.empty() || !args.band.empty() || !args.scaling.empty())
+    throw InputError(std::string(!args.t1.empty() ? "--t1" : !args.band.empty() ? "--band" : "--scaling") +
+                     ": scales a suite of records (give --suite)");
   if (args.records.size() > 2)
     throw InputError(std::to_string(args.records.size()) +
                      " records: give --suite for a suite (one record gives its spectrum, two with --rotd a pair)");
@@ -510,16 +511,28 @@ int suite_spectra(const SpectrumArgs& args, const SpectrumOptions& elastic, Plot
   request.plot = args.plot;  // checked up front (plot_target)
   style.height = 600;         // one panel, PSA
   request.style = style;
-  if (!args.t1.empty()) {
+  if (!args.t1.empty() && !args.band.empty())
+    throw InputError("--t1 " + text_excerpt(args.t1) + " and --band " + text_excerpt(args.band) +
+                     ": give one (--t1 T scales over 0.2 T ... 2 T; --band TA,TB over TA ... TB)");
+  if (!args.t1.empty() || !args.band.empty()) {
     SuiteScalingOptions scaling;
-    if (!parse_number(args.t1, &scaling.t1) || !(scaling.t1 > 0.0 && scaling.t1 <= 1e4))
-      throw InputError("--t1 " + text_excerpt(args.t1) + ": expected the fundamental period T1 in s, 0 < T1 <= 1e4");
-    if (!target) throw InputError("--t1 " + text_excerpt(args.t1) + ": scales the suite to a target: give --target too");
+    const std::string option = !args.t1.empty() ? "--t1 " + text_excerpt(args.t1) : "--band " + text_excerpt(args.band);
+    if (!args.t1.empty() && (!parse_number(args.t1, &scaling.t1) || !(scaling.t1 > 0.0 && scaling.t1 <= 1e4)))
+      throw InputError(option + ": expected the fundamental period T1 in s, 0 < T1 <= 1e4");
+    if (!args.band.empty()) {
+      const auto ends = split(args.band, ',');
+      if (ends.size() != 2 || !parse_number(ends[0], &scaling.band_from) || !parse_number(ends[1], &scaling.band_to) ||
+          !(scaling.band_from > 0.0 && scaling.band_from < scaling.band_to && scaling.band_to <= 1e4))
+        throw InputError(option + ": expected two periods TA,TB in s, 0 < TA < TB <= 1e4 (e.g. 0.1,4: 0.2 of the "
+                                  "shorter and 2 of the longer fundamental period of two buildings)");
+    }
+    if (!target) throw InputError(option + ": scales the suite to a target: give --target too");
     if (!args.scaling.empty() && !parse_enum(args.scaling, &scaling.rule))
       throw InputError("--scaling " + text_excerpt(args.scaling) + ": expected " + join_names(names<SuiteScaling>(), "", ", ", " or "));
     request.scaling = scaling;
   } else if (!args.scaling.empty()) {
-    throw InputError("--scaling " + text_excerpt(args.scaling) + ": chooses how --t1 scales the suite (give --t1 and --target)");
+    throw InputError("--scaling " + text_excerpt(args.scaling) +
+                     ": chooses how --t1 or --band scales the suite (give --t1 or --band, and --target)");
   }
   request.target = std::move(target);
   return suite_command(request);
@@ -572,8 +585,11 @@ const Registration registration(20, [](CLI::App& app) -> Runner {
                 "written to --out DIR (a folder among the records implies it)");
   sub->add_option("--t1", args->t1,
                   "Suite: scale it to --target so that its mean is >= 90 % of the target over 0.2 T1 ... 2 T1 [s]");
+  sub->add_option("--band", args->band,
+                  "Suite: scale it to --target so that its mean is >= 90 % of the target over the band TA,TB [s] "
+                  "(two buildings: 0.2 of the shorter, 2 of the longer fundamental period); instead of --t1");
   sub->add_option("--scaling", args->scaling,
-                  "Suite with --t1: fit (default: each record fitted to the target, then one common multiplier) "
+                  "Suite with --t1 or --band: fit (default: each record fitted to the target, then one common multiplier) "
                   "or uniform (one factor for all)");
   return [args]() { return spectrum_command(*args); };
 });

@@ -1,13 +1,13 @@
-// adjoin spectrum --suite RECORD|FOLDER... --out DIR [--target T --t1 S [--scaling fit|uniform]]
+// adjoin spectrum --suite RECORD|FOLDER... --out DIR [--target T --t1 S|--band TA,TB [--scaling fit|uniform]]
 //
 // The elastic spectra of a suite of records and their statistics (post/suite.hpp), written as
 // one set into DIR (temporary files renamed only when all are complete, io/atomic_file.hpp):
 //   <record file name>.csv  each record's spectrum, period,damping,sd,sv,sa,psv,psa (unscaled)
 //   suite.csv               period,damping,mean,median,minus1sigma,plus1sigma (PSA in g), then
 //                           target with --target (empty where the table does not reach) and
-//                           scaled_mean with --t1
-//   factors.csv             record,factor with --t1 (removed when a run does not scale)
-// --t1 scales the suite (rule in post/suite.hpp): --scaling fit (default) first scales each
+//                           scaled_mean with --t1 or --band
+//   factors.csv             record,factor with --t1 or --band (removed when a run does not scale)
+// --t1 scales the suite over 0.2 T1 ... 2 T1, --band TA,TB over TA ... TB (rule in post/suite.hpp): --scaling fit (default) first scales each
 // record to its own least-squares fit of the target in ln PSA over 0.2 T1 ... 2 T1, uniform
 // leaves them; then one common multiplier puts the scaled geometric mean's lowest ratio to
 // the target over the band at exactly 0.9. A summary goes to stdout. Which inputs are records: every file named; in a folder (not its
@@ -170,7 +170,7 @@ void plot_suite(const SuiteRequest& r, const std::vector<Member>& members, const
   }
   char title[160];
   std::snprintf(title, sizeof title, "Suite of %zu records, PSA at %g %%%s", members.size(), 100.0 * s.dampings[0],
-                scale ? ", scaled (band 0.2 T_1 ... 2 T_1 marked)" : "");
+                !scale ? "" : r.scaling->t1 > 0.0 ? ", scaled (band 0.2 T_1 ... 2 T_1 marked)" : ", scaled (band marked)");
   script << "set title " << gnuplot_quote(title) << "\nset logscale xy\nset format x '%g'\nset format y '%g'\n"
          << "set grid xtics mxtics ytics lc rgb '#d0d0d0'\nset xlabel 'period T [s]'\nset ylabel 'PSA [g]'\n"
          << "set key bottom left noenhanced\nplot " << plots << "\n";
@@ -204,7 +204,7 @@ int suite_command(const SuiteRequest& r) {
     try {
       scale = scale_suite(spectra, *r.target, *r.scaling, names);
     } catch (const InputError& e) {
-      throw InputError(std::string("--t1/--target: ") + e.what());
+      throw InputError(std::string(r.scaling->t1 > 0.0 ? "--t1" : "--band") + "/--target: " + e.what());
     }
     scaled = suite_statistics(spectra, names, scale->factors);
   }
@@ -236,9 +236,12 @@ int suite_command(const SuiteRequest& r) {
     const char* rule = r.scaling->rule == SuiteScaling::fit
                            ? "each record fitted to the target (least squares in ln PSA), all then multiplied by"
                            : "one factor for all records,";
-    std::printf("scaled to %s over %g ... %g s (T1 = %g s, %zu periods): %s c = %.6g\n"
+    char band[64];
+    if (r.scaling->t1 > 0.0) std::snprintf(band, sizeof band, "T1 = %g s", r.scaling->t1);
+    else std::snprintf(band, sizeof band, "--band");
+    std::printf("scaled to %s over %g ... %g s (%s, %zu periods): %s c = %.6g\n"
                 "  scaled mean / target: %.4g at T = %g s (lowest), %.4g at T = %g s (highest)\n",
-                r.target->name.c_str(), scale->band_min, scale->band_max, r.scaling->t1, scale->band_periods, rule,
+                r.target->name.c_str(), scale->band_min, scale->band_max, band, scale->band_periods, rule,
                 scale->common, r.scaling->min_ratio, scale->min_ratio_period, scale->max_ratio,
                 scale->max_ratio_period);
   }

@@ -21,7 +21,7 @@ struct SuiteRequest {
   RecordFormat format;              // kind automatic unless --format named one
   SpectrumOptions options;
   std::optional<TargetSpectrum> target;
-  std::optional<SuiteScalingOptions> scaling;  // --t1 given
+  std::optional<SuiteScalingOptions> scaling;  // --t1 or --band given
   std::string out, plot;
   PlotStyle style;
 };

@@ -1,12 +1,14 @@
 #include "structure_edits.hpp"
 
 #include <cctype>
+#include <set>
 #include <sstream>
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/core/parse_number.hpp"
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/structure/contact_rules.hpp"
+#include "element_keys.hpp"
 #include "toml_text.hpp"
 
 namespace adjoin::detail {
@@ -44,7 +46,17 @@ struct Parent {
   std::string path;
 };
 
-Parent walk(toml::table& root, const std::vector<std::string>& parts, const std::string& origin) {
+// The lists of tables a --set may lengthen: `link.N.KEY`, `contact.N.KEY` and
+// `building.X.device.N.KEY` with N one more than the tables there are add a table (the first
+// one creates the list), so that a sweep can add a damper the base lacks.
+bool is_growable(const std::string& name) { return name == "link" || name == "contact" || name == "device"; }
+
+std::string tables_text(std::size_t n, const std::string& path) {
+  return std::to_string(n) + " [[" + path + "]] table" + (n == 1 ? "" : "s");
+}
+
+// `grow`: a --set, which may add the next table of a growable list (see is_growable).
+Parent walk(toml::table& root, const std::vector<std::string>& parts, const std::string& origin, bool grow = false) {
   toml::node* current = &root;
   std::string path;
   for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
@@ -54,13 +66,22 @@ Parent walk(toml::table& root, const std::vector<std::string>& parts, const std:
       std::size_t n = 0;
       if (!is_index(part, &n))
         throw InputError(origin + ": " + path + " is a list of tables: number them from 1, e.g. " + path + ".1");
-      if (n < 1 || n > array->size())
-        throw InputError(origin + ": the scene has " + std::to_string(array->size()) + " [[" + path + "]] table" +
-                         (array->size() == 1 ? "" : "s") + ", not a number " + text_excerpt(part));
+      const bool growable = grow && is_growable(parts[i - 1]) && (array->empty() || array->is_array_of_tables());
+      if (growable && n == array->size() + 1) array->push_back(toml::table{});
+      if (n < 1 || n > array->size()) {
+        const std::string next_one =
+            growable && n > array->size() ? " (a --set adds the next one, number " + std::to_string(array->size() + 1) + ")" : "";
+        throw InputError(origin + ": the scene has " + tables_text(array->size(), path) + ", not a number " +
+                         text_excerpt(part) + next_one);
+      }
       next = array->get(n - 1);
       path += "[" + part + "]";
     } else if (toml::table* table = current->as_table()) {
       next = table->get(part);
+      if (!next && grow && is_growable(part) && i + 2 < parts.size() && parts[i + 1] == "1") {
+        table->insert(part, toml::array{});
+        next = table->get(part);
+      }
       if (!next) throw InputError(origin + ": the scene has no " + text_excerpt(path.empty() ? part : path + "." + part));
       path += (path.empty() ? "" : ".") + part;
     } else {
@@ -97,7 +118,8 @@ void unset(toml::table& root, const std::string& key) {
     std::size_t n = 0;
     if (!is_index(leaf, &n)) throw InputError(origin + ": number the [[" + parent.path + "]] tables from 1");
     if (n < 1 || n > array->size())
-      throw InputError(origin + ": the scene has " + std::to_string(array->size()) + " [[" + parent.path + "]] tables");
+      throw InputError(origin + ": the scene has " + tables_text(array->size(), parent.path) + ", no number " +
+                       text_excerpt(leaf) + " to remove");
     array->erase(array->begin() + static_cast<std::ptrdiff_t>(n - 1));
   } else if (toml::table* table = parent.node->as_table()) {
     if (!table->contains(leaf))
@@ -108,6 +130,25 @@ void unset(toml::table& root, const std::string& key) {
   }
 }
 
+// A link's or device's new `type` drops the keys that type does not take (element_keys.hpp),
+// not those another --set put there (a contradiction the reader reports, naming that --set).
+void drop_other_type_keys(toml::table& table, const std::string& path, const toml::table& holder,
+                          const std::map<std::string, std::string>& origins) {
+  const auto word = holder["v"].value<std::string>();
+  if (!word) return;  // the reader names a type that is not a word
+  const bool link = path.rfind("link[", 0) == 0;
+  const bool device = path.find(".device[") != std::string::npos;
+  std::set<std::string> keys;
+  if (structure::LinkType type; link && parse_enum(*word, &type)) keys = link_keys(type);
+  if (structure::DeviceType type; device && parse_enum(*word, &type)) keys = device_keys(type);
+  if (keys.empty()) return;  // not a link or device, or an unknown type (the reader lists the types)
+  std::vector<std::string> dropped;
+  for (const auto& [key, node] : table)
+    if (!keys.count(std::string(key.str())) && !origins.count(path + "." + std::string(key.str())))
+      dropped.emplace_back(key.str());
+  for (const auto& key : dropped) table.erase(key);
+}
+
 void set(toml::table& root, const std::string& text, std::map<std::string, std::string>& origins) {
   const std::string origin = "--set " + text_excerpt(text);
   const auto eq = text.find('=');
@@ -115,10 +156,11 @@ void set(toml::table& root, const std::string& text, std::map<std::string, std::
   if (eq == std::string::npos || key.empty())
     throw InputError(origin + ": expected KEY=VALUE with a dotted key, e.g. building.A.mass=4.5e4");
   const auto parts = split_path(key, origin);
-  const Parent parent = walk(root, parts, origin);
+  const Parent parent = walk(root, parts, origin, true);
   toml::table* table = parent.node->as_table();
   if (!table) throw InputError(origin + ": " + parent.path + " is a list: name one of its tables by number");
   const toml::table holder = toml_value_of(value);
+  if (parts.back() == "type") drop_other_type_keys(*table, parent.path, holder, origins);
   const bool contact = parent.path.rfind("contact[", 0) == 0;
   if (!contact)
     for (const auto& other : alternatives(parts.back())) table->erase(other);

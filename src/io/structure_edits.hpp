@@ -10,6 +10,10 @@
 // link's `slip_force`, `slip_ratio`) removes the others, as editing the file would; so do a
 // contact's `restitution` and `damping`, and a contact's `model` removes the law keys that
 // model does not take (structure/contact_rules.hpp), unless another --set put them there.
+// Likewise a link's or device's `type` drops the keys the new type does not take
+// (element_keys.hpp: a friction link made a dashpot loses slip_ratio and of). A --set of
+// `link.N.KEY`, `contact.N.KEY` or `building.X.device.N.KEY` with N one more than the tables
+// there are adds a table (a damper the base lacks); a larger N is an error saying which comes next.
 #include <map>
 #include <string>
 #include <vector>

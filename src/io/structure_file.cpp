@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "adjoin/structure/contact_rules.hpp"
+#include "element_keys.hpp"
 #include "structure_edits.hpp"
 #include "sweep_scene_tree.hpp"
 #include "toml_text.hpp"
@@ -29,6 +30,8 @@ using structure::Building;
 using structure::DampingModel;
 using structure::DeviceType;
 using structure::LinkType;
+using detail::device_keys;
+using detail::link_keys;
 
 using Origins = std::map<std::string, std::string>;
 
@@ -63,6 +66,13 @@ class TableReader {
       m << origins_->at(full) << ": " << text_excerpt(full) << ": " << message;
       throw InputError(m.str(), full);
     }
+    // A table a --set added (link.2.floors on a scene with one link) has no file line: blame
+    // the --set that made it.
+    if (origins_ && source.begin.line == 0)
+      if (const auto made = origins_->lower_bound(path_ + "."); made != origins_->end() && made->first.rfind(path_ + ".", 0) == 0) {
+        m << made->second << ": " << text_excerpt(full) << ": " << message << " (" << path_ << " is a table --set added)";
+        throw InputError(m.str(), full);
+      }
     m << file_;
     if (source.begin.line > 0) m << ":" << source.begin.line;
     m << ": " << text_excerpt(full) << ": " << message;
@@ -71,7 +81,10 @@ class TableReader {
   // A key the table must have and has not: the table's line, the key's field.
   [[noreturn]] void missing(const std::string& key) const {
     try {
-      fail("", "missing key " + key);
+      // A type an edit set names the key its type needs (a friction link made a dashpot needs c).
+      const std::string type = path_ + ".type";
+      fail("", "missing key " + key +
+                   (origins_ && origins_->count(type) ? " (the type " + origins_->at(type) + " gave it needs it)" : ""));
     } catch (const InputError& e) {
       throw InputError(e.what(), path_ + "." + key);
     }
@@ -378,25 +391,25 @@ Building read_building(const toml::table& root, const std::string& name, const T
       dev.type = dr.choice<DeviceType>("type");
       dev.storeys = dr.storeys("storeys", n);
       if (dev.type == DeviceType::spring) {
-        dr.only({"type", "storeys", "stiffness"});
+        dr.only(device_keys(dev.type));
         dev.k = dr.bounded("stiffness", kStiffnessRange);
       } else if (dev.type == DeviceType::dashpot) {
-        dr.only({"type", "storeys", "c", "alpha"});
+        dr.only(device_keys(dev.type));
         dev.c = dr.bounded("c", kDashpotRange);
         if (dr.has("alpha")) dev.alpha = dr.bounded("alpha", kAlphaRange);
       } else if (dev.type == DeviceType::bilinear) {
-        dr.only({"type", "storeys", "stiffness", "yield_force", "hardening"});
+        dr.only(device_keys(dev.type));
         dev.k = dr.bounded("stiffness", kStiffnessRange);
         dev.yield_force = dr.bounded("yield_force", kForceRange);
         dev.hardening = read_hardening(dr);
       } else if (dev.type == DeviceType::bouc_wen) {
-        dr.only({"type", "storeys", "stiffness", "yield_force", "hardening", "n", "beta", "gamma"});
+        dr.only(device_keys(dev.type));
         dev.k = dr.bounded("stiffness", kStiffnessRange);
         dev.yield_force = dr.bounded("yield_force", kForceRange);
         dev.hardening = read_hardening(dr);
         read_bouc_wen_shape(dr, &dev.n, &dev.beta, &dev.gamma);
       } else {
-        dr.only({"type", "storeys", "stiffness", "order", "tau_x", "tau_f"});
+        dr.only(device_keys(dev.type));
         dev.zener = read_zener(dr);
       }
       b.devices.push_back(dev);
@@ -512,7 +525,7 @@ structure::Structure detail::structure_from_tree(toml::table& root, const std::s
       l.floor_b = f[1];
       l.type = r.choice<LinkType>("type");
       if (l.type == LinkType::friction) {
-        r.only({"floors", "type", "slip_force", "slip_ratio", "of"});
+        r.only(link_keys(l.type));
         if (r.has("slip_force") == r.has("slip_ratio")) r.fail("", "give slip_force [N] or slip_ratio with of = \"A\" or \"B\", one of them");
         if (r.has("slip_force")) {
           if (r.has("of")) r.fail("of", "of names the building whose weight slip_ratio is a fraction of; slip_force is in N: remove of, or give slip_ratio");
@@ -523,14 +536,14 @@ structure::Structure detail::structure_from_tree(toml::table& root, const std::s
           l.slip_force = structure::slip_force_from_ratio(ratio, of == "A" ? s.a : *s.b);
         }
       } else if (l.type == LinkType::dashpot) {
-        r.only({"floors", "type", "c", "alpha"});
+        r.only(link_keys(l.type));
         l.c = r.bounded("c", kDashpotRange);
         if (r.has("alpha")) l.alpha = r.bounded("alpha", kAlphaRange);
       } else if (l.type == LinkType::spring) {
-        r.only({"floors", "type", "stiffness"});
+        r.only(link_keys(l.type));
         l.k = r.bounded("stiffness", kStiffnessRange);
       } else {
-        r.only({"floors", "type", "stiffness", "order", "tau_x", "tau_f"});
+        r.only(link_keys(l.type));
         l.zener = read_zener(r);
       }
       s.links.push_back(l);

@@ -25,37 +25,6 @@ namespace {
 
 std::string shortest(double v) { return sweep_number_cell(v); }
 
-// A double as a TOML float ("1.0", not "1", so that it stays a float).
-std::string toml_float(double v) {
-  if (std::isnan(v)) return "nan";
-  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  std::string s = shortest(v);
-  if (s.find_first_of(".e") == std::string::npos) s += ".0";
-  return s;
-}
-
-std::string toml_string(const std::string& s) {
-  std::string out = "\"";
-  for (const char c : s) {
-    switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
-      case '\r': out += "\\r"; break;
-      default:
-        if (static_cast<unsigned char>(c) < 0x20) {
-          char code[8];
-          std::snprintf(code, sizeof code, "\\u%04x", static_cast<unsigned>(c));
-          out += code;
-        } else {
-          out += c;
-        }
-    }
-  }
-  return out + "\"";
-}
-
 std::uint64_t fnv1a(std::uint64_t hash, const std::string& text) {
   for (const char c : text) {
     hash ^= static_cast<unsigned char>(c);
@@ -104,26 +73,48 @@ void check_key_length(const SweepReader& r, const toml::node* node, const std::s
   if (key.size() > 200) r.fail(node, "scene key " + escaped_excerpt(key) + " is not a scene key (over 200 characters)");
 }
 
-// A value (typed, with its TOML text: what a --set of it would say) and its label; InputError
-// for tables/arrays.
-std::pair<SweepValue, std::string> value_text(const SweepReader& r, const toml::node& node, const std::string& key,
-                                              std::optional<double>* number) {
-  if (auto v = node.as_integer()) {
-    *number = static_cast<double>(v->get());
-    return {SweepValue{v->get(), std::to_string(v->get())}, shortest(static_cast<double>(v->get()))};
-  }
+// One scalar of the sweep file: a number, a string or true/false.
+SweepScalar scalar_of(const SweepReader& r, const toml::node& node, const std::string& key) {
+  if (auto v = node.as_integer()) return v->get();
   if (auto v = node.as_floating_point()) {
     if (!std::isfinite(v->get())) r.fail(&node, key + ": the value must be finite");
-    *number = v->get();
-    return {SweepValue{v->get(), toml_float(v->get())}, shortest(v->get())};
+    return v->get();
   }
-  if (auto v = node.as_boolean()) return {SweepValue{v->get(), v->get() ? "true" : "false"}, v->get() ? "true" : "false"};
-  if (auto v = node.as_string()) return {SweepValue{v->get(), toml_string(v->get())}, v->get()};
-  r.fail(&node, key + ": expected a number, a string or true/false");
+  if (auto v = node.as_boolean()) return v->get();
+  if (auto v = node.as_string()) return v->get();
+  r.fail(&node, key + ": expected a number, a string, true/false or a list of them (e.g. [3, 3])");
+}
+
+// A value (typed, with its TOML text: what a --set of it would say) and its label; a list of
+// numbers, strings or true/false is one value (link.1.floors = [3, 3]), labelled as written.
+std::pair<SweepValue, std::string> value_text(const SweepReader& r, const toml::node& node, const std::string& key,
+                                              std::optional<double>* number) {
+  if (auto list = node.as_array()) {
+    std::vector<SweepScalar> items;
+    for (const auto& item : *list) {
+      if (item.is_array() || item.is_table())
+        r.fail(&item, key + ": a list value holds numbers, strings or true/false, not lists or tables");
+      items.push_back(scalar_of(r, item, key));
+    }
+    SweepValue value = sweep_value(std::move(items));
+    std::string label = value.text;
+    return {std::move(value), std::move(label)};
+  }
+  const SweepScalar v = scalar_of(r, node, key);
+  if (const auto* i = std::get_if<std::int64_t>(&v)) {
+    *number = static_cast<double>(*i);
+    return {sweep_value(*i), shortest(static_cast<double>(*i))};
+  }
+  if (const auto* d = std::get_if<double>(&v)) {
+    *number = *d;
+    return {sweep_value(*d), shortest(*d)};
+  }
+  if (const auto* b = std::get_if<bool>(&v)) return {sweep_value(*b), *b ? "true" : "false"};
+  return {sweep_value(std::get<std::string>(v)), std::get<std::string>(v)};
 }
 
 // A string value as an edit's value.
-SweepValue string_value(const std::string& text) { return SweepValue{text, toml_string(text)}; }
+SweepValue string_value(const std::string& text) { return sweep_value(text); }
 
 // Paths in a sweep file are relative to its folder; the scene reads a --set path relative to the
 // working folder, so join them here.
@@ -168,6 +159,43 @@ void read_edits(const SweepReader& r, const toml::table& table, const std::files
       s.unset.push_back(k.as_string()->get());
     }
   }
+}
+
+// An axis value written as a table, or a [[variant]]: {name = label, set = {...}, unset = [...]}.
+SweepSetting table_value(const SweepReader& r, const toml::table& t, const std::filesystem::path& folder,
+                         const std::string& what, const std::string& where_name) {
+  check_keys(r, t, {"name", "set", "unset"}, where_name);
+  SweepSetting s;
+  s.line = r.line(&t);
+  auto label = t.get("name");
+  if (!label || !label->is_string() || label->as_string()->get().empty())
+    r.fail(&t, what + " needs name = \"label\" (and set = {...}, unset = [...])");
+  s.label = label->as_string()->get();
+  // A name that is a number ({name = "0", unset = ["link"]}: "no damper" as slip 0) keeps
+  // the axis a number column when its other values are numbers.
+  if (double number = 0.0; parse_finite(s.label, &number)) s.number = number;
+  read_edits(r, t, folder, s);
+  return s;
+}
+
+// [[variant]] tables: sugar for a first axis named "variant" whose values are those tables
+// (design variants as named sets of edits).
+SweepAxis read_variants(const SweepReader& r, const toml::node& node, const std::filesystem::path& folder,
+                        std::set<std::string>& column_names) {
+  auto variants = node.as_array();
+  if (!variants || !variants->is_array_of_tables())
+    r.fail(&node, "variant must be written as [[variant]] tables, each name = \"...\", set = {...}, unset = [...]");
+  SweepAxis axis;
+  axis.name = "variant";
+  axis.line = r.line(&node);
+  column_names.insert(axis.name);
+  std::set<std::string> labels;
+  for (auto& element : *variants) {
+    SweepSetting s = table_value(r, *element.as_table(), folder, "[[variant]]", "[[variant]]");
+    if (!labels.insert(s.label).second) r.fail(element.as_table()->get("name"), "variant \"" + s.label + "\" appears twice");
+    axis.values.push_back(std::move(s));
+  }
+  return axis;
 }
 
 std::vector<double> range_values(const SweepReader& r, const toml::table& axis, const std::string& name) {
@@ -272,7 +300,7 @@ SweepAxis read_axis(const SweepReader& r, const toml::table& t, const std::files
       s.label = shortest(v);
       s.number = v;
       s.line = axis.line;
-      s.set.emplace_back(axis.key, SweepValue{v, toml_float(v)});
+      s.set.emplace_back(axis.key, sweep_value(v));
       axis.values.push_back(std::move(s));
     }
   } else {
@@ -283,15 +311,7 @@ SweepAxis read_axis(const SweepReader& r, const toml::table& t, const std::files
       SweepSetting s;
       s.line = r.line(&v);
       if (auto vt = v.as_table()) {
-        check_keys(r, *vt, {"name", "set", "unset"}, "an axis value");
-        auto label = vt->get("name");
-        if (!label || !label->is_string() || label->as_string()->get().empty())
-          r.fail(&v, "axis " + axis.name + ": a value written as a table needs name = \"label\" (and set = {...}, unset = [...])");
-        s.label = label->as_string()->get();
-        // A name that is a number ({name = "0", unset = ["link"]}: "no damper" as slip 0) keeps
-        // the axis a number column when its other values are numbers.
-        if (double number = 0.0; parse_finite(s.label, &number)) s.number = number;
-        read_edits(r, *vt, folder, s);
+        s = table_value(r, *vt, folder, "axis " + axis.name + ": a value written as a table", "an axis value");
       } else {
         if (axis.key.empty()) r.fail(&v, "axis " + axis.name + ": a plain value needs the axis' key = \"dotted.scene.key\"");
         auto [edit, label] = value_text(r, v, axis.key, &s.number);
@@ -369,7 +389,7 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   } catch (const toml::parse_error& e) {
     throw InputError(name + ":" + std::to_string(e.source().begin.line) + ": not valid TOML: " + std::string(e.description()));
   }
-  check_keys(r, root, {"name", "base", "set", "unset", "axis", "motion", "output"}, "the sweep file");
+  check_keys(r, root, {"name", "base", "set", "unset", "variant", "axis", "motion", "output"}, "the sweep file");
   const std::filesystem::path folder = std::filesystem::path(name).parent_path();
 
   SweepSpec spec;
@@ -394,6 +414,7 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   read_edits(r, root, folder, spec.common);
 
   std::set<std::string> column_names(sweep_fixed_column_names().begin(), sweep_fixed_column_names().end());
+  if (auto node = root.get("variant")) spec.axes.push_back(read_variants(r, *node, folder, column_names));
   if (auto node = root.get("axis")) {
     auto axes = node->as_array();
     if (!axes || !axes->is_array_of_tables()) r.fail(node, "axis must be written as [[axis]] tables");

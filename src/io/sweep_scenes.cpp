@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -37,7 +38,17 @@ void gather_edits(const std::string& base_source, const std::vector<SweepSetting
 // An edit's value as the scene reader takes it: {"v" = value}.
 toml::table typed_value(const SweepValue& value) {
   toml::table holder;
-  std::visit([&](const auto& v) { holder.insert("v", v); }, value.value);
+  if (const auto* items = std::get_if<std::vector<SweepScalar>>(&value.value)) {
+    toml::array list;
+    for (const auto& item : *items) std::visit([&](const auto& v) { list.push_back(v); }, item);
+    holder.insert("v", std::move(list));
+    return holder;
+  }
+  std::visit(
+      [&](const auto& v) {
+        if constexpr (!std::is_same_v<std::decay_t<decltype(v)>, std::vector<SweepScalar>>) holder.insert("v", v);
+      },
+      value.value);
   return holder;
 }
 

@@ -99,6 +99,11 @@ bool SuiteScalingOptions::IsValid(std::string* error) const {
     if (error) *error = message;
     return false;
   };
+  const bool band = band_from != 0.0 || band_to != 0.0;
+  if (band && t1 != 0.0) return fail("t1, band_from, band_to: give the fundamental period t1 or the band, not both");
+  if (band && !(band_from > 0.0 && band_from < band_to && band_to <= 1e4))
+    return fail("band_from, band_to: expected a band of periods in s, 0 < band_from < band_to <= 1e4");
+  if (band) return min_ratio > 0.0 && std::isfinite(min_ratio) ? true : fail("min_ratio: expected a ratio > 0, e.g. 0.9");
   if (!(t1 > 0.0 && t1 <= 1e4)) return fail("t1: expected the fundamental period in s, 0 < T1 <= 1e4");
   if (!(band_low > 0.0 && band_low < band_high && std::isfinite(band_high)))
     return fail("band_low, band_high: expected 0 < band_low < band_high (multiples of T1, e.g. 0.2 and 2)");
@@ -113,7 +118,7 @@ std::vector<double> suite_periods(std::vector<double> periods, const SuiteScalin
   const double first = *lo, last = *hi;
   // Only inside the periods asked for: a band outside them is an error for scale_suite to
   // report, not a reason to compute periods nobody asked for.
-  for (double end : {options.band_low * options.t1, options.band_high * options.t1})
+  for (double end : {options.band_min(), options.band_max()})
     if (end >= first && end <= last && std::find(periods.begin(), periods.end(), end) == periods.end())
       periods.push_back(end);
   std::sort(periods.begin(), periods.end());
@@ -129,11 +134,11 @@ SuiteScale scale_suite(std::span<const ResponseSpectrum> spectra, const TargetSp
   const ResponseSpectrum& first = spectra[0];
   if (options.damping_index >= first.dampings.size()) throw InputError("suite scaling: damping_index out of range");
   SuiteScale out;
-  out.band_min = options.band_low * options.t1;
-  out.band_max = options.band_high * options.t1;
+  out.band_min = options.band_min();
+  out.band_max = options.band_max();
   std::ostringstream band;
-  band << options.band_low << " T1 ... " << options.band_high << " T1 = " << out.band_min << " ... " << out.band_max
-       << " s";
+  if (options.t1 > 0.0) band << options.band_low << " T1 ... " << options.band_high << " T1 = ";
+  band << out.band_min << " ... " << out.band_max << " s";
   const auto [lo, hi] = std::minmax_element(first.periods.begin(), first.periods.end());
   if (out.band_min < *lo || out.band_max > *hi) {
     std::ostringstream m;

@@ -29,6 +29,58 @@ std::string sweep_number_cell(double v) {
 
 namespace {
 
+// A double as a TOML float ("1.0", not "1", so that it stays a float).
+std::string toml_float(double v) {
+  if (std::isnan(v)) return "nan";
+  if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+  std::string s = sweep_number_cell(v);
+  if (s.find_first_of(".e") == std::string::npos) s += ".0";
+  return s;
+}
+
+std::string toml_string(const std::string& s) {
+  std::string out = "\"";
+  for (const char c : s) {
+    switch (c) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default:
+        if (static_cast<unsigned char>(c) < 0x20) {
+          char code[8];
+          std::snprintf(code, sizeof code, "\\u%04x", static_cast<unsigned>(c));
+          out += code;
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out + "\"";
+}
+
+}  // namespace
+
+std::string sweep_value_text(const SweepScalar& v) {
+  if (const auto* i = std::get_if<std::int64_t>(&v)) return std::to_string(*i);
+  if (const auto* d = std::get_if<double>(&v)) return toml_float(*d);
+  if (const auto* b = std::get_if<bool>(&v)) return *b ? "true" : "false";
+  return toml_string(std::get<std::string>(v));
+}
+
+SweepValue sweep_value(double v) { return SweepValue{v, toml_float(v)}; }
+SweepValue sweep_value(std::int64_t v) { return SweepValue{v, std::to_string(v)}; }
+SweepValue sweep_value(bool v) { return SweepValue{v, v ? "true" : "false"}; }
+SweepValue sweep_value(const std::string& v) { return SweepValue{v, toml_string(v)}; }
+SweepValue sweep_value(std::vector<SweepScalar> items) {
+  std::string text = "[";
+  for (const auto& item : items) text += (text.size() > 1 ? ", " : "") + sweep_value_text(item);
+  return SweepValue{std::move(items), text + "]"};
+}
+
+namespace {
+
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // ---- numbers as text: shortest round-trip form, so text -> double -> text is the identity ----

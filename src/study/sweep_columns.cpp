@@ -64,16 +64,63 @@ std::size_t count(const structure::Structure& s, ChannelScope scope) {
 
 // Columns are grouped: A, B, links, contacts, whole; `each` sees (channel, element).
 template <class F>
-void for_each_column(const structure::Structure& s, F each) {
+void for_each_column(const ChannelCounts& n, F each) {
   const auto& channels = building_sweep_channels();
   auto scope = [&](ChannelScope which, std::size_t k) {
     for (const auto& c : channels)
       if (c.scope == which) each(c, k);
   };
-  for (std::size_t k = 0; k < count(s, ChannelScope::building); ++k) scope(ChannelScope::building, k);
-  for (std::size_t k = 0; k < s.links.size(); ++k) scope(ChannelScope::link, k);
-  for (std::size_t k = 0; k < s.contacts.size(); ++k) scope(ChannelScope::contact, k);
+  for (std::size_t k = 0; k < n.buildings; ++k) scope(ChannelScope::building, k);
+  for (std::size_t k = 0; k < n.links; ++k) scope(ChannelScope::link, k);
+  for (std::size_t k = 0; k < n.contacts; ++k) scope(ChannelScope::contact, k);
   scope(ChannelScope::whole, 0);
+}
+
+// The largest N of the keys `group`.N.KEY the sweep's edits set (0: none).
+std::size_t largest_index_set(const SweepSpec& spec, const std::string& group) {
+  std::size_t most = 0;
+  const auto look = [&](const SweepSetting& s) {
+    for (const auto& [key, value] : s.set) {
+      if (key.rfind(group + ".", 0) != 0) continue;
+      const std::string rest = key.substr(group.size() + 1);
+      std::size_t n = 0;
+      const auto dot = rest.find('.');
+      const auto [end, ec] = std::from_chars(rest.data(), rest.data() + (dot == std::string::npos ? rest.size() : dot), n);
+      if (ec == std::errc() && dot != std::string::npos && end == rest.data() + dot && n <= 999999) most = std::max(most, n);
+    }
+  };
+  look(spec.common);
+  for (const auto& axis : spec.axes)
+    for (const auto& v : axis.values) look(v);
+  for (const auto& m : spec.motions) look(m);
+  return most;
+}
+
+// Whether the run's unsets of numbered tables (link.1 of two) leave a table of the base under
+// another number; sets `removed` and `kept` (1-based, in the base) when they do.
+bool renumbers(const std::vector<SweepSetting>& settings, const std::string& group, std::size_t base, std::size_t* removed,
+               std::size_t* kept) {
+  std::vector<std::size_t> left(base);
+  for (std::size_t i = 0; i < base; ++i) left[i] = i + 1;
+  std::vector<std::size_t> gone;
+  for (const auto& s : settings)
+    for (const auto& key : s.unset) {
+      if (key == group) left.clear();
+      if (key.rfind(group + ".", 0) != 0) continue;
+      std::size_t n = 0;
+      const std::string rest = key.substr(group.size() + 1);
+      const auto [end, ec] = std::from_chars(rest.data(), rest.data() + rest.size(), n);
+      if (ec != std::errc() || end != rest.data() + rest.size() || n < 1 || n > left.size()) continue;
+      gone.push_back(left[n - 1]);
+      left.erase(left.begin() + static_cast<std::ptrdiff_t>(n - 1));
+    }
+  for (std::size_t i = 0; i < left.size(); ++i)
+    if (left[i] != i + 1) {
+      *kept = left[i];
+      *removed = *std::min_element(gone.begin(), gone.end());
+      return true;
+    }
+  return false;
 }
 
 // A value as its column's cell; NaN: empty.
@@ -216,20 +263,27 @@ const std::vector<SweepChannel>& two_block_sweep_channels() {
   return channels;
 }
 
-std::vector<SweepColumn> building_channel_columns(const structure::Structure& s) {
+ChannelCounts channel_counts(const structure::Structure& s) {
+  return {count(s, ChannelScope::building), s.links.size(), s.contacts.size()};
+}
+
+std::vector<SweepColumn> building_channel_columns(const ChannelCounts& counts) {
   std::vector<SweepColumn> columns;
-  for_each_column(s, [&](const SweepChannel& c, std::size_t k) {
+  for_each_column(counts, [&](const SweepChannel& c, std::size_t k) {
     columns.push_back({expand(c.name, c.scope, k), c.type, c.scope != ChannelScope::whole && !(c.scope == ChannelScope::building && k == 0)});
   });
   return columns;
 }
 
-std::vector<std::string> building_channel_cells(const structure::Structure& base, const RunSpec& scene,
-                                                const Report& report) {
+std::vector<SweepColumn> building_channel_columns(const structure::Structure& s) {
+  return building_channel_columns(channel_counts(s));
+}
+
+std::vector<std::string> building_channel_cells(const ChannelCounts& counts, const RunSpec& scene, const Report& report) {
   std::vector<std::string> cells;
-  for_each_column(base, [&](const SweepChannel& c, std::size_t k) {
+  for_each_column(counts, [&](const SweepChannel& c, std::size_t k) {
     if (k >= count(scene.structure, c.scope)) {
-      cells.emplace_back();  // a group the run removed
+      cells.emplace_back();  // a group the run removed, or a link another run adds
       return;
     }
     cells.push_back(cell(c.type, c.value(scene, report, k)));
@@ -237,32 +291,54 @@ std::vector<std::string> building_channel_cells(const structure::Structure& base
   return cells;
 }
 
-void prepare_building_sweep(SweepSpec& spec, const structure::Structure& base) {
-  spec.base_structure = std::make_shared<const structure::Structure>(base);
-  spec.channel_columns = building_channel_columns(base);
+std::vector<std::string> building_channel_cells(const structure::Structure& base, const RunSpec& scene,
+                                                const Report& report) {
+  return building_channel_cells(channel_counts(base), scene, report);
 }
 
-// A run's structure keeps the base's groups or drops a whole group (its cells are then empty).
+namespace {
+ChannelCounts sweep_counts(const SweepSpec& spec) {
+  return {count(*spec.base_structure, ChannelScope::building), spec.link_columns, spec.contact_columns};
+}
+}  // namespace
+
+void prepare_building_sweep(SweepSpec& spec, const structure::Structure& base) {
+  spec.base_structure = std::make_shared<const structure::Structure>(base);
+  spec.link_columns = std::max(base.links.size(), largest_index_set(spec, "link"));
+  spec.contact_columns = std::max(base.contacts.size(), largest_index_set(spec, "contact"));
+  spec.channel_columns = building_channel_columns(sweep_counts(spec));
+}
+
+// A run's structure keeps the base's building B or drops it; its links and contacts fit the
+// columns, each under its own number (see the header).
 void check_groups(const SweepSpec& spec, std::size_t index, const structure::Structure& run) {
   const structure::Structure& base = *spec.base_structure;
   const std::vector<SweepSetting> settings = spec.settings(index);
+  const auto refuse = [&](const char* key, const std::string& why) {
+    throw InputError(at(spec, line_of_edit(settings, key)) + "run " + std::to_string(index) + " (" + spec.describe(index) +
+                     "): " + why);
+  };
+  if (!base.b && run.b)
+    refuse("building.B", "its structure has a building B the base scene has not; a building sweep's columns are the "
+                         "base structure's: add building B to the base scene");
   struct Group {
     const char* key;
-    const char* what;
-    std::size_t base, run;
+    std::size_t base, columns, run;
   };
-  const Group groups[] = {{"building.B", "building B", base.b ? 1u : 0u, run.b ? 1u : 0u},
-                          {"link", "link", base.links.size(), run.links.size()},
-                          {"contact", "contact", base.contacts.size(), run.contacts.size()}};
+  const Group groups[] = {{"link", base.links.size(), spec.link_columns, run.links.size()},
+                          {"contact", base.contacts.size(), spec.contact_columns, run.contacts.size()}};
   for (const auto& g : groups) {
-    if (g.run == g.base || g.run == 0) continue;
-    const std::string plural = std::string(g.what) + (g.base == 1 ? "" : "s");
-    throw InputError(at(spec, line_of_edit(settings, g.key)) + "run " + std::to_string(index) + " (" + spec.describe(index) +
-                     "): its structure has " + std::to_string(g.run) + " " + g.what + (g.run == 1 ? "" : "s") +
-                     " but the base scene has " + std::to_string(g.base) + " " +
-                     (g.base == 1 ? std::string(g.what) : plural) +
-                     "; a building sweep's columns are the base structure's: a run keeps every " + g.what +
-                     " of the base, or removes them all (unset = [\"" + g.key + "\"]), whose cells it leaves empty");
+    const std::string key = g.key;
+    if (g.run > g.columns)  // (an edit that adds one names its number, which sized the columns)
+      refuse(g.key, "its structure has " + std::to_string(g.run) + " " + key + "s, more than the table's " +
+                        std::to_string(g.columns) + " " + key + " columns");
+    if (std::size_t removed = 0, kept = 0; renumbers(settings, key, g.base, &removed, &kept))
+      refuse(g.key, "it removes " + key + "." + std::to_string(removed) + " but keeps " + key + "." + std::to_string(kept) +
+                        ", which would become " + key + "." + std::to_string(kept - 1) + " and fill the " + key +
+                        std::to_string(kept - 1) + " columns of another " + key +
+                        "; remove the last ones (unset = [\"" + key + "." + std::to_string(g.base) +
+                        "\"]) and set the keys of those kept, or unset = [\"" + key + "\"] and add each with " + key +
+                        ".N.KEY");
   }
 }
 
@@ -275,7 +351,7 @@ std::vector<SweepColumn> channel_columns(const SweepSpec& spec) {
 }
 
 std::vector<std::string> channel_cells(const SweepSpec& spec, const RunSpec& scene, const Report& report) {
-  if (spec.building()) return building_channel_cells(*spec.base_structure, scene, report);
+  if (spec.building()) return building_channel_cells(sweep_counts(spec), scene, report);
   std::vector<std::string> cells;
   for (const auto& c : two_block_sweep_channels()) cells.push_back(cell(c.type, c.value(scene, report, 0)));
   return cells;

@@ -10,8 +10,10 @@
 // Every PSA must be > 0 (a record of zeros has none): InputError naming the record otherwise.
 // One record is refused: its s is undefined (0/0), and a suite of one is just its spectrum.
 //
-// Scaling (scale_suite). Band: [band_low T1, band_high T1] (0.2 T1 ... 2 T1), checked at the
-// spectra's periods inside it (suite_periods adds the band's ends to a period list, so the
+// Scaling (scale_suite). Band: [band_low T1, band_high T1] (0.2 T1 ... 2 T1), or a band given
+// directly in seconds [band_from, band_to] (two buildings: 0.2 of the shorter fundamental
+// period ... 2 of the longer, as ASCE 7-16 §16.2.3 takes its band over both principal
+// directions; adjoin spectrum --band), checked at the spectra's periods inside it (suite_periods adds the band's ends to a period list, so the
 // ends are always checked). One factor per record, f_k = c a_k:
 //   SuiteScaling::fit      a_k = exp(mean over the band of ln(target / PSA_k)): record k alone
 //                          matched to the target in the least-squares sense of ln PSA;
@@ -50,15 +52,20 @@ SuiteStatistics suite_statistics(std::span<const ResponseSpectrum> spectra, std:
 // SuiteScaling (fit, uniform): core/enum_names.hpp.
 
 struct SuiteScalingOptions {
-  double t1 = 0.0;          // s, the structure's fundamental period, > 0
+  double t1 = 0.0;          // s, the structure's fundamental period, > 0 (or 0 with a band below)
   double band_low = 0.2;    // band [band_low t1, band_high t1], 0 < band_low < band_high
   double band_high = 2.0;
+  // Or the band itself [s], 0 < band_from < band_to <= 1e4, with t1 = 0 (one of the two).
+  double band_from = 0.0, band_to = 0.0;
   double min_ratio = 0.9;   // the scaled mean's lowest ratio to the target over the band, > 0
   SuiteScaling rule = SuiteScaling::fit;
   std::size_t damping_index = 0;  // the spectra's damping the target is for
 
   // Checks the values above; names the offending field and what is expected.
   bool IsValid(std::string* error) const;
+  // The band [s]: [band_low t1, band_high t1], or [band_from, band_to].
+  double band_min() const { return t1 > 0.0 ? band_low * t1 : band_from; }
+  double band_max() const { return t1 > 0.0 ? band_high * t1 : band_to; }
 };
 
 struct SuiteScale {

@@ -54,12 +54,27 @@ struct SweepColumn {
   bool may_be_empty = false;
 };
 
+// One item of a list value, or a plain value: a number, a string or true/false.
+using SweepScalar = std::variant<std::int64_t, double, bool, std::string>;
+
 // The value an edit gives a scene key: typed, as the sweep file wrote it, with its spelling as
-// a TOML value (what a --set of it would say, for messages).
+// a TOML value (what a --set of it would say, for messages). A list value (link.1.floors =
+// [3, 3]) holds its items; lists of lists are not scene values.
 struct SweepValue {
-  std::variant<std::int64_t, double, bool, std::string> value;
+  std::variant<std::int64_t, double, bool, std::string, std::vector<SweepScalar>> value;
   std::string text;
 };
+
+// Values made in code (adjoin optimize, ida), spelled as a --set of them would be: a double as
+// a TOML float (2.0 as "2.0", 2e5 as "2e+05"), a string quoted, a list as "[3, 3]".
+//     spec.axes[0].values[0].set.emplace_back("link.1.floors", sweep_value({std::int64_t{2}, std::int64_t{3}}));
+SweepValue sweep_value(double v);
+SweepValue sweep_value(std::int64_t v);
+SweepValue sweep_value(bool v);
+SweepValue sweep_value(const std::string& v);
+SweepValue sweep_value(std::vector<SweepScalar> items);
+// The TOML spelling of one scalar (what sweep_value(...).text is for it).
+std::string sweep_value_text(const SweepScalar& v);
 
 // One value of an axis, or one ground motion: a label for the table and the scene edits it makes.
 struct SweepSetting {
@@ -116,6 +131,9 @@ struct SweepSpec {
   // (without edits), which decides the channel columns; null for a two-block base.
   std::shared_ptr<const structure::Structure> base_structure;
   std::vector<SweepColumn> channel_columns;  // building sweeps: A.roof_max, link1.stroke_max, ...
+  // Building sweeps: how many linkN and contactN column sets the table has: the base's, or
+  // more where an edit adds a table (link.2.* on a base with one link; study/sweep_columns.hpp).
+  std::size_t link_columns = 0, contact_columns = 0;
   bool building() const { return base_structure != nullptr; }
 
   std::size_t runs() const;

@@ -46,24 +46,37 @@ struct SweepChannel {
 const std::vector<SweepChannel>& building_sweep_channels();
 const std::vector<SweepChannel>& two_block_sweep_channels();
 
-// The channel columns of a structure: A's, B's, each link's, each contact's, then the whole's.
+// How many of each group a table has columns for.
+struct ChannelCounts {
+  std::size_t buildings = 1, links = 0, contacts = 0;
+};
+ChannelCounts channel_counts(const structure::Structure& s);
+
+// The channel columns of a structure: A's, B's, each link's, each contact's, then the whole's
+// (`counts`: for that many links and contacts, e.g. more than the base has).
 std::vector<SweepColumn> building_channel_columns(const structure::Structure& s);
+std::vector<SweepColumn> building_channel_columns(const ChannelCounts& counts);
 
 // The cells of those columns for a run of `scene` (the run's own structure) with its report;
-// groups the base has and the run does not are empty.
+// groups the base has and the run does not are empty (the run's link N fills the linkN columns).
 std::vector<std::string> building_channel_cells(const structure::Structure& base, const RunSpec& scene,
                                                 const Report& report);
+std::vector<std::string> building_channel_cells(const ChannelCounts& counts, const RunSpec& scene, const Report& report);
 
 // The columns between `units` and `pga_g` of a sweep, and a run's cells in them.
 std::vector<SweepColumn> channel_columns(const SweepSpec& spec);
 std::vector<std::string> channel_cells(const SweepSpec& spec, const RunSpec& scene, const Report& report);
 
-// Sets spec.base_structure and spec.channel_columns from the base scene's structure (the sweep
-// file's reader calls it for a structure's base once it has checked the base scene as
-// `adjoin run` would).
+// Sets spec.base_structure, spec.link_columns, spec.contact_columns and spec.channel_columns
+// from the base scene's structure and the sweep's edits (the sweep file's reader calls it for
+// a structure's base once it has checked the base scene as `adjoin run` would). The link
+// columns are for the base's links, or for link.N where an edit sets link.N.KEY with N beyond
+// them (adding a damper); the same for contacts.
 void prepare_building_sweep(SweepSpec& spec, const structure::Structure& base);
 
-// Refuses a structure run whose groups are not the base's (see above).
+// Refuses a structure run whose groups do not fit the table's columns: building B kept or
+// removed, links and contacts at most the columns' count, and none renumbered (an unset of
+// link.1 that keeps link.2 would put the base's link 2 in the link1 columns).
 void check_groups(const SweepSpec& spec, std::size_t index, const structure::Structure& run);
 
 }  // namespace adjoin
