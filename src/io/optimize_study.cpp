@@ -114,6 +114,7 @@ StudyGoal read_goal(const StudyReader& r, const toml::node* n, const std::string
     r.fail(n, path, "a fragility objective (event, probability_at) is not available yet; give edp and statistic");
   StudyGoal g;
   g.line = r.line(n);
+  g.key = path;
   g.edp = r.string(t, "edp", path + ".edp");
   if (const toml::node* s = t.get("statistic")) {
     const auto stat = s->is_string() ? statistic_from_name(s->as_string()->get()) : std::nullopt;
@@ -269,7 +270,7 @@ void prepare(const StudyReader& r, const toml::table& o, const std::string& text
   }
   for (const auto* goals : {&study.objectives, &study.constraints})
     for (const auto& g : *goals) {
-      check_ida_edps(study.sweep, {g.edp}, r.name() + ":" + std::to_string(g.line) + ": edp");
+      check_ida_edps(study.sweep, {g.edp}, r.name() + ":" + std::to_string(g.line) + ": " + g.key + ".edp");
       if (std::find(study.edps.begin(), study.edps.end(), g.edp) == study.edps.end()) study.edps.push_back(g.edp);
     }
   for (std::size_t i = 0; i < study.variables.size(); ++i)

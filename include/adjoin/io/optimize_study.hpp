@@ -39,6 +39,7 @@ struct StudyGoal {
   Statistic statistic = Statistic::mean;
   double max = 0.0;  // constraints: the limit
   std::size_t line = 0;
+  std::string key;  // where the study file gives it: "objective", "constraints[2]"
   std::string name() const { return statistic_name(statistic) + "(" + edp + ")"; }
 };
 
