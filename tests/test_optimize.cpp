@@ -215,3 +215,14 @@ TEST_CASE("optimize: a rerun with the same --out takes every design from the cac
   const auto d = nlohmann::json::parse(slurp(dir / "optimum.json"));
   CHECK(d["from_cache"] == 0);
 }
+
+TEST_CASE("optimize: the example studies read and check", "[optimize]") {
+  std::size_t n = 0;
+  for (const auto& entry : fs::directory_iterator(fs::path(ADJOIN_SOURCE_DIR) / "examples" / "studies")) {
+    INFO(entry.path());
+    const OptimizeStudy study = load_optimize_study(entry.path());
+    CHECK(study.records.size() >= 9);  // records/real/peer and records/real/smc
+    ++n;
+  }
+  CHECK(n == 3);
+}
