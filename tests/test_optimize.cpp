@@ -226,3 +226,47 @@ TEST_CASE("optimize: the example studies read and check", "[optimize]") {
   }
   CHECK(n == 3);
 }
+
+TEST_CASE("optimize: a fragility objective equals adjoin ida and adjoin fragility on the design's scene", "[optimize]") {
+  // Six records (each its own frequencies and size) at six PGA stripes: the event's counts rise
+  // with the IM without separating the runs, so the lognormal fit exists.
+  std::vector<fs::path> records;
+  std::string suite, files;
+  for (int k = 0; k < 6; ++k) {
+    std::string text;
+    char line[96];
+    for (int i = 0; i <= 300; ++i) {
+      const double t = 0.01 * i;
+      const double a = (0.8 + 0.15 * k) * (3.0 * std::sin(2.0 * M_PI * (1.0 + 0.35 * k) * t) * std::exp(-0.8 * t) +
+                                           0.7 * std::sin((13.0 + k) * t));
+      std::snprintf(line, sizeof line, "%.17g %.17g\n", t, a);
+      text += line;
+    }
+    records.push_back(write_temp("opt-q" + std::to_string(k) + ".txt", text));
+    suite += (k ? ", \"" : "\"") + records.back().string() + "\"";
+    files += " " + records.back().string();
+  }
+  const Cheap c;
+  const OptimizeOutcome out = optimise("opt-fragility.toml", "[optimize]\nscene = \"" + c.scene.string() + "\"\nsuite = [" + suite +
+                                                                 "]\nunits = \"m/s2\"\nim = \"pga\"\nlevels = [0.1, 0.2, 0.3, 0.4, 0.5, 0.6]\n"
+                                                                 "placements = [{key = \"link.1.slip_force\", values = [4.0e4]}]\n"
+                                                                 "objective = {event = \"A.drift_max > 0.06\", probability_at = 0.3}\n");
+  REQUIRE(out.result.evaluations.size() == 1);
+  REQUIRE(out.runs == 36);
+  // The same runs by hand: the scene with that slip force, `adjoin ida` stripes, `adjoin fragility --at`.
+  std::string text = slurp(c.scene);
+  text.replace(text.find("slip_force = 1.0e4"), 18, "slip_force = 4.0e4");
+  const fs::path scene = write_temp("opt-scene-40k.toml", text);
+  const fs::path dir = fs::path(ADJOIN_TEST_TMP) / "opt-fragility-ida";
+  fs::remove_all(dir);
+  REQUIRE(run_cli("ida " + scene.string() + " --suite" + files + " --units m/s2 --im pga --levels 0.1,0.2,0.3,0.4,0.5,0.6 "
+                  "--edp A.drift_max -q --out " + dir.string()).status == 0);
+  REQUIRE(run_cli("fragility " + (dir / "ida.csv").string() + " --event \"A.drift_max > 0.06\" --at 0.3 --bootstrap 0 --out " +
+                  (dir / "f.json").string()).status == 0);
+  const auto f = nlohmann::json::parse(slurp(dir / "f.json"));
+  REQUIRE(f["fitted"] == true);
+  const double p = f["at"]["probability"].get<double>();
+  CHECK(p > 0.0);
+  CHECK(p < 1.0);
+  CHECK(out.result.evaluations[0].values.objectives[0] == p);  // bit for bit
+}

@@ -29,8 +29,8 @@ struct OptimizeArgs {
 
 void report(const OptimizeStudy& study, const OptimizeOutcome& outcome) {
   const OptimizeResult& r = outcome.result;
-  std::printf("optimize %s: %s, %zu designs x %zu records (%zu runs now, %zu designs from the cache) in %.3g s\n",
-              study.name.c_str(), study.options.method.c_str(), r.evaluations.size(), study.records.size(), outcome.runs,
+  std::printf("optimize %s: %s, %zu designs x %zu runs (%zu runs now, %zu designs from the cache) in %.3g s\n",
+              study.name.c_str(), study.options.method.c_str(), r.evaluations.size(), study.runs(), outcome.runs,
               outcome.from_cache, outcome.seconds);
   if (!r.best) return;
   const Evaluation& b = r.evaluations[*r.best];

@@ -47,7 +47,7 @@ std::string optimize_evaluations_csv(const OptimizeStudy& study, const OptimizeO
   header.push_back("feasible");
   if (study.objectives.size() == 2) header.push_back("pareto");
   for (const auto& e : study.edps)
-    for (const auto& rec : study.records) header.push_back(e + "@" + rec.name);
+    for (std::size_t run = 0; run < study.runs(); ++run) header.push_back(e + "@" + study.run_name(run));
   std::string out = csv_line(header) + "\n";
   for (std::size_t i = 0; i < r.evaluations.size(); ++i) {
     const Evaluation& e = r.evaluations[i];
@@ -76,9 +76,13 @@ std::string optimize_json(const OptimizeStudy& study, const OptimizeOutcome& out
   j["max_evaluations"] = study.options.max_evaluations;
   j["seed"] = study.options.seed;
   json records = json::array();
-  for (const auto& rec : study.records) records.push_back({{"record", rec.name}, {"scale", study.im ? study.level / rec.im : 1.0}});
+  for (const auto& rec : study.records) {
+    json one{{"record", rec.name}};
+    if (study.im) one["im"] = rec.im;  // as read, g
+    records.push_back(one);
+  }
   j["records"] = records;
-  if (study.im) j["intensity"] = {{"im", study.im->text()}, {"level", study.level}};
+  if (study.im) j["intensity"] = {{"im", study.im->text()}, {"levels", study.levels}};
   json names = json::array();
   for (const auto& g : study.objectives) names.push_back(g.name());
   j["objectives"] = names;
@@ -96,7 +100,7 @@ std::string optimize_json(const OptimizeStudy& study, const OptimizeOutcome& out
     j["feasible"] = b.feasible;
   }
   j["evaluations"] = r.evaluations.size();
-  j["runs"] = r.evaluations.size() * study.records.size();
+  j["runs"] = r.evaluations.size() * study.runs();
   j["from_cache"] = outcome.from_cache;
   j["runs_now"] = outcome.runs;
   json searches = json::array();
@@ -157,7 +161,7 @@ void plot_optimize(const OptimizeStudy& study, const OptimizeOutcome& outcome, c
     gnuplot_datablock(s, "bad", bad);
     gnuplot_datablock(s, "best", best);
     s << "set title " << gnuplot_quote(study.name + ": " + study.options.method + ", " + std::to_string(r.evaluations.size()) +
-                                       " designs x " + std::to_string(study.records.size()) + " records")
+                                       " designs x " + std::to_string(study.runs()) + " runs")
       << " noenhanced\n"
       << "set xlabel 'evaluation'\nset ylabel " << gnuplot_quote(study.objectives[0].name()) << " noenhanced\n"
       << "set key top right noenhanced\n"

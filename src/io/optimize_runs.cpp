@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <sstream>
 
@@ -11,6 +12,8 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/core/parse_number.hpp"
 #include "adjoin/io/optimize_study.hpp"
+#include "adjoin/post/fragility.hpp"
+#include "adjoin/post/fragility_event.hpp"
 #include "adjoin/study/sweep_columns.hpp"
 
 namespace adjoin {
@@ -18,6 +21,16 @@ namespace fs = std::filesystem;
 namespace {
 
 using DesignKey = std::pair<std::size_t, std::vector<double>>;
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// A table cell as a number: "" is NaN (a run without that value).
+bool cell_value(const std::string& cell, double* v) {
+  if (cell.empty()) {
+    *v = kNaN;
+    return true;
+  }
+  return parse_finite(cell, v);
+}
 
 // The cache file: "# adjoin optimize cache fingerprint=F", the header, then one row per design:
 // choice, the variables, then each record's demands (record-major), numbers in their shortest
@@ -51,8 +64,8 @@ class DesignCache {
   std::vector<std::string> header() const {
     std::vector<std::string> h{"choice"};
     for (const auto& v : study_.variables) h.push_back(v.key);
-    for (const auto& r : study_.records)
-      for (const auto& e : study_.edps) h.push_back(e + "@" + r.name);
+    for (std::size_t r = 0; r < study_.runs(); ++r)
+      for (const auto& e : study_.edps) h.push_back(e + "@" + study_.run_name(r));
     return h;
   }
   std::vector<std::string> cells(const DesignKey& key, const std::vector<std::vector<double>>& values) const {
@@ -70,7 +83,7 @@ class DesignCache {
     if (!in || !std::getline(in, line) || line != preamble()) return;
     std::vector<std::string> h;
     if (!std::getline(in, line) || !split_csv_line(line, &h) || h != header()) return;
-    const std::size_t nx = study_.variables.size(), ne = study_.edps.size(), nr = study_.records.size();
+    const std::size_t nx = study_.variables.size(), ne = study_.edps.size(), nr = study_.runs();
     while (std::getline(in, line)) {
       std::vector<std::string> c;
       if (!split_csv_line(line, &c) || c.size() != h.size()) continue;  // a torn last line
@@ -79,7 +92,7 @@ class DesignCache {
       key.second.resize(nx);
       for (std::size_t i = 0; ok && i < nx; ++i) ok = parse_finite(c[1 + i], &key.second[i]);
       std::vector<std::vector<double>> values(nr, std::vector<double>(ne));
-      for (std::size_t k = 0; ok && k < nr * ne; ++k) ok = parse_finite(c[1 + nx + k], &values[k / ne][k % ne]);
+      for (std::size_t k = 0; ok && k < nr * ne; ++k) ok = cell_value(c[1 + nx + k], &values[k / ne][k % ne]);
       if (ok) rows_[key] = std::move(values);
     }
   }
@@ -98,7 +111,7 @@ std::string describe(const OptimizeStudy& study, const DesignKey& key) {
   return d;
 }
 
-// The suite's runs of a design: values[record][edp].
+// The suite's runs of a design: values[run][column].
 std::vector<std::vector<double>> run_design(const OptimizeStudy& study, const DesignKey& key, unsigned jobs) {
   const SweepSpec spec = design_sweep(study, key.first, key.second);
   SweepOptions options;
@@ -111,32 +124,79 @@ std::vector<std::vector<double>> run_design(const OptimizeStudy& study, const De
       if (columns[c].name == e) at.push_back(c);
   std::vector<std::vector<double>> values;
   for (std::size_t r = 0; r < rows.size(); ++r) {
-    const std::string& record = study.records[r].name;
     if (!rows[r].error.empty())
-      throw NumericalError("optimize: the design " + describe(study, key) + " failed on record " + record + ": " + rows[r].error, 0.0);
+      throw NumericalError("optimize: the design " + describe(study, key) + " failed on " + study.run_name(r) + ": " +
+                               rows[r].error, 0.0);
     const auto cells = sweep_cells(spec, rows[r]);
     values.emplace_back();
     for (std::size_t k = 0; k < at.size(); ++k) {
-      double v = 0.0;
-      if (!parse_finite(cells[at[k]], &v))
-        throw InputError(study.file.string() + ": " + study.edps[k] + " has no value in the run of record " + record +
-                         " (design " + describe(study, key) + "); choose a demand every run has");
+      double v = kNaN;
+      cell_value(cells[at[k]], &v);
       values.back().push_back(v);
     }
   }
   return values;
 }
 
-DesignValues design_values(const OptimizeStudy& study, const std::vector<std::vector<double>>& per_record) {
-  const auto goal = [&](const StudyGoal& g) {
-    const std::size_t e = static_cast<std::size_t>(std::find(study.edps.begin(), study.edps.end(), g.edp) - study.edps.begin());
-    std::vector<double> v;
-    for (const auto& r : per_record) v.push_back(r[e]);
-    return suite_statistic(v, g.statistic);
+std::size_t column_index(const OptimizeStudy& study, const std::string& name) {
+  return static_cast<std::size_t>(std::find(study.edps.begin(), study.edps.end(), name) - study.edps.begin());
+}
+
+// A demand's statistic over the runs; an empty cell is the study's mistake (a demand the scene
+// leaves empty), named.
+double demand_value(const OptimizeStudy& study, const DesignKey& key, const StudyGoal& g,
+                    const std::vector<std::vector<double>>& per_run) {
+  const std::size_t e = column_index(study, g.edp);
+  std::vector<double> v;
+  for (std::size_t r = 0; r < per_run.size(); ++r) {
+    if (std::isnan(per_run[r][e]))
+      throw InputError(study.file.string() + ":" + std::to_string(g.line) + ": " + g.key + ".edp: " + g.edp +
+                       " has no value in the run of " + study.run_name(r) + " (design " + describe(study, key) +
+                       "); choose a demand every run has");
+    v.push_back(per_run[r][e]);
+  }
+  return suite_statistic(v, g.statistic);
+}
+
+// P(event | IM = probability_at): the lognormal fragility fitted to the runs by maximum
+// likelihood; runs whose event reads an empty cell are left out. Counts without a fit (no
+// event, events everywhere, levels that separate the runs) give the observed fraction of
+// events at the level nearest probability_at (in ln IM).
+double fragility_value(const OptimizeStudy& study, const DesignKey& key, const StudyGoal& g,
+                       const std::vector<std::vector<double>>& per_run) {
+  const auto columns = sweep_columns(study.sweep);
+  std::vector<std::vector<double>> values(columns.size(), std::vector<double>(per_run.size(), kNaN));
+  for (std::size_t c = 0; c < columns.size(); ++c) {
+    const std::size_t e = column_index(study, columns[c].name);
+    if (e == study.edps.size()) continue;
+    for (std::size_t r = 0; r < per_run.size(); ++r) values[c][r] = per_run[r][e];
+  }
+  std::vector<std::string> records;
+  std::vector<double> im;
+  for (std::size_t r = 0; r < per_run.size(); ++r) {
+    records.push_back(study.run_record(r).name);
+    im.push_back(study.run_level(r));
+  }
+  const FragilityOutcomes outcomes = fragility_outcomes(*g.parsed, records, im, values, {});
+  if (outcomes.runs.empty())
+    throw InputError(study.file.string() + ":" + std::to_string(g.line) + ": " + g.key + ".event: no run of the design " +
+                     describe(study, key) + " has a value for it");
+  const std::vector<FragilityLevel> levels = fragility_levels(outcomes.runs);
+  const FragilityFit fit = fit_fragility_mle(levels);
+  if (fit.fitted) return fragility_probability(fit.theta, fit.beta, g.probability_at);
+  const FragilityLevel* nearest = &levels.front();
+  for (const auto& l : levels)
+    if (std::abs(std::log(l.im / g.probability_at)) < std::abs(std::log(nearest->im / g.probability_at))) nearest = &l;
+  return static_cast<double>(nearest->events) / static_cast<double>(nearest->n);
+}
+
+DesignValues design_values(const OptimizeStudy& study, const DesignKey& key, const std::vector<std::vector<double>>& per_run) {
+  const auto value = [&](const StudyGoal& g) {
+    return g.fragility() ? fragility_value(study, key, g, per_run) : demand_value(study, key, g, per_run);
   };
   DesignValues d;
-  for (const auto& g : study.objectives) d.objectives.push_back(goal(g));
-  for (const auto& g : study.constraints) d.constraints.push_back(goal(g));
+  for (const auto& g : study.objectives) d.objectives.push_back(value(g));
+  for (const auto& g : study.constraints) d.constraints.push_back(value(g));
   return d;
 }
 
@@ -155,12 +215,12 @@ OptimizeOutcome run_optimize_study(const OptimizeStudy& study, const OptimizeReq
       ++outcome.from_cache;
     } else {
       d.values = run_design(study, key, request.jobs);
-      outcome.runs += study.records.size();
+      outcome.runs += study.runs();
       cache.add(key, d.values);
     }
     outcome.demands.push_back(d);
     if (request.on_evaluation) request.on_evaluation(outcome.demands.size(), d.from_cache);
-    return design_values(study, d.values);
+    return design_values(study, key, d.values);
   };
   outcome.result = optimize_designs(study.variables, study.choices(), study.objectives.size(), study.limits(), study.options, evaluate);
   outcome.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -18,7 +18,7 @@ namespace adjoin {
 namespace fs = std::filesystem;
 namespace {
 
-const std::vector<std::string> kKeys{"scene",     "suite",      "units",       "im",     "level",
+const std::vector<std::string> kKeys{"scene",     "suite",      "units",       "im",     "level",  "levels",
                                      "variables", "placements", "objective",   "objectives", "constraints",
                                      "method",    "tolerance",  "max_evaluations", "seed", "pareto_points"};
 
@@ -108,18 +108,28 @@ StudyGoal read_goal(const StudyReader& r, const toml::node* n, const std::string
   const std::string example = limit ? "{edp = \"link1.stroke_max\", statistic = \"max\", max = 0.05}"
                                     : "{edp = \"A.drift_ratio_max\", statistic = \"mean\"}";
   const toml::table& t = r.table(n, path, example);
-  if (limit) r.check_keys(t, {"edp", "statistic", "max"}, path + ".");
-  else r.check_keys(t, {"edp", "statistic", "event", "probability_at"}, path + ".");
-  if (t.contains("event") || t.contains("probability_at"))
-    r.fail(n, path, "a fragility objective (event, probability_at) is not available yet; give edp and statistic");
+  std::vector<std::string> keys{"edp", "statistic", "event", "probability_at"};
+  if (limit) keys.push_back("max");
+  r.check_keys(t, keys, path + ".");
   StudyGoal g;
   g.line = r.line(n);
   g.key = path;
-  g.edp = r.string(t, "edp", path + ".edp");
-  if (const toml::node* s = t.get("statistic")) {
-    const auto stat = s->is_string() ? statistic_from_name(s->as_string()->get()) : std::nullopt;
-    if (!stat) r.fail(s, path + ".statistic", "expected \"mean\", \"median\", \"p84\" or \"max\" (over the suite's records)");
-    g.statistic = *stat;
+  if (t.contains("event") || t.contains("probability_at")) {
+    if (t.contains("edp") || t.contains("statistic"))
+      r.fail(n, path, "give edp (and statistic), or event and probability_at (a fragility probability), not both");
+    if (!t.contains("event") || !t.contains("probability_at"))
+      r.fail(n, path, "event and probability_at go together: P(event | IM = probability_at), e.g. "
+                      "{event = \"contact1.impacts > 0\", probability_at = 0.35}");
+    g.event = r.string(t, "event", path + ".event");
+    g.probability_at = r.number(t.get("probability_at"), path + ".probability_at");
+    if (!(g.probability_at > 0.0)) r.fail(t.get("probability_at"), path + ".probability_at", "expected an intensity > 0 (g)");
+  } else {
+    g.edp = r.string(t, "edp", path + ".edp");
+    if (const toml::node* s = t.get("statistic")) {
+      const auto stat = s->is_string() ? statistic_from_name(s->as_string()->get()) : std::nullopt;
+      if (!stat) r.fail(s, path + ".statistic", "expected \"mean\", \"median\", \"p84\" or \"max\" (over the suite's runs)");
+      g.statistic = *stat;
+    }
   }
   if (limit) {
     if (!t.contains("max")) r.fail(n, path, "missing max (the constraint is statistic(edp) <= max)");
@@ -225,15 +235,29 @@ void read_suite_keys(const StudyReader& r, const toml::table& o, const fs::path&
   if (const toml::node* n = o.get("units")) study.units = r.string(o, "units", "units"), (void)n;
   const toml::node* im = o.get("im");
   const toml::node* level = o.get("level");
-  if (!im != !level) r.fail(im ? im : level, im ? "level" : "im", "im and level go together: each record scaled so that its im equals level (g)");
-  if (im) {
-    try {
-      study.im = parse_intensity_measure(im->is_string() ? im->as_string()->get() : std::string("?"));
-    } catch (const InputError&) {
-      r.fail(im, "im", "expected \"pga\" or \"sa:T\" (the 5 %-damped PSA at period T in s, e.g. \"sa:1.0\")");
-    }
-    study.level = r.number(level, "level");
-    if (!(study.level > 0.0)) r.fail(level, "level", "expected an intensity > 0 (g)");
+  const toml::node* levels = o.get("levels");
+  if (level && levels) r.fail(levels, "levels", "give level (one IM) or levels (stripes), not both");
+  if (!level) level = levels;
+  if (!im != !level)
+    r.fail(im ? im : level, im ? "level" : "im", "im and level (or levels) go together: each record scaled so that its im equals the level (g)");
+  if (!im) return;
+  try {
+    study.im = parse_intensity_measure(im->is_string() ? im->as_string()->get() : std::string("?"));
+  } catch (const InputError&) {
+    r.fail(im, "im", "expected \"pga\" or \"sa:T\" (the 5 %-damped PSA at period T in s, e.g. \"sa:1.0\")");
+  }
+  const std::string key = levels ? "levels" : "level";
+  std::vector<const toml::node*> values{level};
+  if (levels) {
+    values.clear();
+    for (const auto& v : r.array(levels, key, "[0.1, 0.2, 0.3, 0.4]")) values.push_back(&v);
+  }
+  for (const toml::node* v : values) {
+    const double x = r.number(v, key);
+    if (!(x > 0.0)) r.fail(v, key, "expected intensities > 0 (g)");
+    if (std::find(study.levels.begin(), study.levels.end(), x) != study.levels.end())
+      r.fail(v, key, "the level " + sweep_number_cell(x) + " appears twice");
+    study.levels.push_back(x);
   }
 }
 
@@ -262,16 +286,38 @@ void prepare(const StudyReader& r, const toml::table& o, const std::string& text
     throw as_key(r, o.get("suite"), e);
   }
   std::vector<IdaMotion> motions;
-  for (const auto& rec : study.records) motions.push_back({rec.name, rec.file, study.im ? study.level / rec.im : 1.0});
+  for (std::size_t k = 0; k < study.runs(); ++k) {
+    const IdaRecord& rec = study.run_record(k);
+    motions.push_back({rec.name, rec.file, study.im ? study.run_level(k) / rec.im : 1.0});
+  }
   try {
     study.sweep = ida_sweep(study.scene, motions, study.units, r.name());
   } catch (const InputError& e) {
     throw InputError(r.where(o.get("scene")) + "scene: " + e.what());
   }
-  for (const auto* goals : {&study.objectives, &study.constraints})
-    for (const auto& g : *goals) {
-      check_ida_edps(study.sweep, {g.edp}, r.name() + ":" + std::to_string(g.line) + ": " + g.key + ".edp");
-      if (std::find(study.edps.begin(), study.edps.end(), g.edp) == study.edps.end()) study.edps.push_back(g.edp);
+  const auto use = [&](const std::string& column) {
+    if (std::find(study.edps.begin(), study.edps.end(), column) == study.edps.end()) study.edps.push_back(column);
+  };
+  std::vector<std::string> columns;
+  for (const auto& c : sweep_columns(study.sweep)) columns.push_back(c.name);
+  for (auto* goals : {&study.objectives, &study.constraints})
+    for (auto& g : *goals) {
+      const std::string at = r.name() + ":" + std::to_string(g.line) + ": " + g.key;
+      if (!g.fragility()) {
+        check_ida_edps(study.sweep, {g.edp}, at + ".edp");
+        use(g.edp);
+        continue;
+      }
+      if (study.levels.size() < 2)
+        throw InputError(at + ": a fragility probability is fitted to stripes: give im and levels = [L1, L2, ...] (at least two IM levels, g)");
+      try {
+        g.parsed = FragilityEvent::parse(g.event, columns);
+      } catch (const InputError& e) {
+        std::string m = e.what();
+        if (m.rfind("--event ", 0) == 0) m = m.substr(8);
+        throw InputError(at + ".event " + m);
+      }
+      for (std::size_t c : g.parsed->columns_used()) use(columns[c]);
     }
   for (std::size_t i = 0; i < study.variables.size(); ++i)
     for (double v : {study.variables[i].min, study.variables[i].max})
@@ -282,6 +328,15 @@ void prepare(const StudyReader& r, const toml::table& o, const std::string& text
 }
 
 }  // namespace
+
+std::string StudyGoal::name() const {
+  if (!fragility()) return statistic_name(statistic) + "(" + edp + ")";
+  return "P(" + event + " | im = " + sweep_number_cell(probability_at) + ")";
+}
+
+std::string OptimizeStudy::run_name(std::size_t r) const {
+  return run_record(r).name + (levels.size() > 1 ? "@" + sweep_number_cell(run_level(r)) : std::string());
+}
 
 std::size_t OptimizeStudy::choices() const {
   std::size_t n = 1;

@@ -18,6 +18,7 @@
 // fingerprint (the study file's text, the base scene's text, the records and their scales, the
 // version). A rerun of the same study with the same DIR takes a design from the cache instead
 // of running it; a different study starts a new cache.
+#include <algorithm>
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -27,20 +28,28 @@
 
 #include "adjoin/io/ida_files.hpp"
 #include "adjoin/io/plot_style.hpp"
+#include "adjoin/post/fragility_event.hpp"
 #include "adjoin/study/ida.hpp"
 #include "adjoin/study/optimize.hpp"
 #include "adjoin/study/sweep.hpp"
 
 namespace adjoin {
 
-// A demand's statistic over the suite: "mean(A.drift_ratio_max)".
+// What an objective or a constraint measures over the suite's runs: a demand's statistic,
+// "mean(A.drift_max)", or a fragility probability, "P(contact1.impacts > 0 | pga = 0.35)":
+// the event's lognormal fragility fitted to the stripes' runs by maximum likelihood
+// (post/fragility.hpp, as `adjoin fragility` fits it) at the IM `probability_at`.
 struct StudyGoal {
-  std::string edp;  // a sweep-table column
+  std::string edp;  // a sweep-table column (a demand goal)
   Statistic statistic = Statistic::mean;
+  std::string event;          // a fragility goal: the event (post/fragility_event.hpp)
+  double probability_at = 0;  // and the IM (g)
+  std::optional<FragilityEvent> parsed;  // the event, parsed against the sweep's columns
   double max = 0.0;  // constraints: the limit
   std::size_t line = 0;
   std::string key;  // where the study file gives it: "objective", "constraints[2]"
-  std::string name() const { return statistic_name(statistic) + "(" + edp + ")"; }
+  bool fragility() const { return !event.empty(); }
+  std::string name() const;
 };
 
 // A discrete choice: one scene key and its candidate values (a TOML value each: a number, a
@@ -57,8 +66,8 @@ struct OptimizeStudy {
   std::filesystem::path scene;      // resolved against the study file's folder
   std::vector<std::string> suite;   // as given, resolved
   std::string units;                // records that do not state theirs
-  std::optional<IntensityMeasure> im;  // with `level`: each record scaled to it
-  double level = 0.0;               // g
+  std::optional<IntensityMeasure> im;  // with `level` or `levels`: each record scaled to them
+  std::vector<double> levels;       // g: `level` (one), or `levels` (stripes); empty: records as read
   std::vector<OptimizeVariable> variables;
   std::vector<std::size_t> variable_lines;
   std::vector<StudyPlacement> placements;
@@ -67,7 +76,8 @@ struct OptimizeStudy {
   OptimizeOptions options;
 
   // Made by load_optimize_study: the records (their IM as read), the sweep whose motions are
-  // the suite (one run per record), the demands read per record, the fingerprint.
+  // the suite (one run per record and level, record-major), the columns read per run (the
+  // demands and the events' columns), the fingerprint.
   std::vector<IdaRecord> records;
   SweepSpec sweep;
   std::vector<std::string> edps;  // the distinct demands of the objectives and constraints
@@ -80,6 +90,13 @@ struct OptimizeStudy {
   // "link.1.floors=[2, 2]" (or "" without placements), for tables and messages.
   std::string choice_label(std::size_t choice) const;
   std::vector<double> limits() const;
+  // The runs of a design: records x levels (1 level without stripes), record-major; run r's
+  // record and IM level (g; 0 without im) and its name in tables ("RSN1044.AT2", with stripes
+  // "RSN1044.AT2@0.35").
+  std::size_t runs() const { return records.size() * std::max<std::size_t>(levels.size(), 1); }
+  const IdaRecord& run_record(std::size_t r) const { return records[r / std::max<std::size_t>(levels.size(), 1)]; }
+  double run_level(std::size_t r) const { return levels.empty() ? 0.0 : levels[r % levels.size()]; }
+  std::string run_name(std::size_t r) const;
 };
 
 // Reads and checks the study (InputError "FILE:LINE: ..." naming the key): the base scene as
@@ -92,7 +109,8 @@ OptimizeStudy load_optimize_study(const std::filesystem::path& file, std::vector
 // The sweep that evaluates a design: the suite on the base scene with the design's edits.
 SweepSpec design_sweep(const OptimizeStudy& study, std::size_t choice, const std::vector<double>& x);
 
-// One evaluated design's demands: values[record][edp] (edp as study.edps).
+// One evaluated design's values: values[run][column] (runs as study.runs(), columns as
+// study.edps; NaN for an empty cell).
 struct DesignDemands {
   std::vector<std::vector<double>> values;
   bool from_cache = false;
