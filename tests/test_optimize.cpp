@@ -224,7 +224,7 @@ TEST_CASE("optimize: the example studies read and check", "[optimize]") {
     CHECK(study.records.size() >= 9);  // records/real/peer and records/real/smc
     ++n;
   }
-  CHECK(n == 3);
+  CHECK(n == 4);
 }
 
 TEST_CASE("optimize: a fragility objective equals adjoin ida and adjoin fragility on the design's scene", "[optimize]") {
