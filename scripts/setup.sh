@@ -8,6 +8,7 @@ packages=(
   build-essential cmake pkg-config
   libeigen3-dev libfftw3-dev libgsl-dev
   catch2 libtomlplusplus-dev libcli11-dev nlohmann-json3-dev
+  libnlopt-cxx-dev   # NLopt: the optimisers of `adjoin optimize`
   libbenchmark-dev gnuplot-nox python3
   # The Python package (python/, `import adjoin`) and its tests; matplotlib for adjoin.plot.
   pybind11-dev python3-dev python3-numpy python3-pytest python3-matplotlib

@@ -43,7 +43,7 @@ from ._adjoin import (  # noqa: F401  (re-exported)
 __all__ = [
     "InputError", "NumericalError", "Scene", "load_scene", "run", "run_many", "run_structure", "Result",
     "Record", "read_record", "spectrum", "rotd", "ductility_spectrum", "default_periods",
-    "modes", "joint", "ida", "fragility", "Structure", "StructureBuilder", "BuildingBuilder", "ContactBuilder",
+    "modes", "joint", "ida", "fragility", "optimize", "Structure", "StructureBuilder", "BuildingBuilder", "ContactBuilder",
 ]
 
 
@@ -759,6 +759,54 @@ def ida(scene: str | os.PathLike[str], suite: str | os.PathLike[str] | Sequence[
                          jobs, os.fspath(out) if out is not None else "")
     return _arrays(result["columns"])
 
+
+
+def optimize(study: str | os.PathLike[str], *, jobs: int = 0, out: str | os.PathLike[str] | None = None) -> dict:
+    """Design optimisation, as ``adjoin optimize STUDY.toml --out DIR`` runs it
+    (io/optimize_study.hpp, study/optimize.hpp): damper parameters (continuous, with bounds)
+    searched with NLopt and placements enumerated, to minimise a demand's statistic over a suite
+    of records under constraints; two objectives give a Pareto front. The study file:
+    docs/reference/study-file.md. Native threads (each design's records), the GIL released.
+
+    Args:
+        study: the study file (TOML, ``[optimize]``).
+        jobs: threads for each design's runs (0: one per core).
+        out: a folder for ``evaluations.csv``, ``optimum.json`` and the cache
+            ``evaluations.cache.csv`` (a rerun with the same study and folder takes every
+            design already evaluated from it); None: no file is written and nothing is cached.
+
+    Returns:
+        dict: optimum.json's keys (``variables``, ``placement``, ``objective``,
+        ``evaluations``, ``runs``, ``history``, ``searches``, ``pareto``, ...), and
+        ``table``: evaluations.csv as columns (numbers as numpy arrays, ``feasible`` and
+        ``pareto`` as bool arrays, ``stage`` and placements as lists of str).
+
+    Raises:
+        InputError: ``.field`` ``"study"`` (the message names the file's line and key),
+            ``"out"``, or a scene key.
+        NumericalError: a run failed (the message names the design and the record).
+    """
+    import csv
+    import io
+    if not isinstance(study, (str, os.PathLike)):
+        raise _bad("study", f"a {type(study).__name__}: expected the study file (a path)")
+    jobs = _whole(jobs, "jobs", 0)
+    text, table = _adjoin.optimize(os.fspath(study), jobs, "" if out is None else os.fspath(out))
+    result = json.loads(text)
+    rows = list(csv.reader(io.StringIO(table)))
+    header, body = rows[0], rows[1:]
+    columns = {}
+    for k, name in enumerate(header):
+        cells = [r[k] for r in body]
+        if cells and all(c in ("true", "false") for c in cells):
+            columns[name] = np.array([c == "true" for c in cells], dtype=bool)
+            continue
+        try:
+            columns[name] = np.array([float(c) if c else np.nan for c in cells], dtype=float)
+        except ValueError:
+            columns[name] = cells
+    result["table"] = columns
+    return result
 
 
 def _list_or_none(values):

@@ -20,6 +20,7 @@ void bind_structure(py::module_& m);  // structure.cpp: the typed structure buil
 void bind_io(py::module_& m);         // io.cpp: scenes from files, text and dicts
 void bind_study(py::module_& m);      // study.cpp: run, run_many
 void bind_design_studies(py::module_& m);  // design_studies.cpp: ida, fragility (SPEC §9)
+void bind_optimize(py::module_& m);   // optimize.cpp: a study of `adjoin optimize` (SPEC §9)
 
 // A numpy array that takes over `values` (no copy): the vector moves to the heap and a capsule
 // frees it when the last array viewing it is gone.

@@ -11,4 +11,5 @@ PYBIND11_MODULE(_adjoin, m) {
   adjoin::python::bind_io(m);
   adjoin::python::bind_study(m);
   adjoin::python::bind_design_studies(m);
+  adjoin::python::bind_optimize(m);
 }
