@@ -319,7 +319,10 @@ TEST_CASE("with base friction the two blocks come to rest at a finite, located t
   CHECK(energy.balance().base_friction > 0.0);
   CHECK(std::abs(energy.balance().residual) < 1e-3 * energy.balance().input);
   // The same structure on the structure solver: the last stick of a base slider is located
-  // inside the step that ends at the first grid point of rest.
+  // inside the step that ends at its first grid point of rest. (The instant itself is not
+  // compared with the run above: how long the blocks creep while a rod force hovers near mu_b
+  // m g is ill-conditioned, and the direct and fft engines, equal to rounding, already stop
+  // 0.04 s apart.)
   const Structure s = two_block_structure(model);
   REQUIRE(s.ground_sliders().size() == 2);
   StructureSolverOptions so;
@@ -328,14 +331,21 @@ TEST_CASE("with base friction the two blocks come to rest at a finite, located t
   Recorder sr;
   const ScaledGroundForTest scaled(ground);
   simulate_structure(so, s, scaled, sr);
-  double stop = std::nan("");
+  double stop = std::nan(""), first_rest = std::nan("");
   for (std::size_t k = 1; k < sr.states.size(); ++k)
     for (std::size_t l = s.links.size(); l < s.links.size() + 2; ++l)
-      if (sr.states[k].link_phase[l] == Phase::stick && sr.states[k - 1].link_phase[l] != Phase::stick) stop = sr.states[k].link_switch[l];
-  INFO("located stop " << stop);
+      if (sr.states[k].link_phase[l] == Phase::stick && sr.states[k - 1].link_phase[l] != Phase::stick) {
+        stop = sr.states[k].link_switch[l];
+        first_rest = sr.states[k].t;
+      }
+  INFO("located stop " << stop << " in the step ending at " << first_rest);
   REQUIRE(!std::isnan(stop));
-  CHECK(stop <= last_moving + o.h);
-  CHECK(stop > last_moving - o.h);
+  CHECK(stop <= first_rest);
+  CHECK(stop >= first_rest - so.h - 1e-12);
+  CHECK(stop > 3.0);
+  CHECK(stop < 0.5 * so.t_end);
+  // From then on the blocks rest: both sliders stuck to the end.
+  for (std::size_t l = s.links.size(); l < s.links.size() + 2; ++l) CHECK(sr.states.back().link_phase[l] == Phase::stick);
 }
 
 TEST_CASE("base friction is refused with the paper scheme", "[base][two_block]") {

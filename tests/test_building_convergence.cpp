@@ -94,9 +94,9 @@ TEST_CASE("adjoin converge on a building scene writes the ladder's tables", "[bu
   REQUIRE(r.status == 0);
   CHECK(r.out.find("peak A.x5") != std::string::npos);
   const std::string table = slurp(dir / "convergence-quantities.csv");
-  CHECK(table.find("implicit,fft,0.004,peak A.x5,relative,") != std::string::npos);
-  CHECK(table.find("implicit,fft,0.002,t peak B.x3,absolute,") != std::string::npos);
-  CHECK(slurp(dir / "convergence.csv").find("implicit,fft,0.002,") != std::string::npos);
+  CHECK(table.find("implicit,soe,0.004,peak A.x5,relative,") != std::string::npos);
+  CHECK(table.find("implicit,soe,0.002,t peak B.x3,absolute,") != std::string::npos);
+  CHECK(slurp(dir / "convergence.csv").find("implicit,soe,0.002,") != std::string::npos);
   // The two-block schemes are refused by name.
   r = run_cli("converge '" + kScene + "' --schemes paper --no-plot --out '" + dir.string() + "'");
   CHECK(r.status == 2);

@@ -163,7 +163,7 @@ int converge_command(const ConvergeArgs& args) {
   scene.watch = &watch;
   ConvergenceOptions options;
   options.schemes = schemes_of(args, two_block);
-  options.engines = engines_of(args, {two_block ? HistoryEngine::direct : HistoryEngine::fft});
+  options.engines = engines_of(args, {two_block ? HistoryEngine::direct : HistoryEngine::soe});
   for (double h : args.steps) options.steps.push_back(h / time_unit);
   std::string error;
   if (!options.IsValid(&error)) throw InputError((two_block ? "--steps/--schemes/--history: " : "--steps/--history: ") + error);
@@ -249,7 +249,7 @@ const Registration registration(40, [](CLI::App& app) -> Runner {
   sub->add_option("--unset", args->unsets, "Remove a scene key or section before the --set overrides (e.g. --unset link)")
       ->allow_extra_args(false);
   sub->add_option("--schemes", args->schemes, "Schemes to compare (default paper,implicit-gl,implicit)")->delimiter(',');
-  sub->add_option("--history", args->engines, "History engines (default direct)")->delimiter(',');
+  sub->add_option("--history", args->engines, "History engines (default: direct for a two-block scene, soe for a building)")->delimiter(',');
   sub->add_option("--steps", args->steps, "Steps h in the scene's time unit (default: the scene's h times 4,2,1,1/2,1/4)")
       ->delimiter(',');
   sub->add_option("--out", args->out, "Output folder (default out/<scene name>/)");

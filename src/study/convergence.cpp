@@ -199,7 +199,7 @@ ConvergenceResult run_convergence(const RunSpec& given, const ConvergenceOptions
   ConvergenceOptions options = asked;
   RunSpec scene = given;
   const bool two_block = scene.two_block();
-  if (options.engines.empty()) options.engines = {two_block ? HistoryEngine::direct : HistoryEngine::fft};
+  if (options.engines.empty()) options.engines = {two_block ? HistoryEngine::direct : HistoryEngine::soe};
   if (two_block && options.schemes.empty()) options.schemes = {Scheme::paper, Scheme::implicit_gl, Scheme::implicit};
   if (!two_block) {
     // A structure runs one scheme: the structure step with one of its two restart rules.

@@ -55,7 +55,7 @@ namespace adjoin {
 struct StructureSolverOptions {
   double h = 0.001;     // s
   double t_end = 10.0;  // s
-  HistoryEngine history = HistoryEngine::fft;
+  HistoryEngine history = HistoryEngine::soe;
   // The scheme a run takes (solver/options.hpp): implicit, implicit-damped (restart always),
   // implicit-gl (Grünwald–Letnikov weights) on this stepper; paper (two-block runs only, its
   // own stepper: solver/simulate.hpp). with_scheme() sets restart and quadrature to match.

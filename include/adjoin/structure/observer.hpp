@@ -22,7 +22,7 @@ struct RunInfo {
   Model model;
   double h = 0.0;
   std::size_t steps = 0;  // N: grid points t_0..t_N are observed
-  HistoryEngine history = HistoryEngine::fft;  // the rods' history sums (a run's cost grows as N^2 with direct)
+  HistoryEngine history = HistoryEngine::soe;  // the rods' history sums (a run's cost grows as N^2 with direct)
 };
 
 class Observer {

@@ -68,7 +68,7 @@ struct BuildingRunOptions {
                                     // (not with h; neither: kBuildingDefaultTolerance)
   std::optional<double> t_end;      // s; not given: default_building_horizon
   bool error_estimate = true;       // a companion run at about 2h estimates the error
-  HistoryEngine history = HistoryEngine::fft;
+  HistoryEngine history = HistoryEngine::soe;
   StructureSolverOptions::Restart restart = StructureSolverOptions::Restart::automatic;
   OutputOptions output;
 };
