@@ -236,7 +236,7 @@ TEST_CASE("scaling lifts the suite mean to 90 percent of the target at its lowes
   CHECK(std::abs(u_lowest - 0.9) < 1e-8);
 }
 
-TEST_CASE("--band scales the suite over a period band of two buildings, as computed here by hand", "[suite][cli]") {
+TEST_CASE("adjoin spectrum --band scales the suite over a period band of two buildings, as computed here by hand", "[suite][cli]") {
   // Two buildings, T1 = 0.5 s and 0.95 s: the band 0.2 x 0.5 ... 2 x 0.95 = 0.1 ... 1.9 s.
   const fs::path out = fresh_dir("suite_band");
   const std::string target = kRecords + "/targets/ASCE7.txt";

@@ -133,7 +133,8 @@ def test_run_many_names_the_failing_scene():
     scenes = [adjoin.load_scene(SCENES / "paper-strong.toml", set=good) for _ in range(3)]
     # A building scene refused when run (its memory rule) as the third of four.
     huge = adjoin.load_scene(SCENES / "buildings" / "two-frames.toml",
-                             set={"solver.h": 1e-5, "solver.t_end": 1e4, "output.timeseries": False})
+                             set={"solver.h": 1e-5, "solver.t_end": 1e4, "output.timeseries": False,
+                                  "solver.history": "fft"})
     with pytest.raises(adjoin.InputError) as caught:
         adjoin.run_many(scenes[:2] + [huge] + scenes[2:], jobs=2)
     assert str(caught.value).startswith("scenes[2]: ")
