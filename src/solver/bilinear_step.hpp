@@ -73,6 +73,20 @@ inline void bilinear_as_phased(BilinearState& st, double theta, double w_free, c
   if (*hold) *w0 = w_free + (1.0 - theta) / theta * st.w;
 }
 
+// The same for an element elastic at t_n (the most, in a building): fixed 0, not held.
+inline void bilinear_as_elastic(BilinearState& st, char* hold, double* fixed) {
+  st.next = YieldPhase::elastic;
+  st.event = std::numeric_limits<double>::quiet_NaN();
+  *fixed = 0.0;
+  *hold = 0;
+}
+
+// Whether an element elastic at t_n stays elastic through a trial step ending at deformation
+// d1: bilinear_decide's first test, which then decides nothing (the step's passes skip it).
+inline bool bilinear_stays_elastic(const BilinearElement& e, const BilinearState& st, double d1) {
+  return st.phase == YieldPhase::elastic && std::abs(e.k * (d1 - st.up)) <= e.limit;
+}
+
 // The force at the end of a trial step whose end deformation is d1 (as phased), within the
 // yield surface.
 inline double bilinear_trial_force(const BilinearElement& e, const BilinearState& st, double d1) {
@@ -132,6 +146,22 @@ inline void bilinear_decide(const BilinearElement& e, BilinearState& st, double 
   st.next = YieldPhase::elastic;
   st.event = tau;
   st.yielded = false;
+}
+
+// bilinear_end for an element elastic through the step (no event located in it) that ends
+// within the yield surface (the most, in a building), inline; false, doing nothing, for any
+// other.
+inline bool bilinear_end_elastic(const BilinearElement& e, BilinearState& st, double d1, double w1) {
+  if (st.next != YieldPhase::elastic || !std::isnan(st.event)) return false;
+  const double q1 = e.k * (d1 - st.up);
+  if (std::abs(q1) > e.limit) return false;
+  st.prev_same = false;  // (next elastic with no event: it was elastic at t_n)
+  st.phase = YieldPhase::elastic;
+  st.q = q1;
+  st.d = d1;
+  st.w_prev = st.w;
+  st.w = w1;
+  return true;
 }
 
 // The step's end from the element's final end deformation d1 and velocity w1: its slip,

@@ -138,7 +138,9 @@ class StructureStepper {
     ag_next = next.ag;
     // The Zener elements' history terms: constant through the step (until commit).
     for (std::size_t e = 0; e < ws.laws.size(); ++e) ws.offsets[static_cast<Eigen::Index>(e)] = ws.laws[e]->offset();
-    if (!m.zener.empty() || m.nh > 0 || m.nw > 0) {  // (else it stays zero)
+    // (Else it stays zero; with bilinear elements alone it changes only when a slip u_p did.)
+    if (!m.zener.empty() || m.nw > 0 || (m.nh > 0 && ws.bilinear_slipped)) {
+      ws.bilinear_slipped = false;
       ws.off_dof.setZero();
       for (std::size_t e = 0; e < m.zener.size(); ++e) m.zener[e].pair.add(ws.off_dof, ws.offsets[static_cast<Eigen::Index>(e)]);
       // The bilinear elements' slips: -k_h u_p (bilinear_step.hpp).
@@ -488,17 +490,22 @@ class StructureStepper {
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
       const int k = m.nf + e;
+      if (ws.bilinear[e].phase == detail::YieldPhase::elastic) {  // (most: not an unknown, its velocity not read)
+        detail::bilinear_as_elastic(ws.bilinear[e], &ws.hold[k], &ws.fixed[k]);
+        continue;
+      }
       const double w_free = ws.v_free[el.i] - (el.j >= 0 ? ws.v_free[el.j] : 0.0);
       detail::bilinear_as_phased(ws.bilinear[e], ws.sm->theta, w_free, &ws.hold[k], &ws.fixed[k], &ws.w_free[k]);
     }
   }
   // A product with columns of [A^-1 B'; C A^-1 B'] (rows `rows` of `columns`), skipping the
   // zero step forces: with bilinear elements most of the QP's unknowns are zero (elastic).
-  void sparse_columns(const Eigen::MatrixXd& columns, Eigen::Index rows, const Eigen::VectorXd& q, double* out) const {
-    Eigen::Map<Eigen::VectorXd> sum(out, rows);
-    sum.setZero();
+  void sparse_columns(const Eigen::MatrixXd& columns, Eigen::Index rows, const Eigen::VectorXd& q, double* out) {
+    ws.nonzero.clear();
     for (int k = 0; k < m.nq; ++k)
-      if (q[k] != 0.0) sum.noalias() += q[k] * columns.col(k).head(rows);
+      if (q[k] != 0.0) ws.nonzero.push_back(k);
+    kernels.some_columns(rows, columns.rows(), static_cast<Eigen::Index>(ws.nonzero.size()), ws.nonzero.data(), columns.data(),
+                         q.data(), out);
   }
   // Solves for the held dampers (limit infinite) with the others' step forces fixed.
   void solve_held(const std::vector<char>& hold, const Eigen::VectorXd& fixed, Eigen::VectorXd* q) {
@@ -555,13 +562,14 @@ class StructureStepper {
       else decide_slipping(f, now);
     }
     // The bilinear elements: yield or unloading located inside the step (bilinear_step.hpp).
+    std::copy(ws.hold.begin() + m.nf, ws.hold.end(), ws.hold2.begin() + m.nf);
+    ws.fixed2.tail(m.nh) = ws.fixed.tail(m.nh);
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
       const int k = m.nf + e;
-      ws.hold2[k] = ws.hold[k];
-      ws.fixed2[k] = ws.fixed[k];
-      const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
       const double d1 = ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0);
+      if (detail::bilinear_stays_elastic(el, ws.bilinear[e], d1)) continue;  // (most: bilinear_decide's first test, inline)
+      const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
       detail::bilinear_decide(el, ws.bilinear[e], ws.sm->theta, m.h, d1, w1, &ws.hold2[k], &ws.fixed2[k]);
     }
     // (Mostly the dampers go on as they were, and the trial's forces are the step's.)
@@ -587,10 +595,15 @@ class StructureStepper {
   void trial_state(const StructureState& now, const Eigen::VectorXd& q) {
     if (m.nh > 0) sparse_columns(ws.sm->trial_rows, m.nt + m.nd, q, ws.trial_change.data());
     else kernels.columns(m.nt + m.nd, m.nf, ws.sm->trial_rows.data(), q.data(), ws.trial_change.data());
-    for (std::size_t t = 0; t < m.trial_dofs.size(); ++t) {
-      const int k = m.trial_dofs[t];
-      ws.v1[k] = ws.v_free[k] - m.h * ws.trial_change[t];
-      ws.x1[k] = ws.restart ? now.x[k] + m.h * ws.v1[k] : now.x[k] + 0.5 * m.h * (now.v[k] + ws.v1[k]);
+    if (m.trial_every_floor && !ws.restart) {  // (the same, in passes the compiler vectorises)
+      for (int k = 0; k < m.n; ++k) ws.v1[k] = ws.v_free[k] - m.h * ws.trial_change[k];
+      kernels.trapezoid(m.n, now.x.data(), now.v.data(), ws.v1.data(), 0.5 * m.h, ws.x1.data());
+    } else {
+      for (std::size_t t = 0; t < m.trial_dofs.size(); ++t) {
+        const int k = m.trial_dofs[t];
+        ws.v1[k] = ws.v_free[k] - m.h * ws.trial_change[t];
+        ws.x1[k] = ws.restart ? now.x[k] + m.h * ws.v1[k] : now.x[k] + 0.5 * m.h * (now.v[k] + ws.v1[k]);
+      }
     }
     for (std::size_t d = 0; d < m.damper_dofs.size(); ++d) {
       const int k = m.damper_dofs[d];
@@ -730,8 +743,15 @@ class StructureStepper {
       detail::BilinearState& st = ws.bilinear[e];
       const double w1 = next.v[el.i] - (el.j >= 0 ? next.v[el.j] : 0.0);
       const double d1 = next.x[el.i] - (el.j >= 0 ? next.x[el.j] : 0.0);
+      if (detail::bilinear_end_elastic(el, st, d1, w1)) {  // (u_p unchanged, no event)
+        if (st.up != 0.0) Pair{el.i, el.j}.add(ws.p_next, st.offset(el));
+        continue;
+      }
+      const double up = st.up;
       detail::bilinear_end(el, st, d1, w1);
-      Pair{el.i, el.j}.add(ws.p_next, st.offset(el));  // (K0 holds k_h d1)
+      ws.bilinear_slipped = ws.bilinear_slipped || st.up != up;
+      // (K0 holds k_h d1; an element that never slipped adds -0, nothing)
+      if (st.up != 0.0) Pair{el.i, el.j}.add(ws.p_next, st.offset(el));
       if (el.storey_law && st.yielded && !std::isnan(st.event)) next.hyst_yield[el.storey] = now.t + st.event * m.h;
     }
   }
@@ -998,7 +1018,7 @@ class StructureStepper {
     st.hyst_yield.resize(static_cast<std::size_t>(m.n), kNaN);
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
-      st.storey_force[el.storey] += ws.bilinear[e].offset(el);  // (the storey's spring holds k_h d)
+      if (ws.bilinear[e].up != 0.0) st.storey_force[el.storey] += ws.bilinear[e].offset(el);  // (the storey's spring holds k_h d)
       if (el.storey_law) st.hyst[el.storey] = ws.bilinear[e].q / el.k;
     }
     for (int e = 0; e < m.nw; ++e) {  // (bouc_wen_step.hpp: the storey's spring holds k d)
