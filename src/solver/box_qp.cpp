@@ -29,7 +29,11 @@ Eigen::MatrixXd SubsetInverses::invert(const std::vector<int>& set) const {
 }
 
 bool SubsetInverses::update_from_last(const std::vector<int>& set, Eigen::MatrixXd* inverse) const {
-  if (last_ == nullptr || last_->generation >= kMaxGeneration || set.size() < kMinUpdateSize) return false;
+  // (A small set is updated only when it holds a slipping bilinear element's row, negative on
+  // the diagonal and after the dampers': the dampers' own small systems keep the inversion's
+  // rounding.)
+  const bool small = set.size() < kMinUpdateSize && !(!set.empty() && s_(set.back(), set.back()) < 0.0);
+  if (last_ == nullptr || last_->generation >= kMaxGeneration || small || last_key_->empty()) return false;
   std::vector<int> removed, added;
   std::set_difference(last_key_->begin(), last_key_->end(), set.begin(), set.end(), std::back_inserter(removed));
   std::set_difference(set.begin(), set.end(), last_key_->begin(), last_key_->end(), std::back_inserter(added));
