@@ -500,15 +500,17 @@ TEST_CASE("the structure step's kernels equal the Eigen expressions they replace
         CHECK(out == out_e);
       }
       // The listed columns of a taller matrix (its first n rows), as the solver summed them
-      // with Eigen: from zero, q_k times column k added in the list's order.
-      Eigen::MatrixXd tall(n + 5, 6);
+      // with Eigen: from zero, q_k times column k added in the list's order (fewer than four,
+      // and four at a time with the rest after).
+      Eigen::MatrixXd tall(n + 5, 10);
       for (auto& e : tall.reshaped()) e = u(random);
-      const Eigen::VectorXd q = vec(6);
-      const std::vector<int> which{1, 2, 4};
-      Eigen::VectorXd out(n), out_e = Eigen::VectorXd::Zero(n);
-      k->some_columns(n, tall.rows(), 3, which.data(), tall.data(), q.data(), out.data());
-      for (int col : which) out_e.noalias() += q[col] * tall.col(col).head(n);
-      CHECK(out == out_e);
+      const Eigen::VectorXd q = vec(10);
+      for (const std::vector<int>& which : {std::vector<int>{1, 2, 4}, std::vector<int>{0, 1, 3, 4, 6, 7, 8, 9, 5}}) {
+        Eigen::VectorXd out(n), out_e = Eigen::VectorXd::Zero(n);
+        k->some_columns(n, tall.rows(), static_cast<Eigen::Index>(which.size()), which.data(), tall.data(), q.data(), out.data());
+        for (int col : which) out_e.noalias() += q[col] * tall.col(col).head(n);
+        CHECK(out == out_e);
+      }
     }
   }
   // The dense product against Eigen's, across the row blocks (16, 4, single rows) and the

@@ -107,19 +107,27 @@ BoxQp::BoxQp(Eigen::MatrixXd s) : inverses_(std::move(s)) {}
 void BoxQp::solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held, const Eigen::VectorXd& fixed,
                        Eigen::VectorXd* q) {
   const int n = static_cast<int>(w0.size());
-  held_.clear();
-  for (int k = 0; k < n; ++k)
-    if (held[k]) held_.push_back(k);
   double* qd = q->data();
   const double* fd = fixed.data();
   std::copy_n(fd, n, qd);
-  if (held_.empty()) return;
+  // The held unknowns, and the fixed forces that are not zero (with bilinear elements most
+  // are), listed without a branch (scratch_ holds n + 1 places for either list).
+  scratch_.resize(static_cast<std::size_t>(n) + 1);
+  int count = 0;
+  for (int k = 0; k < n; ++k) {
+    scratch_[static_cast<std::size_t>(count)] = k;
+    count += held[k] != 0 ? 1 : 0;
+  }
+  if (count == 0) return;
+  held_.assign(scratch_.begin(), scratch_.begin() + count);
   SubsetInverses::System& sys = inverses_.of(held_);
   const Eigen::MatrixXd& s = inverses_.matrix();
-  // (the fixed forces that are not zero: with bilinear elements most are)
-  fixed_.clear();
-  for (int k = 0; k < n; ++k)
-    if (!held[k] && fd[k] != 0.0) fixed_.push_back(k);
+  count = 0;
+  for (int k = 0; k < n; ++k) {
+    scratch_[static_cast<std::size_t>(count)] = k;
+    count += held[k] == 0 && fd[k] != 0.0 ? 1 : 0;
+  }
+  fixed_.assign(scratch_.begin(), scratch_.begin() + count);
   for (std::size_t i = 0; i < held_.size(); ++i) {
     const int h = held_[i];
     double b = w0[h];

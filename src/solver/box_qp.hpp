@@ -110,7 +110,7 @@ class BoxQp {
 
  private:
   SubsetInverses inverses_;
-  std::vector<int> stuck_, held_, fixed_;
+  std::vector<int> stuck_, held_, fixed_, scratch_;
   BoxQpResult r_;
 };
 

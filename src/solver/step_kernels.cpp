@@ -76,8 +76,18 @@ ADJOIN_INLINE void columns_body(Index rows, Index cols, const double* __restrict
 ADJOIN_INLINE void some_columns_body(Index rows, Index stride, Index count, const int* __restrict which,
                                      const double* __restrict m, const double* __restrict q, double* __restrict out) {
   for (Index r = 0; r < rows; ++r) out[r] = 0.0;
-  for (Index j = 0; j < count; ++j) {
-    const double* __restrict col = m + static_cast<Index>(which[j]) * stride;
+  auto column = [&](Index j) { return m + static_cast<Index>(which[j]) * stride; };
+  Index j = 0;
+  for (; j + 4 <= count; j += 4) {  // (four columns a pass over out: the same sums, in the same order)
+    const double* __restrict c0 = column(j);
+    const double* __restrict c1 = column(j + 1);
+    const double* __restrict c2 = column(j + 2);
+    const double* __restrict c3 = column(j + 3);
+    const double q0 = q[which[j]], q1 = q[which[j + 1]], q2 = q[which[j + 2]], q3 = q[which[j + 3]];
+    for (Index r = 0; r < rows; ++r) out[r] = (((out[r] + q0 * c0[r]) + q1 * c1[r]) + q2 * c2[r]) + q3 * c3[r];
+  }
+  for (; j < count; ++j) {
+    const double* __restrict col = column(j);
     const double qj = q[which[j]];
     for (Index r = 0; r < rows; ++r) out[r] += qj * col[r];
   }

@@ -501,11 +501,13 @@ class StructureStepper {
   // A product with columns of [A^-1 B'; C A^-1 B'] (rows `rows` of `columns`), skipping the
   // zero step forces: with bilinear elements most of the QP's unknowns are zero (elastic).
   void sparse_columns(const Eigen::MatrixXd& columns, Eigen::Index rows, const Eigen::VectorXd& q, double* out) {
-    ws.nonzero.clear();
-    for (int k = 0; k < m.nq; ++k)
-      if (q[k] != 0.0) ws.nonzero.push_back(k);
-    kernels.some_columns(rows, columns.rows(), static_cast<Eigen::Index>(ws.nonzero.size()), ws.nonzero.data(), columns.data(),
-                         q.data(), out);
+    int* list = ws.nonzero.data();  // (listed without a branch: most steps differ in a few)
+    Eigen::Index count = 0;
+    for (int k = 0; k < m.nq; ++k) {
+      list[count] = k;
+      count += q[k] != 0.0 ? 1 : 0;
+    }
+    kernels.some_columns(rows, columns.rows(), count, list, columns.data(), q.data(), out);
   }
   // Solves for the held dampers (limit infinite) with the others' step forces fixed.
   void solve_held(const std::vector<char>& hold, const Eigen::VectorXd& fixed, Eigen::VectorXd* q) {

@@ -51,7 +51,7 @@ StepWorkspace::StepWorkspace(const StructureModel& m) {
   for (std::vector<double>* v : {&onset, &crossing, &kink_theta, &kink_jump}) v->resize(nf);
   decided.assign(m.nq, DamperState::stick);
   hold.assign(m.nq, 0);
-  nonzero.reserve(static_cast<std::size_t>(m.nq));
+  nonzero.assign(static_cast<std::size_t>(m.nq), 0);
   hold2.assign(m.nq, 0);
   touched.reserve(2 * static_cast<std::size_t>(nf));
   touched_flag.assign(m.damper_dofs.size(), 0);
