@@ -73,14 +73,6 @@ inline void bilinear_as_phased(BilinearState& st, double theta, double w_free, c
   if (*hold) *w0 = w_free + (1.0 - theta) / theta * st.w;
 }
 
-// The same for an element elastic at t_n (the most, in a building): fixed 0, not held.
-inline void bilinear_as_elastic(BilinearState& st, char* hold, double* fixed) {
-  st.next = YieldPhase::elastic;
-  st.event = std::numeric_limits<double>::quiet_NaN();
-  *fixed = 0.0;
-  *hold = 0;
-}
-
 // Whether an element elastic at t_n stays elastic through a trial step ending at deformation
 // d1: bilinear_decide's first test, which then decides nothing (the step's passes skip it).
 inline bool bilinear_stays_elastic(const BilinearElement& e, const BilinearState& st, double d1) {

@@ -111,23 +111,23 @@ void BoxQp::solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held,
   const double* fd = fixed.data();
   std::copy_n(fd, n, qd);
   // The held unknowns, and the fixed forces that are not zero (with bilinear elements most
-  // are), listed without a branch (scratch_ holds n + 1 places for either list).
-  scratch_.resize(static_cast<std::size_t>(n) + 1);
-  int count = 0;
+  // are), listed in one pass without a branch (scratch_ holds n + 1 places for each list).
+  scratch_.resize(2 * (static_cast<std::size_t>(n) + 1));
+  int* held_list = scratch_.data();
+  int* fixed_list = held_list + n + 1;
+  int n_held = 0, n_fixed = 0;
   for (int k = 0; k < n; ++k) {
-    scratch_[static_cast<std::size_t>(count)] = k;
-    count += held[k] != 0 ? 1 : 0;
+    const int is_held = held[k] != 0 ? 1 : 0;
+    held_list[n_held] = k;
+    fixed_list[n_fixed] = k;
+    n_held += is_held;
+    n_fixed += (1 - is_held) & (fd[k] != 0.0 ? 1 : 0);
   }
-  if (count == 0) return;
-  held_.assign(scratch_.begin(), scratch_.begin() + count);
+  if (n_held == 0) return;
+  held_.assign(held_list, held_list + n_held);
+  fixed_.assign(fixed_list, fixed_list + n_fixed);
   SubsetInverses::System& sys = inverses_.of(held_);
   const Eigen::MatrixXd& s = inverses_.matrix();
-  count = 0;
-  for (int k = 0; k < n; ++k) {
-    scratch_[static_cast<std::size_t>(count)] = k;
-    count += held[k] == 0 && fd[k] != 0.0 ? 1 : 0;
-  }
-  fixed_.assign(scratch_.begin(), scratch_.begin() + count);
   for (std::size_t i = 0; i < held_.size(); ++i) {
     const int h = held_[i];
     double b = w0[h];

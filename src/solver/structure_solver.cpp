@@ -484,16 +484,15 @@ class StructureStepper {
     }
     hold_bilinear();
   }
-  // The bilinear elements as phased at t_n (bilinear_step.hpp): elastic (no unknown), or
-  // slipping, held at their yield force; their rows of the QP's right-hand side.
+  // The bilinear elements as phased at t_n (bilinear_step.hpp): elastic (no unknown: held 0,
+  // fixed 0 as hold_as_phased zeroed it, its next phase and event as end_bilinear left them:
+  // elastic, none), or slipping (the list ws.bilinear_plastic), held at their yield force;
+  // their rows of the QP's right-hand side.
   void hold_bilinear() {
-    for (int e = 0; e < m.nh; ++e) {
+    std::fill(ws.hold.begin() + m.nf, ws.hold.end(), 0);
+    for (int e : ws.bilinear_plastic) {
       const detail::BilinearElement& el = m.bilinear[e];
       const int k = m.nf + e;
-      if (ws.bilinear[e].phase == detail::YieldPhase::elastic) {  // (most: not an unknown, its velocity not read)
-        detail::bilinear_as_elastic(ws.bilinear[e], &ws.hold[k], &ws.fixed[k]);
-        continue;
-      }
       const double w_free = ws.v_free[el.i] - (el.j >= 0 ? ws.v_free[el.j] : 0.0);
       detail::bilinear_as_phased(ws.bilinear[e], ws.sm->theta, w_free, &ws.hold[k], &ws.fixed[k], &ws.w_free[k]);
     }
@@ -740,6 +739,7 @@ class StructureStepper {
   void end_bilinear(const StructureState& now, StructureState& next) {
     if (m.nh == 0) return;
     std::fill(next.hyst_yield.begin(), next.hyst_yield.end(), kNaN);
+    ws.bilinear_plastic.clear();
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
       detail::BilinearState& st = ws.bilinear[e];
@@ -755,6 +755,8 @@ class StructureStepper {
       // (K0 holds k_h d1; an element that never slipped adds -0, nothing)
       if (st.up != 0.0) Pair{el.i, el.j}.add(ws.p_next, st.offset(el));
       if (el.storey_law && st.yielded && !std::isnan(st.event)) next.hyst_yield[el.storey] = now.t + st.event * m.h;
+      st.event = kNaN;  // (read: hold_bilinear leaves an elastic element's as it is)
+      if (st.phase != detail::YieldPhase::elastic) ws.bilinear_plastic.push_back(e);
     }
   }
 

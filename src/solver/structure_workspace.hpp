@@ -28,6 +28,7 @@ struct StepWorkspace {
   SubsetInverses stuck_systems;  // B_s M^-1 B_s' per stuck set, inverted when first met
   std::vector<BilinearState> bilinear;  // per bilinear element of the model (bilinear_step.hpp)
   bool bilinear_slipped = true;         // some element's slip u_p changed in the last step (its offsets with it)
+  std::vector<int> bilinear_plastic;    // the elements slipping at t_n, ascending
   // With bilinear elements, the dampers' own QP for the first step (from rest the elements are
   // elastic: no unknowns).
   std::unique_ptr<BoxQp> box_qp_friction;
