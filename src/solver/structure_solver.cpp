@@ -482,7 +482,7 @@ class StructureStepper {
       ws.hold[f] = ph == Phase::stick;
       if (!ws.hold[f]) ws.fixed[f] = ph == Phase::slip_right ? m.limit[f] : -m.limit[f];
     }
-    hold_bilinear();
+    if (m.nh > 0) hold_bilinear();
   }
   // The bilinear elements as phased at t_n (bilinear_step.hpp): elastic (no unknown: held 0,
   // fixed 0 as hold_as_phased zeroed it, its next phase and event as end_bilinear left them:
@@ -562,17 +562,7 @@ class StructureStepper {
       if (ws.hold[f]) decide_stuck(f, now);
       else decide_slipping(f, now);
     }
-    // The bilinear elements: yield or unloading located inside the step (bilinear_step.hpp).
-    std::copy(ws.hold.begin() + m.nf, ws.hold.end(), ws.hold2.begin() + m.nf);
-    ws.fixed2.tail(m.nh) = ws.fixed.tail(m.nh);
-    for (int e = 0; e < m.nh; ++e) {
-      const detail::BilinearElement& el = m.bilinear[e];
-      const int k = m.nf + e;
-      const double d1 = ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0);
-      if (detail::bilinear_stays_elastic(el, ws.bilinear[e], d1)) continue;  // (most: bilinear_decide's first test, inline)
-      const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
-      detail::bilinear_decide(el, ws.bilinear[e], ws.sm->theta, m.h, d1, w1, &ws.hold2[k], &ws.fixed2[k]);
-    }
+    if (m.nh > 0) decide_bilinear();
     // (Mostly the dampers go on as they were, and the trial's forces are the step's.)
     if (ws.hold2 == ws.hold && ws.fixed2 == ws.fixed) ws.q_step = ws.q_trial;
     else solve_held(ws.hold2, ws.fixed2, &ws.q_step);
@@ -588,6 +578,21 @@ class StructureStepper {
         again = true;
       }
     if (again) solve_held(ws.hold2, ws.fixed2, &ws.q_step);
+  }
+
+  // The bilinear elements' decisions from the trial's end: yield or unloading located inside
+  // the step (bilinear_step.hpp), or as phased.
+  void decide_bilinear() {
+    std::copy(ws.hold.begin() + m.nf, ws.hold.end(), ws.hold2.begin() + m.nf);
+    ws.fixed2.tail(m.nh) = ws.fixed.tail(m.nh);
+    for (int e = 0; e < m.nh; ++e) {
+      const detail::BilinearElement& el = m.bilinear[e];
+      const int k = m.nf + e;
+      const double d1 = ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0);
+      if (detail::bilinear_stays_elastic(el, ws.bilinear[e], d1)) continue;  // (most: bilinear_decide's first test, inline)
+      const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
+      detail::bilinear_decide(el, ws.bilinear[e], ws.sm->theta, m.h, d1, w1, &ws.hold2[k], &ws.fixed2[k]);
+    }
   }
 
   // The end of the trial step for step forces q, at the dampers' floors: v and x (there and
