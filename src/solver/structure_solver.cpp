@@ -499,13 +499,17 @@ class StructureStepper {
   }
   // A product with columns of [A^-1 B'; C A^-1 B'] (rows `rows` of `columns`), skipping the
   // zero step forces: with bilinear elements most of the QP's unknowns are zero (elastic).
-  void sparse_columns(const Eigen::MatrixXd& columns, Eigen::Index rows, const Eigen::VectorXd& q, double* out) {
+  // Only the dampers and the bilinear elements `elements` (ascending) can have a nonzero one.
+  void sparse_columns(const Eigen::MatrixXd& columns, Eigen::Index rows, const Eigen::VectorXd& q, const std::vector<int>& elements,
+                      double* out) {
     int* list = ws.nonzero.data();  // (listed without a branch: most steps differ in a few)
     Eigen::Index count = 0;
-    for (int k = 0; k < m.nq; ++k) {
+    auto consider = [&](int k) {
       list[count] = k;
       count += q[k] != 0.0 ? 1 : 0;
-    }
+    };
+    for (int k = 0; k < m.nf; ++k) consider(k);
+    for (int e : elements) consider(m.nf + e);
     kernels.some_columns(rows, columns.rows(), count, list, columns.data(), q.data(), out);
   }
   // Solves for the held dampers (limit infinite) with the others' step forces fixed.
@@ -585,11 +589,13 @@ class StructureStepper {
   void decide_bilinear() {
     std::copy(ws.hold.begin() + m.nf, ws.hold.end(), ws.hold2.begin() + m.nf);
     ws.fixed2.tail(m.nh) = ws.fixed.tail(m.nh);
+    ws.bilinear_active.clear();
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
       const int k = m.nf + e;
       const double d1 = ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0);
       if (detail::bilinear_stays_elastic(el, ws.bilinear[e], d1)) continue;  // (most: bilinear_decide's first test, inline)
+      ws.bilinear_active.push_back(e);
       const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
       detail::bilinear_decide(el, ws.bilinear[e], ws.sm->theta, m.h, d1, w1, &ws.hold2[k], &ws.fixed2[k]);
     }
@@ -599,7 +605,8 @@ class StructureStepper {
   // where P there needs them), C v and P (Zener forces at their offsets), as the step's end
   // (correct) computes them everywhere.
   void trial_state(const StructureState& now, const Eigen::VectorXd& q) {
-    if (m.nh > 0) sparse_columns(ws.sm->trial_rows, m.nt + m.nd, q, ws.trial_change.data());
+    // (q: the trial's, nonzero at the slipping elements only)
+    if (m.nh > 0) sparse_columns(ws.sm->trial_rows, m.nt + m.nd, q, ws.bilinear_plastic, ws.trial_change.data());
     else kernels.columns(m.nt + m.nd, m.nf, ws.sm->trial_rows.data(), q.data(), ws.trial_change.data());
     if (m.trial_every_floor && !ws.restart) {  // (the same, in passes the compiler vectorises)
       for (int k = 0; k < m.n; ++k) ws.v1[k] = ws.v_free[k] - m.h * ws.trial_change[k];
@@ -702,7 +709,7 @@ class StructureStepper {
   // storey and link forces P at t_n+1.
   void correct(std::size_t step, const StructureState& now, StructureState& next) {
     if (m.nh > 0) {
-      sparse_columns(ws.sm->damper_response_columns, 2 * m.n, ws.q_step, ws.response_q.data());
+      sparse_columns(ws.sm->damper_response_columns, 2 * m.n, ws.q_step, ws.bilinear_active, ws.response_q.data());
       kernels.end_velocities(m.n, ws.v_free.data(), ws.cv_free.data(), ws.response_q.data(), ws.response_q.data() + m.n, m.h,
                              next.v.data(), ws.cv_next.data());
     } else if (m.nf > 0) {

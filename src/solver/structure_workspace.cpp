@@ -17,6 +17,7 @@ StepWorkspace::StepWorkspace(const StructureModel& m) {
   if (m.backward) box_qp_backward = std::make_unique<BoxQp>(m.backward->qp_matrix);
   bilinear.assign(static_cast<std::size_t>(m.nh), BilinearState{});
   bilinear_plastic.reserve(static_cast<std::size_t>(m.nh));
+  bilinear_active.reserve(static_cast<std::size_t>(m.nh));
   if (m.nh > 0 && nf > 0) {
     box_qp_friction = std::make_unique<BoxQp>(m.trapezoidal->delassus.topLeftCorner(nf, nf));
     states_friction.assign(nf, DamperState::stick);
