@@ -105,7 +105,7 @@ SubsetInverses::System& SubsetInverses::find(const std::vector<int>& set) {
 BoxQp::BoxQp(Eigen::MatrixXd s) : inverses_(std::move(s)) {}
 
 void BoxQp::solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held, const Eigen::VectorXd& fixed,
-                       Eigen::VectorXd* q) {
+                       Eigen::VectorXd* q, const std::vector<int>* candidates) {
   const int n = static_cast<int>(w0.size());
   double* qd = q->data();
   const double* fd = fixed.data();
@@ -116,12 +116,17 @@ void BoxQp::solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held,
   int* held_list = scratch_.data();
   int* fixed_list = held_list + n + 1;
   int n_held = 0, n_fixed = 0;
-  for (int k = 0; k < n; ++k) {
+  auto consider = [&](int k) {
     const int is_held = held[k] != 0 ? 1 : 0;
     held_list[n_held] = k;
     fixed_list[n_fixed] = k;
     n_held += is_held;
     n_fixed += (1 - is_held) & (fd[k] != 0.0 ? 1 : 0);
+  };
+  if (candidates != nullptr) {
+    for (int k : *candidates) consider(k);
+  } else {
+    for (int k = 0; k < n; ++k) consider(k);
   }
   if (n_held == 0) return;
   held_.assign(held_list, held_list + n_held);

@@ -105,8 +105,9 @@ class BoxQp {
   // The forces of the dampers `held` stuck (w_k = 0) when the others' are `fixed`: a linear
   // solve, q_H = S_HH^-1 (w0_H - S_HF fixed_F), q_F = fixed_F (what solve() returns with
   // infinite limits for the held and the fixed forces taken out of w0, without its iterations).
+  // `candidates` (ascending), if given: the only unknowns that may be held or fixed nonzero.
   void solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held, const Eigen::VectorXd& fixed,
-                  Eigen::VectorXd* q);
+                  Eigen::VectorXd* q, const std::vector<int>* candidates = nullptr);
 
  private:
   SubsetInverses inverses_;

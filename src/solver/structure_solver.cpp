@@ -220,7 +220,7 @@ class StructureStepper {
       ws.q_trial.setZero();
       if (m.nq > 0 && step > 0) {
         hold_as_phased(now);
-        solve_held(ws.hold, ws.fixed, &ws.q_trial);
+        solve_held(ws.hold, ws.fixed, &ws.q_trial, ws.bilinear_plastic);
       }
       contact_pass(now, ws.q_trial);
     }
@@ -513,8 +513,18 @@ class StructureStepper {
     kernels.some_columns(rows, columns.rows(), count, list, columns.data(), q.data(), out);
   }
   // Solves for the held dampers (limit infinite) with the others' step forces fixed.
-  void solve_held(const std::vector<char>& hold, const Eigen::VectorXd& fixed, Eigen::VectorXd* q) {
-    ws.box_qp->solve_held(ws.w_free, hold, fixed, q);
+  // With bilinear elements, only the dampers and `elements` (ascending) may be held or fixed
+  // nonzero.
+  void solve_held(const std::vector<char>& hold, const Eigen::VectorXd& fixed, Eigen::VectorXd* q,
+                  const std::vector<int>& elements) {
+    if (m.nh == 0) {
+      ws.box_qp->solve_held(ws.w_free, hold, fixed, q);
+      return;
+    }
+    ws.candidates.clear();
+    for (int f = 0; f < m.nf; ++f) ws.candidates.push_back(f);
+    for (int e : elements) ws.candidates.push_back(m.nf + e);
+    ws.box_qp->solve_held(ws.w_free, hold, fixed, q, &ws.candidates);
   }
 
   // One pass of the contact pairs with the dampers' step forces q_f (their impulses are
@@ -556,7 +566,7 @@ class StructureStepper {
   // forces of the decided phases.
   void decide_dampers(const StructureState& now) {
     hold_as_phased(now);
-    solve_held(ws.hold, ws.fixed, &ws.q_trial);
+    solve_held(ws.hold, ws.fixed, &ws.q_trial, ws.bilinear_plastic);
     trial_state(now, ws.q_trial);
     grid_forces(ws.cv1, ws.p1, ag_next, now.link_phase, &ws.q1, &ws.stick1);
     for (int f = 0; f < m.nf; ++f) ws.w1[f] = across(ws.v1, f);
@@ -569,7 +579,7 @@ class StructureStepper {
     if (m.nh > 0) decide_bilinear();
     // (Mostly the dampers go on as they were, and the trial's forces are the step's.)
     if (ws.hold2 == ws.hold && ws.fixed2 == ws.fixed) ws.q_step = ws.q_trial;
-    else solve_held(ws.hold2, ws.fixed2, &ws.q_step);
+    else solve_held(ws.hold2, ws.fixed2, &ws.q_step, ws.bilinear_active);
     // A starting damper that the others leave no room to slip stays stuck this step.
     if (std::any_of(ws.onset.begin(), ws.onset.end(), [](double t) { return !std::isnan(t); }))
       ws.w_end.noalias() = ws.w_free - ws.sm->delassus * ws.q_step;
@@ -581,7 +591,7 @@ class StructureStepper {
         ws.decided[f] = DamperState::stick;
         again = true;
       }
-    if (again) solve_held(ws.hold2, ws.fixed2, &ws.q_step);
+    if (again) solve_held(ws.hold2, ws.fixed2, &ws.q_step, ws.bilinear_active);
   }
 
   // The bilinear elements' decisions from the trial's end: yield or unloading located inside

@@ -54,6 +54,7 @@ StepWorkspace::StepWorkspace(const StructureModel& m) {
   decided.assign(m.nq, DamperState::stick);
   hold.assign(m.nq, 0);
   nonzero.assign(static_cast<std::size_t>(m.nq), 0);
+  candidates.reserve(static_cast<std::size_t>(m.nq));
   hold2.assign(m.nq, 0);
   touched.reserve(2 * static_cast<std::size_t>(nf));
   touched_flag.assign(m.damper_dofs.size(), 0);

@@ -68,7 +68,8 @@ struct StepWorkspace {
   std::vector<int> touched;
   std::vector<char> touched_flag;  // per damper_dofs entry
   std::vector<int> stuck;
-  std::vector<int> nonzero;  // the QP's unknowns with a nonzero step force (sparse_columns)
+  std::vector<int> nonzero;     // the QP's unknowns with a nonzero step force (sparse_columns)
+  std::vector<int> candidates;  // ... that may be held or fixed (solve_held)
   Eigen::VectorXd trial_change;  // A^-1 B' q at trial_dofs, then C A^-1 B' q at damper_dofs
   // B' q at the dampers' floors (damper_dofs), in btq_dampers: only there is it read by the
   // dampers' forces (each damper acts -q on A's floor and +q on B's).
