@@ -578,7 +578,7 @@ class StructureStepper {
     }
     if (m.nh > 0) decide_bilinear();
     // (Mostly the dampers go on as they were, and the trial's forces are the step's.)
-    if (ws.hold2 == ws.hold && ws.fixed2 == ws.fixed) ws.q_step = ws.q_trial;
+    if (same_as_trial()) ws.q_step = ws.q_trial;
     else solve_held(ws.hold2, ws.fixed2, &ws.q_step, ws.bilinear_active);
     // A starting damper that the others leave no room to slip stays stuck this step.
     if (std::any_of(ws.onset.begin(), ws.onset.end(), [](double t) { return !std::isnan(t); }))
@@ -594,12 +594,20 @@ class StructureStepper {
     if (again) solve_held(ws.hold2, ws.fixed2, &ws.q_step, ws.bilinear_active);
   }
 
+  // Whether the decided step keeps the trial's held set and fixed forces: the dampers', and
+  // the bilinear elements' (changed only by an event located in the step).
+  bool same_as_trial() const {
+    for (int f = 0; f < m.nf; ++f)
+      if (ws.hold2[f] != ws.hold[f] || ws.fixed2[f] != ws.fixed[f]) return false;
+    return !ws.bilinear_event;
+  }
   // The bilinear elements' decisions from the trial's end: yield or unloading located inside
   // the step (bilinear_step.hpp), or as phased.
   void decide_bilinear() {
     std::copy(ws.hold.begin() + m.nf, ws.hold.end(), ws.hold2.begin() + m.nf);
     ws.fixed2.tail(m.nh) = ws.fixed.tail(m.nh);
     ws.bilinear_active.clear();
+    ws.bilinear_event = false;
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
       const int k = m.nf + e;
@@ -608,6 +616,7 @@ class StructureStepper {
       ws.bilinear_active.push_back(e);
       const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
       detail::bilinear_decide(el, ws.bilinear[e], ws.sm->theta, m.h, d1, w1, &ws.hold2[k], &ws.fixed2[k]);
+      ws.bilinear_event = ws.bilinear_event || !std::isnan(ws.bilinear[e].event);
     }
   }
 

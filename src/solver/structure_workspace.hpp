@@ -29,6 +29,7 @@ struct StepWorkspace {
   std::vector<BilinearState> bilinear;  // per bilinear element of the model (bilinear_step.hpp)
   bool bilinear_slipped = true;         // some element's slip u_p changed in the last step (its offsets with it)
   std::vector<int> bilinear_plastic;    // the elements slipping at t_n, ascending
+  bool bilinear_event = false;          // an element yielded or unloaded in this step's decisions
   std::vector<int> bilinear_active;     // ... and those this step decided on (slipping, or leaving the elastic range), ascending
   // With bilinear elements, the dampers' own QP for the first step (from rest the elements are
   // elastic: no unknowns).
