@@ -48,7 +48,7 @@ struct BilinearState {
   double q = 0.0;          // force at t_n [N]
   double up = 0.0;         // the slider's slip u_p at t_n [m]
   double d = 0.0;          // deformation at t_n [m]
-  double w = 0.0;          // relative velocity at t_n
+  double w = 0.0;          // relative velocity at t_n (while elastic: set as it leaves the range)
   double w_prev = 0.0;     // ... at t_n-1
   bool prev_same = false;  // t_n-1 was in the same plastic excursion (for the unloading's parabola)
   // this step
@@ -141,18 +141,15 @@ inline void bilinear_decide(const BilinearElement& e, BilinearState& st, double 
 }
 
 // bilinear_end for an element elastic through the step (no event located in it) that ends
-// within the yield surface (the most, in a building), inline; false, doing nothing, for any
-// other.
-inline bool bilinear_end_elastic(const BilinearElement& e, BilinearState& st, double d1, double w1) {
+// within the yield surface (the most, in a building), inline: only its force changes. (It was
+// elastic at t_n, so its phase stays and prev_same is false already; its d, w and w_prev are
+// read only while it slips or as it leaves the elastic range, when the step takes w_n from the
+// grid velocities: bilinear_decide's caller.) False, doing nothing, for any other.
+inline bool bilinear_end_elastic(const BilinearElement& e, BilinearState& st, double d1) {
   if (st.next != YieldPhase::elastic || !std::isnan(st.event)) return false;
   const double q1 = e.k * (d1 - st.up);
   if (std::abs(q1) > e.limit) return false;
-  st.prev_same = false;  // (next elastic with no event: it was elastic at t_n)
-  st.phase = YieldPhase::elastic;
   st.q = q1;
-  st.d = d1;
-  st.w_prev = st.w;
-  st.w = w1;
   return true;
 }
 

@@ -576,7 +576,7 @@ class StructureStepper {
       if (ws.hold[f]) decide_stuck(f, now);
       else decide_slipping(f, now);
     }
-    if (m.nh > 0) decide_bilinear();
+    if (m.nh > 0) decide_bilinear(now);
     // (Mostly the dampers go on as they were, and the trial's forces are the step's.)
     if (same_as_trial()) ws.q_step = ws.q_trial;
     else solve_held(ws.hold2, ws.fixed2, &ws.q_step, ws.bilinear_active);
@@ -603,7 +603,7 @@ class StructureStepper {
   }
   // The bilinear elements' decisions from the trial's end: yield or unloading located inside
   // the step (bilinear_step.hpp), or as phased.
-  void decide_bilinear() {
+  void decide_bilinear(const StructureState& now) {
     std::copy(ws.hold.begin() + m.nf, ws.hold.end(), ws.hold2.begin() + m.nf);
     ws.fixed2.tail(m.nh) = ws.fixed.tail(m.nh);
     ws.bilinear_active.clear();
@@ -614,6 +614,8 @@ class StructureStepper {
       const double d1 = ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0);
       if (detail::bilinear_stays_elastic(el, ws.bilinear[e], d1)) continue;  // (most: bilinear_decide's first test, inline)
       ws.bilinear_active.push_back(e);
+      // (leaving the elastic range: its velocity at t_n, which bilinear_end_elastic left)
+      if (ws.bilinear[e].phase == detail::YieldPhase::elastic) ws.bilinear[e].w = now.v[el.i] - (el.j >= 0 ? now.v[el.j] : 0.0);
       const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
       detail::bilinear_decide(el, ws.bilinear[e], ws.sm->theta, m.h, d1, w1, &ws.hold2[k], &ws.fixed2[k]);
       ws.bilinear_event = ws.bilinear_event || !std::isnan(ws.bilinear[e].event);
@@ -774,12 +776,12 @@ class StructureStepper {
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
       detail::BilinearState& st = ws.bilinear[e];
-      const double w1 = next.v[el.i] - (el.j >= 0 ? next.v[el.j] : 0.0);
       const double d1 = next.x[el.i] - (el.j >= 0 ? next.x[el.j] : 0.0);
-      if (detail::bilinear_end_elastic(el, st, d1, w1)) {  // (u_p unchanged, no event)
+      if (detail::bilinear_end_elastic(el, st, d1)) {  // (u_p unchanged, no event)
         if (st.up != 0.0) Pair{el.i, el.j}.add(ws.p_next, st.offset(el));
         continue;
       }
+      const double w1 = next.v[el.i] - (el.j >= 0 ? next.v[el.j] : 0.0);
       const double up = st.up;
       detail::bilinear_end(el, st, d1, w1);
       ws.bilinear_slipped = ws.bilinear_slipped || st.up != up;
