@@ -773,20 +773,23 @@ class StructureStepper {
     if (m.nh == 0) return;
     std::fill(next.hyst_yield.begin(), next.hyst_yield.end(), kNaN);
     ws.bilinear_plastic.clear();
+    const double* x = next.x.data();
+    double* p = ws.p_next.data();
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
       detail::BilinearState& st = ws.bilinear[e];
-      const double d1 = next.x[el.i] - (el.j >= 0 ? next.x[el.j] : 0.0);
-      if (detail::bilinear_end_elastic(el, st, d1)) {  // (u_p unchanged, no event)
-        if (st.up != 0.0) Pair{el.i, el.j}.add(ws.p_next, st.offset(el));
+      const double d1 = x[el.i] - (el.j >= 0 ? x[el.j] : 0.0);
+      if (detail::bilinear_end_elastic(el, st, d1)) {  // (u_p unchanged, no event; K0 holds k_h d1)
+        const double offset = st.offset(el);
+        if (el.i >= 0) p[el.i] += offset;
+        if (el.j >= 0) p[el.j] -= offset;
         continue;
       }
       const double w1 = next.v[el.i] - (el.j >= 0 ? next.v[el.j] : 0.0);
       const double up = st.up;
       detail::bilinear_end(el, st, d1, w1);
       ws.bilinear_slipped = ws.bilinear_slipped || st.up != up;
-      // (K0 holds k_h d1; an element that never slipped adds -0, nothing)
-      if (st.up != 0.0) Pair{el.i, el.j}.add(ws.p_next, st.offset(el));
+      Pair{el.i, el.j}.add(ws.p_next, st.offset(el));  // (K0 holds k_h d1)
       if (el.storey_law && st.yielded && !std::isnan(st.event)) next.hyst_yield[el.storey] = now.t + st.event * m.h;
       st.event = kNaN;  // (read: hold_bilinear leaves an elastic element's as it is)
       if (st.phase != detail::YieldPhase::elastic) ws.bilinear_plastic.push_back(e);
@@ -1055,7 +1058,7 @@ class StructureStepper {
     st.hyst_yield.resize(static_cast<std::size_t>(m.n), kNaN);
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
-      if (ws.bilinear[e].up != 0.0) st.storey_force[el.storey] += ws.bilinear[e].offset(el);  // (the storey's spring holds k_h d)
+      st.storey_force[el.storey] += ws.bilinear[e].offset(el);  // (the storey's spring holds k_h d)
       if (el.storey_law) st.hyst[el.storey] = ws.bilinear[e].q / el.k;
     }
     for (int e = 0; e < m.nw; ++e) {  // (bouc_wen_step.hpp: the storey's spring holds k d)
