@@ -608,10 +608,11 @@ class StructureStepper {
     ws.fixed2.tail(m.nh) = ws.fixed.tail(m.nh);
     ws.bilinear_active.clear();
     ws.bilinear_event = false;
+    const double* x1 = ws.x1.data();
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
       const int k = m.nf + e;
-      const double d1 = ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0);
+      const double d1 = x1[el.i] - (el.j >= 0 ? x1[el.j] : 0.0);
       if (detail::bilinear_stays_elastic(el, ws.bilinear[e], d1)) continue;  // (most: bilinear_decide's first test, inline)
       ws.bilinear_active.push_back(e);
       // (leaving the elastic range: its velocity at t_n, which bilinear_end_elastic left)
@@ -1056,10 +1057,12 @@ class StructureStepper {
     // The bilinear elements' forces, and the storeys' own laws' z (bilinear_step.hpp).
     st.hyst.setZero(m.n);
     st.hyst_yield.resize(static_cast<std::size_t>(m.n), kNaN);
+    double* force = st.storey_force.data();
+    double* hyst = st.hyst.data();
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
-      st.storey_force[el.storey] += ws.bilinear[e].offset(el);  // (the storey's spring holds k_h d)
-      if (el.storey_law) st.hyst[el.storey] = ws.bilinear[e].q / el.k;
+      force[el.storey] += ws.bilinear[e].offset(el);  // (the storey's spring holds k_h d)
+      if (el.storey_law) hyst[el.storey] = ws.bilinear[e].q / el.k;
     }
     for (int e = 0; e < m.nw; ++e) {  // (bouc_wen_step.hpp: the storey's spring holds k d)
       const detail::BoucWenElement& el = m.bouc_wen[e];
