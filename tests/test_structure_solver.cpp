@@ -265,6 +265,47 @@ TEST_CASE("held-set inverses updated by bordering equal those inverted from scra
   }
 }
 
+TEST_CASE("small held sets are updated by bordering only when they hold a slipping bilinear element", "[structure_solver][box_qp]") {
+  // Small sets (below kMinUpdateSize) of dampers (0..4, positive diagonal) and bilinear
+  // elements (5..9, negative diagonal, after the dampers): a set holding an element is the
+  // last one's update (up to kMaxChanges changes, kMaxGeneration in a row), accurate; a
+  // dampers-only set is inverted from scratch (its rounding that of the inversion).
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int n = 10;
+  Eigen::MatrixXd g(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) g(i, j) = u(random);
+  Eigen::MatrixXd s = g * g.transpose() + 0.5 * Eigen::MatrixXd::Identity(n, n);
+  for (int i = 5; i < n; ++i) s(i, i) = -10.0 * s(i, i);
+  detail::SubsetInverses inverses(s);
+  std::vector<char> in(n, 0);
+  in[0] = in[5] = 1;
+  int updated = 0, generation = 0;
+  for (int step = 0; step < 400; ++step) {
+    const int changes = 1 + step % detail::SubsetInverses::kMaxChanges;
+    for (int c = 0; c < changes; ++c) in[static_cast<std::size_t>(random() % n)] ^= 1;
+    std::vector<int> set;
+    for (int i = 0; i < n; ++i)
+      if (in[i]) set.push_back(i);
+    if (set.empty() || set.size() >= detail::SubsetInverses::kMinUpdateSize) continue;
+    const auto& sys = inverses.of(set);
+    const bool holds_element = set.back() >= 5;
+    INFO("step " << step << ", generation " << sys.generation);
+    if (!holds_element) CHECK(sys.generation == 0);
+    if (sys.generation > 0) ++updated;
+    generation = std::max(generation, sys.generation);
+    const int m = static_cast<int>(set.size());
+    Eigen::MatrixXd a(m, m);
+    for (int i = 0; i < m; ++i)
+      for (int j = 0; j < m; ++j) a(i, j) = s(set[i], set[j]);
+    const Eigen::MatrixXd direct = a.partialPivLu().inverse();
+    CHECK((sys.inverse - direct).cwiseAbs().maxCoeff() <= 1e-10 * direct.cwiseAbs().maxCoeff());
+  }
+  CHECK(updated > 20);
+  CHECK(generation <= detail::SubsetInverses::kMaxGeneration);
+}
+
 namespace {
 
 // The exact response of one mode, q'' + 2 z w q' + w^2 q = p(t) with p piecewise linear
@@ -497,6 +538,18 @@ TEST_CASE("the structure step's kernels equal the Eigen expressions they replace
         Eigen::VectorXd out(n), out_e(n);
         k->columns(n, cols, mm.data(), q.data(), out.data());
         for (Eigen::Index r = 0; r < n; ++r) out_e[r] = mm.row(r).dot(q);
+        CHECK(out == out_e);
+      }
+      // The listed columns of a taller matrix (its first n rows), as the solver summed them
+      // with Eigen: from zero, q_k times column k added in the list's order (fewer than four,
+      // and four at a time with the rest after).
+      Eigen::MatrixXd tall(n + 5, 10);
+      for (auto& e : tall.reshaped()) e = u(random);
+      const Eigen::VectorXd q = vec(10);
+      for (const std::vector<int>& which : {std::vector<int>{1, 2, 4}, std::vector<int>{0, 1, 3, 4, 6, 7, 8, 9, 5}}) {
+        Eigen::VectorXd out(n), out_e = Eigen::VectorXd::Zero(n);
+        k->some_columns(n, tall.rows(), static_cast<Eigen::Index>(which.size()), which.data(), tall.data(), q.data(), out.data());
+        for (int col : which) out_e.noalias() += q[col] * tall.col(col).head(n);
         CHECK(out == out_e);
       }
     }

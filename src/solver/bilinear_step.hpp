@@ -48,7 +48,7 @@ struct BilinearState {
   double q = 0.0;          // force at t_n [N]
   double up = 0.0;         // the slider's slip u_p at t_n [m]
   double d = 0.0;          // deformation at t_n [m]
-  double w = 0.0;          // relative velocity at t_n
+  double w = 0.0;          // relative velocity at t_n (while elastic: set as it leaves the range)
   double w_prev = 0.0;     // ... at t_n-1
   bool prev_same = false;  // t_n-1 was in the same plastic excursion (for the unloading's parabola)
   // this step
@@ -71,6 +71,12 @@ inline void bilinear_as_phased(BilinearState& st, double theta, double w_free, c
   *hold = st.phase != YieldPhase::elastic;
   // U = alpha + beta w1, beta = -theta^2 k_h h, alpha = -theta (1 - theta) k_h h w_n.
   if (*hold) *w0 = w_free + (1.0 - theta) / theta * st.w;
+}
+
+// Whether an element elastic at t_n stays elastic through a trial step ending at deformation
+// d1: bilinear_decide's first test, which then decides nothing (the step's passes skip it).
+inline bool bilinear_stays_elastic(const BilinearElement& e, const BilinearState& st, double d1) {
+  return st.phase == YieldPhase::elastic && std::abs(e.k * (d1 - st.up)) <= e.limit;
 }
 
 // The force at the end of a trial step whose end deformation is d1 (as phased), within the
@@ -132,6 +138,19 @@ inline void bilinear_decide(const BilinearElement& e, BilinearState& st, double 
   st.next = YieldPhase::elastic;
   st.event = tau;
   st.yielded = false;
+}
+
+// bilinear_end for an element elastic through the step (no event located in it) that ends
+// within the yield surface (the most, in a building), inline: only its force changes. (It was
+// elastic at t_n, so its phase stays and prev_same is false already; its d, w and w_prev are
+// read only while it slips or as it leaves the elastic range, when the step takes w_n from the
+// grid velocities: bilinear_decide's caller.) False, doing nothing, for any other.
+inline bool bilinear_end_elastic(const BilinearElement& e, BilinearState& st, double d1) {
+  if (st.next != YieldPhase::elastic || !std::isnan(st.event)) return false;
+  const double q1 = e.k * (d1 - st.up);
+  if (std::abs(q1) > e.limit) return false;
+  st.q = q1;
+  return true;
 }
 
 // The step's end from the element's final end deformation d1 and velocity w1: its slip,

@@ -29,7 +29,11 @@ Eigen::MatrixXd SubsetInverses::invert(const std::vector<int>& set) const {
 }
 
 bool SubsetInverses::update_from_last(const std::vector<int>& set, Eigen::MatrixXd* inverse) const {
-  if (last_ == nullptr || last_->generation >= kMaxGeneration || set.size() < kMinUpdateSize) return false;
+  // (A small set is updated only when it holds a slipping bilinear element's row, negative on
+  // the diagonal and after the dampers': the dampers' own small systems keep the inversion's
+  // rounding.)
+  const bool small = set.size() < kMinUpdateSize && !(!set.empty() && s_(set.back(), set.back()) < 0.0);
+  if (last_ == nullptr || last_->generation >= kMaxGeneration || small || last_key_->empty()) return false;
   std::vector<int> removed, added;
   std::set_difference(last_key_->begin(), last_key_->end(), set.begin(), set.end(), std::back_inserter(removed));
   std::set_difference(set.begin(), set.end(), last_key_->begin(), last_key_->end(), std::back_inserter(added));
@@ -101,21 +105,34 @@ SubsetInverses::System& SubsetInverses::find(const std::vector<int>& set) {
 BoxQp::BoxQp(Eigen::MatrixXd s) : inverses_(std::move(s)) {}
 
 void BoxQp::solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held, const Eigen::VectorXd& fixed,
-                       Eigen::VectorXd* q) {
+                       Eigen::VectorXd* q, const std::vector<int>* candidates) {
   const int n = static_cast<int>(w0.size());
-  held_.clear();
-  for (int k = 0; k < n; ++k)
-    if (held[k]) held_.push_back(k);
   double* qd = q->data();
   const double* fd = fixed.data();
   std::copy_n(fd, n, qd);
-  if (held_.empty()) return;
+  // The held unknowns, and the fixed forces that are not zero (with bilinear elements most
+  // are), listed in one pass without a branch (scratch_ holds n + 1 places for each list).
+  scratch_.resize(2 * (static_cast<std::size_t>(n) + 1));
+  int* held_list = scratch_.data();
+  int* fixed_list = held_list + n + 1;
+  int n_held = 0, n_fixed = 0;
+  auto consider = [&](int k) {
+    const int is_held = held[k] != 0 ? 1 : 0;
+    held_list[n_held] = k;
+    fixed_list[n_fixed] = k;
+    n_held += is_held;
+    n_fixed += (1 - is_held) & (fd[k] != 0.0 ? 1 : 0);
+  };
+  if (candidates != nullptr) {
+    for (int k : *candidates) consider(k);
+  } else {
+    for (int k = 0; k < n; ++k) consider(k);
+  }
+  if (n_held == 0) return;
+  held_.assign(held_list, held_list + n_held);
+  fixed_.assign(fixed_list, fixed_list + n_fixed);
   SubsetInverses::System& sys = inverses_.of(held_);
   const Eigen::MatrixXd& s = inverses_.matrix();
-  // (the fixed forces that are not zero: with bilinear elements most are)
-  fixed_.clear();
-  for (int k = 0; k < n; ++k)
-    if (!held[k] && fd[k] != 0.0) fixed_.push_back(k);
   for (std::size_t i = 0; i < held_.size(); ++i) {
     const int h = held_[i];
     double b = w0[h];

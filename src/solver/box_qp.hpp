@@ -38,16 +38,18 @@ BoxQpResult solve_box_qp(const Eigen::MatrixXd& s, const Eigen::VectorXd& w0, co
 // again; at most 2^n). A new set mostly differs from the last one used by an element or two (a
 // damper that sticks, a storey that yields): its inverse is then the last one's bordered
 // update, O(m^2) a changed element instead of O(m^3) (kMaxChanges elements at most, and at most
-// kMaxGeneration updates in a row before an inversion from scratch, so rounding cannot pile up;
+// kMaxGeneration updates in a row before an inversion from scratch, so rounding cannot pile up
+// beyond a few units in the last place of the inverse;
 // a small pivot also falls back to the inversion). Sets below kMinUpdateSize are inverted: it
 // costs little there, and a few dampers' systems keep the inversion's rounding (a block held by
-// its sliders comes to rest with velocities 0 bit for bit).
+// its sliders comes to rest with velocities 0 bit for bit), unless they hold a slipping bilinear
+// element (a yielding building meets hundreds of small sets: updated, each costs a tenth).
 class SubsetInverses {
  public:
   SubsetInverses() = default;
   explicit SubsetInverses(Eigen::MatrixXd s) : s_(std::move(s)) {}
-  static constexpr int kMaxChanges = 2;
-  static constexpr int kMaxGeneration = 4;
+  static constexpr int kMaxChanges = 4;
+  static constexpr int kMaxGeneration = 16;
   static constexpr std::size_t kMinUpdateSize = 8;
   struct System {
     Eigen::MatrixXd inverse;  // S_ss^-1
@@ -103,12 +105,13 @@ class BoxQp {
   // The forces of the dampers `held` stuck (w_k = 0) when the others' are `fixed`: a linear
   // solve, q_H = S_HH^-1 (w0_H - S_HF fixed_F), q_F = fixed_F (what solve() returns with
   // infinite limits for the held and the fixed forces taken out of w0, without its iterations).
+  // `candidates` (ascending), if given: the only unknowns that may be held or fixed nonzero.
   void solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held, const Eigen::VectorXd& fixed,
-                  Eigen::VectorXd* q);
+                  Eigen::VectorXd* q, const std::vector<int>* candidates = nullptr);
 
  private:
   SubsetInverses inverses_;
-  std::vector<int> stuck_, held_, fixed_;
+  std::vector<int> stuck_, held_, fixed_, scratch_;
   BoxQpResult r_;
 };
 

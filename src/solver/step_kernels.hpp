@@ -42,6 +42,11 @@ struct StepKernels {
   // out = m q for a column-major m (rows x cols, cols > 0), each row summed over the columns in
   // order from the first product: m(r, 0) q_0 + m(r, 1) q_1 + ...
   void (*columns)(Index rows, Index cols, const double* m, const double* q, double* out);
+  // out = sum over the listed columns `which` (count of them, in order) of m's column k times
+  // q[k], m column-major with column stride `stride`: each row from 0, the products added in
+  // the list's order (a product with a sparse q: its nonzero entries listed).
+  void (*some_columns)(Index rows, Index stride, Index count, const int* which, const double* m, const double* q,
+                       double* out);
 };
 
 // The kernels for this processor (chosen once).

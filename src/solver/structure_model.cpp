@@ -433,6 +433,7 @@ void StructureModel::prepare_trial() {
   // row's sum is formed in the order of its columns, as Eigen sums a row of the full matrices.
   nt = static_cast<Eigen::Index>(trial_dofs.size());
   nd = static_cast<Eigen::Index>(damper_dofs.size());
+  trial_every_floor = nt == n && (nt == 0 || trial_dofs.back() == n - 1);  // (sorted and unique)
   for (StepMatrices* m : {trapezoidal.get(), backward.get()}) {
     if (m == nullptr) continue;
     m->trial_rows.resize(nt + nd, nq);

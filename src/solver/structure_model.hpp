@@ -153,6 +153,7 @@ class StructureModel {
   std::vector<int> damper_dofs, trial_dofs;  // the dampers' floors; the floors the trial step reads
   std::vector<std::vector<std::pair<int, double>>> damper_zener;  // per damper dof: (element, sign), in order
   Eigen::Index nt = 0, nd = 0;  // trial_dofs.size(), damper_dofs.size()
+  bool trial_every_floor = false;  // trial_dofs is 0, 1, ..., n - 1 (bilinear storeys: one pass over the floors)
   std::vector<int> pi, pj;      // each damper's floors' places in damper_dofs (pj -1: the ground)
 
   // ---- the bilinear elements (bilinear_step.hpp): the QP's unknowns after the dampers' ----

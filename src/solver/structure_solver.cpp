@@ -138,7 +138,9 @@ class StructureStepper {
     ag_next = next.ag;
     // The Zener elements' history terms: constant through the step (until commit).
     for (std::size_t e = 0; e < ws.laws.size(); ++e) ws.offsets[static_cast<Eigen::Index>(e)] = ws.laws[e]->offset();
-    if (!m.zener.empty() || m.nh > 0 || m.nw > 0) {  // (else it stays zero)
+    // (Else it stays zero; with bilinear elements alone it changes only when a slip u_p did.)
+    if (!m.zener.empty() || m.nw > 0 || (m.nh > 0 && ws.bilinear_slipped)) {
+      ws.bilinear_slipped = false;
       ws.off_dof.setZero();
       for (std::size_t e = 0; e < m.zener.size(); ++e) m.zener[e].pair.add(ws.off_dof, ws.offsets[static_cast<Eigen::Index>(e)]);
       // The bilinear elements' slips: -k_h u_p (bilinear_step.hpp).
@@ -218,7 +220,7 @@ class StructureStepper {
       ws.q_trial.setZero();
       if (m.nq > 0 && step > 0) {
         hold_as_phased(now);
-        solve_held(ws.hold, ws.fixed, &ws.q_trial);
+        solve_held(ws.hold, ws.fixed, &ws.q_trial, ws.bilinear_plastic);
       }
       contact_pass(now, ws.q_trial);
     }
@@ -480,12 +482,15 @@ class StructureStepper {
       ws.hold[f] = ph == Phase::stick;
       if (!ws.hold[f]) ws.fixed[f] = ph == Phase::slip_right ? m.limit[f] : -m.limit[f];
     }
-    hold_bilinear();
+    if (m.nh > 0) hold_bilinear();
   }
-  // The bilinear elements as phased at t_n (bilinear_step.hpp): elastic (no unknown), or
-  // slipping, held at their yield force; their rows of the QP's right-hand side.
+  // The bilinear elements as phased at t_n (bilinear_step.hpp): elastic (no unknown: held 0,
+  // fixed 0 as hold_as_phased zeroed it, its next phase and event as end_bilinear left them:
+  // elastic, none), or slipping (the list ws.bilinear_plastic), held at their yield force;
+  // their rows of the QP's right-hand side.
   void hold_bilinear() {
-    for (int e = 0; e < m.nh; ++e) {
+    std::fill(ws.hold.begin() + m.nf, ws.hold.end(), 0);
+    for (int e : ws.bilinear_plastic) {
       const detail::BilinearElement& el = m.bilinear[e];
       const int k = m.nf + e;
       const double w_free = ws.v_free[el.i] - (el.j >= 0 ? ws.v_free[el.j] : 0.0);
@@ -494,15 +499,32 @@ class StructureStepper {
   }
   // A product with columns of [A^-1 B'; C A^-1 B'] (rows `rows` of `columns`), skipping the
   // zero step forces: with bilinear elements most of the QP's unknowns are zero (elastic).
-  void sparse_columns(const Eigen::MatrixXd& columns, Eigen::Index rows, const Eigen::VectorXd& q, double* out) const {
-    Eigen::Map<Eigen::VectorXd> sum(out, rows);
-    sum.setZero();
-    for (int k = 0; k < m.nq; ++k)
-      if (q[k] != 0.0) sum.noalias() += q[k] * columns.col(k).head(rows);
+  // Only the dampers and the bilinear elements `elements` (ascending) can have a nonzero one.
+  void sparse_columns(const Eigen::MatrixXd& columns, Eigen::Index rows, const Eigen::VectorXd& q, const std::vector<int>& elements,
+                      double* out) {
+    int* list = ws.nonzero.data();  // (listed without a branch: most steps differ in a few)
+    Eigen::Index count = 0;
+    auto consider = [&](int k) {
+      list[count] = k;
+      count += q[k] != 0.0 ? 1 : 0;
+    };
+    for (int k = 0; k < m.nf; ++k) consider(k);
+    for (int e : elements) consider(m.nf + e);
+    kernels.some_columns(rows, columns.rows(), count, list, columns.data(), q.data(), out);
   }
   // Solves for the held dampers (limit infinite) with the others' step forces fixed.
-  void solve_held(const std::vector<char>& hold, const Eigen::VectorXd& fixed, Eigen::VectorXd* q) {
-    ws.box_qp->solve_held(ws.w_free, hold, fixed, q);
+  // With bilinear elements, only the dampers and `elements` (ascending) may be held or fixed
+  // nonzero.
+  void solve_held(const std::vector<char>& hold, const Eigen::VectorXd& fixed, Eigen::VectorXd* q,
+                  const std::vector<int>& elements) {
+    if (m.nh == 0) {
+      ws.box_qp->solve_held(ws.w_free, hold, fixed, q);
+      return;
+    }
+    ws.candidates.clear();
+    for (int f = 0; f < m.nf; ++f) ws.candidates.push_back(f);
+    for (int e : elements) ws.candidates.push_back(m.nf + e);
+    ws.box_qp->solve_held(ws.w_free, hold, fixed, q, &ws.candidates);
   }
 
   // One pass of the contact pairs with the dampers' step forces q_f (their impulses are
@@ -544,7 +566,7 @@ class StructureStepper {
   // forces of the decided phases.
   void decide_dampers(const StructureState& now) {
     hold_as_phased(now);
-    solve_held(ws.hold, ws.fixed, &ws.q_trial);
+    solve_held(ws.hold, ws.fixed, &ws.q_trial, ws.bilinear_plastic);
     trial_state(now, ws.q_trial);
     grid_forces(ws.cv1, ws.p1, ag_next, now.link_phase, &ws.q1, &ws.stick1);
     for (int f = 0; f < m.nf; ++f) ws.w1[f] = across(ws.v1, f);
@@ -554,19 +576,10 @@ class StructureStepper {
       if (ws.hold[f]) decide_stuck(f, now);
       else decide_slipping(f, now);
     }
-    // The bilinear elements: yield or unloading located inside the step (bilinear_step.hpp).
-    for (int e = 0; e < m.nh; ++e) {
-      const detail::BilinearElement& el = m.bilinear[e];
-      const int k = m.nf + e;
-      ws.hold2[k] = ws.hold[k];
-      ws.fixed2[k] = ws.fixed[k];
-      const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
-      const double d1 = ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0);
-      detail::bilinear_decide(el, ws.bilinear[e], ws.sm->theta, m.h, d1, w1, &ws.hold2[k], &ws.fixed2[k]);
-    }
+    if (m.nh > 0) decide_bilinear(now);
     // (Mostly the dampers go on as they were, and the trial's forces are the step's.)
-    if (ws.hold2 == ws.hold && ws.fixed2 == ws.fixed) ws.q_step = ws.q_trial;
-    else solve_held(ws.hold2, ws.fixed2, &ws.q_step);
+    if (same_as_trial()) ws.q_step = ws.q_trial;
+    else solve_held(ws.hold2, ws.fixed2, &ws.q_step, ws.bilinear_active);
     // A starting damper that the others leave no room to slip stays stuck this step.
     if (std::any_of(ws.onset.begin(), ws.onset.end(), [](double t) { return !std::isnan(t); }))
       ws.w_end.noalias() = ws.w_free - ws.sm->delassus * ws.q_step;
@@ -578,19 +591,54 @@ class StructureStepper {
         ws.decided[f] = DamperState::stick;
         again = true;
       }
-    if (again) solve_held(ws.hold2, ws.fixed2, &ws.q_step);
+    if (again) solve_held(ws.hold2, ws.fixed2, &ws.q_step, ws.bilinear_active);
+  }
+
+  // Whether the decided step keeps the trial's held set and fixed forces: the dampers', and
+  // the bilinear elements' (changed only by an event located in the step).
+  bool same_as_trial() const {
+    for (int f = 0; f < m.nf; ++f)
+      if (ws.hold2[f] != ws.hold[f] || ws.fixed2[f] != ws.fixed[f]) return false;
+    return !ws.bilinear_event;
+  }
+  // The bilinear elements' decisions from the trial's end: yield or unloading located inside
+  // the step (bilinear_step.hpp), or as phased.
+  void decide_bilinear(const StructureState& now) {
+    std::copy(ws.hold.begin() + m.nf, ws.hold.end(), ws.hold2.begin() + m.nf);
+    ws.fixed2.tail(m.nh) = ws.fixed.tail(m.nh);
+    ws.bilinear_active.clear();
+    ws.bilinear_event = false;
+    const double* x1 = ws.x1.data();
+    for (int e = 0; e < m.nh; ++e) {
+      const detail::BilinearElement& el = m.bilinear[e];
+      const int k = m.nf + e;
+      const double d1 = x1[el.i] - (el.j >= 0 ? x1[el.j] : 0.0);
+      if (detail::bilinear_stays_elastic(el, ws.bilinear[e], d1)) continue;  // (most: bilinear_decide's first test, inline)
+      ws.bilinear_active.push_back(e);
+      // (leaving the elastic range: its velocity at t_n, which bilinear_end_elastic left)
+      if (ws.bilinear[e].phase == detail::YieldPhase::elastic) ws.bilinear[e].w = now.v[el.i] - (el.j >= 0 ? now.v[el.j] : 0.0);
+      const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
+      detail::bilinear_decide(el, ws.bilinear[e], ws.sm->theta, m.h, d1, w1, &ws.hold2[k], &ws.fixed2[k]);
+      ws.bilinear_event = ws.bilinear_event || !std::isnan(ws.bilinear[e].event);
+    }
   }
 
   // The end of the trial step for step forces q, at the dampers' floors: v and x (there and
   // where P there needs them), C v and P (Zener forces at their offsets), as the step's end
   // (correct) computes them everywhere.
   void trial_state(const StructureState& now, const Eigen::VectorXd& q) {
-    if (m.nh > 0) sparse_columns(ws.sm->trial_rows, m.nt + m.nd, q, ws.trial_change.data());
+    // (q: the trial's, nonzero at the slipping elements only)
+    if (m.nh > 0) sparse_columns(ws.sm->trial_rows, m.nt + m.nd, q, ws.bilinear_plastic, ws.trial_change.data());
     else kernels.columns(m.nt + m.nd, m.nf, ws.sm->trial_rows.data(), q.data(), ws.trial_change.data());
-    for (std::size_t t = 0; t < m.trial_dofs.size(); ++t) {
-      const int k = m.trial_dofs[t];
-      ws.v1[k] = ws.v_free[k] - m.h * ws.trial_change[t];
-      ws.x1[k] = ws.restart ? now.x[k] + m.h * ws.v1[k] : now.x[k] + 0.5 * m.h * (now.v[k] + ws.v1[k]);
+    if (m.trial_every_floor && !ws.restart) {  // (the same, in passes the compiler vectorises)
+      for (int k = 0; k < m.n; ++k) ws.v1[k] = ws.v_free[k] - m.h * ws.trial_change[k];
+      kernels.trapezoid(m.n, now.x.data(), now.v.data(), ws.v1.data(), 0.5 * m.h, ws.x1.data());
+    } else {
+      for (std::size_t t = 0; t < m.trial_dofs.size(); ++t) {
+        const int k = m.trial_dofs[t];
+        ws.v1[k] = ws.v_free[k] - m.h * ws.trial_change[t];
+        ws.x1[k] = ws.restart ? now.x[k] + m.h * ws.v1[k] : now.x[k] + 0.5 * m.h * (now.v[k] + ws.v1[k]);
+      }
     }
     for (std::size_t d = 0; d < m.damper_dofs.size(); ++d) {
       const int k = m.damper_dofs[d];
@@ -683,7 +731,7 @@ class StructureStepper {
   // storey and link forces P at t_n+1.
   void correct(std::size_t step, const StructureState& now, StructureState& next) {
     if (m.nh > 0) {
-      sparse_columns(ws.sm->damper_response_columns, 2 * m.n, ws.q_step, ws.response_q.data());
+      sparse_columns(ws.sm->damper_response_columns, 2 * m.n, ws.q_step, ws.bilinear_active, ws.response_q.data());
       kernels.end_velocities(m.n, ws.v_free.data(), ws.cv_free.data(), ws.response_q.data(), ws.response_q.data() + m.n, m.h,
                              next.v.data(), ws.cv_next.data());
     } else if (m.nf > 0) {
@@ -725,14 +773,27 @@ class StructureStepper {
   void end_bilinear(const StructureState& now, StructureState& next) {
     if (m.nh == 0) return;
     std::fill(next.hyst_yield.begin(), next.hyst_yield.end(), kNaN);
+    ws.bilinear_plastic.clear();
+    const double* x = next.x.data();
+    double* p = ws.p_next.data();
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
       detail::BilinearState& st = ws.bilinear[e];
+      const double d1 = x[el.i] - (el.j >= 0 ? x[el.j] : 0.0);
+      if (detail::bilinear_end_elastic(el, st, d1)) {  // (u_p unchanged, no event; K0 holds k_h d1)
+        const double offset = st.offset(el);
+        if (el.i >= 0) p[el.i] += offset;
+        if (el.j >= 0) p[el.j] -= offset;
+        continue;
+      }
       const double w1 = next.v[el.i] - (el.j >= 0 ? next.v[el.j] : 0.0);
-      const double d1 = next.x[el.i] - (el.j >= 0 ? next.x[el.j] : 0.0);
+      const double up = st.up;
       detail::bilinear_end(el, st, d1, w1);
+      ws.bilinear_slipped = ws.bilinear_slipped || st.up != up;
       Pair{el.i, el.j}.add(ws.p_next, st.offset(el));  // (K0 holds k_h d1)
       if (el.storey_law && st.yielded && !std::isnan(st.event)) next.hyst_yield[el.storey] = now.t + st.event * m.h;
+      st.event = kNaN;  // (read: hold_bilinear leaves an elastic element's as it is)
+      if (st.phase != detail::YieldPhase::elastic) ws.bilinear_plastic.push_back(e);
     }
   }
 
@@ -996,10 +1057,12 @@ class StructureStepper {
     // The bilinear elements' forces, and the storeys' own laws' z (bilinear_step.hpp).
     st.hyst.setZero(m.n);
     st.hyst_yield.resize(static_cast<std::size_t>(m.n), kNaN);
+    double* force = st.storey_force.data();
+    double* hyst = st.hyst.data();
     for (int e = 0; e < m.nh; ++e) {
       const detail::BilinearElement& el = m.bilinear[e];
-      st.storey_force[el.storey] += ws.bilinear[e].offset(el);  // (the storey's spring holds k_h d)
-      if (el.storey_law) st.hyst[el.storey] = ws.bilinear[e].q / el.k;
+      force[el.storey] += ws.bilinear[e].offset(el);  // (the storey's spring holds k_h d)
+      if (el.storey_law) hyst[el.storey] = ws.bilinear[e].q / el.k;
     }
     for (int e = 0; e < m.nw; ++e) {  // (bouc_wen_step.hpp: the storey's spring holds k d)
       const detail::BoucWenElement& el = m.bouc_wen[e];

@@ -16,6 +16,8 @@ StepWorkspace::StepWorkspace(const StructureModel& m) {
   box_qp_trapezoidal = std::make_unique<BoxQp>(m.trapezoidal->qp_matrix);
   if (m.backward) box_qp_backward = std::make_unique<BoxQp>(m.backward->qp_matrix);
   bilinear.assign(static_cast<std::size_t>(m.nh), BilinearState{});
+  bilinear_plastic.reserve(static_cast<std::size_t>(m.nh));
+  bilinear_active.reserve(static_cast<std::size_t>(m.nh));
   if (m.nh > 0 && nf > 0) {
     box_qp_friction = std::make_unique<BoxQp>(m.trapezoidal->delassus.topLeftCorner(nf, nf));
     states_friction.assign(nf, DamperState::stick);
@@ -51,6 +53,8 @@ StepWorkspace::StepWorkspace(const StructureModel& m) {
   for (std::vector<double>* v : {&onset, &crossing, &kink_theta, &kink_jump}) v->resize(nf);
   decided.assign(m.nq, DamperState::stick);
   hold.assign(m.nq, 0);
+  nonzero.assign(static_cast<std::size_t>(m.nq), 0);
+  candidates.reserve(static_cast<std::size_t>(m.nq));
   hold2.assign(m.nq, 0);
   touched.reserve(2 * static_cast<std::size_t>(nf));
   touched_flag.assign(m.damper_dofs.size(), 0);

@@ -27,6 +27,10 @@ struct StepWorkspace {
   std::unique_ptr<BoxQp> box_qp_trapezoidal, box_qp_backward;  // the dampers' QP of each step matrix
   SubsetInverses stuck_systems;  // B_s M^-1 B_s' per stuck set, inverted when first met
   std::vector<BilinearState> bilinear;  // per bilinear element of the model (bilinear_step.hpp)
+  bool bilinear_slipped = true;         // some element's slip u_p changed in the last step (its offsets with it)
+  std::vector<int> bilinear_plastic;    // the elements slipping at t_n, ascending
+  bool bilinear_event = false;          // an element yielded or unloaded in this step's decisions
+  std::vector<int> bilinear_active;     // ... and those this step decided on (slipping, or leaving the elastic range), ascending
   // With bilinear elements, the dampers' own QP for the first step (from rest the elements are
   // elastic: no unknowns).
   std::unique_ptr<BoxQp> box_qp_friction;
@@ -65,6 +69,8 @@ struct StepWorkspace {
   std::vector<int> touched;
   std::vector<char> touched_flag;  // per damper_dofs entry
   std::vector<int> stuck;
+  std::vector<int> nonzero;     // the QP's unknowns with a nonzero step force (sparse_columns)
+  std::vector<int> candidates;  // ... that may be held or fixed (solve_held)
   Eigen::VectorXd trial_change;  // A^-1 B' q at trial_dofs, then C A^-1 B' q at damper_dofs
   // B' q at the dampers' floors (damper_dofs), in btq_dampers: only there is it read by the
   // dampers' forces (each damper acts -q on A's floor and +q on B's).
