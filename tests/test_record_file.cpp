@@ -2,7 +2,10 @@
 // reported as an InputError naming the file and line.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <algorithm>
 #include <cstdint>
+#include <filesystem>
+#include <iterator>
 #include <string>
 
 #include "adjoin/core/errors.hpp"
@@ -84,6 +87,41 @@ TEST_CASE("AT2 files of the real records: NPTS, DT and units as in the README", 
   // Units given that agree with the header are fine; disagreeing ones are an error.
   CHECK(read_record(records + "/peer/RSN1044_DirRot2.AT2", with_units(AccelUnit::g)).accel.size() == 2000);
   CHECK_THROWS_AS(read_record(records + "/peer/RSN1044_DirRot2.AT2", with_units(AccelUnit::cm_s2)), InputError);
+}
+
+TEST_CASE("The suite of records/real/suite: twenty files, npts, dt and PGA as in the README", "[record_file]") {
+  // Ten stations, both horizontal components each (records/real/README.md, "The suite"); the
+  // how-to compare-dampers-by-fragility runs all of them. PGA is the README's, to its 3 digits.
+  struct Case {
+    const char* file;
+    std::size_t npts;
+    double dt;
+    double pga_g;
+  };
+  const Case cases[] = {
+      {"RSN125_FRIULI.A_A-TMZ000.AT2", 7277, 0.005, 0.357},    {"RSN125_FRIULI.A_A-TMZ270.AT2", 7279, 0.005, 0.315},
+      {"RSN149_COYOTELK_G04270.AT2", 5437, 0.005, 0.233},      {"RSN149_COYOTELK_G04360.AT2", 5442, 0.005, 0.252},
+      {"RSN181_IMPVALL.H_H-E06140.AT2", 7817, 0.005, 0.447},   {"RSN181_IMPVALL.H_H-E06230.AT2", 7818, 0.005, 0.449},
+      {"RSN288_ITALY_A-BRZ000.AT2", 12064, 0.0029, 0.220},     {"RSN288_ITALY_A-BRZ270.AT2", 12064, 0.0029, 0.183},
+      {"RSN595_WHITTIER.A_A-JAB207.AT2", 6852, 0.005, 0.229},  {"RSN595_WHITTIER.A_A-JAB297.AT2", 6853, 0.005, 0.222},
+      {"RSN724_SUPER.B_B-PLS045.AT2", 2214, 0.01, 0.137},      {"RSN724_SUPER.B_B-PLS135.AT2", 2223, 0.01, 0.200},
+      {"RSN763_LOMAP_GIL067.AT2", 7999, 0.005, 0.359},         {"RSN763_LOMAP_GIL337.AT2", 7999, 0.005, 0.327},
+      {"RSN862_LANDERS_IND000.AT2", 3000, 0.02, 0.104},        {"RSN862_LANDERS_IND090.AT2", 3000, 0.02, 0.109},
+      {"Rinaldi228.AT2", 1991, 0.01, 0.874},                   {"Rinaldi318.AT2", 1991, 0.01, 0.472},
+      {"RSN1162_KOCAELI_GYN000.AT2", 5096, 0.005, 0.137},      {"RSN1162_KOCAELI_GYN090.AT2", 5096, 0.005, 0.120}};
+  std::size_t files = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(records + "/suite"))
+    if (entry.is_regular_file()) ++files;
+  CHECK(files == std::size(cases));  // adjoin ida --suite reads every file of the folder
+  for (const Case& c : cases) {
+    INFO(c.file);
+    const Record r = read_record(records + "/suite/" + c.file);
+    CHECK(r.accel.size() == c.npts);
+    CHECK(r.dt == c.dt);
+    double peak = 0.0;
+    for (double a : r.accel) peak = std::max(peak, std::abs(a));
+    CHECK(peak / g == Approx(c.pga_g).margin(0.0005));
+  }
 }
 
 TEST_CASE("AT2 header variants", "[record_file]") {
