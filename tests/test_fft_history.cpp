@@ -7,6 +7,7 @@
 // is of that size for smooth data (it nearly cancels w_0 y_m), so this is not a loose scale.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstddef>
@@ -236,32 +237,40 @@ TEST_CASE("make_history builds the FFT engine", "[fft_history]") {
   CHECK(h->lag_sum() == -1.0);
 }
 
-TEST_CASE("FftHistory: memory is linear and 2^20 steps are fast", "[fft_history]") {
-  // Two rods' histories over 2^20 steps, as in a long simulation: the whole run must take
-  // well under a second (the direct engine needs minutes).
+TEST_CASE("FftHistory over 2^20 steps: the direct sums at sampled steps, and memory linear in the steps", "[fft_history]") {
+  // Two rods' histories over 2^20 steps, as in a long simulation, with a feedback loop so each
+  // value depends on the previous lag sums. (Its speed is measured in bench/bench_history, not
+  // here.) At sampled steps the lag sum is recomputed directly from the pushed values.
   constexpr std::size_t steps = std::size_t{1} << 20;
-  auto w1 = adjoin::grunwald_letnikov_weights(0.23, steps + 1);
-  auto w2 = adjoin::grunwald_letnikov_weights(0.53, steps + 1);
-  const auto start = std::chrono::steady_clock::now();
-  FftHistory h1(std::move(w1)), h2(std::move(w2));
-  double y1 = 0.0, y2 = 0.0, checksum = 0.0;
+  const auto w1 = adjoin::grunwald_letnikov_weights(0.23, steps + 1);
+  const auto w2 = adjoin::grunwald_letnikov_weights(0.53, steps + 1);
+  FftHistory h1(w1), h2(w2);
+  std::vector<double> y1s, y2s;
+  y1s.reserve(steps + 1);
+  y2s.reserve(steps + 1);
+  const auto direct = [](const std::vector<double>& w, const std::vector<double>& ys) {
+    double sum = 0.0;  // sum_{j=1}^{m} w_j y_{m-j}, m = ys.size()
+    for (std::size_t j = 1; j <= ys.size(); ++j) sum += w[j] * ys[ys.size() - j];
+    return sum;
+  };
+  double largest = 0.0;
   for (std::size_t m = 0; m <= steps; ++m) {
-    // A feedback loop so nothing can be hoisted: y depends on the previous lag sums.
     const double t = static_cast<double>(m) * 1e-4;
-    y1 = std::sin(t) - 0.1 * h1.lag_sum();
-    y2 = std::cos(t) - 0.1 * h2.lag_sum() + 0.01 * y1;
+    const double y1 = std::sin(t) - 0.1 * h1.lag_sum();
+    const double y2 = std::cos(t) - 0.1 * h2.lag_sum() + 0.01 * y1;
     h1.push(y1);
     h2.push(y2);
-    checksum += h1.lag_sum() + h2.lag_sum();
+    y1s.push_back(y1);
+    y2s.push_back(y2);
+    if (m == 1000 || m == 65537 || m == 333333 || m == steps - 1) {
+      const double d1 = direct(w1, y1s), d2 = direct(w2, y2s);
+      largest = std::max({largest, std::abs(h1.lag_sum() - d1) / (1.0 + std::abs(d1)),
+                          std::abs(h2.lag_sum() - d2) / (1.0 + std::abs(d2))});
+    }
   }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  INFO("2 x 2^20 steps in " << seconds << " s; bytes per step " <<
-       static_cast<double>(h1.bytes()) / static_cast<double>(steps) << "; checksum " << checksum);
-  CHECK(std::isfinite(checksum));
-  // Generous against machine noise (measured ~0.3 s on one core, Release); a quadratic
-  // engine would take minutes.
-  CHECK(seconds < 3.0);
+  INFO("largest relative difference from the direct sums " << largest << "; bytes per step "
+                                                            << static_cast<double>(h1.bytes()) / static_cast<double>(steps));
+  CHECK(largest < 1e-11);
   // O(N) memory: a fixed number of doubles per step.
   CHECK(static_cast<double>(h1.bytes()) / static_cast<double>(steps) < 128.0);
 }
