@@ -18,8 +18,10 @@
 #include "adjoin/study/demand.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "cli_helpers.hpp"
+#include "csv_rows.hpp"
 
 using namespace adjoin;
+using adjoin::test::csv_rows;
 using adjoin::test::run_cli;
 using adjoin::test::slurp;
 using adjoin::test::write_temp;
@@ -64,19 +66,6 @@ std::vector<std::vector<std::string>> without_wall_time(const SweepTable& table)
   return rows;
 }
 
-std::vector<std::vector<std::string>> csv_rows(const std::string& text, bool drop_wall) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(text);
-  std::size_t wall = 0;
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    REQUIRE(split_csv_line(line, &cells));
-    if (rows.empty()) wall = static_cast<std::size_t>(std::find(cells.begin(), cells.end(), "wall_seconds") - cells.begin());
-    if (drop_wall) cells.erase(cells.begin() + static_cast<std::ptrdiff_t>(wall));
-    rows.push_back(cells);
-  }
-  return rows;
-}
 
 }  // namespace
 

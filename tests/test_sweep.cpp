@@ -28,8 +28,10 @@
 #include "adjoin/study/sweep.hpp"
 #include "adjoin/study/sweep_columns.hpp"
 #include "cli_helpers.hpp"
+#include "csv_rows.hpp"
 
 using namespace adjoin;
+using adjoin::test::csv_rows;
 using adjoin::test::run_cli;
 using adjoin::test::slurp;
 using adjoin::test::write_temp;
@@ -46,16 +48,6 @@ std::filesystem::path sweep_file(const std::string& name, const std::string& bod
   return write_temp(name, "base = " + qpath(kStrong) + "\n" + body);
 }
 
-std::vector<std::vector<std::string>> csv_rows(const std::string& text) {
-  std::vector<std::vector<std::string>> rows;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) {
-    std::vector<std::string> cells;
-    REQUIRE(split_csv_line(line, &cells));
-    rows.push_back(cells);
-  }
-  return rows;
-}
 
 // Every cell except the wall_seconds column.
 std::vector<std::vector<std::string>> without_wall_time(std::vector<std::vector<std::string>> rows) {

@@ -24,8 +24,10 @@
 #include "adjoin/study/sweep.hpp"
 #include "adjoin/study/sweep_columns.hpp"
 #include "cli_helpers.hpp"
+#include "csv_rows.hpp"
 
 using namespace adjoin;
+using adjoin::test::csv_rows;
 using adjoin::test::run_cli;
 using adjoin::test::slurp;
 using adjoin::test::write_temp;
@@ -242,19 +244,7 @@ values = [[3, 3], [2, 2]]
   REQUIRE(resumed.status == 0);
   CHECK(resumed.err.find("resuming: 2 runs") != std::string::npos);
   // Every cell but wall_seconds the same.
-  const auto without_wall = [](const std::string& text) {
-    std::vector<std::vector<std::string>> rows;
-    std::istringstream in(text);
-    std::size_t wall = 0;
-    for (std::string line; std::getline(in, line);) {
-      std::vector<std::string> cells;
-      REQUIRE(split_csv_line(line, &cells));
-      if (rows.empty()) wall = static_cast<std::size_t>(std::find(cells.begin(), cells.end(), "wall_seconds") - cells.begin());
-      cells.erase(cells.begin() + static_cast<std::ptrdiff_t>(wall));
-      rows.push_back(cells);
-    }
-    return rows;
-  };
+  const auto without_wall = [](const std::string& text) { return csv_rows(text, true); };
   const auto expected = without_wall(slurp(dir / "whole" / "sweep.csv"));
   REQUIRE(expected.size() == 5);
   CHECK(expected[3][1] == "viscous");

@@ -354,12 +354,8 @@ int ida_mpi(const IdaArgs& args, const MpiSession& mpi) {
       sweep = stripe_sweep(args, plan, &edps);
       mine = run_shard(sweep.spec, shard, dir, threads_per_rank(args.jobs, mpi), !args.quiet && root, !args.quiet).rows;
     }
-  } catch (const InputError& e) {
-    status = kExitInputError;
-    message = e.what();
-  } catch (const std::exception& e) {
-    status = kExitNumericalError;  // the contract's status for the unforeseen (main.cpp)
-    message = std::string("internal: ") + e.what();
+  } catch (const std::exception&) {
+    status = caught_status(&message);
   }
   if (const int worst = worst_status(status, message, mpi)) return worst;
   std::vector<std::vector<std::string>> cells;

@@ -72,6 +72,18 @@ std::vector<std::string> gather_text(const std::string& mine, const MpiSession& 
   return out;
 }
 
+int caught_status(std::string* message) {
+  try {
+    throw;
+  } catch (const InputError& e) {
+    *message = e.what();
+    return kExitInputError;
+  } catch (const std::exception& e) {
+    *message = std::string("internal: ") + e.what();
+    return kExitNumericalError;
+  }
+}
+
 int worst_status(int status, const std::string& message, const MpiSession& mpi) {
   int worst = 0;
   MPI_Allreduce(&status, &worst, 1, MPI_INT, MPI_MAX, MPI_COMM_WORLD);

@@ -30,6 +30,11 @@ std::vector<std::string> gather_text(const std::string& mine, const MpiSession& 
 // the status. Returns 0 when every rank succeeded.
 int worst_status(int status, const std::string& message, const MpiSession& mpi);
 
+// Inside a catch block: the exception being handled as worst_status takes it, its exit status
+// (2 for an InputError, else 3, the contract's status for the unforeseen, as in main.cpp) and
+// its message in `message`.
+int caught_status(std::string* message);
+
 // Rank 0 gets every rank's sweep-table rows (cell 0 the run's index) ordered by index; the
 // others get none.
 std::vector<std::vector<std::string>> gather_rows(const std::vector<std::vector<std::string>>& mine, const MpiSession& mpi);

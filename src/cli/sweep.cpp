@@ -178,12 +178,8 @@ int sweep_mpi(const SweepArgs& args, const MpiSession& mpi) {
     auto result = run_shard(spec, shard, dir, jobs, !args.quiet && mpi.rank == 0, !args.quiet);
     from_journal = result.from_journal;
     mine_rows = std::move(result.rows);
-  } catch (const InputError& e) {
-    status = kExitInputError;
-    message = e.what();
-  } catch (const std::exception& e) {
-    status = kExitNumericalError;  // the contract's status for the unforeseen (main.cpp)
-    message = std::string("internal: ") + e.what();
+  } catch (const std::exception&) {
+    status = caught_status(&message);
   }
   if (const int worst = worst_status(status, message, mpi)) return worst;
   std::vector<std::vector<std::string>> gathered = gather_rows(mine_rows, mpi);
