@@ -42,10 +42,10 @@ struct BilinearElement {
 
 enum class YieldPhase : char { elastic, plastic_positive, plastic_negative };
 
-// The element's state (per run): at t_n, and what the step decided.
+// The element's state (per run): at t_n, and what the step decided. (Its force q at t_n is
+// kept beside the others', in BilinearStates (bilinear_lanes.hpp): every step writes it.)
 struct BilinearState {
   YieldPhase phase = YieldPhase::elastic;
-  double q = 0.0;          // force at t_n [N]
   double up = 0.0;         // the slider's slip u_p at t_n [m]
   double d = 0.0;          // deformation at t_n [m]
   double w = 0.0;          // relative velocity at t_n (while elastic: set as it leaves the range)
@@ -73,12 +73,6 @@ inline void bilinear_as_phased(BilinearState& st, double theta, double w_free, c
   if (*hold) *w0 = w_free + (1.0 - theta) / theta * st.w;
 }
 
-// Whether an element elastic at t_n stays elastic through a trial step ending at deformation
-// d1: bilinear_decide's first test, which then decides nothing (the step's passes skip it).
-inline bool bilinear_stays_elastic(const BilinearElement& e, const BilinearState& st, double d1) {
-  return st.phase == YieldPhase::elastic && std::abs(e.k * (d1 - st.up)) <= e.limit;
-}
-
 // The force at the end of a trial step whose end deformation is d1 (as phased), within the
 // yield surface.
 inline double bilinear_trial_force(const BilinearElement& e, const BilinearState& st, double d1) {
@@ -87,9 +81,10 @@ inline double bilinear_trial_force(const BilinearElement& e, const BilinearState
 }
 
 // Where q(tau) = q_n + k_h h (tau w_n + tau^2 (w1 - w_n) / 2) (w linear through the step)
-// reaches `target`, in [0, 1].
-inline double bilinear_yield_fraction(const BilinearElement& e, const BilinearState& st, double h, double w1, double target) {
-  const double a = 0.5 * e.k * h * (w1 - st.w), b = e.k * h * st.w, c = st.q - target;
+// reaches `target`, in [0, 1] (q_n the force at t_n).
+inline double bilinear_yield_fraction(const BilinearElement& e, const BilinearState& st, double q_n, double h, double w1,
+                                      double target) {
+  const double a = 0.5 * e.k * h * (w1 - st.w), b = e.k * h * st.w, c = q_n - target;
   double best = std::numeric_limits<double>::quiet_NaN();
   auto consider = [&](double x) {
     if (std::isfinite(x) && x >= 0.0 && x <= 1.0 && !(x >= best)) best = x;
@@ -108,15 +103,17 @@ inline double bilinear_yield_fraction(const BilinearElement& e, const BilinearSt
   return std::isfinite(best) ? best : 1.0;
 }
 
-// The decision from the trial step's end (deformation d1, velocity w1): yields or unloads
-// inside the step (its fixed step force), or goes on as phased.
-inline void bilinear_decide(const BilinearElement& e, BilinearState& st, double theta, double h, double d1, double w1, char* hold,
-                            double* fixed) {
+// The decision from the trial step's end (deformation d1, velocity w1; q_n the force at t_n):
+// yields or unloads inside the step (its fixed step force), or goes on as phased. (Its first
+// test, |k_h (d1 - u_p)| <= F_h for an element elastic at t_n, is the step's pass over all
+// elements, bilinear_lanes.hpp: it decides nothing.)
+inline void bilinear_decide(const BilinearElement& e, BilinearState& st, double q_n, double theta, double h, double d1, double w1,
+                            char* hold, double* fixed) {
   if (st.phase == YieldPhase::elastic) {
     const double q1 = e.k * (d1 - st.up);
     if (std::abs(q1) <= e.limit) return;
     const double s = q1 > 0.0 ? 1.0 : -1.0, f = s * e.limit;
-    const double tau = bilinear_yield_fraction(e, st, h, w1, f);
+    const double tau = bilinear_yield_fraction(e, st, q_n, h, w1, f);
     const double c1 = f - q1;  // the correction at the end: 0 up to tau, linear after
     *hold = 0;
     *fixed = theta < 1.0 ? 0.5 * (1.0 - tau) * c1 : c1;
@@ -140,22 +137,14 @@ inline void bilinear_decide(const BilinearElement& e, BilinearState& st, double 
   st.yielded = false;
 }
 
-// bilinear_end for an element elastic through the step (no event located in it) that ends
-// within the yield surface (the most, in a building), inline: only its force changes. (It was
+// The step's end from the element's final end deformation d1 and velocity w1: its slip,
+// force q and phase at t_n+1. (An element elastic through the step, no event located in it,
+// that ends within the yield surface — the most, in a building — is ended by the step's pass
+// over all elements instead, bilinear_lanes.hpp: only its force changes, as here. It was
 // elastic at t_n, so its phase stays and prev_same is false already; its d, w and w_prev are
 // read only while it slips or as it leaves the elastic range, when the step takes w_n from the
-// grid velocities: bilinear_decide's caller.) False, doing nothing, for any other.
-inline bool bilinear_end_elastic(const BilinearElement& e, BilinearState& st, double d1) {
-  if (st.next != YieldPhase::elastic || !std::isnan(st.event)) return false;
-  const double q1 = e.k * (d1 - st.up);
-  if (std::abs(q1) > e.limit) return false;
-  st.q = q1;
-  return true;
-}
-
-// The step's end from the element's final end deformation d1 and velocity w1: its slip,
-// force and phase at t_n+1.
-inline void bilinear_end(const BilinearElement& e, BilinearState& st, double d1, double w1) {
+// grid velocities: bilinear_decide's caller.)
+inline void bilinear_end(const BilinearElement& e, BilinearState& st, double& q, double d1, double w1) {
   if (st.next == YieldPhase::elastic && !std::isnan(st.event)) st.up = st.up_next;  // unloaded inside the step
   double q1 = e.k * (d1 - st.up);
   if (st.next == YieldPhase::elastic && std::abs(q1) > e.limit) {  // (the dampers' final decisions moved it past yield)
@@ -169,7 +158,7 @@ inline void bilinear_end(const BilinearElement& e, BilinearState& st, double d1,
   }
   st.prev_same = st.phase == st.next && st.phase != YieldPhase::elastic;
   st.phase = st.next;
-  st.q = q1;
+  q = q1;
   st.d = d1;
   st.w_prev = st.w;
   st.w = w1;

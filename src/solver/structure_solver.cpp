@@ -52,7 +52,7 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 class StructureStepper {
  public:
   StructureStepper(const StructureSolverOptions& options, const structure::Structure& s, const GroundMotion& ground_)
-      : m(options, s), ws(m), ground(ground_), kernels(detail::step_kernels()) {}
+      : m(options, s), ws(m), ground(ground_), kernels(detail::step_kernels()), bilinear_kernels(detail::bilinear_kernels()) {}
 
   std::tuple<const structure::Structure&, const StructureSolverOptions&> info() const { return {m.s, m.options}; }
   std::size_t steps() const { return m.n_steps; }
@@ -144,7 +144,7 @@ class StructureStepper {
       ws.off_dof.setZero();
       for (std::size_t e = 0; e < m.zener.size(); ++e) m.zener[e].pair.add(ws.off_dof, ws.offsets[static_cast<Eigen::Index>(e)]);
       // The bilinear elements' slips: -k_h u_p (bilinear_step.hpp).
-      for (int e = 0; e < m.nh; ++e) Pair{m.bilinear[e].i, m.bilinear[e].j}.add(ws.off_dof, ws.bilinear[e].offset(m.bilinear[e]));
+      if (m.nh > 0) detail::bilinear_scatter(bilinear_kernels, ws.bilinear_layout, ws.bilinear.offset.data(), ws.off_dof.data());
       // The Bouc-Wen elements' k_h (z - d) at t_n (bouc_wen_step.hpp).
       for (int e = 0; e < m.nw; ++e) Pair{m.bouc_wen[e].i, m.bouc_wen[e].j}.add(ws.off_dof, ws.bouc_wen[e].offset(m.bouc_wen[e]));
     }
@@ -608,18 +608,23 @@ class StructureStepper {
     ws.fixed2.tail(m.nh) = ws.fixed.tail(m.nh);
     ws.bilinear_active.clear();
     ws.bilinear_event = false;
-    const double* x1 = ws.x1.data();
+    // (most stay elastic: bilinear_decide's first test, in one pass over all elements)
+    detail::BilinearStates& b = ws.bilinear;
+    const detail::BilinearLayout& layout = ws.bilinear_layout;
+    detail::bilinear_drifts(bilinear_kernels, layout, ws.x1.data(), b.d.data());
+    if (!bilinear_kernels.test(m.nh, layout.k.data(), b.bound.data(), b.up.data(), b.d.data(), b.flag.data(), nullptr))
+      return;
     for (int e = 0; e < m.nh; ++e) {
+      if (b.flag[e] == 0.0) continue;
       const detail::BilinearElement& el = m.bilinear[e];
       const int k = m.nf + e;
-      const double d1 = x1[el.i] - (el.j >= 0 ? x1[el.j] : 0.0);
-      if (detail::bilinear_stays_elastic(el, ws.bilinear[e], d1)) continue;  // (most: bilinear_decide's first test, inline)
       ws.bilinear_active.push_back(e);
-      // (leaving the elastic range: its velocity at t_n, which bilinear_end_elastic left)
-      if (ws.bilinear[e].phase == detail::YieldPhase::elastic) ws.bilinear[e].w = now.v[el.i] - (el.j >= 0 ? now.v[el.j] : 0.0);
+      b.bound[e] = -1.0;  // (decided here: its end is bilinear_end's)
+      // (leaving the elastic range: its velocity at t_n, which the fast ends left)
+      if (b[e].phase == detail::YieldPhase::elastic) b[e].w = now.v[el.i] - (el.j >= 0 ? now.v[el.j] : 0.0);
       const double w1 = ws.v1[el.i] - (el.j >= 0 ? ws.v1[el.j] : 0.0);
-      detail::bilinear_decide(el, ws.bilinear[e], ws.sm->theta, m.h, d1, w1, &ws.hold2[k], &ws.fixed2[k]);
-      ws.bilinear_event = ws.bilinear_event || !std::isnan(ws.bilinear[e].event);
+      detail::bilinear_decide(el, b[e], b.q[e], ws.sm->theta, m.h, b.d[e], w1, &ws.hold2[k], &ws.fixed2[k]);
+      ws.bilinear_event = ws.bilinear_event || !std::isnan(b[e].event);
     }
   }
 
@@ -774,27 +779,27 @@ class StructureStepper {
     if (m.nh == 0) return;
     std::fill(next.hyst_yield.begin(), next.hyst_yield.end(), kNaN);
     ws.bilinear_plastic.clear();
-    const double* x = next.x.data();
-    double* p = ws.p_next.data();
-    for (int e = 0; e < m.nh; ++e) {
-      const detail::BilinearElement& el = m.bilinear[e];
-      detail::BilinearState& st = ws.bilinear[e];
-      const double d1 = x[el.i] - (el.j >= 0 ? x[el.j] : 0.0);
-      if (detail::bilinear_end_elastic(el, st, d1)) {  // (u_p unchanged, no event; K0 holds k_h d1)
-        const double offset = st.offset(el);
-        if (el.i >= 0) p[el.i] += offset;
-        if (el.j >= 0) p[el.j] -= offset;
-        continue;
+    detail::BilinearStates& b = ws.bilinear;
+    const detail::BilinearLayout& layout = ws.bilinear_layout;
+    // The most: elastic through the step (no event), ending within the yield surface, where
+    // only the force changes (u_p as it was), in one pass; then the others.
+    detail::bilinear_drifts(bilinear_kernels, layout, next.x.data(), b.d.data());
+    if (bilinear_kernels.test(m.nh, layout.k.data(), b.bound.data(), b.up.data(), b.d.data(), b.flag.data(), b.q.data()))
+      for (int e = 0; e < m.nh; ++e) {
+        if (b.flag[e] == 0.0) continue;
+        const detail::BilinearElement& el = m.bilinear[e];
+        detail::BilinearState& st = b[e];
+        const double w1 = next.v[el.i] - (el.j >= 0 ? next.v[el.j] : 0.0);
+        const double up = st.up;
+        detail::bilinear_end(el, st, b.q[e], b.d[e], w1);
+        ws.bilinear_slipped = ws.bilinear_slipped || st.up != up;
+        if (el.storey_law && st.yielded && !std::isnan(st.event)) next.hyst_yield[el.storey] = now.t + st.event * m.h;
+        st.event = kNaN;  // (read: hold_bilinear leaves an elastic element's as it is)
+        if (st.phase != detail::YieldPhase::elastic) ws.bilinear_plastic.push_back(e);
+        b.settled(e, layout);
       }
-      const double w1 = next.v[el.i] - (el.j >= 0 ? next.v[el.j] : 0.0);
-      const double up = st.up;
-      detail::bilinear_end(el, st, d1, w1);
-      ws.bilinear_slipped = ws.bilinear_slipped || st.up != up;
-      Pair{el.i, el.j}.add(ws.p_next, st.offset(el));  // (K0 holds k_h d1)
-      if (el.storey_law && st.yielded && !std::isnan(st.event)) next.hyst_yield[el.storey] = now.t + st.event * m.h;
-      st.event = kNaN;  // (read: hold_bilinear leaves an elastic element's as it is)
-      if (st.phase != detail::YieldPhase::elastic) ws.bilinear_plastic.push_back(e);
-    }
+    // Their offsets -k_h u_p in P, in the elements' order (K0 holds k_h d1).
+    detail::bilinear_scatter(bilinear_kernels, layout, b.offset.data(), ws.p_next.data());
   }
 
   // Stick exact: a stuck damper's two floors get one velocity, bit for bit (their
@@ -1059,10 +1064,15 @@ class StructureStepper {
     st.hyst_yield.resize(static_cast<std::size_t>(m.n), kNaN);
     double* force = st.storey_force.data();
     double* hyst = st.hyst.data();
-    for (int e = 0; e < m.nh; ++e) {
-      const detail::BilinearElement& el = m.bilinear[e];
-      force[el.storey] += ws.bilinear[e].offset(el);  // (the storey's spring holds k_h d)
-      if (el.storey_law) hyst[el.storey] = ws.bilinear[e].q / el.k;
+    const detail::BilinearStates& b = ws.bilinear;
+    if (ws.bilinear_layout.chains) {
+      bilinear_kernels.chain_storeys(m.nh, b.offset.data(), b.q.data(), ws.bilinear_layout.k.data(), force, hyst);
+    } else {
+      for (int e = 0; e < m.nh; ++e) {
+        const detail::BilinearElement& el = m.bilinear[e];
+        force[el.storey] += b.offset[e];  // (the storey's spring holds k_h d)
+        if (el.storey_law) hyst[el.storey] = b.q[e] / el.k;
+      }
     }
     for (int e = 0; e < m.nw; ++e) {  // (bouc_wen_step.hpp: the storey's spring holds k d)
       const detail::BoucWenElement& el = m.bouc_wen[e];
@@ -1093,6 +1103,7 @@ class StructureStepper {
   detail::StepWorkspace ws;
   const GroundMotion& ground;
   const detail::StepKernels& kernels;
+  const detail::BilinearKernels& bilinear_kernels;
 };
 
 }  // namespace

@@ -15,7 +15,8 @@ StepWorkspace::StepWorkspace(const StructureModel& m) {
   contact_memory.resize(static_cast<std::size_t>(nc));
   box_qp_trapezoidal = std::make_unique<BoxQp>(m.trapezoidal->qp_matrix);
   if (m.backward) box_qp_backward = std::make_unique<BoxQp>(m.backward->qp_matrix);
-  bilinear.assign(static_cast<std::size_t>(m.nh), BilinearState{});
+  bilinear_layout = BilinearLayout(m.bilinear);
+  bilinear = BilinearStates(bilinear_layout);
   bilinear_plastic.reserve(static_cast<std::size_t>(m.nh));
   bilinear_active.reserve(static_cast<std::size_t>(m.nh));
   if (m.nh > 0 && nf > 0) {
@@ -70,7 +71,7 @@ StepWorkspace::StepWorkspace(const StructureModel& m) {
     states_before.resize(static_cast<std::size_t>(nf));
     memory_saved.resize(static_cast<std::size_t>(nc));
     contact_work_saved.resize(static_cast<std::size_t>(nc));
-    bilinear_saved.resize(static_cast<std::size_t>(m.nh));
+    bilinear_saved = BilinearStates(bilinear_layout);
   }
   bouc_wen.assign(static_cast<std::size_t>(m.nw), BoucWenState{});
   for (Eigen::VectorXd* v : {&bouc_wen_q, &bouc_wen_q_new, &bouc_wen_w1, &bouc_wen_w_pass, &bouc_wen_wt}) *v = Eigen::VectorXd::Zero(m.nw);

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "adjoin/structure/state.hpp"
+#include "bilinear_lanes.hpp"
 #include "box_qp.hpp"
 #include "contact_step.hpp"
 #include "rod_law.hpp"
@@ -26,7 +27,8 @@ struct StepWorkspace {
   std::vector<ContactMemory> contact_memory, memory_before;  // per contact pair with a law; before the step
   std::unique_ptr<BoxQp> box_qp_trapezoidal, box_qp_backward;  // the dampers' QP of each step matrix
   SubsetInverses stuck_systems;  // B_s M^-1 B_s' per stuck set, inverted when first met
-  std::vector<BilinearState> bilinear;  // per bilinear element of the model (bilinear_step.hpp)
+  BilinearLayout bilinear_layout;  // the model's bilinear elements as arrays (bilinear_lanes.hpp)
+  BilinearStates bilinear;         // ... and their states
   bool bilinear_slipped = true;         // some element's slip u_p changed in the last step (its offsets with it)
   std::vector<int> bilinear_plastic;    // the elements slipping at t_n, ascending
   bool bilinear_event = false;          // an element yielded or unloaded in this step's decisions
@@ -93,7 +95,7 @@ struct StepWorkspace {
   std::deque<std::pair<std::vector<char>, Eigen::MatrixXd>> held_g;
   std::vector<DamperState> states_before;
   std::vector<ContactMemory> memory_saved;
-  std::vector<BilinearState> bilinear_saved;
+  BilinearStates bilinear_saved;
   std::vector<double> contact_work_saved;
 
   // The Bouc-Wen elements (bouc_wen_step.hpp): their states, step forces Q, end velocities (of
@@ -106,7 +108,7 @@ struct StepWorkspace {
   std::size_t bouc_wen_unsettled = 0;  // steps whose passes did not settle
   std::vector<DamperState> bouc_wen_states_saved;
   std::vector<ContactMemory> bouc_wen_memory_saved;
-  std::vector<BilinearState> bouc_wen_bilinear_saved;
+  BilinearStates bouc_wen_bilinear_saved;
   std::vector<double> bouc_wen_work_saved;
 
   // The grid points t_n (`now`) and t_n+1 (`next`): two states whose vectors every step reuses,
