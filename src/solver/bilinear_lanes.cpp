@@ -14,10 +14,9 @@ BilinearLayout::BilinearLayout(const std::vector<BilinearElement>& elements) {
     i.push_back(el.i);
     j.push_back(el.j);
     chains = chains && el.storey_law && el.i == e && el.storey == e && (el.j == -1 || el.j == e - 1);
-    if (el.j == -1) chain_starts.push_back(e);
+    if (e > 0 && el.j == -1) starts.push_back(e);
   }
-  chains = chains && !chain_starts.empty() && chain_starts.front() == 0;
-  chain_starts.push_back(n);
+  chains = chains && starts.size() <= kMaxChainStarts;
 }
 
 BilinearStates::BilinearStates(const BilinearLayout& layout)
@@ -34,18 +33,9 @@ namespace {
 using Index = Eigen::Index;
 #define ADJOIN_INLINE [[gnu::always_inline]] inline
 
-ADJOIN_INLINE void chain_drifts_body(Index count, const int* __restrict starts, const double* __restrict x,
-                                     double* __restrict d) {
-  for (Index c = 0; c < count; ++c) {
-    const Index s = starts[c], end = starts[c + 1];
-    d[s] = x[s] - 0.0;
-    for (Index e = s + 1; e < end; ++e) d[e] = x[e] - x[e - 1];
-  }
-}
-
-// (The flags and the kept force are selected, not branched on, so that the loop vectorises;
+// (The flags and the kept force are selected, not branched on, so that the loops vectorise;
 // |q| <= bound is false for a NaN q, as bilinear_step.hpp's test, and for every q where the
-// bound is -1.)
+// bound is -1. Each loop is written out: the vectoriser keeps __restrict only so.)
 ADJOIN_INLINE bool test_body(Index n, const double* __restrict k, const double* __restrict bound,
                              const double* __restrict up, const double* __restrict d, double* __restrict flag,
                              double* __restrict q) {
@@ -68,13 +58,27 @@ ADJOIN_INLINE bool test_body(Index n, const double* __restrict k, const double* 
   return any != 0;
 }
 
-ADJOIN_INLINE void chain_scatter_body(Index count, const int* __restrict starts, const double* __restrict f,
+// (Every drift against the floor below, then those where a chain starts again, against 0.0:
+// x[e] - 0.0 exactly as the per-element formula gives it; element 0 starts one.)
+ADJOIN_INLINE bool chain_test_body(Index n, Index count, const int* __restrict starts, const double* __restrict x,
+                                   const double* __restrict k, const double* __restrict bound,
+                                   const double* __restrict up, double* __restrict d, double* __restrict flag,
+                                   double* __restrict q) {
+  d[0] = x[0] - 0.0;
+  for (Index e = 1; e < n; ++e) d[e] = x[e] - x[e - 1];
+  for (Index c = 0; c < count; ++c) d[starts[c]] = x[starts[c]] - 0.0;
+  return test_body(n, k, bound, up, d, flag, q);
+}
+
+// (Every element's force into its floor and, subtracted, the floor below; where the next
+// element starts a chain, that floor's p[e] + f[e] alone, from p as it was.)
+ADJOIN_INLINE void chain_scatter_body(Index n, Index count, const int* __restrict starts, const double* __restrict f,
                                       double* __restrict p) {
-  for (Index c = 0; c < count; ++c) {
-    const Index s = starts[c], last = starts[c + 1] - 1;
-    for (Index e = s; e < last; ++e) p[e] = (p[e] + f[e]) - f[e + 1];
-    p[last] += f[last];
-  }
+  double before[BilinearLayout::kMaxChainStarts];
+  for (Index c = 0; c < count; ++c) before[c] = p[starts[c] - 1];
+  for (Index e = 0; e + 1 < n; ++e) p[e] = (p[e] + f[e]) - f[e + 1];
+  p[n - 1] += f[n - 1];
+  for (Index c = 0; c < count; ++c) p[starts[c] - 1] = before[c] + f[starts[c] - 1];
 }
 
 ADJOIN_INLINE void chain_storeys_body(Index n, const double* __restrict offset, const double* __restrict q,
@@ -95,19 +99,23 @@ ADJOIN_INLINE void chain_storeys_body(Index n, const double* __restrict offset, 
   ret name##_base params { return name##_body args; }
 #endif
 
-ADJOIN_KERNEL(void, chain_drifts, (Index count, const int* starts, const double* x, double* d), (count, starts, x, d))
+ADJOIN_KERNEL(bool, chain_test,
+              (Index n, Index count, const int* starts, const double* x, const double* k, const double* bound,
+               const double* up, double* d, double* flag, double* q),
+              (n, count, starts, x, k, bound, up, d, flag, q))
 ADJOIN_KERNEL(bool, test,
               (Index n, const double* k, const double* bound, const double* up, const double* d, double* flag, double* q),
               (n, k, bound, up, d, flag, q))
-ADJOIN_KERNEL(void, chain_scatter, (Index count, const int* starts, const double* f, double* p), (count, starts, f, p))
+ADJOIN_KERNEL(void, chain_scatter, (Index n, Index count, const int* starts, const double* f, double* p),
+              (n, count, starts, f, p))
 ADJOIN_KERNEL(void, chain_storeys,
               (Index n, const double* offset, const double* q, const double* k, double* force, double* hyst),
               (n, offset, q, k, force, hyst))
 #undef ADJOIN_KERNEL
 
-const BilinearKernels kBaseline{&chain_drifts_base, &test_base, &chain_scatter_base, &chain_storeys_base};
+const BilinearKernels kBaseline{&test_base, &chain_test_base, &chain_scatter_base, &chain_storeys_base};
 #ifdef ADJOIN_HAVE_AVX2
-const BilinearKernels kAvx2{&chain_drifts_avx2, &test_avx2, &chain_scatter_avx2, &chain_storeys_avx2};
+const BilinearKernels kAvx2{&test_avx2, &chain_test_avx2, &chain_scatter_avx2, &chain_storeys_avx2};
 #endif
 
 }  // namespace
@@ -123,17 +131,19 @@ const BilinearKernels& bilinear_kernels() {
 #endif
 }
 
-void bilinear_drifts(const BilinearKernels& kernels, const BilinearLayout& layout, const double* x, double* d) {
-  if (layout.chains) {
-    kernels.chain_drifts(static_cast<Index>(layout.chain_starts.size()) - 1, layout.chain_starts.data(), x, d);
-    return;
-  }
-  for (int e = 0; e < layout.size(); ++e) d[e] = x[layout.i[e]] - (layout.j[e] >= 0 ? x[layout.j[e]] : 0.0);
+bool bilinear_test(const BilinearKernels& kernels, const BilinearLayout& layout, const double* x, BilinearStates& b, bool keep) {
+  const int n = layout.size();
+  double* q = keep ? b.q.data() : nullptr;
+  if (layout.chains)
+    return kernels.chain_test(n, static_cast<Eigen::Index>(layout.starts.size()), layout.starts.data(), x, layout.k.data(),
+                              b.bound.data(), b.up.data(), b.d.data(), b.flag.data(), q);
+  for (int e = 0; e < n; ++e) b.d[e] = x[layout.i[e]] - (layout.j[e] >= 0 ? x[layout.j[e]] : 0.0);
+  return kernels.test(n, layout.k.data(), b.bound.data(), b.up.data(), b.d.data(), b.flag.data(), q);
 }
 
 void bilinear_scatter(const BilinearKernels& kernels, const BilinearLayout& layout, const double* f, double* p) {
   if (layout.chains) {
-    kernels.chain_scatter(static_cast<Index>(layout.chain_starts.size()) - 1, layout.chain_starts.data(), f, p);
+    kernels.chain_scatter(layout.size(), static_cast<Eigen::Index>(layout.starts.size()), layout.starts.data(), f, p);
     return;
   }
   for (int e = 0; e < layout.size(); ++e) {  // (as Pair::add)

@@ -23,7 +23,8 @@ struct BilinearLayout {
   explicit BilinearLayout(const std::vector<BilinearElement>& elements);
   std::vector<double> k, limit;          // k_h and F_h per element
   std::vector<int> i, j;                 // its floors (j = -1: the ground)
-  std::vector<int> chain_starts;         // with `chains`: each chain's first element, then nh
+  std::vector<int> starts;               // the chains' first elements but element 0's
+  static constexpr std::size_t kMaxChainStarts = 8;
   bool chains = false;                   // the layout above (else the passes gather and scatter per element)
   int size() const { return static_cast<int>(k.size()); }
 };
@@ -53,15 +54,17 @@ struct BilinearStates {
 // The passes. n is the number of elements.
 struct BilinearKernels {
   using Index = Eigen::Index;
-  // d[e] = x[e] - x[e - 1] within each chain, d[e] = x[e] - 0.0 at its start (starts: as
-  // BilinearLayout::chain_starts, count + 1 entries).
-  void (*chain_drifts)(Index count, const int* starts, const double* x, double* d);
   // flag[e] = 0 where |k (d - up)| <= bound (the element stays elastic), else 1; with q
   // (non-null) also q[e] = k (d - up) where 0. Whether some flag is 1.
   bool (*test)(Index n, const double* k, const double* bound, const double* up, const double* d, double* flag, double* q);
+  // The same for chains, from the floors' x: d[e] = x[e] - x[e - 1], or x[e] - 0.0 where a
+  // chain starts (element 0 and the `count` starts).
+  bool (*chain_test)(Index n, Index count, const int* starts, const double* x, const double* k, const double* bound,
+                     const double* up, double* d, double* flag, double* q);
   // Each element's force f[e] into p, +f at its first floor and -f at its second, in the
-  // elements' order: within a chain p[e] = (p[e] + f[e]) - f[e + 1], p[last] += f[last].
-  void (*chain_scatter)(Index count, const int* starts, const double* f, double* p);
+  // elements' order, for chains: p[e] = (p[e] + f[e]) - f[e + 1], but p[e] + f[e] where e + 1
+  // starts a chain (at most BilinearLayout::kMaxChainStarts starts).
+  void (*chain_scatter)(Index n, Index count, const int* starts, const double* f, double* p);
   // force[e] += offset[e], hyst[e] = q[e] / k[e] (a chain's storeys: element e is storey e).
   void (*chain_storeys)(Index n, const double* offset, const double* q, const double* k, double* force, double* hyst);
 };
@@ -70,9 +73,11 @@ struct BilinearKernels {
 const BilinearKernels& bilinear_kernels();
 const BilinearKernels& baseline_bilinear_kernels();
 
-// The passes over a layout, chains or not: d[e] = x[i] - x[j] (x[-1] = 0); the offsets f into
-// p (+ at i, - at j, in order).
-void bilinear_drifts(const BilinearKernels& kernels, const BilinearLayout& layout, const double* x, double* d);
+// The passes over a layout, chains or not: the drifts d = x_i - x_j (x_-1 = 0) and the test
+// of each element's force k_h (d - u_p) against its bound, into b.d and b.flag (and b.q
+// where it passes, with `keep`), whether some element failed it; the offsets f into p (+ at
+// i, - at j, in order).
+bool bilinear_test(const BilinearKernels& kernels, const BilinearLayout& layout, const double* x, BilinearStates& b, bool keep);
 void bilinear_scatter(const BilinearKernels& kernels, const BilinearLayout& layout, const double* f, double* p);
 
 }  // namespace adjoin::detail

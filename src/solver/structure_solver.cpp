@@ -611,9 +611,7 @@ class StructureStepper {
     // (most stay elastic: bilinear_decide's first test, in one pass over all elements)
     detail::BilinearStates& b = ws.bilinear;
     const detail::BilinearLayout& layout = ws.bilinear_layout;
-    detail::bilinear_drifts(bilinear_kernels, layout, ws.x1.data(), b.d.data());
-    if (!bilinear_kernels.test(m.nh, layout.k.data(), b.bound.data(), b.up.data(), b.d.data(), b.flag.data(), nullptr))
-      return;
+    if (!detail::bilinear_test(bilinear_kernels, layout, ws.x1.data(), b, false)) return;
     for (int e = 0; e < m.nh; ++e) {
       if (b.flag[e] == 0.0) continue;
       const detail::BilinearElement& el = m.bilinear[e];
@@ -636,7 +634,9 @@ class StructureStepper {
     if (m.nh > 0) sparse_columns(ws.sm->trial_rows, m.nt + m.nd, q, ws.bilinear_plastic, ws.trial_change.data());
     else kernels.columns(m.nt + m.nd, m.nf, ws.sm->trial_rows.data(), q.data(), ws.trial_change.data());
     if (m.trial_every_floor && !ws.restart) {  // (the same, in passes the compiler vectorises)
-      for (int k = 0; k < m.n; ++k) ws.v1[k] = ws.v_free[k] - m.h * ws.trial_change[k];
+      // (v1 = v_free - h A^-1 B' q, as v_free + (A^-1 B' q)(-h): the same numbers)
+      std::copy_n(ws.v_free.data(), m.n, ws.v1.data());
+      kernels.axpy(m.n, -m.h, ws.trial_change.data(), ws.v1.data());
       kernels.trapezoid(m.n, now.x.data(), now.v.data(), ws.v1.data(), 0.5 * m.h, ws.x1.data());
     } else {
       for (std::size_t t = 0; t < m.trial_dofs.size(); ++t) {
@@ -783,8 +783,7 @@ class StructureStepper {
     const detail::BilinearLayout& layout = ws.bilinear_layout;
     // The most: elastic through the step (no event), ending within the yield surface, where
     // only the force changes (u_p as it was), in one pass; then the others.
-    detail::bilinear_drifts(bilinear_kernels, layout, next.x.data(), b.d.data());
-    if (bilinear_kernels.test(m.nh, layout.k.data(), b.bound.data(), b.up.data(), b.d.data(), b.flag.data(), b.q.data()))
+    if (detail::bilinear_test(bilinear_kernels, layout, next.x.data(), b, true))
       for (int e = 0; e < m.nh; ++e) {
         if (b.flag[e] == 0.0) continue;
         const detail::BilinearElement& el = m.bilinear[e];
