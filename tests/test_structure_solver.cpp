@@ -542,12 +542,13 @@ TEST_CASE("the structure step's kernels equal the Eigen expressions they replace
       }
       // The listed columns of a taller matrix (its first n rows), as the solver summed them
       // with Eigen: from zero, q_k times column k added in the list's order (fewer than four,
-      // and four at a time with the rest after).
+      // and four at a time with the rest after; none: zeros).
       Eigen::MatrixXd tall(n + 5, 10);
       for (auto& e : tall.reshaped()) e = u(random);
       const Eigen::VectorXd q = vec(10);
-      for (const std::vector<int>& which : {std::vector<int>{1, 2, 4}, std::vector<int>{0, 1, 3, 4, 6, 7, 8, 9, 5}}) {
-        Eigen::VectorXd out(n), out_e = Eigen::VectorXd::Zero(n);
+      for (const std::vector<int>& which : {std::vector<int>{}, std::vector<int>{7}, std::vector<int>{1, 2, 4}, std::vector<int>{2, 0, 9, 3},
+                                            std::vector<int>{0, 1, 3, 4, 6, 7, 8, 9, 5}}) {
+        Eigen::VectorXd out = Eigen::VectorXd::Constant(n, 3.0), out_e = Eigen::VectorXd::Zero(n);
         k->some_columns(n, tall.rows(), static_cast<Eigen::Index>(which.size()), which.data(), tall.data(), q.data(), out.data());
         for (int col : which) out_e.noalias() += q[col] * tall.col(col).head(n);
         CHECK(out == out_e);

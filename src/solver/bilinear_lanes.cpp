@@ -36,15 +36,15 @@ using Index = Eigen::Index;
 // (The flags and the kept force are selected, not branched on, so that the loops vectorise;
 // |q| <= bound is false for a NaN q, as bilinear_step.hpp's test, and for every q where the
 // bound is -1. Each loop is written out: the vectoriser keeps __restrict only so.)
-ADJOIN_INLINE bool test_body(Index n, const double* __restrict k, const double* __restrict bound,
+ADJOIN_INLINE Index test_body(Index n, const double* __restrict k, const double* __restrict bound,
                              const double* __restrict up, const double* __restrict d, double* __restrict flag,
                              double* __restrict q) {
-  int any = 0;
+  Index failed = 0;
   if (q == nullptr) {
     for (Index e = 0; e < n; ++e) {
       const bool stays = std::abs(k[e] * (d[e] - up[e])) <= bound[e];
       flag[e] = stays ? 0.0 : 1.0;
-      any |= static_cast<int>(!stays);
+      failed += stays ? 0 : 1;
     }
   } else {
     for (Index e = 0; e < n; ++e) {
@@ -52,15 +52,15 @@ ADJOIN_INLINE bool test_body(Index n, const double* __restrict k, const double* 
       const bool stays = std::abs(q1) <= bound[e];
       flag[e] = stays ? 0.0 : 1.0;
       q[e] = stays ? q1 : q[e];
-      any |= static_cast<int>(!stays);
+      failed += stays ? 0 : 1;
     }
   }
-  return any != 0;
+  return failed;
 }
 
 // (Every drift against the floor below, then those where a chain starts again, against 0.0:
 // x[e] - 0.0 exactly as the per-element formula gives it; element 0 starts one.)
-ADJOIN_INLINE bool chain_test_body(Index n, Index count, const int* __restrict starts, const double* __restrict x,
+ADJOIN_INLINE Index chain_test_body(Index n, Index count, const int* __restrict starts, const double* __restrict x,
                                    const double* __restrict k, const double* __restrict bound,
                                    const double* __restrict up, double* __restrict d, double* __restrict flag,
                                    double* __restrict q) {
@@ -99,11 +99,11 @@ ADJOIN_INLINE void chain_storeys_body(Index n, const double* __restrict offset, 
   ret name##_base params { return name##_body args; }
 #endif
 
-ADJOIN_KERNEL(bool, chain_test,
+ADJOIN_KERNEL(Index, chain_test,
               (Index n, Index count, const int* starts, const double* x, const double* k, const double* bound,
                const double* up, double* d, double* flag, double* q),
               (n, count, starts, x, k, bound, up, d, flag, q))
-ADJOIN_KERNEL(bool, test,
+ADJOIN_KERNEL(Index, test,
               (Index n, const double* k, const double* bound, const double* up, const double* d, double* flag, double* q),
               (n, k, bound, up, d, flag, q))
 ADJOIN_KERNEL(void, chain_scatter, (Index n, Index count, const int* starts, const double* f, double* p),
@@ -131,14 +131,14 @@ const BilinearKernels& bilinear_kernels() {
 #endif
 }
 
-bool bilinear_test(const BilinearKernels& kernels, const BilinearLayout& layout, const double* x, BilinearStates& b, bool keep) {
+int bilinear_test(const BilinearKernels& kernels, const BilinearLayout& layout, const double* x, BilinearStates& b, bool keep) {
   const int n = layout.size();
   double* q = keep ? b.q.data() : nullptr;
   if (layout.chains)
-    return kernels.chain_test(n, static_cast<Eigen::Index>(layout.starts.size()), layout.starts.data(), x, layout.k.data(),
-                              b.bound.data(), b.up.data(), b.d.data(), b.flag.data(), q);
+    return static_cast<int>(kernels.chain_test(n, static_cast<Eigen::Index>(layout.starts.size()), layout.starts.data(), x, layout.k.data(),
+                              b.bound.data(), b.up.data(), b.d.data(), b.flag.data(), q));
   for (int e = 0; e < n; ++e) b.d[e] = x[layout.i[e]] - (layout.j[e] >= 0 ? x[layout.j[e]] : 0.0);
-  return kernels.test(n, layout.k.data(), b.bound.data(), b.up.data(), b.d.data(), b.flag.data(), q);
+  return static_cast<int>(kernels.test(n, layout.k.data(), b.bound.data(), b.up.data(), b.d.data(), b.flag.data(), q));
 }
 
 void bilinear_scatter(const BilinearKernels& kernels, const BilinearLayout& layout, const double* f, double* p) {

@@ -55,11 +55,11 @@ struct BilinearStates {
 struct BilinearKernels {
   using Index = Eigen::Index;
   // flag[e] = 0 where |k (d - up)| <= bound (the element stays elastic), else 1; with q
-  // (non-null) also q[e] = k (d - up) where 0. Whether some flag is 1.
-  bool (*test)(Index n, const double* k, const double* bound, const double* up, const double* d, double* flag, double* q);
+  // (non-null) also q[e] = k (d - up) where 0. The number of flags 1.
+  Index (*test)(Index n, const double* k, const double* bound, const double* up, const double* d, double* flag, double* q);
   // The same for chains, from the floors' x: d[e] = x[e] - x[e - 1], or x[e] - 0.0 where a
   // chain starts (element 0 and the `count` starts).
-  bool (*chain_test)(Index n, Index count, const int* starts, const double* x, const double* k, const double* bound,
+  Index (*chain_test)(Index n, Index count, const int* starts, const double* x, const double* k, const double* bound,
                      const double* up, double* d, double* flag, double* q);
   // Each element's force f[e] into p, +f at its first floor and -f at its second, in the
   // elements' order, for chains: p[e] = (p[e] + f[e]) - f[e + 1], but p[e] + f[e] where e + 1
@@ -75,9 +75,9 @@ const BilinearKernels& baseline_bilinear_kernels();
 
 // The passes over a layout, chains or not: the drifts d = x_i - x_j (x_-1 = 0) and the test
 // of each element's force k_h (d - u_p) against its bound, into b.d and b.flag (and b.q
-// where it passes, with `keep`), whether some element failed it; the offsets f into p (+ at
+// where it passes, with `keep`), the number of elements that failed it; the offsets f into p (+ at
 // i, - at j, in order).
-bool bilinear_test(const BilinearKernels& kernels, const BilinearLayout& layout, const double* x, BilinearStates& b, bool keep);
+int bilinear_test(const BilinearKernels& kernels, const BilinearLayout& layout, const double* x, BilinearStates& b, bool keep);
 void bilinear_scatter(const BilinearKernels& kernels, const BilinearLayout& layout, const double* f, double* p);
 
 }  // namespace adjoin::detail

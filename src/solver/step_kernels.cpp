@@ -75,9 +75,25 @@ ADJOIN_INLINE void columns_body(Index rows, Index cols, const double* __restrict
 
 ADJOIN_INLINE void some_columns_body(Index rows, Index stride, Index count, const int* __restrict which,
                                      const double* __restrict m, const double* __restrict q, double* __restrict out) {
-  for (Index r = 0; r < rows; ++r) out[r] = 0.0;
   auto column = [&](Index j) { return m + static_cast<Index>(which[j]) * stride; };
+  // (Each row's sum starts from 0.0: the first pass adds to it without storing it first.)
   Index j = 0;
+  if (count >= 4) {
+    const double* __restrict c0 = column(0);
+    const double* __restrict c1 = column(1);
+    const double* __restrict c2 = column(2);
+    const double* __restrict c3 = column(3);
+    const double q0 = q[which[0]], q1 = q[which[1]], q2 = q[which[2]], q3 = q[which[3]];
+    for (Index r = 0; r < rows; ++r) out[r] = (((0.0 + q0 * c0[r]) + q1 * c1[r]) + q2 * c2[r]) + q3 * c3[r];
+    j = 4;
+  } else if (count > 0) {
+    const double* __restrict c0 = column(0);
+    const double q0 = q[which[0]];
+    for (Index r = 0; r < rows; ++r) out[r] = 0.0 + q0 * c0[r];
+    j = 1;
+  } else {
+    for (Index r = 0; r < rows; ++r) out[r] = 0.0;
+  }
   for (; j + 4 <= count; j += 4) {  // (four columns a pass over out: the same sums, in the same order)
     const double* __restrict c0 = column(j);
     const double* __restrict c1 = column(j + 1);

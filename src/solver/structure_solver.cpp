@@ -611,9 +611,10 @@ class StructureStepper {
     // (most stay elastic: bilinear_decide's first test, in one pass over all elements)
     detail::BilinearStates& b = ws.bilinear;
     const detail::BilinearLayout& layout = ws.bilinear_layout;
-    if (!detail::bilinear_test(bilinear_kernels, layout, ws.x1.data(), b, false)) return;
-    for (int e = 0; e < m.nh; ++e) {
+    // (then the others, up to the last of them)
+    for (int e = 0, left = detail::bilinear_test(bilinear_kernels, layout, ws.x1.data(), b, false); left > 0; ++e) {
       if (b.flag[e] == 0.0) continue;
+      --left;
       const detail::BilinearElement& el = m.bilinear[e];
       const int k = m.nf + e;
       ws.bilinear_active.push_back(e);
@@ -783,20 +784,20 @@ class StructureStepper {
     const detail::BilinearLayout& layout = ws.bilinear_layout;
     // The most: elastic through the step (no event), ending within the yield surface, where
     // only the force changes (u_p as it was), in one pass; then the others.
-    if (detail::bilinear_test(bilinear_kernels, layout, next.x.data(), b, true))
-      for (int e = 0; e < m.nh; ++e) {
-        if (b.flag[e] == 0.0) continue;
-        const detail::BilinearElement& el = m.bilinear[e];
-        detail::BilinearState& st = b[e];
-        const double w1 = next.v[el.i] - (el.j >= 0 ? next.v[el.j] : 0.0);
-        const double up = st.up;
-        detail::bilinear_end(el, st, b.q[e], b.d[e], w1);
-        ws.bilinear_slipped = ws.bilinear_slipped || st.up != up;
-        if (el.storey_law && st.yielded && !std::isnan(st.event)) next.hyst_yield[el.storey] = now.t + st.event * m.h;
-        st.event = kNaN;  // (read: hold_bilinear leaves an elastic element's as it is)
-        if (st.phase != detail::YieldPhase::elastic) ws.bilinear_plastic.push_back(e);
-        b.settled(e, layout);
-      }
+    for (int e = 0, left = detail::bilinear_test(bilinear_kernels, layout, next.x.data(), b, true); left > 0; ++e) {
+      if (b.flag[e] == 0.0) continue;
+      --left;
+      const detail::BilinearElement& el = m.bilinear[e];
+      detail::BilinearState& st = b[e];
+      const double w1 = next.v[el.i] - (el.j >= 0 ? next.v[el.j] : 0.0);
+      const double up = st.up;
+      detail::bilinear_end(el, st, b.q[e], b.d[e], w1);
+      ws.bilinear_slipped = ws.bilinear_slipped || st.up != up;
+      if (el.storey_law && st.yielded && !std::isnan(st.event)) next.hyst_yield[el.storey] = now.t + st.event * m.h;
+      st.event = kNaN;  // (read: hold_bilinear leaves an elastic element's as it is)
+      if (st.phase != detail::YieldPhase::elastic) ws.bilinear_plastic.push_back(e);
+      b.settled(e, layout);
+    }
     // Their offsets -k_h u_p in P, in the elements' order (K0 holds k_h d1).
     detail::bilinear_scatter(bilinear_kernels, layout, b.offset.data(), ws.p_next.data());
   }
