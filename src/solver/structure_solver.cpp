@@ -608,11 +608,10 @@ class StructureStepper {
     ws.fixed2.tail(m.nh) = ws.fixed.tail(m.nh);
     ws.bilinear_active.clear();
     ws.bilinear_event = false;
-    // (most stay elastic: bilinear_decide's first test, in one pass over all elements)
+    // (most stay elastic: bilinear_decide's first test, in one pass over all elements at the
+    // trial's end, trial_state's; then the others, up to the last of them)
     detail::BilinearStates& b = ws.bilinear;
-    const detail::BilinearLayout& layout = ws.bilinear_layout;
-    // (then the others, up to the last of them)
-    for (int e = 0, left = detail::bilinear_test(bilinear_kernels, layout, ws.x1.data(), b, false); left > 0; ++e) {
+    for (int e = 0, left = ws.bilinear_trial_failed; left > 0; ++e) {
       if (b.flag[e] == 0.0) continue;
       --left;
       const detail::BilinearElement& el = m.bilinear[e];
@@ -646,6 +645,8 @@ class StructureStepper {
         ws.x1[k] = ws.restart ? now.x[k] + m.h * ws.v1[k] : now.x[k] + 0.5 * m.h * (now.v[k] + ws.v1[k]);
       }
     }
+    // The bilinear elements' drifts at the trial's end and their first test (decide_bilinear).
+    if (m.nh > 0) ws.bilinear_trial_failed = detail::bilinear_test(bilinear_kernels, ws.bilinear_layout, ws.x1.data(), ws.bilinear, false);
     for (std::size_t d = 0; d < m.damper_dofs.size(); ++d) {
       const int k = m.damper_dofs[d];
       ws.cv1[k] = ws.cv_free[k] - m.h * ws.trial_change[m.nt + d];
@@ -657,11 +658,13 @@ class StructureStepper {
       // (the viscous dampers at their latest end velocities)
       for (const auto& [e, sign] : m.damper_viscous[d])
         ws.p1[k] += sign * m.viscous_laws[static_cast<std::size_t>(e)].force(ws.viscous_w1[e]);
+      double pk = ws.p1[k];  // (summed in a register: the same sum, without a store per element)
       for (const auto& [e, sign] : m.damper_bilinear[d]) {
         const detail::BilinearElement& el = m.bilinear[static_cast<std::size_t>(e)];
-        const double d1 = ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0);  // (K0 holds k_h d1)
-        ws.p1[k] += sign * (detail::bilinear_trial_force(el, ws.bilinear[e], d1) - el.k * d1);
+        const double d1 = ws.bilinear.d[e];  // (K0 holds k_h d1)
+        pk += sign * (detail::bilinear_trial_force(el, ws.bilinear[e], d1) - el.k * d1);
       }
+      ws.p1[k] = pk;
       for (const auto& [e, sign] : m.damper_bouc_wen[d]) {  // (at the latest z_n+1; K0 holds k d1)
         const detail::BoucWenElement& el = m.bouc_wen[static_cast<std::size_t>(e)];
         ws.p1[k] += sign * el.k * (ws.bouc_wen[e].z1 - (ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0)));

@@ -29,6 +29,7 @@ struct StepWorkspace {
   SubsetInverses stuck_systems;  // B_s M^-1 B_s' per stuck set, inverted when first met
   BilinearLayout bilinear_layout;  // the model's bilinear elements as arrays (bilinear_lanes.hpp)
   BilinearStates bilinear;         // ... and their states
+  int bilinear_trial_failed = 0;   // how many failed the first test at the trial's end (decide_bilinear)
   bool bilinear_slipped = true;         // some element's slip u_p changed in the last step (its offsets with it)
   std::vector<int> bilinear_plastic;    // the elements slipping at t_n, ascending
   bool bilinear_event = false;          // an element yielded or unloaded in this step's decisions
