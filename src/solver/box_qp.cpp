@@ -34,51 +34,76 @@ bool SubsetInverses::update_from_last(const std::vector<int>& set, Eigen::Matrix
   // rounding.)
   const bool small = set.size() < kMinUpdateSize && !(!set.empty() && s_(set.back(), set.back()) < 0.0);
   if (last_ == nullptr || last_->generation >= kMaxGeneration || small || last_key_->empty()) return false;
-  std::vector<int> removed, added;
-  std::set_difference(last_key_->begin(), last_key_->end(), set.begin(), set.end(), std::back_inserter(removed));
-  std::set_difference(set.begin(), set.end(), last_key_->begin(), last_key_->end(), std::back_inserter(added));
-  if (removed.size() + added.size() > static_cast<std::size_t>(kMaxChanges)) return false;
+  // The elements removed and added, each ascending (a merge of the two sorted sets).
+  const std::vector<int>& last = *last_key_;
+  int removed[kMaxChanges], added[kMaxChanges];
+  int n_removed = 0, n_added = 0;
+  for (std::size_t a = 0, b = 0; a < last.size() || b < set.size();) {
+    const bool only_last = b == set.size() || (a < last.size() && last[a] < set[b]);
+    const bool only_set = !only_last && (a == last.size() || set[b] < last[a]);
+    if (!only_last && !only_set) {
+      ++a;
+      ++b;
+      continue;
+    }
+    if (n_removed + n_added == kMaxChanges) return false;
+    if (only_last) removed[n_removed++] = last[a++];
+    else added[n_added++] = set[b++];
+  }
+  // The inverse in work_[0] and work_[1] by turns (column-major, m x m), allocated once.
   // A pivot below this fraction of its element's own scale loses digits: invert instead.
   constexpr double kSmallPivot = 1e-6;
-  std::vector<int> key = *last_key_;
-  Eigen::MatrixXd w = last_->inverse;
-  for (int r : removed) {
+  std::vector<int>& key = key_;
+  key.assign(last.begin(), last.end());
+  Eigen::Index m = last_->inverse.rows();
+  const auto most = static_cast<std::size_t>(m + n_added);
+  for (std::vector<double>& w : work_)
+    if (w.size() < most * most) w.resize(most * most);
+  if (c_.size() < most) c_.resize(most);
+  if (u_.size() < most) u_.resize(most);
+  double* w = work_[0].data();
+  double* next = work_[1].data();
+  std::copy_n(last_->inverse.data(), m * m, w);
+  for (int k = 0; k < n_removed; ++k) {
     // Removing element r (at p): the Schur complement of W's p-th pivot.
+    const int r = removed[k];
     const auto p = static_cast<Eigen::Index>(std::lower_bound(key.begin(), key.end(), r) - key.begin());
-    const double pivot = w(p, p);
+    const double pivot = w[p + p * m];
     if (!(std::abs(pivot * s_(r, r)) > kSmallPivot)) return false;
-    const Eigen::Index m = w.rows() - 1;
-    Eigen::MatrixXd next(m, m);
-    for (Eigen::Index j = 0, jj = 0; j <= m; ++j) {
+    const Eigen::Index mm = m - 1;
+    for (Eigen::Index j = 0, jj = 0; j <= mm; ++j) {
       if (j == p) continue;
-      for (Eigen::Index i = 0, ii = 0; i <= m; ++i) {
+      for (Eigen::Index i = 0, ii = 0; i <= mm; ++i) {
         if (i == p) continue;
-        next(ii++, jj) = w(i, j) - w(i, p) * w(p, j) / pivot;
+        next[ii++ + jj * mm] = w[i + j * m] - w[i + p * m] * w[p + j * m] / pivot;
       }
       ++jj;
     }
-    w = std::move(next);
+    std::swap(w, next);
+    m = mm;
     key.erase(key.begin() + p);
   }
-  for (int a : added) {
+  for (int k = 0; k < n_added; ++k) {
     // Adding element a (at p): the bordered inverse, with the Schur complement d - c'W c.
+    const int a = added[k];
     const auto p = static_cast<Eigen::Index>(std::lower_bound(key.begin(), key.end(), a) - key.begin());
-    const Eigen::Index m = w.rows();
-    Eigen::VectorXd c(m);
-    for (Eigen::Index i = 0; i < m; ++i) c[i] = s_(key[static_cast<std::size_t>(i)], a);
-    const Eigen::VectorXd u = w * c;
+    for (Eigen::Index i = 0; i < m; ++i) c_[static_cast<std::size_t>(i)] = s_(key[static_cast<std::size_t>(i)], a);
+    const Eigen::Map<const Eigen::VectorXd> c(c_.data(), m);
+    Eigen::Map<Eigen::VectorXd> u(u_.data(), m);
+    u.noalias() = Eigen::Map<const Eigen::MatrixXd>(w, m, m) * c;
     const double schur = s_(a, a) - c.dot(u);
     if (!(std::abs(schur) > kSmallPivot * std::abs(s_(a, a)))) return false;
-    Eigen::MatrixXd next(m + 1, m + 1);
+    const Eigen::Index mp = m + 1;
     auto at = [p](Eigen::Index i) { return i < p ? i : i + 1; };
     for (Eigen::Index j = 0; j < m; ++j)
-      for (Eigen::Index i = 0; i < m; ++i) next(at(i), at(j)) = w(i, j) + u[i] * u[j] / schur;
-    for (Eigen::Index i = 0; i < m; ++i) next(at(i), p) = next(p, at(i)) = -u[i] / schur;
-    next(p, p) = 1.0 / schur;
-    w = std::move(next);
+      for (Eigen::Index i = 0; i < m; ++i) next[at(i) + at(j) * mp] = w[i + j * m] + u[i] * u[j] / schur;
+    for (Eigen::Index i = 0; i < m; ++i) next[at(i) + p * mp] = next[p + at(i) * mp] = -u[i] / schur;
+    next[p + p * mp] = 1.0 / schur;
+    std::swap(w, next);
+    m = mp;
     key.insert(key.begin() + p, a);
   }
-  *inverse = std::move(w);
+  *inverse = Eigen::Map<const Eigen::MatrixXd>(w, m, m);
   return true;
 }
 

@@ -86,6 +86,9 @@ class SubsetInverses {
   // not safe (too many changes, a small pivot).
   bool update_from_last(const std::vector<int>& set, Eigen::MatrixXd* inverse) const;
   Eigen::MatrixXd s_;
+  // update_from_last's work (kept: it allocates nothing once grown)
+  mutable std::vector<double> work_[2], c_, u_;
+  mutable std::vector<int> key_;
   std::map<std::vector<int>, System> cache_;
   const std::vector<int>* last_key_ = nullptr;  // the last set's key in cache_
   System* last_ = nullptr;
