@@ -122,6 +122,8 @@ SubsetInverses::System& SubsetInverses::find(const std::vector<int>& set) {
     entry.x.resize(m);
     it = cache_.emplace(set, std::move(entry)).first;
   }
+  before_key_ = last_key_;
+  before_ = last_;
   last_key_ = &it->first;
   last_ = &it->second;
   return it->second;

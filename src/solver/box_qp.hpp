@@ -68,12 +68,13 @@ class SubsetInverses {
     }
   };
   System& of(const std::vector<int>& set) {
-    // Consecutive calls mostly meet the same set: check it (inline, element by element)
-    // before the map.
-    if (last_ != nullptr && last_key_->size() == set.size()) {
-      bool same = true;
-      for (std::size_t i = 0; i < set.size(); ++i) same = same && (*last_key_)[i] == set[i];
-      if (same) return *last_;
+    // Consecutive calls mostly meet the same set, or the one before (a step's trial and its
+    // decided set): check those two (inline, element by element) before the map.
+    if (same(last_key_, set)) return *last_;
+    if (same(before_key_, set)) {
+      std::swap(last_key_, before_key_);
+      std::swap(last_, before_);
+      return *last_;
     }
     return find(set);
   }
@@ -81,6 +82,12 @@ class SubsetInverses {
 
  private:
   System& find(const std::vector<int>& set);
+  static bool same(const std::vector<int>* key, const std::vector<int>& set) {
+    if (key == nullptr || key->size() != set.size()) return false;
+    bool equal = true;
+    for (std::size_t i = 0; i < set.size(); ++i) equal = equal && (*key)[i] == set[i];
+    return equal;
+  }
   Eigen::MatrixXd invert(const std::vector<int>& set) const;
   // The inverse for `set` from the last set's by bordered updates; false where not worth it or
   // not safe (too many changes, a small pivot).
@@ -92,6 +99,8 @@ class SubsetInverses {
   std::map<std::vector<int>, System> cache_;
   const std::vector<int>* last_key_ = nullptr;  // the last set's key in cache_
   System* last_ = nullptr;
+  const std::vector<int>* before_key_ = nullptr;  // ... and the one before it
+  System* before_ = nullptr;
 };
 
 // The same for many problems with one S (a time loop's: the Delassus matrix is constant for a
