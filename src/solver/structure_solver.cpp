@@ -658,13 +658,15 @@ class StructureStepper {
       // (the viscous dampers at their latest end velocities)
       for (const auto& [e, sign] : m.damper_viscous[d])
         ws.p1[k] += sign * m.viscous_laws[static_cast<std::size_t>(e)].force(ws.viscous_w1[e]);
-      double pk = ws.p1[k];  // (summed in a register: the same sum, without a store per element)
-      for (const auto& [e, sign] : m.damper_bilinear[d]) {
-        const detail::BilinearElement& el = m.bilinear[static_cast<std::size_t>(e)];
-        const double d1 = ws.bilinear.d[e];  // (K0 holds k_h d1)
-        pk += sign * (detail::bilinear_trial_force(el, ws.bilinear[e], d1) - el.k * d1);
+      if (!m.damper_bilinear[d].empty()) {
+        double pk = ws.p1[k];  // (summed in a register: the same sum, without a store per element)
+        for (const auto& [e, sign] : m.damper_bilinear[d]) {
+          const detail::BilinearElement& el = m.bilinear[static_cast<std::size_t>(e)];
+          const double d1 = ws.bilinear.d[e];  // (K0 holds k_h d1)
+          pk += sign * (detail::bilinear_trial_force(el, ws.bilinear[e], d1) - el.k * d1);
+        }
+        ws.p1[k] = pk;
       }
-      ws.p1[k] = pk;
       for (const auto& [e, sign] : m.damper_bouc_wen[d]) {  // (at the latest z_n+1; K0 holds k d1)
         const detail::BoucWenElement& el = m.bouc_wen[static_cast<std::size_t>(e)];
         ws.p1[k] += sign * el.k * (ws.bouc_wen[e].z1 - (ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0)));
