@@ -39,8 +39,11 @@
 // larger x keep the two-term real recurrence (|lambda| < 0.8 there).
 //
 // The compression depends on (rule, order, tolerance) only: the weights are dimensionless
-// (the step h enters the scheme as h^-order outside them). It is made once per process for a
-// design length N >= 2^24 (longer if a run needs it) and shared by all histories.
+// (the step h enters the scheme as h^-order outside them). It is made for a design length N,
+// the run's number of steps rounded up to a power of two (at least 2^10): once per process
+// and (rule, order, tolerance, N), shared by all histories of that length. A short run pays
+// for a short compression (at 1e-12: about 1.3M instructions and Q = 60 at N = 2^13 against
+// 5M and Q = 86 at 2^24), and its modes depend on its own length only.
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -77,8 +80,9 @@ struct SoeCompression {
   std::size_t bytes() const;
 };
 
-// The compression for lags up to at least `last_lag`, made on first use and cached per
-// (rule, order, tolerance) for the process (thread-safe). 0 < order < 1, 1e-15 <= tolerance < 1
+// The compression for lags up to `last_lag` (its design length: bit_ceil(last_lag), at least
+// 2^10), made on first use and cached per (rule, order, tolerance, design length) for the
+// process (thread-safe). 0 < order < 1, 1e-15 <= tolerance < 1
 // (std::invalid_argument otherwise; below about 1e-14 the reported error stays above the
 // tolerance: the weights are doubles).
 std::shared_ptr<const SoeCompression> soe_compression(WeightRule rule, double order, double tolerance,
