@@ -130,6 +130,10 @@ class ChannelObserver final : public StructureObserver {
   // building its input, its inherent damping and each storey, then each link. Plain loops over
   // arrays sized in begin(): the buildings are small (Eigen's dynamic-size products cost more
   // to set up than to do here), and a step allocates nothing.
+#if defined(__GNUC__) && !defined(__clang__)
+  // (Loops of 3 to 8 terms: the vectoriser's checks and peeling cost more than they save.)
+  __attribute__((optimize("no-tree-vectorize")))
+#endif
   void energy_step(const StructureState& st) {
     // Each power term k is integrated as it is made: work_[k] += dt/2 (power + its last value).
     const double half_dt = 0.5 * (st.t - last_t_);

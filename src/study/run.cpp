@@ -254,7 +254,7 @@ Report run_building(const RunSpec& spec, const RunObservers& extra) {
   if (asked) recorder = std::make_unique<detail::SignalRecorder>(s, asked->signals);
   StructureObserverList all;
   all.add(&observer);
-  all.add(&yielding);
+  if (yielding.watches()) all.add(&yielding);  // (its report is empty otherwise)
   all.add(recorder.get());
   all.add(extra.structure);
   r.solver = simulate_spec(spec, s, all, &r.collapse);
