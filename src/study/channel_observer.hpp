@@ -228,16 +228,18 @@ class ChannelObserver final : public StructureObserver {
   // and a very stiff contact breaks that split). A wrong answer would follow: exit 3.
   void check_contact_energy(double t) {
     input_scale_ = std::max(input_scale_, std::abs(input_));
-    for (std::size_t k = 0; k < contacts_.size(); ++k) {
-      const double created = -contacts_[k].dissipated;
-      if (!(created > 1e-2 * input_scale_)) continue;
-      std::ostringstream m;
-      m << "contact pair " << k + 1 << " (" << structure::to_string(s_.contacts[k].law.model) << "): at t = " << t
-        << " s it has given back " << created << " J more than the work done on it (the input so far " << input_scale_
-        << " J): the step is too long for the contact's stiffness; make solver.h smaller or lower contact["
-        << k + 1 << "].stiffness (docs/how-to/choose-contact-stiffness.md)";
-      throw NumericalError(m.str(), t);
-    }
+    for (std::size_t k = 0; k < contacts_.size(); ++k)
+      if (-contacts_[k].dissipated > 1e-2 * input_scale_) refuse_contact_energy(k, t);
+  }
+  // (Out of line: the message is built only when it is thrown.)
+  [[noreturn, gnu::noinline, gnu::cold]] void refuse_contact_energy(std::size_t k, double t) const {
+    const double created = -contacts_[k].dissipated;
+    std::ostringstream m;
+    m << "contact pair " << k + 1 << " (" << structure::to_string(s_.contacts[k].law.model) << "): at t = " << t
+      << " s it has given back " << created << " J more than the work done on it (the input so far " << input_scale_
+      << " J): the step is too long for the contact's stiffness; make solver.h smaller or lower contact["
+      << k + 1 << "].stiffness (docs/how-to/choose-contact-stiffness.md)";
+    throw NumericalError(m.str(), t);
   }
 
   std::vector<ChannelPeak> peaks() const {
