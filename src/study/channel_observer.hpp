@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
@@ -28,17 +29,17 @@ class ChannelObserver final : public StructureObserver {
     // Every channel with a peak (structure/channels.hpp): floors, storeys, buildings, links;
     // read and kept with the refined ones first (PeakTable), reported in the channels' order.
     std::vector<structure::Channel> smooth, sampled;
+    std::vector<std::pair<bool, std::size_t>> place;  // each reported channel: refined?, its index in that list
     for (auto& c : structure::channels(s)) {
       const structure::PeakRule rule = structure::info(c.quantity).peak;
-      if (rule != structure::PeakRule::none) (rule == structure::PeakRule::refined ? smooth : sampled).push_back(c);
-    }
-    order_.clear();
-    std::size_t next_smooth = 0, next_sampled = smooth.size();
-    for (const auto& c : structure::channels(s)) {
-      const structure::PeakRule rule = structure::info(c.quantity).peak;
-      if (rule != structure::PeakRule::none) order_.push_back(rule == structure::PeakRule::refined ? next_smooth++ : next_sampled++);
+      if (rule == structure::PeakRule::none) continue;
+      auto& list = rule == structure::PeakRule::refined ? smooth : sampled;
+      place.emplace_back(&list == &smooth, list.size());
+      list.push_back(std::move(c));
     }
     const std::size_t n_smooth = smooth.size();
+    order_.clear();
+    for (const auto& [refined, index] : place) order_.push_back(refined ? index : n_smooth + index);
     smooth.insert(smooth.end(), sampled.begin(), sampled.end());
     values_ = ChannelValues(s, std::move(smooth));
     peaks_.reset(n_smooth, values_.size());
