@@ -15,7 +15,7 @@ namespace adjoin {
 namespace {
 
 constexpr std::size_t kWindow = 32;                      // n0
-constexpr std::size_t kMinDesign = std::size_t{1} << 24;  // N for every run up to 2^24 steps
+constexpr std::size_t kMinDesign = std::size_t{1} << 10;  // N at least: short runs share one
 constexpr std::size_t kDense = 1024;                     // verified at every lag below this
 constexpr int kPerOctave = 64;                           // and at this many lags per octave above
 constexpr std::size_t kPairedLags = 400;  // two-term modes (|lambda| < 0.74) vanish beyond n0 + this
@@ -309,11 +309,14 @@ std::shared_ptr<const SoeCompression> soe_compression(WeightRule rule, double or
   if (!(tolerance >= 1e-15 && tolerance < 1.0))
     throw std::invalid_argument("soe history: the tolerance must lie in [1e-15, 1)");
   static std::mutex mutex;
-  static std::map<std::tuple<WeightRule, double, double>, std::shared_ptr<const SoeCompression>> cache;
+  static std::map<std::tuple<WeightRule, double, double, std::size_t>, std::shared_ptr<const SoeCompression>> cache;
+  // The design length is the run's own, rounded up to a power of two: a short run pays for a
+  // short compression (fewer nodes, fewer lags to verify, smaller Q), and a run's modes depend
+  // on its length only, never on the runs made before it in the process.
+  const std::size_t design = std::max(kMinDesign, std::bit_ceil(last_lag));
   const std::lock_guard<std::mutex> lock(mutex);
-  auto& entry = cache[{rule, order, tolerance}];
-  if (!entry || entry->design_length < last_lag)
-    entry = make(rule, order, tolerance, std::max(kMinDesign, std::bit_ceil(last_lag)));
+  auto& entry = cache[{rule, order, tolerance, design}];
+  if (!entry) entry = make(rule, order, tolerance, design);
   return entry;
 }
 

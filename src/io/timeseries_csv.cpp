@@ -97,6 +97,8 @@ void ChannelCsvWriter::begin(const structure::Structure& s, const StructureSolve
   steps_ = o.steps();
   every_ = output_every(scene_, o.h);
   count_ = 0;
+  pending_ = false;
+  last_ = nullptr;
   std::vector<structure::Channel> columns;
   for (auto& c : structure::channels(s))
     if (structure::info(c.quantity).timeseries) columns.push_back(std::move(c));
@@ -122,7 +124,7 @@ void ChannelCsvWriter::observe(const StructureState& st) {
   for (const auto& gap : gaps_)
     if (channel_value(*s_, gap, st) <= 0.0) unmodelled_ = true;
   if (index % every_ != 0 && index != steps_) {
-    last_ = st;  // written at end() if the run ends here (a collapse stops it early)
+    last_ = &st;  // written at end() if the run ends here (a collapse stops it early)
     pending_ = true;
     return;
   }
@@ -147,7 +149,7 @@ void ChannelCsvWriter::write_row(const StructureState& st) {
 }
 
 void ChannelCsvWriter::end() {
-  if (pending_) write_row(last_);
+  if (pending_ && last_) write_row(*last_);
   pending_ = false;
   out_ << buffer_;
   buffer_.clear();

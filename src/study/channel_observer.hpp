@@ -6,12 +6,14 @@
 #include <cmath>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Dense>
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/observe/channel_values.hpp"
+#include "adjoin/observe/peak_table.hpp"
 #include "adjoin/structure/channels.hpp"
 #include "adjoin/structure/observer.hpp"
 #include "adjoin/study/report.hpp"
@@ -24,21 +26,23 @@ class ChannelObserver final : public StructureObserver {
   explicit ChannelObserver(const structure::Structure& s) : s_(s) {}
 
   void begin(const structure::Structure& s, const StructureSolverOptions&) override {
-    // Every channel with a peak (structure/channels.hpp): floors, storeys, buildings, links.
-    std::vector<structure::Channel> peaked;
-    for (auto& c : structure::channels(s))
-      if (structure::info(c.quantity).peak != structure::PeakRule::none) peaked.push_back(std::move(c));
-    values_ = ChannelValues(s, std::move(peaked));
-    row_.assign(values_.size(), 0.0);
-    smooth_.assign(values_.size(), SmoothPeak{});
-    sampled_.assign(values_.size(), Peak{});
-    is_smooth_.assign(values_.size(), 1);
-    smooth_channels_.clear();
-    sampled_channels_.clear();
-    for (std::size_t i = 0; i < values_.size(); ++i) {
-      is_smooth_[i] = structure::info(values_.channels()[i].quantity).peak == structure::PeakRule::refined;
-      (is_smooth_[i] ? smooth_channels_ : sampled_channels_).push_back(i);
+    // Every channel with a peak (structure/channels.hpp): floors, storeys, buildings, links;
+    // read and kept with the refined ones first (PeakTable), reported in the channels' order.
+    std::vector<structure::Channel> smooth, sampled;
+    std::vector<std::pair<bool, std::size_t>> place;  // each reported channel: refined?, its index in that list
+    for (auto& c : structure::channels(s)) {
+      const structure::PeakRule rule = structure::info(c.quantity).peak;
+      if (rule == structure::PeakRule::none) continue;
+      auto& list = rule == structure::PeakRule::refined ? smooth : sampled;
+      place.emplace_back(&list == &smooth, list.size());
+      list.push_back(std::move(c));
     }
+    const std::size_t n_smooth = smooth.size();
+    order_.clear();
+    for (const auto& [refined, index] : place) order_.push_back(refined ? index : n_smooth + index);
+    smooth.insert(smooth.end(), sampled.begin(), sampled.end());
+    values_ = ChannelValues(s, std::move(smooth));
+    peaks_.reset(n_smooth, values_.size());
     links_.assign(s.links.size(), LinkReport{});
     last_force_stroke_.assign(s.links.size(), 0.0);
     contacts_.assign(s.contacts.size(), ContactReport{});
@@ -64,7 +68,6 @@ class ChannelObserver final : public StructureObserver {
     }
     std::size_t powers = s.links.size() + bases_.size();
     for (const EnergyPart& p : parts_) powers += 2 + p.masses.size();
-    power_.assign(powers, 0.0);
     last_powers_.assign(powers, 0.0);
     work_.assign(powers, 0.0);
     kinetic_.assign(parts_.size(), 0.0);
@@ -75,9 +78,8 @@ class ChannelObserver final : public StructureObserver {
   }
 
   void observe(const StructureState& st) override {
-    values_.read(st, row_.data());
-    for (std::size_t c : smooth_channels_) smooth_[c].update(row_[c], st.t);
-    for (std::size_t c : sampled_channels_) sampled_[c].update(row_[c], st.t);
+    values_.read(st, peaks_.row());
+    peaks_.update(st.t);
     for (std::size_t l = 0; l < s_.links.size(); ++l) {
       LinkReport& r = links_[l];
       r.force_max = std::max(r.force_max, std::abs(st.link_force[l]));
@@ -114,7 +116,7 @@ class ChannelObserver final : public StructureObserver {
     }
     energy_step(st);
     check_contact_energy(st.t);
-    last_phase_.assign(st.link_phase.begin(), st.link_phase.end());  // (same size: no allocation)
+    for (std::size_t l = 0; l < last_phase_.size(); ++l) last_phase_[l] = st.link_phase[l];
     for (std::size_t l = 0; l < s_.links.size(); ++l) last_power_[l] = st.link_force[l] * st.link_velocity[l];
     last_t_ = st.t;
     first_ = false;
@@ -129,45 +131,59 @@ class ChannelObserver final : public StructureObserver {
   // building its input, its inherent damping and each storey, then each link. Plain loops over
   // arrays sized in begin(): the buildings are small (Eigen's dynamic-size products cost more
   // to set up than to do here), and a step allocates nothing.
+#if defined(__GNUC__) && !defined(__clang__)
+  // (Loops of 3 to 8 terms: the vectoriser's checks and peeling cost more than they save.)
+  __attribute__((optimize("no-tree-vectorize")))
+#endif
   void energy_step(const StructureState& st) {
+    // Each power term k is integrated as it is made: work_[k] += dt/2 (power + its last value).
+    const double half_dt = 0.5 * (st.t - last_t_);
+    double* __restrict work = work_.data();
+    double* __restrict last = last_powers_.data();
+    const bool first = first_;
     std::size_t k = 0;
+    auto add = [&](double power) {
+      if (!first) work[k] += half_dt * (power + last[k]);
+      last[k++] = power;
+    };
     for (std::size_t part = 0; part < parts_.size(); ++part) {
       EnergyPart& p = parts_[part];
       const std::size_t n = p.masses.size();
-      const double* v_abs = st.v.data() + p.offset;
+      const double* __restrict v_abs = st.v.data() + p.offset;
+      const double* __restrict force = st.storey_force.data() + p.offset;
+      const double* __restrict mass = p.masses.data();
+      double* __restrict v = p.v.data();
       // An isolated base (SPEC §7): its mass takes input and kinetic energy, the inherent
       // damping acts on the floors' velocities relative to it, storey 1 deforms against it.
       const double vb = p.base >= 0 ? st.v[p.base] : 0.0;
       double momentum = p.base_mass * vb, twice_kinetic = p.base_mass * vb * vb;
       for (std::size_t i = 0; i < n; ++i) {
-        momentum += p.masses[i] * v_abs[i];
-        twice_kinetic += p.masses[i] * v_abs[i] * v_abs[i];
-        p.v[i] = v_abs[i] - vb;
+        momentum += mass[i] * v_abs[i];
+        twice_kinetic += mass[i] * v_abs[i] * v_abs[i];
+        v[i] = v_abs[i] - vb;
       }
-      power_[k++] = st.ag * momentum;  // input
+      add(st.ag * momentum);  // input
       kinetic_[part] = 0.5 * twice_kinetic;
       double damping = 0.0;  // v' C v, C row-major
       for (std::size_t i = 0; i < n; ++i) {
-        const double* row = p.c.data() + i * n;
+        const double* __restrict row = p.c.data() + i * n;
         double cv = 0.0;
-        for (std::size_t j = 0; j < n; ++j) cv += row[j] * p.v[j];
-        damping += p.v[i] * cv;
+        for (std::size_t j = 0; j < n; ++j) cv += row[j] * v[j];
+        damping += v[i] * cv;
       }
-      power_[k++] = damping;  // inherent damping
-      const double* force = st.storey_force.data() + p.offset;
-      for (std::size_t i = 0; i < n; ++i) power_[k++] = force[i] * (p.v[i] - (i > 0 ? p.v[i - 1] : 0.0));
+      add(damping);  // inherent damping
+      double below = 0.0;  // storey i's deformation rate v_i - v_{i-1}
+      for (std::size_t i = 0; i < n; ++i) {
+        add(force[i] * (v[i] - below));
+        below = v[i];
+      }
     }
-    for (std::size_t l = 0; l < s_.links.size(); ++l) power_[k++] = st.link_force[l] * st.link_velocity[l];
+    for (std::size_t l = 0; l < s_.links.size(); ++l) add(st.link_force[l] * st.link_velocity[l]);
     // Each isolator: its slider's power and its pendulum's, k_p x_b v_b.
     for (const Base& b : bases_) {
       const auto l = static_cast<Eigen::Index>(b.slider);
-      power_[k++] = st.link_force[l] * st.link_velocity[l] + b.stiffness * st.x[b.dof] * st.v[b.dof];
+      add(st.link_force[l] * st.link_velocity[l] + b.stiffness * st.x[b.dof] * st.v[b.dof]);
     }
-    if (!first_) {
-      const double dt = st.t - last_t_;
-      for (std::size_t j = 0; j < power_.size(); ++j) work_[j] += 0.5 * dt * (power_[j] + last_powers_[j]);
-    }
-    std::swap(power_, last_powers_);
     // The input so far (the contact check's scale), summed as energy() sums it.
     input_ = 0.0;
     input_ += work_[0];
@@ -213,31 +229,32 @@ class ChannelObserver final : public StructureObserver {
   // and a very stiff contact breaks that split). A wrong answer would follow: exit 3.
   void check_contact_energy(double t) {
     input_scale_ = std::max(input_scale_, std::abs(input_));
-    for (std::size_t k = 0; k < contacts_.size(); ++k) {
-      const double created = -contacts_[k].dissipated;
-      if (!(created > 1e-2 * input_scale_)) continue;
-      std::ostringstream m;
-      m << "contact pair " << k + 1 << " (" << structure::to_string(s_.contacts[k].law.model) << "): at t = " << t
-        << " s it has given back " << created << " J more than the work done on it (the input so far " << input_scale_
-        << " J): the step is too long for the contact's stiffness; make solver.h smaller or lower contact["
-        << k + 1 << "].stiffness (docs/how-to/choose-contact-stiffness.md)";
-      throw NumericalError(m.str(), t);
-    }
+    for (std::size_t k = 0; k < contacts_.size(); ++k)
+      if (-contacts_[k].dissipated > 1e-2 * input_scale_) refuse_contact_energy(k, t);
+  }
+  // (Out of line: the message is built only when it is thrown.)
+  [[noreturn, gnu::noinline, gnu::cold]] void refuse_contact_energy(std::size_t k, double t) const {
+    const double created = -contacts_[k].dissipated;
+    std::ostringstream m;
+    m << "contact pair " << k + 1 << " (" << structure::to_string(s_.contacts[k].law.model) << "): at t = " << t
+      << " s it has given back " << created << " J more than the work done on it (the input so far " << input_scale_
+      << " J): the step is too long for the contact's stiffness; make solver.h smaller or lower contact["
+      << k + 1 << "].stiffness (docs/how-to/choose-contact-stiffness.md)";
+    throw NumericalError(m.str(), t);
   }
 
   std::vector<ChannelPeak> peaks() const {
     std::vector<ChannelPeak> out;
-    for (std::size_t i = 0; i < values_.size(); ++i)
-      out.push_back({values_.channels()[i].name, is_smooth_[i] ? smooth_[i].peak() : sampled_[i]});
+    for (std::size_t i : order_) out.push_back({values_.channels()[i].name, peaks_.peak(i)});
     return out;
   }
   // Each drift and drift-ratio channel at the last grid point observed (SPEC §7 `residual`).
   std::vector<ChannelValue> residual() const {
     std::vector<ChannelValue> out;
-    for (std::size_t i = 0; i < values_.size(); ++i) {
+    for (std::size_t i : order_) {
       const structure::Quantity q = values_.channels()[i].quantity;
       const bool base = q == structure::Quantity::displacement && values_.channels()[i].index == 0;  // X.x0
-      if (q == structure::Quantity::drift || q == structure::Quantity::drift_ratio || base) out.push_back({values_.channels()[i].name, row_[i]});
+      if (q == structure::Quantity::drift || q == structure::Quantity::drift_ratio || base) out.push_back({values_.channels()[i].name, peaks_.last()[i]});
     }
     return out;
   }
@@ -247,10 +264,10 @@ class ChannelObserver final : public StructureObserver {
     for (const Base& b : bases_) {
       if (!b.isolated) continue;
       BaseReport r = b.report;
-      const Peak peak = smooth_[b.channel].peak();
+      const Peak peak = peaks_.peak(b.channel);
       r.max_abs = peak.max_abs;
       r.t = peak.t;
-      r.residual = row_[b.channel];
+      r.residual = peaks_.last()[b.channel];
       out.push_back(r);
     }
     return out;
@@ -300,11 +317,10 @@ class ChannelObserver final : public StructureObserver {
   };
   std::vector<Base> bases_;
   ChannelValues values_;
-  std::vector<double> row_;          // the channels' values at the current grid point
-  std::vector<SmoothPeak> smooth_;   // displacements, drifts, strokes: refined between samples
-  std::vector<Peak> sampled_;        // accelerations, shears, link forces: kinks at switches
-  std::vector<char> is_smooth_;
-  std::vector<std::size_t> smooth_channels_, sampled_channels_;  // the indices of each kind
+  // The channels' last values and peaks: displacements, drifts, strokes refined between
+  // samples; accelerations, shears, link forces (kinks at switches) the largest samples.
+  PeakTable peaks_;
+  std::vector<std::size_t> order_;  // the channels' places in values_, in the channels' order
   std::vector<LinkReport> links_;
   std::vector<double> last_force_stroke_;  // per link, 1/2 F s at the last grid point [J]
   std::vector<ContactReport> contacts_;
@@ -329,7 +345,7 @@ class ChannelObserver final : public StructureObserver {
     std::vector<double> masses, c, v;
   };
   std::vector<EnergyPart> parts_;                    // A's, then B's
-  std::vector<double> power_, last_powers_, work_;  // per power term (energy_step)
+  std::vector<double> last_powers_, work_;          // per power term (energy_step)
   std::vector<double> kinetic_;                      // per building, at the last grid point
   double input_ = 0.0;                               // the input so far [J]
   std::vector<double> last_power_;

@@ -199,6 +199,14 @@ Report run_two_block(const RunSpec& spec, const RunObservers& extra) {
 class StructureObserverList final : public StructureObserver {
  public:
   void add(StructureObserver* o) { if (o) observers_.push_back(o); }
+  // A list's observers join this one in their order (one virtual call per observer and step,
+  // not two); any other observer is added.
+  void add_flat(StructureObserver* o) {
+    if (const auto* list = dynamic_cast<const StructureObserverList*>(o))
+      for (StructureObserver* x : list->observers_) add(x);
+    else
+      add(o);
+  }
   void begin(const structure::Structure& s, const StructureSolverOptions& o) override { for (auto* x : observers_) x->begin(s, o); }
   void observe(const StructureState& st) override { for (auto* x : observers_) x->observe(st); }
   void impact(const Impact& e) override { for (auto* x : observers_) x->impact(e); }
@@ -254,7 +262,7 @@ Report run_building(const RunSpec& spec, const RunObservers& extra) {
   if (asked) recorder = std::make_unique<detail::SignalRecorder>(s, asked->signals);
   StructureObserverList all;
   all.add(&observer);
-  all.add(&yielding);
+  if (yielding.watches()) all.add(&yielding);  // (its report is empty otherwise)
   all.add(recorder.get());
   all.add(extra.structure);
   r.solver = simulate_spec(spec, s, all, &r.collapse);
@@ -318,7 +326,7 @@ SolverSummary simulate_spec(const RunSpec& spec, const structure::Structure& s, 
   StructureObserverList watched;
   detail::CollapseObserver collapse_watch;  // first: the others see the state it stops at
   if (detail::CollapseObserver::watches(s)) watched.add(&collapse_watch);
-  watched.add(&observer);
+  watched.add_flat(&observer);
   watched.add(spec.watch);
   const StructureSolverOptions options = with_scheme(spec.solver, spec.solver.scheme);
   SolverSummary summary = simulate_structure(options, s, *spec.ground, watched);

@@ -48,6 +48,9 @@ class YieldObserver final : public StructureObserver {
     if (s.b) add(*s.b, 'B');
   }
 
+  // Whether any building yields (else a run need not call it at all).
+  bool watches() const { return !buildings_.empty(); }
+
   void observe(const StructureState& st) override {
     for (Building& b : buildings_)
       for (std::size_t i = 0; i < b.storeys.size(); ++i) {

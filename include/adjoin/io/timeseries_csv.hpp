@@ -86,7 +86,10 @@ class ChannelCsvWriter final : public StructureObserver {
   std::vector<structure::Channel> gaps_;
   std::vector<double> values_;
   std::string buffer_;
-  StructureState last_;  // the last grid point not written (the run's last, if it stops early)
+  // The last grid point observed and not written (the run's last, if it stops early): the
+  // stepper's own state, still valid at end(), which the time loop calls right after the
+  // last observe (solver/time_loop.hpp); not a copy, which would cost more than the step.
+  const StructureState* last_ = nullptr;
   bool pending_ = false;
   bool flagged_ = false, unmodelled_ = false;
 };

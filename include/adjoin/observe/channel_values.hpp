@@ -52,21 +52,63 @@ inline double channel_value(const structure::Structure& s, const structure::Chan
   return 0.0;
 }
 
+// Reads many channels at each grid point. The common channels (floors' displacements and
+// absolute accelerations, drifts and drift ratios, storey shears, links' forces and strokes) are
+// each one or two entries of a state vector: read() takes them in plain loops over index lists
+// made once, per vector, with no switch per channel; the rest go through channel_value. The
+// values are channel_value's, bit for bit.
 class ChannelValues {
  public:
   ChannelValues() = default;  // no channels
   ChannelValues(const structure::Structure& s, std::vector<structure::Channel> channels)
-      : s_(&s), channels_(std::move(channels)) {}
+      : s_(&s), channels_(std::move(channels)) {
+    using structure::Quantity;
+    for (std::size_t k = 0; k < channels_.size(); ++k) {
+      const structure::Channel& c = channels_[k];
+      const int link = c.index - 1;
+      switch (c.quantity) {
+        case Quantity::displacement: plan_[kX].push_back({k, c.dof, -1, 1.0}); break;
+        case Quantity::absolute_acceleration: plan_[kAcceleration].push_back({k, c.dof, -1, 1.0}); break;
+        case Quantity::storey_shear: plan_[kStoreyForce].push_back({k, c.dof, -1, 1.0}); break;
+        case Quantity::link_force: plan_[kLinkForce].push_back({k, link, -1, 1.0}); break;
+        case Quantity::link_stroke: plan_[kLinkStroke].push_back({k, link, -1, 1.0}); break;
+        case Quantity::drift:
+        case Quantity::drift_ratio: {
+          // x[dof] minus the floor below's, or the isolated base's (-1: the ground's 0).
+          const int below = c.index > 1 ? c.dof - 1 : s.base_dof(c.building);
+          const structure::Building& b = c.building == 'A' ? s.a : *s.b;
+          plan_[kX].push_back({k, c.dof, below, c.quantity == Quantity::drift ? 1.0 : b.heights[c.index - 1]});
+          break;
+        }
+        default: other_.push_back(k);
+      }
+    }
+  }
   const std::vector<structure::Channel>& channels() const { return channels_; }
   std::size_t size() const { return channels_.size(); }
   // out[k] = the value of channels()[k] at `state`.
   void read(const StructureState& state, double* out) const {
-    for (std::size_t k = 0; k < channels_.size(); ++k) out[k] = channel_value(*s_, channels_[k], state);
+    const double* vectors[kVectors] = {state.x.data(), state.a_abs.data(), state.storey_force.data(),
+                                       state.link_force.data(), state.link_stroke.data()};
+    for (int v = 0; v < kVectors; ++v) {
+      const double* y = vectors[v];
+      for (const Term& t : plan_[v]) out[t.channel] = (y[t.i] - (t.j >= 0 ? y[t.j] : 0.0)) / t.divisor;
+    }
+    for (std::size_t k : other_) out[k] = channel_value(*s_, channels_[k], state);
   }
 
  private:
+  // out[channel] = (y[i] - y[j]) / divisor, y one of the state's vectors (j < 0: y[i] / divisor).
+  struct Term {
+    std::size_t channel;
+    int i, j;
+    double divisor;
+  };
+  enum { kX, kAcceleration, kStoreyForce, kLinkForce, kLinkStroke, kVectors };
   const structure::Structure* s_ = nullptr;
   std::vector<structure::Channel> channels_;
+  std::vector<Term> plan_[kVectors];
+  std::vector<std::size_t> other_;  // read by channel_value
 };
 
 }  // namespace adjoin
