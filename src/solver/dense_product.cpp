@@ -42,8 +42,9 @@ __attribute__((target("avx"))) void product_avx(const double* a, Eigen::Index st
     // The last 1 to 3 rows in one register too, its other lanes masked off (neither read nor
     // written): each lane sums its row in the same order as a scalar loop, so the same bits,
     // for a building's few floors in a quarter of the scalar loop's instructions.
-    const long long left = static_cast<long long>(rows - i);
-    const __m256i mask = _mm256_set_epi64x(left > 3 ? -1 : 0, left > 2 ? -1 : 0, left > 1 ? -1 : 0, -1);
+    // (The mask: `left` lanes of all ones, read from a table.)
+    alignas(32) static constexpr long long kLanes[8] = {-1, -1, -1, -1, 0, 0, 0, 0};
+    const __m256i mask = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kLanes + 4 - (rows - i)));
     __m256d c0 = _mm256_setzero_pd();
     for (Eigen::Index j = 0; j < cols; ++j)
       c0 = _mm256_add_pd(c0, _mm256_mul_pd(_mm256_maskload_pd(a + j * stride + i, mask), _mm256_set1_pd(x[j])));
