@@ -11,12 +11,14 @@
 using namespace adjoin;
 
 TEST_CASE("PeakTable gives SmoothPeak's and Peak's peaks and times bit for bit", "[peaks]") {
-  // 7 signals, the first 3 refined (odd counts: the two-at-a-time pass and its tails), over
-  // oscillations with growing and falling amplitude, sign changes, plateaus and a zero signal.
-  for (std::size_t smooth : {std::size_t{0}, std::size_t{3}, std::size_t{7}}) {
-    const std::size_t n = 7;
+  // 11 signals, the first 0, 3, 5 or 11 refined (the two- and four-at-a-time passes and their
+  // tails), on the SSE2 path and on the AVX path where the CPU has it, over oscillations with
+  // growing and falling amplitude, sign changes, plateaus and a zero signal.
+  for (bool avx : {false, true})
+  for (std::size_t smooth : {std::size_t{0}, std::size_t{3}, std::size_t{5}, std::size_t{11}}) {
+    const std::size_t n = 11;
     PeakTable table;
-    table.reset(smooth, n);
+    table.reset(smooth, n, avx);
     std::vector<SmoothPeak> smooth_peaks(n);
     std::vector<Peak> sampled_peaks(n);
     std::mt19937 random(42);
@@ -39,7 +41,7 @@ TEST_CASE("PeakTable gives SmoothPeak's and Peak's peaks and times bit for bit",
     }
     for (std::size_t k = 0; k < n; ++k) {
       const Peak expected = k < smooth ? smooth_peaks[k].peak() : sampled_peaks[k];
-      INFO("smooth " << smooth << ", signal " << k);
+      INFO("avx " << avx << ", smooth " << smooth << ", signal " << k);
       CHECK(table.peak(k).max_abs == expected.max_abs);
       CHECK(table.peak(k).t == expected.t);
     }

@@ -2,8 +2,9 @@
 // The adjoin program's commands register themselves: each src/cli/<command>.cpp defines one
 // static Registration, so adding a command touches no other file.
 //
-// A command's `setup` adds its subcommand (options, help) to the app and returns the function
-// that runs it once parsed. Runners return an exit status or throw adjoin::InputError (exit 2)
+// A command's `setup` adds its subcommand `name` (options, help) to the app and returns the
+// function that runs it once parsed; main() sets up only the command the command line names
+// (all of them when it names none: --help, --version, a typo). Runners return an exit status or throw adjoin::InputError (exit 2)
 // or adjoin::NumericalError (exit 3); main() turns those into "error: ..." on stderr.
 #include <CLI/CLI.hpp>
 #include <functional>
@@ -19,11 +20,12 @@ using Runner = std::function<int()>;
 using Setup = std::function<Runner(CLI::App& app)>;
 
 struct Registration {
-  Registration(int order, Setup setup);  // lower order lists first in --help
+  Registration(int order, std::string name, Setup setup);  // lower order lists first in --help
 };
 
 struct RegisteredCommand {
   int order;
+  std::string name;  // the subcommand's name, as `setup` adds it
   Setup setup;
 };
 std::vector<RegisteredCommand>& registry();

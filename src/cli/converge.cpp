@@ -241,7 +241,7 @@ int write_and_print(const ConvergeArgs& args, const ConvergenceResult& result, c
   return 0;
 }
 
-const Registration registration(40, [](CLI::App& app) -> Runner {
+const Registration registration(40, "converge", [](CLI::App& app) -> Runner {
   auto args = std::make_shared<ConvergeArgs>();
   auto* sub = app.add_subcommand("converge", "Error against run time for each scheme and history engine on a ladder of steps");
   sub->add_option("scene", args->scene, "Scene file (TOML)")->required();

@@ -79,7 +79,7 @@ int demand_command(const DemandArgs& args) {
   return 0;
 }
 
-const Registration registration(52, [](CLI::App& app) -> Runner {
+const Registration registration(52, "demand", [](CLI::App& app) -> Runner {
   auto args = std::make_shared<DemandArgs>();
   auto* sub = app.add_subcommand("demand", "Fit a demand model ln(response) = a + b ln(IM) to a sweep over ground motions");
   sub->add_option("table", args->table, "The sweep's table (sweep.csv)")->required();

@@ -394,7 +394,7 @@ int ida_command(const IdaArgs& args) {
   return ida_local(args);
 }
 
-const Registration registration(49, [](CLI::App& app) -> Runner {
+const Registration registration(49, "ida", [](CLI::App& app) -> Runner {
   auto args = std::make_shared<IdaArgs>();
   auto* sub = app.add_subcommand("ida", "Incremental dynamic analysis: a scene x a suite x IM levels (stripes or tracing): ida.csv");
   sub->add_option("scene", args->scene, "Base scene (TOML); its ground is replaced by each record")->required();

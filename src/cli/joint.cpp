@@ -178,7 +178,7 @@ int joint_command(const JointArgs& args) {
   return 0;
 }
 
-const Registration registration(48, [](CLI::App& app) -> Runner {
+const Registration registration(48, "joint", [](CLI::App& app) -> Runner {
   auto args = std::make_shared<JointArgs>();
   auto* sub = app.add_subcommand("joint", "Minimum seismic joint: the smallest gap with which the floors never touch "
                                           "(bisection over runs, and directly from one run)");

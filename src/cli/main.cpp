@@ -5,6 +5,8 @@
 #include <exception>
 #include <new>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/io/text_file.hpp"
@@ -17,11 +19,25 @@ std::vector<RegisteredCommand>& registry() {
   return commands;
 }
 
-Registration::Registration(int order, Setup setup) {
-  registry().push_back(RegisteredCommand{order, std::move(setup)});
+Registration::Registration(int order, std::string name, Setup setup) {
+  registry().push_back(RegisteredCommand{order, std::move(name), std::move(setup)});
 }
 
 namespace {
+
+// The commands to set up, in --help's order: only the one the first argument names (adding
+// every command's options and help texts costs more instructions than starting a short run's
+// process otherwise does), or all of them when it names none (`adjoin --help`, `--version`, a
+// misspelt command), so that the help lists everything and CLI11's messages are unchanged.
+std::vector<RegisteredCommand> commands_to_set_up(int argc, char** argv) {
+  std::vector<RegisteredCommand> commands = registry();
+  std::sort(commands.begin(), commands.end(), [](const auto& a, const auto& b) { return a.order < b.order; });
+  if (argc < 2) return commands;
+  const std::string first = argv[1];
+  const auto named = std::find_if(commands.begin(), commands.end(), [&](const auto& c) { return c.name == first; });
+  if (named == commands.end()) return commands;
+  return {*named};
+}
 
 // An option given an empty value (--ductility '', --delimiter '') would read as one not given,
 // as the commands take "" for "absent": refused, naming the option. (--title '' asks for no
@@ -70,11 +86,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", std::string("adjoin ") + ADJOIN_VERSION);
   app.require_subcommand(1);
 
-  auto commands = cli::registry();
-  std::sort(commands.begin(), commands.end(),
-            [](const auto& a, const auto& b) { return a.order < b.order; });
   std::vector<std::pair<CLI::App*, cli::Runner>> runners;
-  for (auto& command : commands) {
+  for (auto& command : cli::commands_to_set_up(argc, argv)) {
     const std::size_t before = app.get_subcommands({}).size();
     cli::Runner runner = command.setup(app);
     auto subcommands = app.get_subcommands({});

@@ -121,7 +121,7 @@ int modes_command(const ModesArgs& args) {
   return 0;
 }
 
-const Registration registration(15, [](CLI::App& app) -> Runner {
+const Registration registration(15, "modes", [](CLI::App& app) -> Runner {
   auto args = std::make_shared<ModesArgs>();
   auto* sub = app.add_subcommand("modes", "Natural periods, modal damping ratios and mode shapes of a scene's structure");
   sub->add_option("scene", args->scene, "Scene file (TOML)")->required();

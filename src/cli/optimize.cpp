@@ -77,7 +77,7 @@ int optimize_command(const OptimizeArgs& args) {
   return status;
 }
 
-const Registration registration(55, [](CLI::App& app) -> Runner {
+const Registration registration(55, "optimize", [](CLI::App& app) -> Runner {
   auto args = std::make_shared<OptimizeArgs>();
   auto* sub = app.add_subcommand("optimize", "Optimise damper parameters and placements over a suite (a study file): optimum.json");
   sub->add_option("study", args->study, "Study file (TOML, [optimize]: docs/reference/study-file.md)")->required();

@@ -155,7 +155,7 @@ void common_options(CLI::App* sub, PlotArgs* a, const std::string& out_help) {
   sub->add_option("--size", a->size, "Image size WIDTHxHEIGHT in pixels (default 900x600)");
 }
 
-const Registration registration(60, [](CLI::App& app) -> Runner {
+const Registration registration(60, "plot", [](CLI::App& app) -> Runner {
   auto args = std::make_shared<PlotArgs>();
   auto reading = std::make_shared<ReadingArgs>();
   auto* plot = app.add_subcommand("plot", "Figures (PNG or SVG, with gnuplot) of runs, spectra, convergence studies and sweeps");

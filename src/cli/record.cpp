@@ -376,7 +376,7 @@ int info_command(const RecordArgs& args) {
 }
 
 // The options that say how to read a record, shared by the subcommands.
-const Registration registration(30, [](CLI::App& app) -> Runner {
+const Registration registration(30, "record", [](CLI::App& app) -> Runner {
   auto args = std::make_shared<RecordArgs>();
   auto* record = app.add_subcommand("record", "Recorded accelerograms: information, processing, Fourier spectra");
   record->require_subcommand(1);

@@ -48,7 +48,7 @@ int run_command(const RunArgs& args) {
   return 0;
 }
 
-const Registration registration(10, [](CLI::App& app) -> Runner {
+const Registration registration(10, "run", [](CLI::App& app) -> Runner {
   auto args = std::make_shared<RunArgs>();
   auto* sub = app.add_subcommand("run", "Solve a scene: writes summary.json (and timeseries.csv if asked)");
   sub->add_option("scene", args->scene, "Scene file (TOML)")->required();

@@ -538,7 +538,7 @@ int suite_spectra(const SpectrumArgs& args, const SpectrumOptions& elastic, Plot
   return suite_command(request);
 }
 
-const Registration registration(20, [](CLI::App& app) -> Runner {
+const Registration registration(20, "spectrum", [](CLI::App& app) -> Runner {
   auto args = std::make_shared<SpectrumArgs>();
   auto* sub = app.add_subcommand(
       "spectrum",

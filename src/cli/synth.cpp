@@ -215,7 +215,7 @@ int synth_command(SynthArgs& a) {
   return 0;
 }
 
-const Registration registration(45, [](CLI::App& app) -> Runner {
+const Registration registration(45, "synth", [](CLI::App& app) -> Runner {
   auto a = std::make_shared<SynthArgs>();
   auto* synth = app.add_subcommand("synth", "Synthetic ground motion: filtered white noise, optionally spectrum-matched");
   synth->add_option("--spectrum", a->spectrum, "kt (Kanai-Tajimi) or cp (Clough-Penzien, default)");

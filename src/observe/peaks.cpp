@@ -18,11 +18,6 @@ void PeakObserver::observe(const State& s) {
   drift_.update({s.t, s.x1 - s.x2, s.v1 - s.v2, acc1 - acc2}, s.t_switch);
   f1_.update(s.f1, s.t);
   f2_.update(s.f2, s.t);
-  peaks_.x1 = x1_.peak();
-  peaks_.x2 = x2_.peak();
-  peaks_.f1 = f1_.peak();
-  peaks_.f2 = f2_.peak();
-  peaks_.drift = drift_.peak();
   peaks_.v1.update(s.v1, s.t);
   peaks_.v2.update(s.v2, s.t);
   peaks_.a1.update(s.a1, s.t);
@@ -38,6 +33,15 @@ void PeakObserver::observe(const State& s) {
     stuck_q_.reset();
   }
   peaks_.ag.update(s.ag, s.t);
+}
+
+const Peaks& PeakObserver::peaks() const {
+  peaks_.x1 = x1_.peak();
+  peaks_.x2 = x2_.peak();
+  peaks_.f1 = f1_.peak();
+  peaks_.f2 = f2_.peak();
+  peaks_.drift = drift_.peak();
+  return peaks_;
 }
 
 }  // namespace adjoin

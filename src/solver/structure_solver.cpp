@@ -1065,7 +1065,8 @@ class StructureStepper {
     for (int k = 0; k < m.nv; ++k)
       if (m.viscous[static_cast<std::size_t>(k)].storey >= 0) st.storey_force[m.viscous[static_cast<std::size_t>(k)].storey] += ws.viscous_force[k];
     // The bilinear elements' forces, and the storeys' own laws' z (bilinear_step.hpp).
-    st.hyst.setZero(m.n);
+    // (Without bilinear or Bouc-Wen elements nothing writes z: zeroed once, not every step.)
+    if (m.nh > 0 || m.nw > 0 || st.hyst.size() != m.n) st.hyst.setZero(m.n);
     st.hyst_yield.resize(static_cast<std::size_t>(m.n), kNaN);
     double* force = st.storey_force.data();
     double* hyst = st.hyst.data();

@@ -67,17 +67,17 @@ class ChannelValues {
       const structure::Channel& c = channels_[k];
       const int link = c.index - 1;
       switch (c.quantity) {
-        case Quantity::displacement: plan_[kX].push_back({k, c.dof, -1, 1.0}); break;
-        case Quantity::absolute_acceleration: plan_[kAcceleration].push_back({k, c.dof, -1, 1.0}); break;
-        case Quantity::storey_shear: plan_[kStoreyForce].push_back({k, c.dof, -1, 1.0}); break;
-        case Quantity::link_force: plan_[kLinkForce].push_back({k, link, -1, 1.0}); break;
-        case Quantity::link_stroke: plan_[kLinkStroke].push_back({k, link, -1, 1.0}); break;
+        case Quantity::displacement: add(kX, {k, c.dof, -1, 1.0}); break;
+        case Quantity::absolute_acceleration: add(kAcceleration, {k, c.dof, -1, 1.0}); break;
+        case Quantity::storey_shear: add(kStoreyForce, {k, c.dof, -1, 1.0}); break;
+        case Quantity::link_force: add(kLinkForce, {k, link, -1, 1.0}); break;
+        case Quantity::link_stroke: add(kLinkStroke, {k, link, -1, 1.0}); break;
         case Quantity::drift:
         case Quantity::drift_ratio: {
           // x[dof] minus the floor below's, or the isolated base's (-1: the ground's 0).
           const int below = c.index > 1 ? c.dof - 1 : s.base_dof(c.building);
           const structure::Building& b = c.building == 'A' ? s.a : *s.b;
-          plan_[kX].push_back({k, c.dof, below, c.quantity == Quantity::drift ? 1.0 : b.heights[c.index - 1]});
+          add(kX, {k, c.dof, below, c.quantity == Quantity::drift ? 1.0 : b.heights[c.index - 1]});
           break;
         }
         default: other_.push_back(k);
@@ -92,6 +92,7 @@ class ChannelValues {
                                        state.link_force.data(), state.link_stroke.data()};
     for (int v = 0; v < kVectors; ++v) {
       const double* y = vectors[v];
+      for (const Copy& c : copies_[v]) out[c.channel] = y[c.i];
       for (const Term& t : plan_[v]) out[t.channel] = (y[t.i] - (t.j >= 0 ? y[t.j] : 0.0)) / t.divisor;
     }
     for (std::size_t k : other_) out[k] = channel_value(*s_, channels_[k], state);
@@ -104,9 +105,20 @@ class ChannelValues {
     int i, j;
     double divisor;
   };
+  // out[channel] = y[i]: most channels (the terms with j < 0 and divisor 1, which would give
+  // the same bits in twice the instructions: y - 0.0 and y / 1.0 are y).
+  struct Copy {
+    std::size_t channel;
+    int i;
+  };
   enum { kX, kAcceleration, kStoreyForce, kLinkForce, kLinkStroke, kVectors };
+  void add(int vector, const Term& t) {
+    if (t.j < 0 && t.divisor == 1.0) copies_[vector].push_back({t.channel, t.i});
+    else plan_[vector].push_back(t);
+  }
   const structure::Structure* s_ = nullptr;
   std::vector<structure::Channel> channels_;
+  std::vector<Copy> copies_[kVectors];
   std::vector<Term> plan_[kVectors];
   std::vector<std::size_t> other_;  // read by channel_value
 };

@@ -50,7 +50,11 @@ class EnergyObserver final : public Observer {
   double rho_ = 1.0;
   bool contact_law_ = false;
   std::size_t count_ = 0;
-  State previous_;
+  // The last sample's time and powers (ground, rods, damper, base friction).
+  struct Powers {
+    double t = 0.0, input = 0.0, rod1 = 0.0, rod2 = 0.0, friction = 0.0, base = 0.0;
+  };
+  Powers previous_;
   EnergyBalance balance_;
   std::vector<EnergyBalance> history_;
 };

@@ -20,6 +20,10 @@
 #if defined(__SSE2__)
 #include <emmintrin.h>
 #endif
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#include <immintrin.h>
+#define ADJOIN_PEAK_TABLE_AVX 1
+#endif
 
 #include "adjoin/observe/extremum.hpp"
 #include "adjoin/observe/peaks.hpp"
@@ -28,7 +32,8 @@ namespace adjoin {
 
 class PeakTable {
  public:
-  void reset(std::size_t smooth, std::size_t n) {
+  // (allow_avx = false: the SSE2 path even where the CPU has AVX, for the tests.)
+  void reset(std::size_t smooth, std::size_t n, bool allow_avx = true) {
     n_ = n;
     smooth_ = smooth;
     rows_.assign(4 * n_, 0.0);
@@ -37,6 +42,11 @@ class PeakTable {
     newest_ = 0;
     count_ = 0;
     t1_ = 0.0;
+#ifdef ADJOIN_PEAK_TABLE_AVX
+    avx_ = allow_avx && __builtin_cpu_supports("avx");
+#else
+    (void)allow_avx;
+#endif
   }
   std::size_t size() const { return n_; }
   // Where the samples of the next grid point go (size() of them).
@@ -64,6 +74,9 @@ class PeakTable {
   // vectorise this mix of compares itself), one at a time elsewhere.
   bool changes(std::size_t now) const {
     const double *y = at(now), *y1 = at(newest_), *y0 = at(newest_ + 3), *max = max_.data();
+#ifdef ADJOIN_PEAK_TABLE_AVX
+    if (avx_) return changes_avx(y, y1, y0, max, smooth_, n_);
+#endif
     std::size_t k = 0;
 #if defined(__SSE2__)
     const __m128d sign = _mm_set1_pd(-0.0), tie = _mm_set1_pd(kTie);
@@ -91,6 +104,37 @@ class PeakTable {
       if (std::fabs(y[k]) > max[k] * kTie) return true;
     return false;
   }
+
+#ifdef ADJOIN_PEAK_TABLE_AVX
+  // changes() four signals at a time where the CPU has AVX (chosen in reset()): the same
+  // tests, so the same answer.
+  __attribute__((target("avx"))) static bool changes_avx(const double* y, const double* y1, const double* y0,
+                                                         const double* max, std::size_t smooth, std::size_t n) {
+    const __m256d sign = _mm256_set1_pd(-0.0), tie = _mm256_set1_pd(kTie);
+    __m256d any = _mm256_setzero_pd();
+    std::size_t k = 0;
+    for (; k + 4 <= smooth; k += 4) {
+      const __m256d a = _mm256_andnot_pd(sign, _mm256_loadu_pd(y + k)), a1 = _mm256_andnot_pd(sign, _mm256_loadu_pd(y1 + k));
+      const __m256d a0 = _mm256_andnot_pd(sign, _mm256_loadu_pd(y0 + k)), m = _mm256_loadu_pd(max + k);
+      const __m256d local = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(a1, a0, _CMP_GE_OQ), _mm256_cmp_pd(a1, a, _CMP_GT_OQ)),
+                                          _mm256_cmp_pd(a1, m, _CMP_GE_OQ));
+      any = _mm256_or_pd(any, _mm256_or_pd(local, _mm256_cmp_pd(a, _mm256_mul_pd(m, tie), _CMP_GT_OQ)));
+    }
+    if (_mm256_movemask_pd(any) != 0) return true;
+    for (; k < smooth; ++k) {
+      const double a = std::fabs(y[k]), a1 = std::fabs(y1[k]);
+      if (a > max[k] * kTie || (a1 >= std::fabs(y0[k]) && a1 > a && a1 >= max[k])) return true;
+    }
+    for (; k + 4 <= n; k += 4) {
+      const __m256d a = _mm256_andnot_pd(sign, _mm256_loadu_pd(y + k));
+      any = _mm256_or_pd(any, _mm256_cmp_pd(a, _mm256_mul_pd(_mm256_loadu_pd(max + k), tie), _CMP_GT_OQ));
+    }
+    if (_mm256_movemask_pd(any) != 0) return true;
+    for (; k < n; ++k)
+      if (std::fabs(y[k]) > max[k] * kTie) return true;
+    return false;
+  }
+#endif
 
   // SmoothPeak::update and Peak::update, signal by signal.
   void update_each(std::size_t now, double t) {
@@ -120,6 +164,7 @@ class PeakTable {
   std::size_t newest_ = 0;
   long count_ = 0;    // grid points updated
   double t1_ = 0.0;   // the last one's time
+  bool avx_ = false;  // changes() takes the AVX path
 };
 
 }  // namespace adjoin

@@ -96,10 +96,12 @@ class PeakObserver final : public Observer {
  public:
   void begin(const RunInfo&) override;
   void observe(const State& s) override;
-  const Peaks& peaks() const { return peaks_; }
+  const Peaks& peaks() const;
 
  private:
-  Peaks peaks_;
+  // The refined peaks (x1, x2, f1, f2, drift) are the trackers' own and copied in only when
+  // peaks() is asked, not at every step; the others are kept here.
+  mutable Peaks peaks_;
   SmoothPeak f1_, f2_, stuck_q_;
   DerivativePeak x1_, x2_, drift_;
 };
