@@ -1,5 +1,7 @@
 #include "bilinear_lanes.hpp"
 
+#include "../detail/cpu_kernels.hpp"
+
 #include <cmath>
 
 namespace adjoin::detail {
@@ -31,7 +33,6 @@ BilinearStates::BilinearStates(const BilinearLayout& layout)
 namespace {
 
 using Index = Eigen::Index;
-#define ADJOIN_INLINE [[gnu::always_inline]] inline
 
 // (The flags and the kept force are selected, not branched on, so that the loops vectorise;
 // |q| <= bound is false for a NaN q, as bilinear_step.hpp's test, and for every q where the
@@ -89,16 +90,6 @@ ADJOIN_INLINE void chain_storeys_body(Index n, const double* __restrict offset, 
   }
 }
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define ADJOIN_KERNEL(ret, name, params, args)        \
-  ret name##_base params { return name##_body args; } \
-  __attribute__((target("avx2"))) ret name##_avx2 params { return name##_body args; }
-#define ADJOIN_HAVE_AVX2 1
-#else
-#define ADJOIN_KERNEL(ret, name, params, args) \
-  ret name##_base params { return name##_body args; }
-#endif
-
 ADJOIN_KERNEL(Index, chain_test,
               (Index n, Index count, const int* starts, const double* x, const double* k, const double* bound,
                const double* up, double* d, double* flag, double* q),
@@ -124,11 +115,11 @@ const BilinearKernels& baseline_bilinear_kernels() { return kBaseline; }
 
 const BilinearKernels& bilinear_kernels() {
 #ifdef ADJOIN_HAVE_AVX2
-  static const BilinearKernels& chosen = __builtin_cpu_supports("avx2") ? kAvx2 : kBaseline;
-  return chosen;
+  static const BilinearKernels& chosen = kernels_for_this_cpu(kBaseline, &kAvx2);
 #else
-  return kBaseline;
+  static const BilinearKernels& chosen = kernels_for_this_cpu(kBaseline, nullptr);
 #endif
+  return chosen;
 }
 
 int bilinear_test(const BilinearKernels& kernels, const BilinearLayout& layout, const double* x, BilinearStates& b, bool keep) {

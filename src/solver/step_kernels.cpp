@@ -1,12 +1,13 @@
 #include "step_kernels.hpp"
 
+#include "../detail/cpu_kernels.hpp"
+
 #include <cmath>
 
 namespace adjoin::detail {
 namespace {
 
 using Index = Eigen::Index;
-#define ADJOIN_INLINE [[gnu::always_inline]] inline
 
 ADJOIN_INLINE void free_rhs_body(Index n, const double* __restrict m, const double* __restrict x,
                                  const double* __restrict v, const double* __restrict cv, const double* __restrict p0,
@@ -109,16 +110,6 @@ ADJOIN_INLINE void some_columns_body(Index rows, Index stride, Index count, cons
   }
 }
 
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define ADJOIN_KERNEL(ret, name, params, args)        \
-  ret name##_base params { return name##_body args; } \
-  __attribute__((target("avx2"))) ret name##_avx2 params { return name##_body args; }
-#define ADJOIN_HAVE_AVX2 1
-#else
-#define ADJOIN_KERNEL(ret, name, params, args) \
-  ret name##_base params { return name##_body args; }
-#endif
-
 ADJOIN_KERNEL(void, free_rhs,
               (Index n, const double* m, const double* x, const double* v, const double* cv, const double* p0,
                const double* off, Tridiagonal k, double c, double s, double* x1, double* p, double* rhs),
@@ -158,11 +149,11 @@ const StepKernels& baseline_step_kernels() { return kBaseline; }
 
 const StepKernels& step_kernels() {
 #ifdef ADJOIN_HAVE_AVX2
-  static const StepKernels& chosen = __builtin_cpu_supports("avx2") ? kAvx2 : kBaseline;
-  return chosen;
+  static const StepKernels& chosen = kernels_for_this_cpu(kBaseline, &kAvx2);
 #else
-  return kBaseline;
+  static const StepKernels& chosen = kernels_for_this_cpu(kBaseline, nullptr);
 #endif
+  return chosen;
 }
 
 }  // namespace adjoin::detail
