@@ -53,14 +53,33 @@ double largest(const nlohmann::json& j) {
   return m;
 }
 
+// Values that rounding alone decides, so a build at another optimisation level (CI's sanitizer
+// build is -O1) may write another one: in si-record the damper sticks from 2.60 s to 4.32 s
+// with the stroke at its peak, constant there up to 1e-18 m of rounding, so the time at which
+// the companion run at 2h finds its peak stroke is anywhere in that interval (2.62 s in the
+// Release build, 4.08 s at -O1), and so is the error estimate of the peak's time.
+struct IllConditioned {
+  std::string case_name, path;
+};
+const std::vector<IllConditioned> kIllConditioned = {{"si-record", ".error_estimate.peaks.drift.t"}};
+
+std::vector<std::string> ill_conditioned_paths(const std::string& case_name) {
+  std::vector<std::string> out;
+  for (const auto& i : kIllConditioned)
+    if (i.case_name == case_name) out.push_back(i.path);
+  return out;
+}
+
 // Same keys in the same order, same strings and flags, numbers within 1e-10 of each other
 // (relative, with 1e-3 of the document's largest number as the floor of the scale, for
 // residuals near zero).
+// Numbers at the paths in `ill_conditioned` are only checked to be numbers (see kIllConditioned).
 void compare_json(const nlohmann::ordered_json& want, const nlohmann::ordered_json& got, const std::string& path,
-                  double scale) {
+                  double scale, const std::vector<std::string>& ill_conditioned) {
   INFO(path);
   if (want.is_number() && got.is_number()) {
-    CHECK(close(want.get<double>(), got.get<double>(), 1e-3 * scale, 1e-10));
+    if (std::find(ill_conditioned.begin(), ill_conditioned.end(), path) == ill_conditioned.end())
+      CHECK(close(want.get<double>(), got.get<double>(), 1e-3 * scale, 1e-10));
     return;
   }
   REQUIRE(want.type() == got.type());
@@ -70,10 +89,11 @@ void compare_json(const nlohmann::ordered_json& want, const nlohmann::ordered_js
     for (auto it = got.begin(); it != got.end(); ++it) gk.push_back(it.key());
     REQUIRE(wk == gk);
     for (const auto& k : wk)
-      if (k.find("wall_seconds") == std::string::npos) compare_json(want[k], got[k], path + "." + k, scale);
+      if (k.find("wall_seconds") == std::string::npos) compare_json(want[k], got[k], path + "." + k, scale, ill_conditioned);
   } else if (want.is_array()) {
     REQUIRE(want.size() == got.size());
-    for (std::size_t i = 0; i < want.size(); ++i) compare_json(want[i], got[i], path + "[" + std::to_string(i) + "]", scale);
+    for (std::size_t i = 0; i < want.size(); ++i)
+      compare_json(want[i], got[i], path + "[" + std::to_string(i) + "]", scale, ill_conditioned);
   } else {
     CHECK(want == got);
   }
@@ -198,7 +218,7 @@ TEST_CASE("two-block scenes write the files recorded before the pipeline was reb
       const std::string want = slurp(kData / c.name / f), got = slurp(out / f);
       if (f == "summary.json") {
         const auto w = nlohmann::ordered_json::parse(want), g = nlohmann::ordered_json::parse(got);
-        compare_json(w, g, "", largest(w));
+        compare_json(w, g, "", largest(w), ill_conditioned_paths(c.name));
       } else {
         compare_csv(want, got, f == "spectra.csv" ? 1e-9 : 1e-10);
       }
