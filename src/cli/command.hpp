@@ -4,8 +4,9 @@
 //
 // A command's `setup` adds its subcommand `name` (options, help) to the app and returns the
 // function that runs it once parsed; main() sets up only the command the command line names
-// (all of them when it names none: --help, --version, a typo). Runners return an exit status or throw adjoin::InputError (exit 2)
-// or adjoin::NumericalError (exit 3); main() turns those into "error: ..." on stderr.
+// (all of them when it names none: --help, --version, a typo), and checks that `name` is the
+// subcommand's. Runners return an exit status or throw adjoin::InputError (exit 2) or
+// adjoin::NumericalError (exit 3); main() turns those into "error: ..." on stderr.
 #include <CLI/CLI.hpp>
 #include <functional>
 #include <iostream>

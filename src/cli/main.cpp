@@ -5,6 +5,7 @@
 #include <exception>
 #include <new>
 #include <iostream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -91,7 +92,12 @@ int main(int argc, char** argv) {
     const std::size_t before = app.get_subcommands({}).size();
     cli::Runner runner = command.setup(app);
     auto subcommands = app.get_subcommands({});
-    if (subcommands.size() > before) runners.emplace_back(subcommands.back(), std::move(runner));
+    if (subcommands.size() > before) {
+      // The registered name is what argv[1] is matched against: it must be the subcommand's.
+      if (subcommands.back()->get_name() != command.name)
+        throw std::logic_error("command registered as '" + command.name + "' adds '" + subcommands.back()->get_name() + "'");
+      runners.emplace_back(subcommands.back(), std::move(runner));
+    }
   }
 
   try {
