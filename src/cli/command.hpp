@@ -2,10 +2,10 @@
 // The adjoin program's commands register themselves: each src/cli/<command>.cpp defines one
 // static Registration, so adding a command touches no other file.
 //
-// A command's `setup` adds its subcommand `name` (options, help) to the app and returns the
-// function that runs it once parsed; main() sets up only the command the command line names
-// (all of them when it names none: --help, --version, a typo), and checks that `name` is the
-// subcommand's. Runners return an exit status or throw adjoin::InputError (exit 2) or
+// main() adds the subcommand `name` with its `description` to the app, and the command's
+// `setup` gives it its options and returns the function that runs it once parsed. main() sets
+// up only the command the command line names (all of them when it names none: --help,
+// --version, a typo). Runners return an exit status or throw adjoin::InputError (exit 2) or
 // adjoin::NumericalError (exit 3); main() turns those into "error: ..." on stderr.
 #include <CLI/CLI.hpp>
 #include <functional>
@@ -18,15 +18,17 @@
 namespace adjoin::cli {
 
 using Runner = std::function<int()>;
-using Setup = std::function<Runner(CLI::App& app)>;
+using Setup = std::function<Runner(CLI::App* subcommand)>;
 
 struct Registration {
-  Registration(int order, std::string name, Setup setup);  // lower order lists first in --help
+  // Lower order lists first in --help.
+  Registration(int order, std::string name, std::string description, Setup setup);
 };
 
 struct RegisteredCommand {
   int order;
-  std::string name;  // the subcommand's name, as `setup` adds it
+  std::string name;  // the subcommand's name: `adjoin <name> ...`
+  std::string description;
   Setup setup;
 };
 std::vector<RegisteredCommand>& registry();

@@ -241,9 +241,9 @@ int write_and_print(const ConvergeArgs& args, const ConvergenceResult& result, c
   return 0;
 }
 
-const Registration registration(40, "converge", [](CLI::App& app) -> Runner {
+const Registration registration(40, "converge", "Error against run time for each scheme and history engine on a ladder of steps",
+                                [](CLI::App* sub) -> Runner {
   auto args = std::make_shared<ConvergeArgs>();
-  auto* sub = app.add_subcommand("converge", "Error against run time for each scheme and history engine on a ladder of steps");
   sub->add_option("scene", args->scene, "Scene file (TOML)")->required();
   sub->add_option("--set", args->overrides, "Override a scene key by dotted path")->allow_extra_args(false);
   sub->add_option("--unset", args->unsets, "Remove a scene key or section before the --set overrides (e.g. --unset link)")

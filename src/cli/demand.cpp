@@ -79,9 +79,9 @@ int demand_command(const DemandArgs& args) {
   return 0;
 }
 
-const Registration registration(52, "demand", [](CLI::App& app) -> Runner {
+const Registration registration(52, "demand", "Fit a demand model ln(response) = a + b ln(IM) to a sweep over ground motions",
+                                [](CLI::App* sub) -> Runner {
   auto args = std::make_shared<DemandArgs>();
-  auto* sub = app.add_subcommand("demand", "Fit a demand model ln(response) = a + b ln(IM) to a sweep over ground motions");
   sub->add_option("table", args->table, "The sweep's table (sweep.csv)")->required();
   sub->add_option("--response", args->response, "Response column: drift (default), x1, x2, f1, f2, a1_abs, a2_abs, ...");
   sub->add_option("--im", args->im, "Intensity measure: pga (default) or sa:T (a period of the sweep's im_periods)");

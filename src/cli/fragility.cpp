@@ -255,9 +255,9 @@ int fragility_command(const FragilityArgs& args) {
                      "the fits were written to " + args.out);
 }
 
-const Registration registration(54, "fragility", [](CLI::App& app) -> Runner {
+const Registration registration(54, "fragility", "Fit lognormal fragility curves P(event | IM) to the runs of `adjoin ida`",
+                                [](CLI::App* sub) -> Runner {
   auto args = std::make_shared<FragilityArgs>();
-  auto* sub = app.add_subcommand("fragility", "Fit lognormal fragility curves P(event | IM) to the runs of `adjoin ida`");
   sub->add_option("tables", args->tables, "ida.csv of `adjoin ida` (record,im,scale,<edp>...); several: one design each")
       ->required();
   sub->add_option("--event", args->event,

@@ -394,9 +394,9 @@ int ida_command(const IdaArgs& args) {
   return ida_local(args);
 }
 
-const Registration registration(49, "ida", [](CLI::App& app) -> Runner {
+const Registration registration(49, "ida", "Incremental dynamic analysis: a scene x a suite x IM levels (stripes or tracing): ida.csv",
+                                [](CLI::App* sub) -> Runner {
   auto args = std::make_shared<IdaArgs>();
-  auto* sub = app.add_subcommand("ida", "Incremental dynamic analysis: a scene x a suite x IM levels (stripes or tracing): ida.csv");
   sub->add_option("scene", args->scene, "Base scene (TOML); its ground is replaced by each record")->required();
   sub->add_option("--suite", args->suite, "Records: files, or folders of them (files a reader recognises)")->required();
   sub->add_option("--im", args->im, "Intensity measure: pga, or sa:T (the 5 %-damped PSA at T s), in g")->required();

@@ -178,10 +178,9 @@ int joint_command(const JointArgs& args) {
   return 0;
 }
 
-const Registration registration(48, "joint", [](CLI::App& app) -> Runner {
+const Registration registration(48, "joint", "Minimum seismic joint: the smallest gap with which the floors never touch (bisection over runs, and directly from one run)",
+                                [](CLI::App* sub) -> Runner {
   auto args = std::make_shared<JointArgs>();
-  auto* sub = app.add_subcommand("joint", "Minimum seismic joint: the smallest gap with which the floors never touch "
-                                          "(bisection over runs, and directly from one run)");
   sub->add_option("scene", args->scene, "Scene file (TOML)")->required();
   sub->add_option("--set", args->overrides, "Override a scene key by dotted path, e.g. --set solver.scheme=implicit")
       ->allow_extra_args(false);

@@ -20,8 +20,8 @@ std::vector<RegisteredCommand>& registry() {
   return commands;
 }
 
-Registration::Registration(int order, std::string name, Setup setup) {
-  registry().push_back(RegisteredCommand{order, std::move(name), std::move(setup)});
+Registration::Registration(int order, std::string name, std::string description, Setup setup) {
+  registry().push_back(RegisteredCommand{order, std::move(name), std::move(description), std::move(setup)});
 }
 
 namespace {
@@ -89,15 +89,8 @@ int main(int argc, char** argv) {
 
   std::vector<std::pair<CLI::App*, cli::Runner>> runners;
   for (auto& command : cli::commands_to_set_up(argc, argv)) {
-    const std::size_t before = app.get_subcommands({}).size();
-    cli::Runner runner = command.setup(app);
-    auto subcommands = app.get_subcommands({});
-    if (subcommands.size() > before) {
-      // The registered name is what argv[1] is matched against: it must be the subcommand's.
-      if (subcommands.back()->get_name() != command.name)
-        throw std::logic_error("command registered as '" + command.name + "' adds '" + subcommands.back()->get_name() + "'");
-      runners.emplace_back(subcommands.back(), std::move(runner));
-    }
+    CLI::App* sub = app.add_subcommand(command.name, command.description);
+    runners.emplace_back(sub, command.setup(sub));
   }
 
   try {

@@ -121,9 +121,9 @@ int modes_command(const ModesArgs& args) {
   return 0;
 }
 
-const Registration registration(15, "modes", [](CLI::App& app) -> Runner {
+const Registration registration(15, "modes", "Natural periods, modal damping ratios and mode shapes of a scene's structure",
+                                [](CLI::App* sub) -> Runner {
   auto args = std::make_shared<ModesArgs>();
-  auto* sub = app.add_subcommand("modes", "Natural periods, modal damping ratios and mode shapes of a scene's structure");
   sub->add_option("scene", args->scene, "Scene file (TOML)")->required();
   sub->add_option("--set", args->overrides, "Override a scene key by dotted path, e.g. --set building.B.period=0.6")
       ->allow_extra_args(false);

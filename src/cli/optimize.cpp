@@ -77,9 +77,9 @@ int optimize_command(const OptimizeArgs& args) {
   return status;
 }
 
-const Registration registration(55, "optimize", [](CLI::App& app) -> Runner {
+const Registration registration(55, "optimize", "Optimise damper parameters and placements over a suite (a study file): optimum.json",
+                                [](CLI::App* sub) -> Runner {
   auto args = std::make_shared<OptimizeArgs>();
-  auto* sub = app.add_subcommand("optimize", "Optimise damper parameters and placements over a suite (a study file): optimum.json");
   sub->add_option("study", args->study, "Study file (TOML, [optimize]: docs/reference/study-file.md)")->required();
   sub->add_option("--jobs,-j", args->jobs, "Threads for each design's runs (default: all local cores)");
   sub->add_option("--format", args->format, "Figure format: png (default) or svg");

@@ -155,10 +155,10 @@ void common_options(CLI::App* sub, PlotArgs* a, const std::string& out_help) {
   sub->add_option("--size", a->size, "Image size WIDTHxHEIGHT in pixels (default 900x600)");
 }
 
-const Registration registration(60, "plot", [](CLI::App& app) -> Runner {
+const Registration registration(60, "plot", "Figures (PNG or SVG, with gnuplot) of runs, spectra, convergence studies and sweeps",
+                                [](CLI::App* plot) -> Runner {
   auto args = std::make_shared<PlotArgs>();
   auto reading = std::make_shared<ReadingArgs>();
-  auto* plot = app.add_subcommand("plot", "Figures (PNG or SVG, with gnuplot) of runs, spectra, convergence studies and sweeps");
   plot->require_subcommand(1);
 
   auto* run = plot->add_subcommand(

@@ -376,9 +376,9 @@ int info_command(const RecordArgs& args) {
 }
 
 // The options that say how to read a record, shared by the subcommands.
-const Registration registration(30, "record", [](CLI::App& app) -> Runner {
+const Registration registration(30, "record", "Recorded accelerograms: information, processing, Fourier spectra",
+                                [](CLI::App* record) -> Runner {
   auto args = std::make_shared<RecordArgs>();
-  auto* record = app.add_subcommand("record", "Recorded accelerograms: information, processing, Fourier spectra");
   record->require_subcommand(1);
   auto* info = record->add_subcommand(
       "info", "npts, dt, duration, PGA [g], PGV [m/s], PGD [m], Arias [m/s], CAV [m/s], D5-95 [s], predominant "

@@ -48,9 +48,9 @@ int run_command(const RunArgs& args) {
   return 0;
 }
 
-const Registration registration(10, "run", [](CLI::App& app) -> Runner {
+const Registration registration(10, "run", "Solve a scene: writes summary.json (and timeseries.csv if asked)",
+                                [](CLI::App* sub) -> Runner {
   auto args = std::make_shared<RunArgs>();
-  auto* sub = app.add_subcommand("run", "Solve a scene: writes summary.json (and timeseries.csv if asked)");
   sub->add_option("scene", args->scene, "Scene file (TOML)")->required();
   sub->add_option("--out", args->out, "Output folder (default out/<scene name>/)");
   sub->add_option("--set", args->overrides, "Override a scene key by dotted path, e.g. --set solver.h=0.001")

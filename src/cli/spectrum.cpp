@@ -538,11 +538,9 @@ int suite_spectra(const SpectrumArgs& args, const SpectrumOptions& elastic, Plot
   return suite_command(request);
 }
 
-const Registration registration(20, "spectrum", [](CLI::App& app) -> Runner {
+const Registration registration(20, "spectrum", "Elastic response spectra of a record: CSV period,damping,sd,sv,sa,psv,psa (s, -, m, m/s, g, m/s, g)",
+                                [](CLI::App* sub) -> Runner {
   auto args = std::make_shared<SpectrumArgs>();
-  auto* sub = app.add_subcommand(
-      "spectrum",
-      "Elastic response spectra of a record: CSV period,damping,sd,sv,sa,psv,psa (s, -, m, m/s, g, m/s, g)");
   sub->add_option("records", args->records,
                   "Accelerogram (PEER AT2, SMC, ..., column text); two for --rotd (the horizontal components); "
                   "several, or folders of them, with --suite")

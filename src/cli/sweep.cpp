@@ -272,10 +272,10 @@ void add_merge_options(CLI::App* sub, const std::shared_ptr<MergeArgs>& args) {
   sub->add_option("--out", args->out, "Merged table: FILE.csv (and FILE.json beside it), or a folder")->required();
 }
 
-const Registration registration(50, "sweep", [](CLI::App& app) -> Runner {
+const Registration registration(50, "sweep", "Run a sweep (base scene x axes x ground motions): sweep.csv and sweep.json",
+                                [](CLI::App* sub) -> Runner {
   auto args = std::make_shared<SweepArgs>();
   auto merge = std::make_shared<MergeArgs>();
-  auto* sub = app.add_subcommand("sweep", "Run a sweep (base scene x axes x ground motions): sweep.csv and sweep.json");
   sub->add_option("sweep", args->sweep, "Sweep file (TOML; docs/reference/sweep-file.md)");
   sub->add_option("--out", args->out, "Output folder (default out/<sweep name>/)");
   sub->add_option("--jobs,-j", args->jobs, "Threads (default: all local cores; under MPI, cores per local rank)");
@@ -286,9 +286,9 @@ const Registration registration(50, "sweep", [](CLI::App& app) -> Runner {
   return [args, merge, merge_sub]() { return merge_sub->parsed() ? merge_command(*merge) : sweep_command(*args); };
 });
 
-const Registration merge_registration(51, "sweep-merge", [](CLI::App& app) -> Runner {
+const Registration merge_registration(51, "sweep-merge", "The same as `adjoin sweep merge`",
+                                      [](CLI::App* sub) -> Runner {
   auto merge = std::make_shared<MergeArgs>();
-  auto* sub = app.add_subcommand("sweep-merge", "The same as `adjoin sweep merge`");
   add_merge_options(sub, merge);
   return [merge]() { return merge_command(*merge); };
 });

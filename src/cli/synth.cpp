@@ -215,9 +215,9 @@ int synth_command(SynthArgs& a) {
   return 0;
 }
 
-const Registration registration(45, "synth", [](CLI::App& app) -> Runner {
+const Registration registration(45, "synth", "Synthetic ground motion: filtered white noise, optionally spectrum-matched",
+                                [](CLI::App* synth) -> Runner {
   auto a = std::make_shared<SynthArgs>();
-  auto* synth = app.add_subcommand("synth", "Synthetic ground motion: filtered white noise, optionally spectrum-matched");
   synth->add_option("--spectrum", a->spectrum, "kt (Kanai-Tajimi) or cp (Clough-Penzien, default)");
   synth->add_option("--omega-g", a->omega_g, "Ground filter frequency [rad/s] (default 15.6)");
   synth->add_option("--zeta-g", a->zeta_g, "Ground filter damping ratio (default 0.6)");
