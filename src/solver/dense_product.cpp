@@ -15,8 +15,9 @@ constexpr Eigen::Index kEigenBlockColumns = 128;
 // Multiplies and adds separately, as Eigen's baseline kernel does (no fused multiply-add: that
 // rounds once, not twice, and would change the sums).
 // The column-major a has leading dimension `stride`.
-__attribute__((target("avx"))) void product_avx(const double* a, Eigen::Index stride, Eigen::Index rows, Eigen::Index cols,
-                                                const double* x, double* y) {
+__attribute__((target("avx"))) [[gnu::always_inline]] inline void product_avx_body(const double* a, Eigen::Index stride,
+                                                                                     Eigen::Index rows, Eigen::Index cols,
+                                                                                     const double* x, double* y) {
   Eigen::Index i = 0;
   for (; i + 16 <= rows; i += 16) {
     __m256d c0 = _mm256_setzero_pd(), c1 = _mm256_setzero_pd(), c2 = _mm256_setzero_pd(), c3 = _mm256_setzero_pd();
@@ -51,6 +52,16 @@ __attribute__((target("avx"))) void product_avx(const double* a, Eigen::Index st
     _mm256_maskstore_pd(y + i, mask, c0);
   }
 }
+__attribute__((target("avx"))) void product_avx(const double* a, Eigen::Index stride, Eigen::Index rows, Eigen::Index cols,
+                                                const double* x, double* y) {
+  product_avx_body(a, stride, rows, cols, x, y);
+}
+// Rows 0 .. rows - 1 into top, rows .. 2 rows - 1 into bottom: one call for both halves.
+__attribute__((target("avx"))) void product_avx_halves(const double* a, Eigen::Index stride, Eigen::Index rows, Eigen::Index cols,
+                                                       const double* x, double* top, double* bottom) {
+  product_avx_body(a, stride, rows, cols, x, top);
+  product_avx_body(a + rows, stride, rows, cols, x, bottom);
+}
 #endif
 
 // Eigen's product, out of line: inlined into apply() its set-up (six saved registers and a
@@ -76,6 +87,18 @@ void DenseProduct::apply(const double* x, double* y, Eigen::Index first, Eigen::
   }
 #endif
   product_eigen(a_, x, y, first, rows);
+}
+
+void DenseProduct::apply_halves(const double* x, double* top, double* bottom) const {
+  const Eigen::Index rows = a_.rows() / 2;
+#ifdef ADJOIN_AVX_PRODUCT
+  if (wide_) {
+    product_avx_halves(a_.data(), a_.rows(), rows, a_.cols(), x, top, bottom);
+    return;
+  }
+#endif
+  product_eigen(a_, x, top, 0, rows);
+  product_eigen(a_, x, bottom, rows, rows);
 }
 
 }  // namespace adjoin::detail

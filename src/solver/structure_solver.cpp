@@ -181,10 +181,8 @@ class StructureStepper {
     }
     // v_free = A^-1 rhs and its damping forces C v_free: the step's only O(n^2) work (with
     // dense C).
-    for (const StepBlock& b : ws.sm->blocks) {
-      b.step.apply(ws.rhs.data() + b.offset, ws.v_free.data() + b.offset, 0, b.size);
-      b.step.apply(ws.rhs.data() + b.offset, ws.cv_free.data() + b.offset, b.size, b.size);
-    }
+    for (const StepBlock& b : ws.sm->blocks)
+      b.step.apply_halves(ws.rhs.data() + b.offset, ws.v_free.data() + b.offset, ws.cv_free.data() + b.offset);
   }
 
   // The non-smooth part of the step: the contact pairs' impulses and the dampers' step forces.
