@@ -1020,6 +1020,10 @@ class StructureStepper {
                    Eigen::VectorXd* stick) {
     double* qd = q->data();
     double* sd = stick->data();
+    if (m.nf == 1) {
+      grid_force_single(cv, p, ag, phase[m.friction[0]], qd, sd);
+      return;
+    }
     ws.stuck.clear();
     for (int f = 0; f < m.nf; ++f) {
       const Phase ph = phase[m.friction[f]];
@@ -1044,6 +1048,19 @@ class StructureStepper {
       sd[f] = x[i];
       qd[f] = std::clamp(x[i], -m.limit[f], m.limit[f]);
     }
+  }
+  // grid_forces for one damper: the same numbers without the stuck set's lists and lookup.
+  void grid_force_single(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, double ag, Phase ph, double* q, double* stick) {
+    stick[0] = 0.0;
+    if (ph != Phase::stick) {
+      q[0] = ph == Phase::slip_right ? m.limit[0] : -m.limit[0];
+      return;
+    }
+    ws.btq_dampers[m.pi[0]] = 0.0;  // (B' q with q = 0: damper_bt's)
+    if (m.pj[0] >= 0) ws.btq_dampers[m.pj[0]] = 0.0;
+    const double x = ws.stuck_systems.single() * relative_accel(cv, p, ag, 0);
+    stick[0] = x;
+    q[0] = std::clamp(x, -m.limit[0], m.limit[0]);
   }
   // The force that would keep slipping damper f stuck at this instant, the others at their
   // forces q: b_f M^-1 (-C v - P - sum_{g != f} b_g q_g) / (b_f M^-1 b_f').
