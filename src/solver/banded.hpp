@@ -52,6 +52,11 @@ class Banded {
     // work. Each row is summed in column order, as above.)
     double* pd = p.data();
     const double* xd = x.data();
+    if (n == 2) {  // (the two-block scene's: the loops below, written out; never an entry off the band)
+      pd[0] = (0.0 + diag_[0] * xd[0]) + sup_[0] * xd[1];
+      pd[1] = (0.0 + sub_[0] * xd[0]) + diag_[1] * xd[1];
+      return;
+    }
     for (Eigen::Index i = 0; i < n; ++i) pd[i] = 0.0;
     for (const Entry& e : before_) pd[e.i] += e.value * xd[e.j];
     for (Eigen::Index i = 1; i < n; ++i) pd[i] += sub_[i - 1] * xd[i - 1];
