@@ -64,6 +64,18 @@ __attribute__((target("avx"))) void product_avx_halves(const double* a, Eigen::I
 }
 #endif
 
+// One or two rows (a building of one floor): plain loops, each y_i summed from 0 over the
+// columns in order, as the lanes above and Eigen sum it (a call to the vector kernel and its
+// masked lanes cost more than these few products).
+constexpr Eigen::Index kSmallRows = 2;
+void product_small(const double* a, Eigen::Index stride, Eigen::Index rows, Eigen::Index cols, const double* x, double* y) {
+  for (Eigen::Index i = 0; i < rows; ++i) {
+    double sum = 0.0;
+    for (Eigen::Index j = 0; j < cols; ++j) sum += a[j * stride + i] * x[j];
+    y[i] = sum;
+  }
+}
+
 // Eigen's product, out of line: inlined into apply() its set-up (six saved registers and a
 // stack frame) was paid by every call, the AVX kernel's too (35 instructions a call).
 [[gnu::noinline]] void product_eigen(const Eigen::MatrixXd& a, const double* x, double* y, Eigen::Index first,
@@ -80,6 +92,10 @@ DenseProduct::DenseProduct(Eigen::MatrixXd a) : a_(std::move(a)) {
 }
 
 void DenseProduct::apply(const double* x, double* y, Eigen::Index first, Eigen::Index rows) const {
+  if (rows <= kSmallRows) {
+    product_small(a_.data() + first, a_.rows(), rows, a_.cols(), x, y);
+    return;
+  }
 #ifdef ADJOIN_AVX_PRODUCT
   if (wide_) {
     product_avx(a_.data() + first, a_.rows(), rows, a_.cols(), x, y);
@@ -91,6 +107,11 @@ void DenseProduct::apply(const double* x, double* y, Eigen::Index first, Eigen::
 
 void DenseProduct::apply_halves(const double* x, double* top, double* bottom) const {
   const Eigen::Index rows = a_.rows() / 2;
+  if (rows <= kSmallRows) {
+    product_small(a_.data(), a_.rows(), rows, a_.cols(), x, top);
+    product_small(a_.data() + rows, a_.rows(), rows, a_.cols(), x, bottom);
+    return;
+  }
 #ifdef ADJOIN_AVX_PRODUCT
   if (wide_) {
     product_avx_halves(a_.data(), a_.rows(), rows, a_.cols(), x, top, bottom);

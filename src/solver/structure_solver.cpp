@@ -1018,12 +1018,14 @@ class StructureStepper {
   // `cv` is C v. Only the dampers' floors are needed: O(nf^2).
   void grid_forces(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, double ag, const std::vector<Phase>& phase, Eigen::VectorXd* q,
                    Eigen::VectorXd* stick) {
+    if (m.nf == 1) grid_force_single(cv, p, ag, phase[m.friction[0]], q->data(), stick->data());
+    else grid_forces_of_sets(cv, p, ag, phase, q, stick);
+  }
+  // (Out of line: its set-up is not paid by the one damper's path.)
+  [[gnu::noinline]] void grid_forces_of_sets(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, double ag, const std::vector<Phase>& phase,
+                                             Eigen::VectorXd* q, Eigen::VectorXd* stick) {
     double* qd = q->data();
     double* sd = stick->data();
-    if (m.nf == 1) {
-      grid_force_single(cv, p, ag, phase[m.friction[0]], qd, sd);
-      return;
-    }
     ws.stuck.clear();
     for (int f = 0; f < m.nf; ++f) {
       const Phase ph = phase[m.friction[f]];
