@@ -223,6 +223,29 @@ TEST_CASE("the dampers' box QP meets its optimality conditions", "[structure_sol
   }
 }
 
+TEST_CASE("one damper's held solve equals the held sets' general path bit for bit", "[structure_solver][box_qp]") {
+  // solve_held with one unknown and no candidate list takes S_00^-1 w0 (SubsetInverses::single);
+  // with the candidate list {0} it goes through the sets' lists and lookup: the same numbers.
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Eigen::MatrixXd s = Eigen::MatrixXd::Constant(1, 1, 0.1 + std::abs(u(random)) * std::pow(10.0, 3.0 * u(random)));
+    detail::BoxQp single(s), general(s);
+    const std::vector<int> candidates{0};
+    for (const char held : {char{1}, char{0}}) {
+      const Eigen::VectorXd w0 = Eigen::VectorXd::Constant(1, 5.0 * u(random));
+      const Eigen::VectorXd fixed = Eigen::VectorXd::Constant(1, held ? 0.0 : u(random));
+      Eigen::VectorXd q_single(1), q_general(1);
+      single.solve_held(w0, {held}, fixed, &q_single);
+      general.solve_held(w0, {held}, fixed, &q_general, &candidates);
+      INFO("trial " << trial << ", held " << int{held});
+      CHECK(q_single[0] == q_general[0]);
+      if (held) CHECK(q_single[0] == Approx(w0[0] / s(0, 0)).epsilon(1e-14));
+      else CHECK(q_single[0] == fixed[0]);
+    }
+  }
+}
+
 TEST_CASE("held-set inverses updated by bordering equal those inverted from scratch", "[structure_solver][box_qp]") {
   // A walk over index sets, each one or two elements from the last (as sticking dampers and
   // yielding storeys change them), on a symmetric positive definite matrix and on one with
@@ -578,6 +601,16 @@ TEST_CASE("the structure step's kernels equal the Eigen expressions they replace
                                                   : Eigen::VectorXd(a.middleRows(1, rows - 2) * x);
         CHECK(part.head(rows - 2) == part_e);
         CHECK(part.tail(2) == Eigen::VectorXd::Constant(2, 7.0));
+      }
+      if (rows % 2 == 0) {  // both halves in one call: each half's rows as apply() gives them
+        const Eigen::Index half = rows / 2;
+        Eigen::VectorXd top(half), bottom(half), top_e(half), bottom_e(half);
+        product.apply_halves(x.data(), top.data(), bottom.data());
+        product.apply(x.data(), top_e.data(), 0, half);
+        product.apply(x.data(), bottom_e.data(), half, half);
+        CHECK(top == top_e);
+        CHECK(bottom == bottom_e);
+        if (cols < 128) CHECK(bottom == Eigen::VectorXd(y_e.tail(half)));
       }
     }
 }

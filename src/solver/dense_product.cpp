@@ -64,7 +64,7 @@ __attribute__((target("avx"))) void product_avx_halves(const double* a, Eigen::I
 }
 #endif
 
-// One or two rows (a building of one floor): plain loops, each y_i summed from 0 over the
+// One or two rows (a building of one floor; below Eigen's blocks of columns): plain loops, each y_i summed from 0 over the
 // columns in order, as the lanes above and Eigen sum it (a call to the vector kernel and its
 // masked lanes cost more than these few products).
 constexpr Eigen::Index kSmallRows = 2;
@@ -92,7 +92,7 @@ DenseProduct::DenseProduct(Eigen::MatrixXd a) : a_(std::move(a)) {
 }
 
 void DenseProduct::apply(const double* x, double* y, Eigen::Index first, Eigen::Index rows) const {
-  if (rows <= kSmallRows) {
+  if (rows <= kSmallRows && a_.cols() < kEigenBlockColumns) {
     product_small(a_.data() + first, a_.rows(), rows, a_.cols(), x, y);
     return;
   }
@@ -107,7 +107,7 @@ void DenseProduct::apply(const double* x, double* y, Eigen::Index first, Eigen::
 
 void DenseProduct::apply_halves(const double* x, double* top, double* bottom) const {
   const Eigen::Index rows = a_.rows() / 2;
-  if (rows <= kSmallRows) {
+  if (rows <= kSmallRows && a_.cols() < kEigenBlockColumns) {
     product_small(a_.data(), a_.rows(), rows, a_.cols(), x, top);
     product_small(a_.data() + rows, a_.rows(), rows, a_.cols(), x, bottom);
     return;
