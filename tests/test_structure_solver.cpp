@@ -10,6 +10,7 @@
 
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "../src/solver/banded.hpp"
 #include "../src/solver/box_qp.hpp"
 #include "../src/solver/dense_product.hpp"
 #include "../src/solver/step_kernels.hpp"
@@ -612,6 +613,31 @@ TEST_CASE("the structure step's kernels equal the Eigen expressions they replace
         CHECK(bottom == bottom_e);
         if (cols < 128) CHECK(bottom == Eigen::VectorXd(y_e.tail(half)));
       }
+    }
+}
+
+TEST_CASE("the banded stiffness product equals the dense product bit for bit, one to six floors", "[structure_solver][kernels]") {
+  // (Two floors take a path of their own, the two-block scene's; three and more the band
+  // kernel, with entries right of the band; an entry left of it, the general loops.)
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int n = 1; n <= 6; ++n)
+    for (const bool left : {false, true}) {
+      Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
+      for (int i = 0; i < n; ++i) {
+        k(i, i) = 2.0 + u(random);
+        if (i + 1 < n) {
+          k(i, i + 1) = u(random);
+          k(i + 1, i) = u(random);
+        }
+      }
+      if (n >= 4) k(0, n - 1) = u(random);  // right of the band (a link's entry)
+      if (n >= 4 && left) k(n - 1, 0) = u(random);
+      Eigen::VectorXd x(n), p(n);
+      for (int i = 0; i < n; ++i) x[i] = u(random);
+      detail::Banded(k).apply(x, p);
+      INFO(n << " floors" << (left ? ", an entry left of the band" : ""));
+      CHECK(p == Eigen::VectorXd(k * x));
     }
 }
 

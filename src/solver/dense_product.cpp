@@ -105,7 +105,7 @@ void DenseProduct::apply(const double* x, double* y, Eigen::Index first, Eigen::
   product_eigen(a_, x, y, first, rows);
 }
 
-void DenseProduct::apply_halves(const double* x, double* top, double* bottom) const {
+void DenseProduct::apply_halves_any(const double* x, double* top, double* bottom) const {
   const Eigen::Index rows = a_.rows() / 2;
   if (rows <= kSmallRows && a_.cols() < kEigenBlockColumns) {
     product_small(a_.data(), a_.rows(), rows, a_.cols(), x, top);
