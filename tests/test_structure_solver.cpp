@@ -10,6 +10,7 @@
 
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "../src/solver/banded.hpp"
 #include "../src/solver/box_qp.hpp"
 #include "../src/solver/dense_product.hpp"
 #include "../src/solver/step_kernels.hpp"
@@ -219,6 +220,29 @@ TEST_CASE("the dampers' box QP meets its optimality conditions", "[structure_sol
     if (n == 1) {  // the closed form
       const double stuck = w0[0] / s(0, 0);
       CHECK(r.q[0] == Approx(std::clamp(stuck, -limit[0], limit[0])).epsilon(1e-14));
+    }
+  }
+}
+
+TEST_CASE("one damper's held solve equals the held sets' general path bit for bit", "[structure_solver][box_qp]") {
+  // solve_held with one unknown and no candidate list takes S_00^-1 w0 (SubsetInverses::single);
+  // with the candidate list {0} it goes through the sets' lists and lookup: the same numbers.
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 50; ++trial) {
+    const Eigen::MatrixXd s = Eigen::MatrixXd::Constant(1, 1, 0.1 + std::abs(u(random)) * std::pow(10.0, 3.0 * u(random)));
+    detail::BoxQp single(s), general(s);
+    const std::vector<int> candidates{0};
+    for (const char held : {char{1}, char{0}}) {
+      const Eigen::VectorXd w0 = Eigen::VectorXd::Constant(1, 5.0 * u(random));
+      const Eigen::VectorXd fixed = Eigen::VectorXd::Constant(1, held ? 0.0 : u(random));
+      Eigen::VectorXd q_single(1), q_general(1);
+      single.solve_held(w0, {held}, fixed, &q_single);
+      general.solve_held(w0, {held}, fixed, &q_general, &candidates);
+      INFO("trial " << trial << ", held " << int{held});
+      CHECK(q_single[0] == q_general[0]);
+      if (held) CHECK(q_single[0] == Approx(w0[0] / s(0, 0)).epsilon(1e-14));
+      else CHECK(q_single[0] == fixed[0]);
     }
   }
 }
@@ -579,6 +603,41 @@ TEST_CASE("the structure step's kernels equal the Eigen expressions they replace
         CHECK(part.head(rows - 2) == part_e);
         CHECK(part.tail(2) == Eigen::VectorXd::Constant(2, 7.0));
       }
+      if (rows % 2 == 0) {  // both halves in one call: each half's rows as apply() gives them
+        const Eigen::Index half = rows / 2;
+        Eigen::VectorXd top(half), bottom(half), top_e(half), bottom_e(half);
+        product.apply_halves(x.data(), top.data(), bottom.data());
+        product.apply(x.data(), top_e.data(), 0, half);
+        product.apply(x.data(), bottom_e.data(), half, half);
+        CHECK(top == top_e);
+        CHECK(bottom == bottom_e);
+        if (cols < 128) CHECK(bottom == Eigen::VectorXd(y_e.tail(half)));
+      }
+    }
+}
+
+TEST_CASE("the banded stiffness product equals the dense product bit for bit, one to six floors", "[structure_solver][kernels]") {
+  // (Two floors take a path of their own, the two-block scene's; three and more the band
+  // kernel, with entries right of the band; an entry left of it, the general loops.)
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int n = 1; n <= 6; ++n)
+    for (const bool left : {false, true}) {
+      Eigen::MatrixXd k = Eigen::MatrixXd::Zero(n, n);
+      for (int i = 0; i < n; ++i) {
+        k(i, i) = 2.0 + u(random);
+        if (i + 1 < n) {
+          k(i, i + 1) = u(random);
+          k(i + 1, i) = u(random);
+        }
+      }
+      if (n >= 4) k(0, n - 1) = u(random);  // right of the band (a link's entry)
+      if (n >= 4 && left) k(n - 1, 0) = u(random);
+      Eigen::VectorXd x(n), p(n);
+      for (int i = 0; i < n; ++i) x[i] = u(random);
+      detail::Banded(k).apply(x, p);
+      INFO(n << " floors" << (left ? ", an entry left of the band" : ""));
+      CHECK(p == Eigen::VectorXd(k * x));
     }
 }
 

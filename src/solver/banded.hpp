@@ -43,6 +43,18 @@ class Banded {
   // p = K x (p not x).
   void apply(const Eigen::VectorXd& x, Eigen::VectorXd& p) const {
     const Eigen::Index n = x.size();
+    if (n == 2) {  // (the two-block scene's: apply_any's sums, written out; never an entry off the band)
+      p[0] = (0.0 + diag_[0] * x[0]) + sup_[0] * x[1];
+      p[1] = (0.0 + sub_[0] * x[0]) + diag_[1] * x[1];
+      return;
+    }
+    apply_any(x, p);
+  }
+
+ private:
+  // (Out of line: the two floors' path above pays none of its set-up.)
+  [[gnu::noinline]] void apply_any(const Eigen::VectorXd& x, Eigen::VectorXd& p) const {
+    const Eigen::Index n = x.size();
     if (banded()) {
       step_kernels().band(n, diagonals(), x.data(), p.data());
       add_after(x, p);
@@ -59,6 +71,7 @@ class Banded {
     for (Eigen::Index i = 0; i + 1 < n; ++i) pd[i] += sup_[i] * xd[i + 1];
     for (const Entry& e : after_) pd[e.i] += e.value * xd[e.j];
   }
+ public:
   // (K x)_k alone, summed as apply() sums it; it reads x at columns() of k.
   double row(int k, const Eigen::VectorXd& x) const {
     const int n = static_cast<int>(diag_.size());

@@ -136,6 +136,10 @@ void BoxQp::solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held,
   const int n = static_cast<int>(w0.size());
   double* qd = q->data();
   const double* fd = fixed.data();
+  if (n == 1 && candidates == nullptr) {  // one damper: held, S_00^-1 w0 (as below); else fixed
+    qd[0] = held[0] != 0 ? inverses_.single() * w0[0] : fd[0];
+    return;
+  }
   std::copy_n(fd, n, qd);
   // The held unknowns, and the fixed forces that are not zero (with bilinear elements most
   // are), listed in one pass without a branch (scratch_ holds n + 1 places for each list).

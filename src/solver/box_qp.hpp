@@ -79,6 +79,15 @@ class SubsetInverses {
     return find(set);
   }
   const Eigen::MatrixXd& matrix() const { return s_; }
+  // One unknown's S_00^-1: the inverse of(set {0}) holds, kept after the first call (so that a
+  // one-damper step need not look its set up).
+  double single() {
+    if (!single_known_) {
+      single_ = of(std::vector<int>{0}).inverse(0, 0);
+      single_known_ = true;
+    }
+    return single_;
+  }
 
  private:
   System& find(const std::vector<int>& set);
@@ -101,6 +110,8 @@ class SubsetInverses {
   System* last_ = nullptr;
   const std::vector<int>* before_key_ = nullptr;  // ... and the one before it
   System* before_ = nullptr;
+  double single_ = 0.0;  // single()'s
+  bool single_known_ = false;
 };
 
 // The same for many problems with one S (a time loop's: the Delassus matrix is constant for a

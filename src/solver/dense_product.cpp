@@ -15,8 +15,9 @@ constexpr Eigen::Index kEigenBlockColumns = 128;
 // Multiplies and adds separately, as Eigen's baseline kernel does (no fused multiply-add: that
 // rounds once, not twice, and would change the sums).
 // The column-major a has leading dimension `stride`.
-__attribute__((target("avx"))) void product_avx(const double* a, Eigen::Index stride, Eigen::Index rows, Eigen::Index cols,
-                                                const double* x, double* y) {
+__attribute__((target("avx"))) [[gnu::always_inline]] inline void product_avx_body(const double* a, Eigen::Index stride,
+                                                                                     Eigen::Index rows, Eigen::Index cols,
+                                                                                     const double* x, double* y) {
   Eigen::Index i = 0;
   for (; i + 16 <= rows; i += 16) {
     __m256d c0 = _mm256_setzero_pd(), c1 = _mm256_setzero_pd(), c2 = _mm256_setzero_pd(), c3 = _mm256_setzero_pd();
@@ -51,7 +52,29 @@ __attribute__((target("avx"))) void product_avx(const double* a, Eigen::Index st
     _mm256_maskstore_pd(y + i, mask, c0);
   }
 }
+__attribute__((target("avx"))) void product_avx(const double* a, Eigen::Index stride, Eigen::Index rows, Eigen::Index cols,
+                                                const double* x, double* y) {
+  product_avx_body(a, stride, rows, cols, x, y);
+}
+// Rows 0 .. rows - 1 into top, rows .. 2 rows - 1 into bottom: one call for both halves.
+__attribute__((target("avx"))) void product_avx_halves(const double* a, Eigen::Index stride, Eigen::Index rows, Eigen::Index cols,
+                                                       const double* x, double* top, double* bottom) {
+  product_avx_body(a, stride, rows, cols, x, top);
+  product_avx_body(a + rows, stride, rows, cols, x, bottom);
+}
 #endif
+
+// One or two rows (a building of one floor; below Eigen's blocks of columns): plain loops, each y_i summed from 0 over the
+// columns in order, as the lanes above and Eigen sum it (a call to the vector kernel and its
+// masked lanes cost more than these few products).
+constexpr Eigen::Index kSmallRows = 2;
+void product_small(const double* a, Eigen::Index stride, Eigen::Index rows, Eigen::Index cols, const double* x, double* y) {
+  for (Eigen::Index i = 0; i < rows; ++i) {
+    double sum = 0.0;
+    for (Eigen::Index j = 0; j < cols; ++j) sum += a[j * stride + i] * x[j];
+    y[i] = sum;
+  }
+}
 
 // Eigen's product, out of line: inlined into apply() its set-up (six saved registers and a
 // stack frame) was paid by every call, the AVX kernel's too (35 instructions a call).
@@ -69,6 +92,10 @@ DenseProduct::DenseProduct(Eigen::MatrixXd a) : a_(std::move(a)) {
 }
 
 void DenseProduct::apply(const double* x, double* y, Eigen::Index first, Eigen::Index rows) const {
+  if (rows <= kSmallRows && a_.cols() < kEigenBlockColumns) {
+    product_small(a_.data() + first, a_.rows(), rows, a_.cols(), x, y);
+    return;
+  }
 #ifdef ADJOIN_AVX_PRODUCT
   if (wide_) {
     product_avx(a_.data() + first, a_.rows(), rows, a_.cols(), x, y);
@@ -76,6 +103,23 @@ void DenseProduct::apply(const double* x, double* y, Eigen::Index first, Eigen::
   }
 #endif
   product_eigen(a_, x, y, first, rows);
+}
+
+void DenseProduct::apply_halves_any(const double* x, double* top, double* bottom) const {
+  const Eigen::Index rows = a_.rows() / 2;
+  if (rows <= kSmallRows && a_.cols() < kEigenBlockColumns) {
+    product_small(a_.data(), a_.rows(), rows, a_.cols(), x, top);
+    product_small(a_.data() + rows, a_.rows(), rows, a_.cols(), x, bottom);
+    return;
+  }
+#ifdef ADJOIN_AVX_PRODUCT
+  if (wide_) {
+    product_avx_halves(a_.data(), a_.rows(), rows, a_.cols(), x, top, bottom);
+    return;
+  }
+#endif
+  product_eigen(a_, x, top, 0, rows);
+  product_eigen(a_, x, bottom, rows, rows);
 }
 
 }  // namespace adjoin::detail

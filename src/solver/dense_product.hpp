@@ -16,9 +16,20 @@ class DenseProduct {
   void apply(const double* x, double* y) const { apply(x, y, 0, a_.rows()); }
   // The rows first .. first + rows - 1 of A x, into y[0 .. rows - 1].
   void apply(const double* x, double* y, Eigen::Index first, Eigen::Index rows) const;
+  // The two halves of A x (A has an even number of rows) into top and bottom, in one call:
+  // apply(x, top, 0, r) and apply(x, bottom, r, r) for r = rows / 2, the same numbers.
+  void apply_halves(const double* x, double* top, double* bottom) const {
+    if (a_.rows() == 2 && a_.cols() == 1) {  // (a building of one floor: two products, inline)
+      top[0] = 0.0 + a_(0, 0) * x[0];
+      bottom[0] = 0.0 + a_(1, 0) * x[0];
+      return;
+    }
+    apply_halves_any(x, top, bottom);
+  }
   const Eigen::MatrixXd& matrix() const { return a_; }
 
  private:
+  void apply_halves_any(const double* x, double* top, double* bottom) const;
   Eigen::MatrixXd a_;
   bool wide_ = false;  // the AVX kernel applies
 };

@@ -181,10 +181,8 @@ class StructureStepper {
     }
     // v_free = A^-1 rhs and its damping forces C v_free: the step's only O(n^2) work (with
     // dense C).
-    for (const StepBlock& b : ws.sm->blocks) {
-      b.step.apply(ws.rhs.data() + b.offset, ws.v_free.data() + b.offset, 0, b.size);
-      b.step.apply(ws.rhs.data() + b.offset, ws.cv_free.data() + b.offset, b.size, b.size);
-    }
+    for (const StepBlock& b : ws.sm->blocks)
+      b.step.apply_halves(ws.rhs.data() + b.offset, ws.v_free.data() + b.offset, ws.cv_free.data() + b.offset);
   }
 
   // The non-smooth part of the step: the contact pairs' impulses and the dampers' step forces.
@@ -475,12 +473,13 @@ class StructureStepper {
   }
 
   // The dampers as they were: the stuck ones held, the slipping ones at their limits.
+  // (Every entry is written here, none zeroed first: a call to memset costs more than the
+  // few dampers' stores.)
   void hold_as_phased(const StructureState& now) {
-    ws.fixed.setZero();
     for (int f = 0; f < m.nf; ++f) {
       const Phase ph = now.link_phase[m.friction[f]];
       ws.hold[f] = ph == Phase::stick;
-      if (!ws.hold[f]) ws.fixed[f] = ph == Phase::slip_right ? m.limit[f] : -m.limit[f];
+      ws.fixed[f] = ws.hold[f] ? 0.0 : (ph == Phase::slip_right ? m.limit[f] : -m.limit[f]);
     }
     if (m.nh > 0) hold_bilinear();
   }
@@ -490,6 +489,7 @@ class StructureStepper {
   // their rows of the QP's right-hand side.
   void hold_bilinear() {
     std::fill(ws.hold.begin() + m.nf, ws.hold.end(), 0);
+    ws.fixed.tail(m.nh).setZero();
     for (int e : ws.bilinear_plastic) {
       const detail::BilinearElement& el = m.bilinear[e];
       const int k = m.nf + e;
@@ -570,15 +570,16 @@ class StructureStepper {
     trial_state(now, ws.q_trial);
     grid_forces(ws.cv1, ws.p1, ag_next, now.link_phase, &ws.q1, &ws.stick1);
     for (int f = 0; f < m.nf; ++f) ws.w1[f] = across(ws.v1, f);
-    std::fill(ws.hold2.begin(), ws.hold2.end(), false);
-    ws.fixed2.setZero();
+    // (decide_stuck and decide_slipping write each damper's hold2 and fixed2, decide_bilinear
+    // the elements')
     for (int f = 0; f < m.nf; ++f) {
       if (ws.hold[f]) decide_stuck(f, now);
       else decide_slipping(f, now);
     }
     if (m.nh > 0) decide_bilinear(now);
     // (Mostly the dampers go on as they were, and the trial's forces are the step's.)
-    if (same_as_trial()) ws.q_step = ws.q_trial;
+    // (Swapped, not copied: q_trial is written whole by the next solve_held before it is read.)
+    if (same_as_trial()) ws.q_step.swap(ws.q_trial);
     else solve_held(ws.hold2, ws.fixed2, &ws.q_step, ws.bilinear_active);
     // A starting damper that the others leave no room to slip stays stuck this step.
     if (std::any_of(ws.onset.begin(), ws.onset.end(), [](double t) { return !std::isnan(t); }))
@@ -688,16 +689,19 @@ class StructureStepper {
       } else {
         ws.onset[f] = std::min(detail::locate_onset(d * lim, ws.prev_stuck[f], ws.stick_force_prev[f], q_now, ws.stick1[f], -1.0), 0.0);
       }
+      ws.hold2[f] = false;
       ws.fixed2[f] = d * lim;
       ws.decided[f] = d > 0.0 ? DamperState::slip_positive : DamperState::slip_negative;
     } else if (std::abs(ws.stick1[f]) > lim) {
       const double d = ws.stick1[f] > 0.0 ? 1.0 : -1.0;
       const double theta = detail::locate_onset(d * lim, ws.prev_stuck[f], ws.stick_force_prev[f], q_now, ws.stick1[f], 0.0);
       ws.onset[f] = theta;
+      ws.hold2[f] = false;
       ws.fixed2[f] = theta * 0.5 * (q_now + d * lim) + (1.0 - theta) * d * lim;
       ws.decided[f] = d > 0.0 ? DamperState::slip_positive : DamperState::slip_negative;
     } else {
       ws.hold2[f] = true;
+      ws.fixed2[f] = 0.0;
       ws.decided[f] = DamperState::stick;
     }
   }
@@ -709,6 +713,7 @@ class StructureStepper {
     const double d = ws.fixed[f] > 0.0 ? 1.0 : -1.0;
     const double w_now = now.link_velocity[m.friction[f]];
     if (ws.w1[f] * d > 0.0) {  // slips on
+      ws.hold2[f] = false;
       ws.fixed2[f] = d * lim;
       ws.decided[f] = ws.states[f];
       return;
@@ -726,11 +731,13 @@ class StructureStepper {
     ws.kink_theta[f] = theta;
     if (std::abs(at) <= lim) {
       ws.hold2[f] = true;
+      ws.fixed2[f] = 0.0;
       ws.decided[f] = DamperState::stick;
       ws.stick_start_t[f] = now.t + theta * m.h;
       ws.stick_start_q[f] = at;
       ws.kink_jump[f] = at - d * lim;
     } else {
+      ws.hold2[f] = false;
       ws.fixed2[f] = lim * d * (2.0 * theta - 1.0);
       ws.decided[f] = d > 0.0 ? DamperState::slip_negative : DamperState::slip_positive;
       ws.kink_jump[f] = -2.0 * d * lim;
@@ -811,7 +818,11 @@ class StructureStepper {
   // mass-weighted mean, which moves them by rounding only).
   void stick_exact(StructureState& next) {
     // (touched: the stuck dampers' floors, ascending, from damper_dofs: sorted and unique.)
-    std::fill(ws.touched_flag.begin(), ws.touched_flag.end(), 0);
+    // (every entry is some damper's floor: cleared there, without a call to memset)
+    for (int f = 0; f < m.nf; ++f) {
+      ws.touched_flag[m.pi[f]] = 0;
+      if (m.pj[f] >= 0) ws.touched_flag[m.pj[f]] = 0;
+    }
     for (int f = 0; f < m.nf; ++f)
       if (ws.states[f] == DamperState::stick) {
         ws.touched_flag[m.pi[f]] = 1;
@@ -980,7 +991,11 @@ class StructureStepper {
   }
   void damper_bt(const Eigen::VectorXd& q) {
     double* out = ws.btq_dampers.data();
-    std::fill_n(out, ws.btq_dampers.size(), 0.0);
+    // (every entry is some damper's floor: zeroed there, without a call to memset)
+    for (int f = 0; f < m.nf; ++f) {
+      out[m.pi[f]] = 0.0;
+      if (m.pj[f] >= 0) out[m.pj[f]] = 0.0;
+    }
     for (int f = 0; f < m.nf; ++f) {
       out[m.pi[f]] += q[f];
       if (m.pj[f] >= 0) out[m.pj[f]] -= q[f];
@@ -1003,6 +1018,12 @@ class StructureStepper {
   // `cv` is C v. Only the dampers' floors are needed: O(nf^2).
   void grid_forces(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, double ag, const std::vector<Phase>& phase, Eigen::VectorXd* q,
                    Eigen::VectorXd* stick) {
+    if (m.nf == 1) grid_force_single(cv, p, ag, phase[m.friction[0]], q->data(), stick->data());
+    else grid_forces_of_sets(cv, p, ag, phase, q, stick);
+  }
+  // (Out of line: its set-up is not paid by the one damper's path.)
+  [[gnu::noinline]] void grid_forces_of_sets(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, double ag, const std::vector<Phase>& phase,
+                                             Eigen::VectorXd* q, Eigen::VectorXd* stick) {
     double* qd = q->data();
     double* sd = stick->data();
     ws.stuck.clear();
@@ -1029,6 +1050,19 @@ class StructureStepper {
       sd[f] = x[i];
       qd[f] = std::clamp(x[i], -m.limit[f], m.limit[f]);
     }
+  }
+  // grid_forces for one damper: the same numbers without the stuck set's lists and lookup.
+  void grid_force_single(const Eigen::VectorXd& cv, const Eigen::VectorXd& p, double ag, Phase ph, double* q, double* stick) {
+    stick[0] = 0.0;
+    if (ph != Phase::stick) {
+      q[0] = ph == Phase::slip_right ? m.limit[0] : -m.limit[0];
+      return;
+    }
+    ws.btq_dampers[m.pi[0]] = 0.0;  // (B' q with q = 0: damper_bt's)
+    if (m.pj[0] >= 0) ws.btq_dampers[m.pj[0]] = 0.0;
+    const double x = ws.stuck_systems.single() * relative_accel(cv, p, ag, 0);
+    stick[0] = x;
+    q[0] = std::clamp(x, -m.limit[0], m.limit[0]);
   }
   // The force that would keep slipping damper f stuck at this instant, the others at their
   // forces q: b_f M^-1 (-C v - P - sum_{g != f} b_g q_g) / (b_f M^-1 b_f').

@@ -69,6 +69,7 @@ class ChannelObserver final : public StructureObserver {
     std::size_t powers = s.links.size() + bases_.size();
     for (const EnergyPart& p : parts_) powers += 2 + p.masses.size();
     last_powers_.assign(powers, 0.0);
+    powers_.assign(powers, 0.0);
     work_.assign(powers, 0.0);
     kinetic_.assign(parts_.size(), 0.0);
     last_phase_.assign(s.links.size() + bases_.size(), Phase::stick);
@@ -128,62 +129,27 @@ class ChannelObserver final : public StructureObserver {
   }
 
   // Powers at a grid point, integrated by the trapezoidal rule between grid points: per
-  // building its input, its inherent damping and each storey, then each link. Plain loops over
-  // arrays sized in begin(): the buildings are small (Eigen's dynamic-size products cost more
-  // to set up than to do here), and a step allocates nothing.
-#if defined(__GNUC__) && !defined(__clang__)
-  // (Loops of 3 to 8 terms: the vectoriser's checks and peeling cost more than they save.)
-  __attribute__((optimize("no-tree-vectorize")))
-#endif
+  // building its input, its inherent damping and each storey, then each link. The powers are
+  // made into an array (powers_), then every term is integrated in one pass over the arrays
+  // sized in begin() (work_[k] += dt/2 (power + its last value): independent terms, a loop the
+  // compiler vectorises); a step allocates nothing.
   void energy_step(const StructureState& st) {
-    // Each power term k is integrated as it is made: work_[k] += dt/2 (power + its last value).
-    const double half_dt = 0.5 * (st.t - last_t_);
-    double* __restrict work = work_.data();
-    double* __restrict last = last_powers_.data();
-    const bool first = first_;
+    double* __restrict power = powers_.data();
     std::size_t k = 0;
-    auto add = [&](double power) {
-      if (!first) work[k] += half_dt * (power + last[k]);
-      last[k++] = power;
-    };
-    for (std::size_t part = 0; part < parts_.size(); ++part) {
-      EnergyPart& p = parts_[part];
-      const std::size_t n = p.masses.size();
-      const double* __restrict v_abs = st.v.data() + p.offset;
-      const double* __restrict force = st.storey_force.data() + p.offset;
-      const double* __restrict mass = p.masses.data();
-      double* __restrict v = p.v.data();
-      // An isolated base (SPEC §7): its mass takes input and kinetic energy, the inherent
-      // damping acts on the floors' velocities relative to it, storey 1 deforms against it.
-      const double vb = p.base >= 0 ? st.v[p.base] : 0.0;
-      double momentum = p.base_mass * vb, twice_kinetic = p.base_mass * vb * vb;
-      for (std::size_t i = 0; i < n; ++i) {
-        momentum += mass[i] * v_abs[i];
-        twice_kinetic += mass[i] * v_abs[i] * v_abs[i];
-        v[i] = v_abs[i] - vb;
-      }
-      add(st.ag * momentum);  // input
-      kinetic_[part] = 0.5 * twice_kinetic;
-      double damping = 0.0;  // v' C v, C row-major
-      for (std::size_t i = 0; i < n; ++i) {
-        const double* __restrict row = p.c.data() + i * n;
-        double cv = 0.0;
-        for (std::size_t j = 0; j < n; ++j) cv += row[j] * v[j];
-        damping += v[i] * cv;
-      }
-      add(damping);  // inherent damping
-      double below = 0.0;  // storey i's deformation rate v_i - v_{i-1}
-      for (std::size_t i = 0; i < n; ++i) {
-        add(force[i] * (v[i] - below));
-        below = v[i];
-      }
-    }
-    for (std::size_t l = 0; l < s_.links.size(); ++l) add(st.link_force[l] * st.link_velocity[l]);
+    for (std::size_t part = 0; part < parts_.size(); ++part) k += building_powers(parts_[part], st, power + k, &kinetic_[part]);
+    for (std::size_t l = 0; l < s_.links.size(); ++l) power[k++] = st.link_force[l] * st.link_velocity[l];
     // Each isolator: its slider's power and its pendulum's, k_p x_b v_b.
     for (const Base& b : bases_) {
       const auto l = static_cast<Eigen::Index>(b.slider);
-      add(st.link_force[l] * st.link_velocity[l] + b.stiffness * st.x[b.dof] * st.v[b.dof]);
+      power[k++] = st.link_force[l] * st.link_velocity[l] + b.stiffness * st.x[b.dof] * st.v[b.dof];
     }
+    if (!first_) {
+      const double half_dt = 0.5 * (st.t - last_t_);
+      double* __restrict work = work_.data();
+      const double* __restrict last = last_powers_.data();
+      for (std::size_t i = 0; i < k; ++i) work[i] += half_dt * (power[i] + last[i]);
+    }
+    powers_.swap(last_powers_);  // (this step's powers are the next step's last)
     // The input so far (the contact check's scale), summed as energy() sums it.
     input_ = 0.0;
     input_ += work_[0];
@@ -345,7 +311,62 @@ class ChannelObserver final : public StructureObserver {
     std::vector<double> masses, c, v;
   };
   std::vector<EnergyPart> parts_;                    // A's, then B's
-  std::vector<double> last_powers_, work_;          // per power term (energy_step)
+
+  // A building's powers into `power`: its input, its inherent damping v'C v, each storey's;
+  // returns how many (2 + floors). Small buildings take a copy compiled for their number of
+  // floors (the loops unrolled, the velocities in registers: the dynamic-size loops' set-up
+  // and counting cost more than their few multiply-adds); the same operations in the same
+  // order either way.
+  static std::size_t building_powers(EnergyPart& p, const StructureState& st, double* power, double* kinetic) {
+    switch (p.masses.size()) {
+      case 1: return powers_of<1>(p, st, power, kinetic);
+      case 2: return powers_of<2>(p, st, power, kinetic);
+      case 3: return powers_of<3>(p, st, power, kinetic);
+      case 4: return powers_of<4>(p, st, power, kinetic);
+      case 5: return powers_of<5>(p, st, power, kinetic);
+      case 6: return powers_of<6>(p, st, power, kinetic);
+      case 7: return powers_of<7>(p, st, power, kinetic);
+      case 8: return powers_of<8>(p, st, power, kinetic);
+      default: return powers_of<0>(p, st, power, kinetic);
+    }
+  }
+  // N floors (0: any number, p.masses.size()).
+  template <std::size_t N>
+  static std::size_t powers_of(EnergyPart& p, const StructureState& st, double* __restrict power, double* kinetic) {
+    const std::size_t n = N > 0 ? N : p.masses.size();
+    const double* __restrict v_abs = st.v.data() + p.offset;
+    const double* __restrict force = st.storey_force.data() + p.offset;
+    const double* __restrict mass = p.masses.data();
+    double fixed[N > 0 ? N : 1];  // (N floors: the relative velocities kept in registers)
+    double* __restrict v = N > 0 ? fixed : p.v.data();
+    // An isolated base (SPEC §7): its mass takes input and kinetic energy, the inherent
+    // damping acts on the floors' velocities relative to it, storey 1 deforms against it.
+    const double vb = p.base >= 0 ? st.v[p.base] : 0.0;
+    double momentum = p.base_mass * vb, twice_kinetic = p.base_mass * vb * vb;
+    for (std::size_t i = 0; i < n; ++i) {
+      momentum += mass[i] * v_abs[i];
+      twice_kinetic += mass[i] * v_abs[i] * v_abs[i];
+      v[i] = v_abs[i] - vb;
+    }
+    power[0] = st.ag * momentum;  // input
+    *kinetic = 0.5 * twice_kinetic;
+    double damping = 0.0;  // v' C v, C row-major
+    for (std::size_t i = 0; i < n; ++i) {
+      const double* __restrict row = p.c.data() + i * n;
+      double cv = 0.0;
+      for (std::size_t j = 0; j < n; ++j) cv += row[j] * v[j];
+      damping += v[i] * cv;
+    }
+    power[1] = damping;  // inherent damping
+    double below = 0.0;  // storey i's deformation rate v_i - v_{i-1}
+    for (std::size_t i = 0; i < n; ++i) {
+      power[2 + i] = force[i] * (v[i] - below);
+      below = v[i];
+    }
+    return 2 + n;
+  }
+
+  std::vector<double> powers_, last_powers_, work_;  // per power term (energy_step): now, at the last grid point, integrated
   std::vector<double> kinetic_;                      // per building, at the last grid point
   double input_ = 0.0;                               // the input so far [J]
   std::vector<double> last_power_;

@@ -107,9 +107,11 @@ class PeakTable {
 
 #ifdef ADJOIN_PEAK_TABLE_AVX
   // changes() four signals at a time where the CPU has AVX (chosen in reset()): the same
-  // tests, so the same answer.
+  // tests, so the same answer. The last 1 to 3 signals of each kind go in masked lanes (read
+  // as 0 with a peak of 0, which no test passes), not one by one.
   __attribute__((target("avx"))) static bool changes_avx(const double* y, const double* y1, const double* y0,
                                                          const double* max, std::size_t smooth, std::size_t n) {
+    alignas(32) static constexpr long long kLanes[8] = {-1, -1, -1, -1, 0, 0, 0, 0};  // `left` lanes on at 4 - left
     const __m256d sign = _mm256_set1_pd(-0.0), tie = _mm256_set1_pd(kTie);
     __m256d any = _mm256_setzero_pd();
     std::size_t k = 0;
@@ -120,19 +122,25 @@ class PeakTable {
                                           _mm256_cmp_pd(a1, m, _CMP_GE_OQ));
       any = _mm256_or_pd(any, _mm256_or_pd(local, _mm256_cmp_pd(a, _mm256_mul_pd(m, tie), _CMP_GT_OQ)));
     }
-    if (_mm256_movemask_pd(any) != 0) return true;
-    for (; k < smooth; ++k) {
-      const double a = std::fabs(y[k]), a1 = std::fabs(y1[k]);
-      if (a > max[k] * kTie || (a1 >= std::fabs(y0[k]) && a1 > a && a1 >= max[k])) return true;
+    if (k < smooth) {  // (the same, masked)
+      const __m256i mask = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kLanes + 4 - (smooth - k)));
+      const __m256d a = _mm256_andnot_pd(sign, _mm256_maskload_pd(y + k, mask));
+      const __m256d a1 = _mm256_andnot_pd(sign, _mm256_maskload_pd(y1 + k, mask));
+      const __m256d a0 = _mm256_andnot_pd(sign, _mm256_maskload_pd(y0 + k, mask)), m = _mm256_maskload_pd(max + k, mask);
+      const __m256d local = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(a1, a0, _CMP_GE_OQ), _mm256_cmp_pd(a1, a, _CMP_GT_OQ)),
+                                          _mm256_cmp_pd(a1, m, _CMP_GE_OQ));
+      any = _mm256_or_pd(any, _mm256_or_pd(local, _mm256_cmp_pd(a, _mm256_mul_pd(m, tie), _CMP_GT_OQ)));
     }
-    for (; k + 4 <= n; k += 4) {
+    for (k = smooth; k + 4 <= n; k += 4) {
       const __m256d a = _mm256_andnot_pd(sign, _mm256_loadu_pd(y + k));
       any = _mm256_or_pd(any, _mm256_cmp_pd(a, _mm256_mul_pd(_mm256_loadu_pd(max + k), tie), _CMP_GT_OQ));
     }
-    if (_mm256_movemask_pd(any) != 0) return true;
-    for (; k < n; ++k)
-      if (std::fabs(y[k]) > max[k] * kTie) return true;
-    return false;
+    if (k < n) {  // (the same, masked)
+      const __m256i mask = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kLanes + 4 - (n - k)));
+      const __m256d a = _mm256_andnot_pd(sign, _mm256_maskload_pd(y + k, mask));
+      any = _mm256_or_pd(any, _mm256_cmp_pd(a, _mm256_mul_pd(_mm256_maskload_pd(max + k, mask), tie), _CMP_GT_OQ));
+    }
+    return _mm256_movemask_pd(any) != 0;
   }
 #endif
 
