@@ -31,11 +31,18 @@ SolverOptions two_block_options(const RunSpec& spec) {
 }
 
 double Report::unmodelled_from() const {
-  if (two_block) return two_block->outside_model_from.value_or(std::numeric_limits<double>::quiet_NaN());
   double t = std::numeric_limits<double>::quiet_NaN();
   for (const auto& c : contacts)
     if (c.outside_model() && !(t <= c.unmodelled_from)) t = c.unmodelled_from;
   return t;
+}
+
+Peak Report::peak(const std::string& channel) const { return find_peak(peaks, channel); }
+
+double Report::last_value(const std::string& channel) const {
+  for (const ChannelValue& v : last)
+    if (v.channel == channel) return v.value;
+  return 0.0;
 }
 
 namespace {
@@ -153,6 +160,27 @@ class AsStructure final : public Observer {
   std::size_t sliders_ = 0;  // the base friction's sliders (0 or 2)
 };
 
+// The pounding margin as the 1 + 1 structure's contact pair (its work: the energy observer's).
+ContactReport contact_report(const PoundingMargin& g, double work) {
+  ContactReport c;
+  c.model = g.model;
+  c.min_gap = g.min_gap;
+  c.t_min_gap = g.t_min_gap;
+  c.contact = g.contact;
+  c.t_first_contact = g.t_first_contact.value_or(0.0);
+  c.impact_list = g.impacts;
+  c.impacts = g.impacts.size();
+  c.force_max = g.force_max;
+  c.t_force_max = g.t_force_max;
+  c.penetration_max = g.penetration_max;
+  c.impulse = g.impulse;
+  c.impulse_max = g.impulse_max;
+  c.work = work;
+  c.dissipated = g.dissipated;
+  if (g.outside_model()) c.unmodelled_from = *g.t_first_contact;
+  return c;
+}
+
 Report run_two_block(const RunSpec& spec, const RunObservers& extra) {
   const OutputOptions& asked = spec.output;
   PeakObserver peaks;
@@ -182,13 +210,15 @@ Report run_two_block(const RunSpec& spec, const RunObservers& extra) {
 
   Report report;
   report.solver = simulate(two_block_options(spec), *spec.model, *spec.ground, observers);
-  TwoBlockReport& r = report.two_block.emplace();
-  r.final = last.last;
-  if (asked.phases) r.phases = phases.intervals();
-  if (asked.peaks) r.peaks = peaks.peaks();
-  if (asked.pounding) r.pounding = pounding.margin();
-  if (pounding.margin().outside_model()) r.outside_model_from = pounding.margin().t_first_contact;
-  if (asked.energy) r.energy = energy.balance();
+  const State& f = last.last;
+  report.last = {{"A.x1", f.x1}, {"B.x1", f.x2}, {"A.v1", f.v1}, {"B.v1", f.v2},
+                 {"A.shear1", f.f1}, {"B.shear1", f.f2}, {"link1.force", f.q}};
+  report.last_phase = f.phase;
+  report.t_last = f.t;
+  if (asked.phases) report.phases = phases.intervals();
+  if (asked.peaks) report.peaks = peaks.peaks();
+  if (asked.energy) report.energy = energy.balance();
+  report.contacts = {contact_report(pounding.margin(), energy.terms().contact)};
   if (accelerations) report.spectra = spectra_of(spec, *accelerations);
   return report;
 }

@@ -308,10 +308,12 @@ SeismicJoint two_block_joint(const RunSpec& scene, const SeismicJointOptions& op
     PairTrial p;
     p.min_gap = pounding.margin().min_gap * k.length;
     p.t_min_gap = pounding.margin().t_min_gap * k.time;
-    p.peak_a = peaks.peaks().x1.max_abs * k.length;
-    p.t_peak_a = peaks.peaks().x1.t * k.time;
-    p.peak_b = peaks.peaks().x2.max_abs * k.length;
-    p.t_peak_b = peaks.peaks().x2.t * k.time;
+    const std::vector<ChannelPeak> floors = peaks.peaks();
+    const Peak a = find_peak(floors, "A.x1"), b = find_peak(floors, "B.x1");
+    p.peak_a = a.max_abs * k.length;
+    p.t_peak_a = a.t * k.time;
+    p.peak_b = b.max_abs * k.length;
+    p.t_peak_b = b.t * k.time;
     Trial t;
     t.pairs.push_back(p);
     t.notes = law_note;
