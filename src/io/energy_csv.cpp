@@ -11,17 +11,17 @@ namespace adjoin {
 EnergyCsvWriter::EnergyCsvWriter(std::ostream& out, const Scales& scales, std::size_t every)
     : out_(out), scales_(scales), every_(every == 0 ? 1 : every) {}
 
-void EnergyCsvWriter::begin(const RunInfo& info) {
-  energy_.begin(info);
-  steps_ = info.steps;
+void EnergyCsvWriter::begin(const structure::Structure& s, const StructureSolverOptions& o) {
+  energy_.begin(s, o);
+  steps_ = o.steps();
   count_ = 0;
   buffer_.clear();
-  contact_law_ = info.model.contact.model != structure::ContactModel::none;
+  contact_law_ = s.contacts.at(0).law.model != structure::ContactModel::none;
   out_ << (contact_law_ ? "t,input,kinetic,rod1,rod2,friction,contact,contact_dissipated,residual\n"
                         : "t,input,kinetic,rod1,rod2,friction,residual\n");
 }
 
-void EnergyCsvWriter::observe(const State& s) {
+void EnergyCsvWriter::observe(const StructureState& s) {
   energy_.observe(s);
   const std::size_t index = count_++;
   if (index % every_ != 0 && index != steps_) return;

@@ -2,19 +2,22 @@
 
 namespace adjoin {
 
-void EnergyObserver::begin(const RunInfo& info) {
-  m_[0] = 1.0;
-  m_[1] = 1.0 / info.model.rho;
-  link_ = info.model.mu > 0.0;
-  contact_law_ = info.model.contact.model != structure::ContactModel::none;
+void EnergyObserver::begin(const structure::Structure& s, const StructureSolverOptions&) {
+  m_[0] = s.a.masses[0];
+  m_[1] = s.b->masses[0];
+  link_ = !s.links.empty();
+  sliders_ = s.ground_sliders().size() == 2;
+  contact_law_ = s.contacts.at(0).law.model != structure::ContactModel::none;
   count_ = 0;
   terms_ = EnergyTerms{};
 }
 
-void EnergyObserver::observe(const State& s) {
+void EnergyObserver::observe(const StructureState& s) {
   // This sample's powers: the right ends of this step's trapezoids, kept as the left ends of
-  // the next step's.
-  const double v[2] = {s.v1, s.v2}, force[2] = {s.f1, s.f2}, slider[2] = {s.qb1, s.qb2};
+  // the next step's. The base friction's sliders follow the link in the link arrays.
+  const double v[2] = {s.v[0], s.v[1]}, force[2] = {s.storey_force[0], s.storey_force[1]};
+  const Eigen::Index first_slider = link_ ? 1 : 0;
+  const double slider[2] = {sliders_ ? s.link_force[first_slider] : 0.0, sliders_ ? s.link_force[first_slider + 1] : 0.0};
   Powers now;
   now.t = s.t;
   for (int i = 0; i < 2; ++i) {
@@ -22,7 +25,7 @@ void EnergyObserver::observe(const State& s) {
     now.storey[i] = force[i] * v[i];
     now.base[i] = slider[i] * v[i];
   }
-  now.link = s.q * (s.v1 - s.v2);
+  now.link = (link_ ? s.link_force[0] : 0.0) * (v[0] - v[1]);
   EnergyTerms& e = terms_;
   if (count_ > 0) {
     const double half_dt = 0.5 * (s.t - previous_.t);
@@ -37,8 +40,8 @@ void EnergyObserver::observe(const State& s) {
   e.t = s.t;
   for (int i = 0; i < 2; ++i) e.kinetic[i] = 0.5 * m_[i] * v[i] * v[i];
   if (contact_law_) {
-    e.contact = s.contact_work;
-    e.contact_dissipated = s.contact_dissipated;
+    e.contact = s.contact_work[0];
+    e.contact_dissipated = s.contact_dissipated[0];
   }
   e.residual = e.total_input() - (e.total_kinetic() + e.storey[0] + e.storey[1] + e.link + e.contact);
   const double base = e.base[0] + e.base[1];

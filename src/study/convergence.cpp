@@ -18,19 +18,21 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Every degree of freedom's displacement at every `stride`-th grid point: the coarsest grid of
-// the ladder (a two-block run's x1, x2; a structure's floors). A two-block run also says whether
-// its damper stuck throughout, and its largest |q| (the analytic reference's test).
-class CoarseGrid final : public Observer, public StructureObserver {
+// the ladder (a structure's floors; a two-block run's A.x1, B.x1). Also whether link 1 (a
+// two-block run's damper) stuck throughout, and its largest |force| (the analytic reference's
+// test).
+class CoarseGrid final : public StructureObserver {
  public:
   explicit CoarseGrid(std::size_t stride) : stride_(stride) {}
-  void begin(const RunInfo&) override { start(); }
-  void begin(const structure::Structure&, const StructureSolverOptions&) override { start(); }
-  void observe(const State& s) override {
-    if (s.phase != Phase::stick) all_stuck = false;
-    max_q = std::max(max_q, std::abs(s.q));
-    if (count_++ % stride_ == 0) x.push_back(Eigen::Vector2d(s.x1, s.x2));
+  void begin(const structure::Structure& s, const StructureSolverOptions&) override {
+    start();
+    link_ = !s.links.empty();
   }
   void observe(const StructureState& s) override {
+    if (link_) {
+      if (s.link_phase[0] != Phase::stick) all_stuck = false;
+      max_q = std::max(max_q, std::abs(s.link_force[0]));
+    }
     if (count_++ % stride_ == 0) x.push_back(s.x);
   }
   std::vector<Eigen::VectorXd> x;
@@ -46,6 +48,7 @@ class CoarseGrid final : public Observer, public StructureObserver {
   }
   std::size_t stride_;
   std::size_t count_ = 0;
+  bool link_ = false;
 };
 
 // ---- the reported quantities, by the scene's presentation ----
@@ -168,7 +171,7 @@ std::optional<Reference> analytic_reference(const RunSpec& scene, double coarse,
   bool stuck = false;
   if (scene.model->mu > 0.0) {
     CoarseGrid probe(1);
-    run(finest_run, {nullptr, &probe});
+    run(finest_run, {&probe, nullptr});
     stuck = probe.all_stuck;
   }
   if (scene.model->mu != 0.0 && !stuck) return std::nullopt;
@@ -249,7 +252,7 @@ ConvergenceResult run_convergence(const RunSpec& given, const ConvergenceOptions
         two_block || fft || options.engines.size() > 1 ? HistoryEngine::fft : options.engines.front();
     CoarseGrid grid(stride_of(coarse, h_ref));
     RunSpec s = with(ref_scheme, ref_engine, h_ref);
-    const auto observers = [&] { return two_block ? RunObservers{nullptr, &grid} : RunObservers{&grid, nullptr}; };
+    const auto observers = [&] { return RunObservers{&grid, nullptr}; };
     try {
       ref.report = run(s, observers());
     } catch (const InputError&) {  // no fft engine in this build: fall back to direct
@@ -284,7 +287,7 @@ ConvergenceResult run_convergence(const RunSpec& given, const ConvergenceOptions
         try {
           const RunSpec s = with(scheme, engine, h);
           row.steps = s.solver.steps();
-          const Report r = run(s, two_block ? RunObservers{nullptr, &grid} : RunObservers{&grid, nullptr});
+          const Report r = run(s, RunObservers{&grid, nullptr});
           row.wall_seconds = r.solver.wall_seconds;
           double e = 0.0;
           for (std::size_t j = 0; j < grid.x.size() && j < ref.x.size(); ++j)

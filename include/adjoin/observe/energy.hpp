@@ -3,8 +3,8 @@
 //
 // BuildingEnergy: any structure's balance [J] (the building observers compute it,
 // study/channel_observer.hpp). EnergyObserver: the balance of the 1 + 1 structure (the two
-// blocks, structure/two_block.hpp) from the two-block solver's states, in its units (per unit
-// m1 when dimensionless: m_A = 1, m_B = 1/rho). Multiplying the equations of motion by the
+// blocks, structure/two_block.hpp) from its states, in its units (per unit m1 when
+// dimensionless: m_A = 1, m_B = 1/rho). Multiplying the equations of motion by the
 // floors' velocities and integrating from 0 to t:
 //
 //     input[X]   = int a_g m_X v_X dt                 work of the ground on building X
@@ -13,10 +13,11 @@
 //                                                     dissipated)
 //     link       = int q (v_A - v_B) dt               dissipated in the friction link (>= 0)
 //     contact    = the contact pair's work (SPEC §6): its stored energy plus what it
-//                  dissipated, the solver's own (State::contact_work, contact_dissipated,
+//                  dissipated, the solver's own (StructureState::contact_work, contact_dissipated,
 //                  integrated consistently with its step); 0 without a contact law
 //     base[X]    = int qb_X v_X dt                    dissipated by X's base friction
-//                                                     (model.base_friction, SPEC §7)
+//                                                     (model.base_friction, SPEC §7: the
+//                                                     ground sliders after the link)
 //     residual   = input - (kinetic + storeys + link + contact + base)
 //
 // The exact solution has residual 0; the discrete one goes to zero with the step.
@@ -61,10 +62,10 @@ struct EnergyTerms {
   double total_kinetic() const { return kinetic[0] + kinetic[1]; }
 };
 
-class EnergyObserver final : public Observer {
+class EnergyObserver final : public StructureObserver {
  public:
-  void begin(const RunInfo& info) override;
-  void observe(const State& s) override;
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
+  void observe(const StructureState& s) override;
   const EnergyTerms& terms() const { return terms_; }
   // The balance as any structure's (the friction link only if the model has one; the contact
   // pair always).
@@ -72,7 +73,7 @@ class EnergyObserver final : public Observer {
 
  private:
   double m_[2] = {1.0, 1.0};
-  bool link_ = false, contact_law_ = false;
+  bool link_ = false, contact_law_ = false, sliders_ = false;
   std::size_t count_ = 0;
   // The last sample's time and powers (ground per building, storeys, link, base friction).
   struct Powers {

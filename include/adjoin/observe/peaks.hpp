@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "adjoin/observe/extremum.hpp"
+#include "adjoin/observe/pair_phase.hpp"
 #include "adjoin/structure/observer.hpp"
 
 namespace adjoin {
@@ -107,14 +108,16 @@ inline Peak find_peak(const std::vector<ChannelPeak>& peaks, const std::string& 
 // as the paper's values need: named by the structure's channels A.x1, B.x1 (floors),
 // link1.stroke (x_A1 - x_B1), A.shear1, B.shear1 (storey forces), link1.force, and sampled
 // A.v1, B.v1 (velocities), A.a1_abs, B.a1_abs, ag. Building A's values are index 0, B's 1.
-class PeakObserver final : public Observer {
+class PeakObserver final : public StructureObserver {
  public:
-  void begin(const RunInfo&) override;
-  void observe(const State& s) override;
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
+  void observe(const StructureState& s) override;
   // In the order above (the refined ones first).
   std::vector<ChannelPeak> peaks() const;
 
  private:
+  PairPhase phase_;  // link 1's phase and located switch (the kinks)
+  bool link_ = false;
   SmoothPeak shear_[2], stuck_force_;
   DerivativePeak x_[2], stroke_;
   Peak link_force_, v_[2], a_abs_[2], ag_;
