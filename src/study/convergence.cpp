@@ -180,8 +180,8 @@ std::optional<Reference> analytic_reference(const RunSpec& scene, double coarse,
   Reference ref;
   for (std::size_t j = 0; j < n; ++j) {
     const LinearResponse r = exact.at(static_cast<double>(j) * coarse);
-    if (stuck && std::abs(r.q) >= scene.model->mu) return std::nullopt;  // the exact solution slips
-    ref.x.push_back(Eigen::Vector2d(r.x1, r.x2));
+    if (stuck && std::abs(r.link_force) >= scene.model->mu) return std::nullopt;  // the exact solution slips
+    ref.x.push_back(Eigen::Vector2d(r.x[0], r.x[1]));
   }
   ref.description = stuck ? "analytic: exact solution with the damper stuck throughout (Laplace inversion)"
                           : "analytic: exact solution without damper (Laplace inversion)";

@@ -4,12 +4,12 @@
 // the spec's scales); spectra are in the scene's units.
 //
 //  - every run: the solver's summary, the in-structure spectra asked for;
-//  - a building run (and a two-block run asked for its channels): the modes, the peak of every
-//    channel (structure/channels.hpp), each link's extremes and switches, each contact pair's
-//    gap and impacts, the energy balance;
-//  - a two-block spec: the same report of its 1 + 1 structure (structure/two_block.hpp), refined
-//    by its own observers (observe/peaks.hpp, phases.hpp, pounding.hpp, energy.hpp); io
-//    presents it under the names of SPEC §3.
+//  - a building run: the modes, the peak of every channel (structure/channels.hpp), each link's
+//    extremes and switches, each contact pair's gap and impacts, the energy balance;
+//  - a two-block spec: the same report of its 1 + 1 structure (structure/two_block.hpp), from
+//    the two-block observers of that structure (observe/peaks.hpp, phases.hpp, pounding.hpp,
+//    energy.hpp: the paper's refinements), plus its phases and last values; io presents it
+//    under the names of SPEC §3 (io/two_block_names.hpp).
 #include <cmath>
 #include <limits>
 #include <optional>
