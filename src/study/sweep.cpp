@@ -117,11 +117,12 @@ std::string sa_column(double period) { return "sa_" + shortest(period); }
 class GroundRecorder final : public StructureObserver {
  public:
   // two_block: the run's 1 + 1 structure is dimensionless (a_g in g).
-  GroundRecorder(bool keep, bool two_block) : keep_(keep), g_(two_block ? kStandardGravity : 1.0) {}
+  GroundRecorder(bool keep, bool two_block) : keep_(keep), two_block_(two_block) {}
+  // (pga_g: a two-block run's a_g is in g already, a building's in m/s^2.)
   void begin(const structure::Structure&, const StructureSolverOptions& o) override {
-    start(o.steps(), g_ == 1.0 ? kStandardGravity : 1.0);
+    start(o.steps(), two_block_ ? 1.0 : kStandardGravity);
   }
-  void observe(const StructureState& st) override { take(st.ag, st.ag * g_); }
+  void observe(const StructureState& st) override { take(st.ag, two_block_ ? st.ag * kStandardGravity : st.ag); }
   double pga_g() const { return pga_ / unit_; }
   std::vector<double> ag;  // m/s^2
 
@@ -136,8 +137,7 @@ class GroundRecorder final : public StructureObserver {
     pga_ = std::max(pga_, std::abs(own));
     if (keep_) ag.push_back(si);
   }
-  bool keep_;
-  double g_ = 1.0;  // the run's unit of acceleration in m/s^2
+  bool keep_, two_block_;
   double pga_ = 0.0, unit_ = 1.0;  // max |a_g| in the run's own unit, and g in it
 };
 
