@@ -13,7 +13,7 @@ namespace adjoin::detail {
 // Each returns the loop's result: steps, wall time, and the bytes its history engines held
 // (for the memory benchmarks).
 SolverSummary run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                            Observer& observer);
+                               StructureObserver& observer);
 
 // "implicit", "implicit-damped" and "implicit-gl", with or without a contact law: the two blocks
 // as a structure on the structure solver, reported as its states (a contact law's energy

@@ -34,9 +34,10 @@ SolverSummary simulate(const SolverOptions& options, const Model& model, const G
 // The same run reported as the model's 1 + 1 structure's states (structure/two_block.hpp
 // two_block_structure(model), in its dimensionless units), so that the observers of any
 // structure watch it: the implicit schemes' states as the structure stepper makes them, the
-// paper scheme's converted (its damper as link 1, its phase as link 1's; without a damper the
-// observers see no link). begin() is told the options with locate_switches as given for the
-// implicit schemes, false for the paper scheme (it does not locate its switches).
+// paper scheme's made the same way (its damper as link 1, its phase as link 1's; without a
+// damper the observers see no link). begin() is told the options with locate_switches as given
+// for the implicit schemes, false for the paper scheme (it does not locate its switches).
+// simulate() above is this run shown through TwoBlockStates.
 SolverSummary simulate_as_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                                     StructureObserver& observer);
 
