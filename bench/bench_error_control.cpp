@@ -38,7 +38,7 @@ void counters(benchmark::State& state, const adjoin::TolerantRun& t) {
 void BM_plain(benchmark::State& state, double tolerance) {
   adjoin::TolerantRun t;
   const adjoin::Scene s = at_chosen_h(tolerance, &t);
-  for (auto _ : state) benchmark::DoNotOptimize(adjoin::run(s).two_block->peaks.x1.max_abs);
+  for (auto _ : state) benchmark::DoNotOptimize(adjoin::run(s).peak("A.x1").max_abs);
   counters(state, t);
 }
 

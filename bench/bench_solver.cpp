@@ -30,7 +30,7 @@ void run(benchmark::State& state, const adjoin::Scene& s) {
   for (auto _ : state) {
     const auto report = adjoin::run(s);
     bytes = report.solver.history_bytes;
-    benchmark::DoNotOptimize(report.two_block->peaks.x1.max_abs);
+    benchmark::DoNotOptimize(report.peak("A.x1").max_abs);
   }
   const double steps = static_cast<double>(s.solver.steps());
   state.counters["steps/s"] = benchmark::Counter(steps, benchmark::Counter::kIsIterationInvariantRate);

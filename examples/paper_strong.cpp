@@ -31,14 +31,14 @@ int main(int argc, char** argv) {
     Printer printer;
     const adjoin::Report report = adjoin::run(scene, {nullptr, &printer});
 
-    std::printf("\n%zu phases; the damper sticks for good at t* = %.3f\n", report.two_block->phases.size(),
-                report.two_block->phases.back().t_start);
-    std::printf("max |x1| = %.5f, max |x2| = %.5f, max damper stroke = %.5f\n", report.two_block->peaks.x1.max_abs,
-                report.two_block->peaks.x2.max_abs, printer.max_stroke);
-    std::printf("min gap = %.5f at t = %.3f; friction dissipated %.5f of %.5f input\n", report.two_block->pounding->min_gap,
-                report.two_block->pounding->t_min_gap, report.two_block->energy->friction, report.two_block->energy->input);
+    std::printf("\n%zu phases; the damper sticks for good at t* = %.3f\n", report.phases.size(),
+                report.phases.back().t_start);
+    std::printf("max |x1| = %.5f, max |x2| = %.5f, max damper stroke = %.5f\n", report.peak("A.x1").max_abs,
+                report.peak("B.x1").max_abs, printer.max_stroke);
+    std::printf("min gap = %.5f at t = %.3f; friction dissipated %.5f of %.5f input\n", report.contacts.at(0).min_gap,
+                report.contacts.at(0).t_min_gap, report.link_energy(0), report.energy.input);
     // The paper's qualitative result, checked: the structures never pound.
-    return report.two_block->pounding->contact ? 1 : 0;
+    return report.contacts.at(0).contact ? 1 : 0;
   } catch (const adjoin::InputError& e) {
     std::fprintf(stderr, "error: %s\n", e.what());
     return adjoin::kExitInputError;

@@ -54,7 +54,7 @@ TEST_CASE("implicit, strong excitation: the paper's phase structure, exact final
   const Scene scene = paper_scene("strong", {"solver.scheme=implicit"});
   const double mu = scene.model->mu;
   const Report report = run(scene);
-  const auto& phases = report.two_block->phases;
+  const auto& phases = report.phases;
   REQUIRE(phases.size() >= 4);
   CHECK(phases.front().state == Phase::stick);
   CHECK(phases.front().t_end > 0.1);
@@ -88,7 +88,7 @@ TEST_CASE("implicit, strong excitation: the paper's phase structure, exact final
     }
   }
   CHECK(std::abs(c) > 1e-3);
-  CHECK(report.two_block->energy->friction > 0.0);
+  CHECK(report.link_energy(0) > 0.0);
 }
 
 TEST_CASE("implicit: second order on the strong scene (peaks, gap, friction energy, energy residual)", "[implicit][order]") {
@@ -98,23 +98,23 @@ TEST_CASE("implicit: second order on the strong scene (peaks, gap, friction ener
   for (const char* h : {"0.004", "0.002", "0.001"})
     r.push_back(run(paper_scene("strong", {"solver.scheme=implicit", std::string("solver.h=") + h})));
   auto order = [&](auto get) { return order_of(std::abs(get(r[0]) - get(r[1])), std::abs(get(r[1]) - get(r[2]))); };
-  const double p_x1 = order([](const Report& x) { return x.two_block->peaks.x1.max_abs; });
-  const double p_gap = order([](const Report& x) { return x.two_block->pounding->min_gap; });
-  const double p_friction = order([](const Report& x) { return x.two_block->energy->friction; });
-  const double p_residual = order_of(std::abs(r[0].two_block->energy->residual), std::abs(r[2].two_block->energy->residual)) / 2.0;
+  const double p_x1 = order([](const Report& x) { return x.peak("A.x1").max_abs; });
+  const double p_gap = order([](const Report& x) { return x.contacts.at(0).min_gap; });
+  const double p_friction = order([](const Report& x) { return x.link_energy(0); });
+  const double p_residual = order_of(std::abs(r[0].energy.residual), std::abs(r[2].energy.residual)) / 2.0;
   INFO("orders: x1 " << p_x1 << ", gap " << p_gap << ", friction " << p_friction << ", residual " << p_residual);
   CHECK(p_x1 > 1.7);
   CHECK(p_gap > 1.7);
   CHECK(p_friction > 1.7);
   CHECK(p_residual > 1.7);
   // And already accurate: relative change from h = 0.002 to 0.001 below 1e-5.
-  CHECK(std::abs(r[1].two_block->peaks.x1.max_abs - r[2].two_block->peaks.x1.max_abs) < 1e-5 * r[2].two_block->peaks.x1.max_abs);
-  CHECK(std::abs(r[1].two_block->energy->friction - r[2].two_block->energy->friction) < 1e-5 * r[2].two_block->energy->friction);
+  CHECK(std::abs(r[1].peak("A.x1").max_abs - r[2].peak("A.x1").max_abs) < 1e-5 * r[2].peak("A.x1").max_abs);
+  CHECK(std::abs(r[1].link_energy(0) - r[2].link_energy(0)) < 1e-5 * r[2].link_energy(0));
 }
 
 TEST_CASE("observed orders on the smooth (stick-only) weak scene: implicit 2, implicit-gl and paper 1", "[implicit][order]") {
   auto x16 = [](const char* scheme, const char* h) {
-    return run(paper_scene("weak", {std::string("solver.scheme=") + scheme, std::string("solver.h=") + h})).two_block->final.x1;
+    return run(paper_scene("weak", {std::string("solver.scheme=") + scheme, std::string("solver.h=") + h})).last_value("A.x1");
   };
   for (auto [scheme, expected] : {std::pair{"implicit", 2.0}, {"implicit-gl", 1.0}, {"paper", 1.0}}) {
     const double a = x16(scheme, "0.004"), b = x16(scheme, "0.002"), c = x16(scheme, "0.001");
@@ -159,9 +159,9 @@ TEST_CASE("implicit stays stable and accurate where the paper scheme must stop",
   CHECK_THROWS_AS(run(with("paper", "0.1")), NumericalError);
   const Report coarse = run(with("implicit", "0.1"));
   const Report fine = run(with("implicit", "0.001"));
-  CHECK(std::isfinite(coarse.two_block->peaks.x1.max_abs));
-  CHECK(coarse.two_block->peaks.x1.max_abs == Approx(fine.two_block->peaks.x1.max_abs).epsilon(0.05));
-  CHECK(std::abs(coarse.two_block->energy->residual) < 0.01 * coarse.two_block->energy->input);
+  CHECK(std::isfinite(coarse.peak("A.x1").max_abs));
+  CHECK(coarse.peak("A.x1").max_abs == Approx(fine.peak("A.x1").max_abs).epsilon(0.05));
+  CHECK(std::abs(coarse.energy.residual) < 0.01 * coarse.energy.input);
 }
 
 TEST_CASE("shortcuts agree with the general path: mu = 0 and elastic rods", "[implicit][shortcuts]") {

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -21,6 +22,8 @@
 #include "adjoin/io/timeseries_csv.hpp"
 #include "adjoin/observe/energy.hpp"
 #include "adjoin/observe/pounding.hpp"
+#include "adjoin/solver/structure_solver.hpp"
+#include "adjoin/structure/two_block.hpp"
 #include "adjoin/study/run.hpp"
 #include "adjoin/study/sweep.hpp"
 #include "cli_helpers.hpp"
@@ -75,12 +78,19 @@ class ImpactRecorder final : public Observer {
   std::vector<Impact> impacts;
 };
 
-State state_at(double t, double x1, double x2) {
-  State s;
-  s.t = t;
-  s.x1 = x1;
-  s.x2 = x2;
-  return s;
+// A grid point of the 1 + 1 structure `s` (structure/two_block.hpp), at rest but for its floors'
+// displacements x_A, x_B (link 1 stuck, no switch).
+StructureState state_at(const structure::Structure& s, double t, double xa, double xb) {
+  StructureState st;
+  st.t = t;
+  st.x = Eigen::Vector2d(xa, xb);
+  for (auto* v : {&st.v, &st.a_abs, &st.storey_force}) v->setZero(2);
+  const auto links = static_cast<Eigen::Index>(s.links.size());
+  for (auto* v : {&st.link_force, &st.link_stroke, &st.link_velocity}) v->setZero(links);
+  st.link_phase.assign(s.links.size(), Phase::stick);
+  st.link_switch.assign(s.links.size(), std::numeric_limits<double>::quiet_NaN());
+  for (auto* v : {&st.contact_gap, &st.contact_force, &st.contact_work, &st.contact_dissipated}) v->setZero(1);
+  return st;
 }
 
 }  // namespace
@@ -137,7 +147,7 @@ TEST_CASE("no contact law and a closing gap: summary, time series and terminal f
   const Scene scene = load_scene(kStrong, {"model.gap0=0.3"});
   std::ostringstream plain;
   TimeSeriesCsvWriter writer(plain, scene.scales);
-  run(scene, {nullptr, &writer});
+  run(scene, {&writer, nullptr});
   const auto plain_lines = lines_of(plain.str());
   REQUIRE(plain_lines.size() == lines.size());
   CHECK(plain_lines[0] == "t,x1,x2,v1,v2,f1,f2,q,ag,gap,phase");
@@ -213,18 +223,20 @@ TEST_CASE("sweep rows say when their values are outside the model", "[pounding][
 }
 
 TEST_CASE("the pounding observer's totals come from the impacts it is given", "[pounding][outputs]") {
-  RunInfo info;
-  info.model.gap0 = 0.1;
-  info.model.contact.model = structure::ContactModel::linear;
-  info.model.contact.stiffness = 50.0;
-  info.h = 0.01;
+  Model model;
+  model.gap0 = 0.1;
+  model.contact.model = structure::ContactModel::linear;
+  model.contact.stiffness = 50.0;
+  const structure::Structure pair = structure::two_block_structure(model);
+  StructureSolverOptions options;
+  options.h = 0.01;
   PoundingObserver observer;
-  observer.begin(info);
-  observer.observe(state_at(0.0, 0.0, 0.0));
-  observer.observe(state_at(0.01, 0.08, 0.0));
-  State s = state_at(0.02, 0.13, 0.0);  // penetration 0.03 at a grid point
-  s.fc = 1.5;
-  s.contact_dissipated = 0.004;
+  observer.begin(pair, options);
+  observer.observe(state_at(pair, 0.0, 0.0, 0.0));
+  observer.observe(state_at(pair, 0.01, 0.08, 0.0));
+  StructureState s = state_at(pair, 0.02, 0.13, 0.0);  // penetration 0.03 at a grid point
+  s.contact_force[0] = 1.5;
+  s.contact_dissipated[0] = 0.004;
   observer.observe(s);
   Impact first;
   first.start = 0.014;
@@ -233,8 +245,8 @@ TEST_CASE("the pounding observer's totals come from the impacts it is given", "[
   first.t_force_max = 0.021;
   first.penetration_max = 0.04;
   observer.impact(first);
-  s = state_at(0.03, 0.05, 0.0);
-  s.contact_dissipated = 0.007;
+  s = state_at(pair, 0.03, 0.05, 0.0);
+  s.contact_dissipated[0] = 0.007;
   observer.observe(s);
   Impact second = first;
   second.start = 0.5;
@@ -243,8 +255,8 @@ TEST_CASE("the pounding observer's totals come from the impacts it is given", "[
   second.penetration_max = 0.035;
   second.complete = false;
   observer.impact(second);
-  s = state_at(0.04, 0.11, 0.0);
-  s.contact_dissipated = 0.009;  // cumulative: the last state's value is the run's
+  s = state_at(pair, 0.04, 0.11, 0.0);
+  s.contact_dissipated[0] = 0.009;  // cumulative: the last state's value is the run's
   observer.observe(s);
   observer.end();
   const PoundingMargin& m = observer.margin();
@@ -261,10 +273,10 @@ TEST_CASE("the pounding observer's totals come from the impacts it is given", "[
 
   // Without impacts (a run whose law saw none reported): the sampled values.
   PoundingObserver sampled;
-  sampled.begin(info);
-  sampled.observe(state_at(0.0, 0.0, 0.0));
-  s = state_at(0.01, 0.13, 0.0);
-  s.fc = 1.5;
+  sampled.begin(pair, options);
+  sampled.observe(state_at(pair, 0.0, 0.0, 0.0));
+  s = state_at(pair, 0.01, 0.13, 0.0);
+  s.contact_force[0] = 1.5;
   sampled.observe(s);
   sampled.end();
   CHECK(sampled.margin().impacts.empty());
@@ -301,28 +313,31 @@ TEST_CASE("impacts.csv rows are in the scene's units", "[pounding][outputs]") {
 }
 
 TEST_CASE("the energy balance subtracts the contact work only with a contact law", "[pounding][energy]") {
-  RunInfo info;
-  info.model.rho = 0.5;
-  State a, b;
-  b.t = 0.1;
-  b.v1 = 1.0;
-  b.contact_work = 0.25;
-  b.contact_dissipated = 0.05;
+  Model model;
+  model.rho = 0.5;
+  const StructureSolverOptions options;
+  const structure::Structure pair = structure::two_block_structure(model);
+  const StructureState a = state_at(pair, 0.0, 0.0, 0.0);
+  StructureState b = state_at(pair, 0.1, 0.0, 0.0);
+  b.v[0] = 1.0;
+  b.contact_work[0] = 0.25;
+  b.contact_dissipated[0] = 0.05;
   EnergyObserver none;
-  none.begin(info);
+  none.begin(pair, options);
   none.observe(a);
   none.observe(b);
-  CHECK(none.balance().contact == 0.0);
-  CHECK(none.balance().residual == Approx(-0.5));  // input 0 - kinetic 1/2
-  info.model.contact.model = structure::ContactModel::hertz;
-  info.model.contact.stiffness = 10.0;
+  CHECK(none.terms().contact == 0.0);
+  CHECK(none.terms().residual == Approx(-0.5));  // input 0 - kinetic 1/2
+  model.contact.model = structure::ContactModel::hertz;
+  model.contact.stiffness = 10.0;
+  const structure::Structure with_law = structure::two_block_structure(model);
   EnergyObserver law;
-  law.begin(info);
+  law.begin(with_law, options);
   law.observe(a);
   law.observe(b);
-  CHECK(law.balance().contact == 0.25);
-  CHECK(law.balance().contact_dissipated == 0.05);
-  CHECK(law.balance().residual == Approx(-0.75));
+  CHECK(law.terms().contact == 0.25);
+  CHECK(law.terms().contact_dissipated == 0.05);
+  CHECK(law.terms().residual == Approx(-0.75));
 }
 
 TEST_CASE("adjoin plot run draws the gap and the contact force when the run has impacts.csv", "[pounding][plot]") {
@@ -436,13 +451,13 @@ TEST_CASE("with a contact law the energy residual subtracts the contact work and
   std::vector<double> residual, contact;
   for (const char* h : {"solver.h=0.002", "solver.h=0.001", "solver.h=0.0005"}) {
     const Report r = run(linear_contact_scene({h, "solver.error_estimate=false"}));
-    REQUIRE(r.two_block->energy);
-    REQUIRE(r.two_block->pounding);
-    REQUIRE(r.two_block->pounding->impacts.size() >= 2);
-    residual.push_back(std::abs(r.two_block->energy->residual));
-    contact.push_back(r.two_block->energy->contact);
+    REQUIRE(r.energy.buildings.size() == 2);
+    REQUIRE(r.contacts.size() == 1);
+    REQUIRE(r.contacts.at(0).impacts >= 2);
+    residual.push_back(std::abs(r.energy.residual));
+    contact.push_back(r.energy.contacts.at(0));
     // After the last impact nothing is stored in the contact: its work is all dissipated.
-    CHECK(r.two_block->energy->contact == Approx(r.two_block->energy->contact_dissipated).epsilon(1e-12));
+    CHECK(r.energy.contacts.at(0) == Approx(r.contacts.at(0).dissipated).epsilon(1e-12));
   }
   INFO("residuals " << residual[0] << " " << residual[1] << " " << residual[2] << ", contact " << contact[0]);
   CHECK(contact[0] > 0.05);
@@ -465,7 +480,7 @@ TEST_CASE("sweep rows with a contact law report the impacts", "[pounding][sweep]
   REQUIRE(rows.size() == 2);
   const Scene scene = linear_contact_scene();
   const Report r = run(scene);
-  REQUIRE(r.two_block->pounding);
+  REQUIRE(r.contacts.size() == 1);
   const auto columns = sweep_columns(spec);
   std::vector<std::string> names;
   for (const auto& c : columns) names.push_back(c.name);
@@ -474,9 +489,9 @@ TEST_CASE("sweep rows with a contact law report the impacts", "[pounding][sweep]
   CHECK(never[index_of(names, "contact.force_max")] == "0");
   CHECK(never[index_of(names, "outside_model")] == "false");
   CHECK(pounds[index_of(names, "outside_model")] == "false");
-  CHECK(pounds[index_of(names, "contact.impacts")] == std::to_string(r.two_block->pounding->impacts.size()));
-  CHECK(std::stod(pounds[index_of(names, "contact.force_max")]) == r.two_block->pounding->force_max);
-  CHECK(std::stod(pounds[index_of(names, "contact.penetration_max")]) == r.two_block->pounding->penetration_max);
+  CHECK(pounds[index_of(names, "contact.impacts")] == std::to_string(r.contacts.at(0).impacts));
+  CHECK(std::stod(pounds[index_of(names, "contact.force_max")]) == r.contacts.at(0).force_max);
+  CHECK(std::stod(pounds[index_of(names, "contact.penetration_max")]) == r.contacts.at(0).penetration_max);
 }
 
 TEST_CASE("with the Newton impact law the gap's minimum is 0 at the first touch and impulses are reported",

@@ -55,11 +55,11 @@ BuildingScene frames_with_contact(const std::string& name, const std::string& co
 }
 
 // A two-block run of `scene` with gap0 = gap (scene units) and the contact law `law`.
-PoundingMargin two_block_run(const Scene& scene, double gap, const structure::ContactLaw& law = {}) {
+ContactReport two_block_run(const Scene& scene, double gap, const structure::ContactLaw& law = {}) {
   Scene s = scene;
   s.model->gap0 = gap / s.scales.length;
   s.model->contact = law;
-  return *run(s).two_block->pounding;
+  return run(s).contacts.at(0);
 }
 
 ContactReport building_run(const BuildingScene& scene, double gap, const structure::ContactLaw& law = {}) {
@@ -96,7 +96,7 @@ TEST_CASE("seismic joint of the paper's strong scene: bisection and direct s_max
   CHECK(j.gap_key == "model.gap0");
   CHECK_FALSE(j.building);
   // The scene's own run (gap0 = 2) reports the margin min_gap = gap0 - s_max.
-  const PoundingMargin own = *run(scene).two_block->pounding;
+  const ContactReport own = run(scene).contacts.at(0);
   CHECK(scene.model->gap0 - own.min_gap == Approx(j.s_max).epsilon(1e-12));
   CHECK(j.t_critical == Approx(own.t_min_gap).epsilon(1e-12));
 
@@ -108,14 +108,14 @@ TEST_CASE("seismic joint of the paper's strong scene: bisection and direct s_max
   structure::ContactLaw newton;
   newton.model = structure::ContactModel::impact;
   newton.restitution = 0.65;
-  CHECK(two_block_run(scene, j.joint + j.tol, newton).impacts.empty());
-  CHECK_FALSE(two_block_run(scene, j.joint - 10.0 * j.tol, newton).impacts.empty());
+  CHECK(two_block_run(scene, j.joint + j.tol, newton).impact_list.empty());
+  CHECK_FALSE(two_block_run(scene, j.joint - 10.0 * j.tol, newton).impact_list.empty());
   structure::ContactLaw linear;
   linear.model = structure::ContactModel::linear;
   linear.stiffness = 1e3;  // dimensionless: 1000 k1
   linear.restitution = 0.65;
-  CHECK(two_block_run(scene, j.joint + j.tol, linear).impacts.empty());
-  CHECK_FALSE(two_block_run(scene, j.joint - 10.0 * j.tol, linear).impacts.empty());
+  CHECK(two_block_run(scene, j.joint + j.tol, linear).impact_list.empty());
+  CHECK_FALSE(two_block_run(scene, j.joint - 10.0 * j.tol, linear).impact_list.empty());
 
   // A given tolerance, and the scene's contact law is not used.
   SeismicJointOptions coarse;

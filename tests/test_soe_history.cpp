@@ -228,8 +228,8 @@ TEST_CASE("soe keeps the implicit scheme's order 2 on the strong scene", "[soe][
   for (const char* h : {"0.004", "0.002", "0.001"})
     r.push_back(run(paper_scene("strong", {"solver.scheme=implicit", "solver.history=soe", std::string("solver.h=") + h})));
   auto order = [&](auto get) { return std::log2(std::abs(get(r[0]) - get(r[1])) / std::abs(get(r[1]) - get(r[2]))); };
-  const double p_x1 = order([](const Report& x) { return x.two_block->peaks.x1.max_abs; });
-  const double p_friction = order([](const Report& x) { return x.two_block->energy->friction; });
+  const double p_x1 = order([](const Report& x) { return x.peak("A.x1").max_abs; });
+  const double p_friction = order([](const Report& x) { return x.link_energy(0); });
   INFO("orders: x1 " << p_x1 << ", friction " << p_friction);
   CHECK(p_x1 > 1.7);
   CHECK(p_friction > 1.7);

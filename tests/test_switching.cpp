@@ -44,22 +44,22 @@ TEST_CASE("weak scene: q at every grid point and final.q converge at order 2 to 
   // and refined by golden-section search around it.
   double t_best = 0.0, exact_threshold = 0.0;
   for (double t = 0.0; t <= 16.0; t += 1e-3)
-    if (std::abs(exact.at(t).q) > exact_threshold) { exact_threshold = std::abs(exact.at(t).q); t_best = t; }
+    if (std::abs(exact.at(t).link_force) > exact_threshold) { exact_threshold = std::abs(exact.at(t).link_force); t_best = t; }
   double lo = t_best - 1e-3, hi = t_best + 1e-3;
   const double golden = 0.5 * (std::sqrt(5.0) - 1.0);
   for (int i = 0; i < 60; ++i) {
     const double a = hi - golden * (hi - lo), b = lo + golden * (hi - lo);
-    (std::abs(exact.at(a).q) > std::abs(exact.at(b).q) ? hi : lo) = (std::abs(exact.at(a).q) > std::abs(exact.at(b).q) ? b : a);
+    (std::abs(exact.at(a).link_force) > std::abs(exact.at(b).link_force) ? hi : lo) = (std::abs(exact.at(a).link_force) > std::abs(exact.at(b).link_force) ? b : a);
   }
-  exact_threshold = std::max(exact_threshold, std::abs(exact.at(0.5 * (lo + hi)).q));
+  exact_threshold = std::max(exact_threshold, std::abs(exact.at(0.5 * (lo + hi)).link_force));
   for (double h : {0.004, 0.002, 0.001, 0.0005}) {
     const std::vector<State> states = trajectory(paper_scene("weak", implicit_fft(h)));
     double worst = 0.0;
-    for (std::size_t m = 0; m < states.size(); m += 5) worst = std::max(worst, std::abs(states[m].q - exact.at(states[m].t).q));
+    for (std::size_t m = 0; m < states.size(); m += 5) worst = std::max(worst, std::abs(states[m].q - exact.at(states[m].t).link_force));
     max_q_error.push_back(worst);
-    final_q_error.push_back(std::abs(states.back().q - exact.at(16.0).q));
+    final_q_error.push_back(std::abs(states.back().q - exact.at(16.0).link_force));
     // The run's mu*: its reported peak |q| (refined between samples while stuck).
-    threshold_error.push_back(std::abs(run(paper_scene("weak", implicit_fft(h))).two_block->peaks.q.max_abs - exact_threshold));
+    threshold_error.push_back(std::abs(run(paper_scene("weak", implicit_fft(h))).peak("link1.force").max_abs - exact_threshold));
   }
   INFO("q errors " << max_q_error[0] << " " << max_q_error[3] << "; final " << final_q_error[0] << " " << final_q_error[3]
                    << "; mu* " << threshold_error[0] << " " << threshold_error[3]);
@@ -71,22 +71,22 @@ TEST_CASE("weak scene: q at every grid point and final.q converge at order 2 to 
 
 TEST_CASE("strong scene: every switching instant and t_min_gap at order 2", "[switching]") {
   const Report reference = run(paper_scene("strong", implicit_fft(3.125e-5)));
-  REQUIRE(reference.two_block->phases.size() == 8);
+  REQUIRE(reference.phases.size() == 8);
   const std::vector<double> ladder = {4e-3, 2e-3, 1e-3, 5e-4, 2.5e-4, 1.25e-4};
-  std::vector<std::vector<double>> switch_errors(reference.two_block->phases.size());
+  std::vector<std::vector<double>> switch_errors(reference.phases.size());
   std::vector<double> gap_time_errors, peak_time_errors;
   for (double h : ladder) {
     const Report r = run(paper_scene("strong", implicit_fft(h)));
-    REQUIRE(r.two_block->phases.size() == reference.two_block->phases.size());
-    for (std::size_t i = 1; i < r.two_block->phases.size(); ++i) {
-      CHECK(r.two_block->phases[i].state == reference.two_block->phases[i].state);
-      switch_errors[i].push_back(std::abs(r.two_block->phases[i].t_start - reference.two_block->phases[i].t_start));
+    REQUIRE(r.phases.size() == reference.phases.size());
+    for (std::size_t i = 1; i < r.phases.size(); ++i) {
+      CHECK(r.phases[i].state == reference.phases[i].state);
+      switch_errors[i].push_back(std::abs(r.phases[i].t_start - reference.phases[i].t_start));
     }
-    gap_time_errors.push_back(std::abs(r.two_block->pounding->t_min_gap - reference.two_block->pounding->t_min_gap));
-    peak_time_errors.push_back(std::abs(r.two_block->peaks.x1.t - reference.two_block->peaks.x1.t));
+    gap_time_errors.push_back(std::abs(r.contacts.at(0).t_min_gap - reference.contacts.at(0).t_min_gap));
+    peak_time_errors.push_back(std::abs(r.peak("A.x1").t - reference.peak("A.x1").t));
   }
   for (std::size_t i = 1; i < switch_errors.size(); ++i) {
-    INFO("switch " << i << " (" << to_string(reference.two_block->phases[i].state) << " at " << reference.two_block->phases[i].t_start
+    INFO("switch " << i << " (" << to_string(reference.phases[i].state) << " at " << reference.phases[i].t_start
                    << "): errors " << switch_errors[i].front() << " ... " << switch_errors[i].back());
     CHECK(fitted_order(switch_errors[i]) > 1.8);
     // h = 1e-3: the first stick -> slip was 1.6e-4 off on the grid. The largest error now is
@@ -108,14 +108,14 @@ TEST_CASE("a mode stiff against the step does not make the damper chatter", "[sw
     const std::size_t truth =
         run(paper_scene("strong", {"solver.scheme=implicit", "solver.history=fft", "model.rho=" + std::string(c.rho),
                                          "solver.h=" + std::to_string(c.h / 16)}))
-            .two_block->phases.size();
+            .phases.size();
     CHECK(truth == 11);
     for (double h : {c.h, c.h / 2, c.h / 4}) {
       const Report r = run(paper_scene(
           "strong", {"solver.scheme=implicit", "solver.history=fft", "model.rho=" + std::string(c.rho), "solver.h=" + std::to_string(h)}));
       INFO("rho = " << c.rho << ", h = " << h);
-      CHECK(r.two_block->phases.size() == truth);
-      CHECK(std::abs(r.two_block->energy->residual) < 1e-3 * r.two_block->energy->input);
+      CHECK(r.phases.size() == truth);
+      CHECK(std::abs(r.energy.residual) < 1e-3 * r.energy.input);
     }
   }
 }
@@ -127,7 +127,7 @@ TEST_CASE("a record scene with hundreds of switches: the same count at h, h/2, h
     const Scene s = load_scene(scene, {"ground.file=\"" + record + "\"", std::string("model.slip_force=") + slip_force,
                                        "solver.t_end=40", "solver.history=fft", "solver.h=" + std::to_string(h)},
                                {"ground.units", "ground.scale_pga"});
-    return run(s).two_block->phases;
+    return run(s).phases;
   };
   const std::size_t finest = phases(0.002 / 16, "5e3").size();
   CHECK(finest == 158);  // 157 switches

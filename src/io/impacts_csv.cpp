@@ -31,7 +31,7 @@ std::string impact_csv_row(const Impact& i, const Scales& k) {
   return row;
 }
 
-void ImpactsCsvWriter::begin(const RunInfo& /*info*/) { out_ << kImpactsCsvHeader << '\n'; }
+void ImpactsCsvWriter::begin(const structure::Structure&, const StructureSolverOptions&) { out_ << kImpactsCsvHeader << '\n'; }
 
 void ImpactsCsvWriter::impact(const Impact& i) { out_ << impact_csv_row(i, scales_) << '\n'; }
 

@@ -25,32 +25,25 @@ namespace {
 
 // The streamed writers, started afresh with each run they see: a run to a tolerance streams
 // every rung it tries into the same files, and the rung it keeps is the last one written.
-// (Cheaper than running the kept rung again with the writers attached.) A structure run's
-// writer sees its StructureStates; a two-block scene's writers (SPEC §3's names) its States.
-class RestartingStreams final : public Observer, public StructureObserver {
+// (Cheaper than running the kept rung again with the writers attached.) A structure's writer,
+// or a two-block scene's writers (SPEC §3's names) of its 1 + 1 structure.
+class RestartingStreams final : public StructureObserver {
  public:
   explicit RestartingStreams(RunOutputs& set) : set_(set) {}
-  ObserverList two_block;                 // a two-block scene's writers
-  StructureObserver* structure = nullptr;  // a structure's writer
+  std::vector<StructureObserver*> writers;
 
-  void begin(const RunInfo& info) override {
-    restart();
-    two_block.begin(info);
-  }
-  void observe(const State& s) override { two_block.observe(s); }
   void begin(const structure::Structure& s, const StructureSolverOptions& o) override {
     restart();
-    structure->begin(s, o);
+    for (auto* w : writers) w->begin(s, o);
   }
-  void observe(const StructureState& st) override { structure->observe(st); }
-  // (One of the two is watching: a run calls either interface, never both.)
+  void observe(const StructureState& st) override {
+    for (auto* w : writers) w->observe(st);
+  }
   void impact(const Impact& i) override {
-    two_block.impact(i);
-    if (structure) structure->impact(i);
+    for (auto* w : writers) w->impact(i);
   }
   void end() override {
-    two_block.end();
-    if (structure) structure->end();
+    for (auto* w : writers) w->end();
   }
 
  private:
@@ -73,7 +66,7 @@ bool has_contact_law(const Scene& scene) {
 // two-block scene's timeseries.csv, energy.csv and impacts.csv under SPEC §3's names.
 struct Streams {
   std::unique_ptr<ChannelCsvWriter> channels;
-  std::vector<std::unique_ptr<Observer>> two_block;
+  std::vector<std::unique_ptr<StructureObserver>> two_block;
   TimeSeriesCsvWriter* timeseries = nullptr;  // the two-block one
 };
 
@@ -83,7 +76,7 @@ Streams open_streams(const Scene& scene, RunOutputs& set, const RunWarning& warn
   if (!scene.two_block()) {
     if (asked.timeseries) {
       streams.channels = std::make_unique<ChannelCsvWriter>(set.open("timeseries.csv"), scene, warn);
-      restarting.structure = streams.channels.get();
+      restarting.writers.push_back(streams.channels.get());
     }
     return streams;
   }
@@ -95,7 +88,7 @@ Streams open_streams(const Scene& scene, RunOutputs& set, const RunWarning& warn
   if (asked.energy_history)
     streams.two_block.push_back(std::make_unique<EnergyCsvWriter>(set.open("energy.csv"), scene.scales, asked.every));
   if (has_contact_law(scene)) streams.two_block.push_back(std::make_unique<ImpactsCsvWriter>(set.open("impacts.csv"), scene.scales));
-  for (const auto& w : streams.two_block) restarting.two_block.add(w.get());
+  for (const auto& w : streams.two_block) restarting.writers.push_back(w.get());
   return streams;
 }
 
@@ -111,7 +104,7 @@ RunFiles run_to(const Scene& scene, RunOutputs& set, const RunWarning& warn) {
   // Streamed outputs: each writer sees the grid points as they are computed.
   RestartingStreams restarting(set);
   const Streams streams = open_streams(scene, set, warn, restarting);
-  const RunObservers extra{streams.channels ? &restarting : nullptr, streams.two_block.empty() ? nullptr : &restarting};
+  const RunObservers extra{restarting.writers.empty() ? nullptr : &restarting};
   RunFiles files;
   if (scene.accuracy.tolerance) {
     files.tolerant = run_to_tolerance(scene, *scene.accuracy.tolerance, extra);
@@ -130,7 +123,7 @@ RunFiles run_to(const Scene& scene, RunOutputs& set, const RunWarning& warn) {
     streams.timeseries->set_flag_outside_model(true);
     SolverOptions again = two_block_options(scene);
     again.h = files.report.solver.h;
-    simulate(again, *scene.model, *scene.ground, restarting);
+    simulate_as_structure(again, *scene.model, *scene.ground, restarting);
   }
   if (!files.report.spectra.empty()) set.open("spectra.csv") << spectra_csv(files.report);
   if (!scene.two_block() && has_contact_law(scene)) set.open("impacts.csv") << impacts_csv(files.report);

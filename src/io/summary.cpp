@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "../detail/finite_output.hpp"
+#include "adjoin/io/two_block_names.hpp"
 #include "adjoin/structure/two_block.hpp"
 
 namespace adjoin {
@@ -34,11 +35,13 @@ ordered_json peak_error(const PeakError& e, double scale, double time_scale) {
 ordered_json error_estimate_json(const ErrorEstimate& e, const Scales& k) {
   if (!e.available) return ordered_json{{"available", false}, {"reason", e.reason}};
   // The refined peaks' errors under SPEC §3's names (the estimate names them by channel).
-  const std::pair<const char*, double> peaks[] = {{"x1", k.length}, {"x2", k.length}, {"drift", k.length},
-                                                  {"f1", k.force},  {"f2", k.force},  {"q", k.force}};
+  const char* const refined[] = {"x1", "x2", "drift", "f1", "f2", "q"};
   ordered_json peak_errors = ordered_json::object();
-  for (const auto& [name, scale] : peaks) {
+  for (const char* name : refined) {
     const std::string channel = structure::two_block_channel(name);
+    double scale = 0.0;
+    for (const FrozenName& f : two_block_peak_names())
+      if (std::string(f.name) == name) scale = k.*f.unit;
     for (const auto& p : e.peaks)
       if (p.channel == channel) peak_errors[name] = peak_error(p.error, scale, k.time);
   }
@@ -108,45 +111,38 @@ std::string summary_json(const Scene& scene, const Report& r, const ErrorEstimat
   const OutputOptions& asked = scene.output;
   if (asked.phases) {
     ordered_json phases = ordered_json::array();
-    for (const auto& p : r.two_block->phases)
+    for (const auto& p : r.phases)
       phases.push_back(
           ordered_json{{"state", to_string(p.state)}, {"t_start", p.t_start * k.time}, {"t_end", p.t_end * k.time}});
     j["phases"] = phases;
-    j["switches"] = r.two_block->phases.empty() ? 0 : r.two_block->phases.size() - 1;
+    j["switches"] = r.phases.empty() ? 0 : r.phases.size() - 1;
   } else {
     j["phases"] = nullptr;
   }
   if (asked.peaks) {
-    const Peaks& p = r.two_block->peaks;
-    j["peaks"] = ordered_json{{"x1", peak(p.x1, k.length, k.time)},
-                              {"x2", peak(p.x2, k.length, k.time)},
-                              {"f1", peak(p.f1, k.force, k.time)},
-                              {"f2", peak(p.f2, k.force, k.time)},
-                              {"q", peak(p.q, k.force, k.time)},
-                              {"v1", peak(p.v1, k.velocity, k.time)},
-                              {"v2", peak(p.v2, k.velocity, k.time)},
-                              {"a1_abs", peak(p.a1, k.acceleration, k.time)},
-                              {"a2_abs", peak(p.a2, k.acceleration, k.time)},
-                              {"ag", peak(p.ag, k.acceleration, k.time)},
-                              {"drift", peak(p.drift, k.length, k.time)}};
+    ordered_json peaks = ordered_json::object();
+    for (const FrozenName& f : two_block_peak_names())
+      peaks[f.name] = peak(r.peak(structure::two_block_channel(f.name)), k.*f.unit, k.time);
+    j["peaks"] = peaks;
   } else {
     j["peaks"] = nullptr;
   }
-  const State& f = r.two_block->final;
-  j["final"] = ordered_json{{"t", f.t * k.time},       {"x1", f.x1 * k.length},   {"x2", f.x2 * k.length},
-                            {"v1", f.v1 * k.velocity}, {"v2", f.v2 * k.velocity}, {"f1", f.f1 * k.force},
-                            {"f2", f.f2 * k.force},    {"q", f.q * k.force},      {"phase", to_string(f.phase)}};
-  if (r.two_block->pounding) {
-    const PoundingMargin& g = *r.two_block->pounding;
-    j["pounding"] = ordered_json{
-        {"min_gap", g.min_gap * k.length},
-        {"t_min_gap", g.t_min_gap * k.time},
-        {"contact", g.contact},
-        {"t_first_contact", g.t_first_contact ? ordered_json(*g.t_first_contact * k.time) : ordered_json(nullptr)}};
-    if (g.has_law()) {
+  ordered_json final_values{{"t", r.t_last * k.time}};
+  for (const FrozenName& f : two_block_final_names())
+    final_values[f.name] = r.last_value(structure::two_block_channel(f.name)) * k.*f.unit;
+  final_values["phase"] = to_string(r.last_phase);
+  j["final"] = final_values;
+  const ContactReport& g = r.contacts.at(0);
+  const bool law = g.model != structure::ContactModel::none;
+  if (asked.pounding) {
+    j["pounding"] = ordered_json{{"min_gap", g.min_gap * k.length},
+                                 {"t_min_gap", g.t_min_gap * k.time},
+                                 {"contact", g.contact},
+                                 {"t_first_contact", g.contact ? ordered_json(g.t_first_contact * k.time) : ordered_json(nullptr)}};
+    if (law) {
       ordered_json& p = j["pounding"];
       p["model"] = structure::to_string(g.model);
-      p["impacts"] = g.impacts.size();
+      p["impacts"] = g.impacts;
       p["force_max"] = g.force_max * k.force;
       p["t_force_max"] = g.force_max > 0.0 ? ordered_json(g.t_force_max * k.time) : ordered_json(nullptr);
       p["penetration_max"] = g.penetration_max * k.length;
@@ -155,17 +151,17 @@ std::string summary_json(const Scene& scene, const Report& r, const ErrorEstimat
       p["energy"] = g.dissipated * k.energy;
     } else if (g.outside_model()) {
       j["pounding"]["model"] = "none";
-      j["pounding"]["outside_model_from"] = *g.t_first_contact * k.time;
+      j["pounding"]["outside_model_from"] = g.unmodelled_from * k.time;
     }
   } else {
     j["pounding"] = nullptr;
   }
-  if (r.two_block->energy) {
-    const EnergyBalance& e = *r.two_block->energy;
+  if (asked.energy) {
+    const TwoBlockEnergy e = two_block_energy(r);
     j["energy"] = ordered_json{{"input", e.input * k.energy},       {"kinetic", e.kinetic * k.energy},
                                {"rod1", e.rod1 * k.energy},         {"rod2", e.rod2 * k.energy},
                                {"friction", e.friction * k.energy}, {"residual", e.residual * k.energy}};
-    if (scene.model->contact.model != structure::ContactModel::none) {
+    if (law) {
       // The residual already subtracts the contact term (observe/energy.hpp).
       j["energy"]["contact"] = e.contact * k.energy;
       j["energy"]["contact_dissipated"] = e.contact_dissipated * k.energy;
@@ -192,9 +188,9 @@ std::string summary_json(const Scene& scene, const Report& r, const ErrorEstimat
   // As a building run's summary: the top-level time from which values are outside the model,
   // and its flag in words (only for a run that has one, so a run that never pounds keeps its
   // summary).
-  if (r.two_block->outside_model_from) {
-    j["outside_model_from"] = *r.two_block->outside_model_from * k.time;
-    j["flags"] = ordered_json::array({outside_model_warning(scene, *r.two_block->outside_model_from)});
+  if (g.outside_model()) {
+    j["outside_model_from"] = g.unmodelled_from * k.time;
+    j["flags"] = ordered_json::array({outside_model_warning(scene, g.unmodelled_from)});
   }
   const double t_end = static_cast<double>(r.solver.steps) * r.solver.h;
   require_finite(j, "", t_end * k.time, t_end);
@@ -227,59 +223,59 @@ std::string brief_report(const Scene& scene, const Report& r, const ErrorEstimat
     s << "\n";
   }
   if (scene.output.phases) {
-    s << "phases (" << r.two_block->phases.size() << "):";
+    const std::vector<PhaseInterval>& phases = r.phases;
+    s << "phases (" << phases.size() << "):";
     const std::size_t shown = 8;
-    for (std::size_t i = 0; i < r.two_block->phases.size(); ++i) {
-      if (i == shown && r.two_block->phases.size() > shown + 1) {
-        s << " ... (" << r.two_block->phases.size() - shown - 1 << " more)";
-        i = r.two_block->phases.size() - 1;
+    for (std::size_t i = 0; i < phases.size(); ++i) {
+      if (i == shown && phases.size() > shown + 1) {
+        s << " ... (" << phases.size() - shown - 1 << " more)";
+        i = phases.size() - 1;
       }
-      std::snprintf(line, sizeof line, " %s [%.4g, %.4g]", to_string(r.two_block->phases[i].state), r.two_block->phases[i].t_start * k.time,
-                    r.two_block->phases[i].t_end * k.time);
+      std::snprintf(line, sizeof line, " %s [%.4g, %.4g]", to_string(phases[i].state), phases[i].t_start * k.time,
+                    phases[i].t_end * k.time);
       s << line;
     }
     s << "\n";
   }
-  const Peaks& p = r.two_block->peaks;
   if (scene.output.peaks) {
+    auto p = [&](const char* name) { return r.peak(structure::two_block_channel(name)); };
     std::snprintf(line, sizeof line, "peaks: |x1| %.6g%s at t = %.4g, |x2| %.6g%s at t = %.4g, |q| %.6g%s\n",
-                  p.x1.max_abs * k.length, u("m").c_str(), p.x1.t * k.time, p.x2.max_abs * k.length, u("m").c_str(),
-                  p.x2.t * k.time, p.q.max_abs * k.force, u("N").c_str());
+                  p("x1").max_abs * k.length, u("m").c_str(), p("x1").t * k.time, p("x2").max_abs * k.length,
+                  u("m").c_str(), p("x2").t * k.time, p("q").max_abs * k.force, u("N").c_str());
     s << line;
-    std::snprintf(line, sizeof line, "       |f1| %.6g%s, |f2| %.6g%s\n", p.f1.max_abs * k.force, u("N").c_str(),
-                  p.f2.max_abs * k.force, u("N").c_str());
+    std::snprintf(line, sizeof line, "       |f1| %.6g%s, |f2| %.6g%s\n", p("f1").max_abs * k.force, u("N").c_str(),
+                  p("f2").max_abs * k.force, u("N").c_str());
     s << line;
   }
-  if (r.two_block->pounding && r.two_block->pounding->has_law()) {
-    const PoundingMargin& g = *r.two_block->pounding;
+  const ContactReport& g = r.contacts.at(0);
+  if (scene.output.pounding && g.model != structure::ContactModel::none) {
     s << "pounding (" << structure::to_string(g.model) << "): ";
     if (!g.contact) {
       std::snprintf(line, sizeof line, "min gap %.6g%s at t = %.4g, no contact\n", g.min_gap * k.length, u("m").c_str(),
                     g.t_min_gap * k.time);
     } else if (g.model == structure::ContactModel::impact) {
       std::snprintf(line, sizeof line, "%zu impact%s from t = %.4g%s, largest impulse %.6g%s, dissipated %.4g%s\n",
-                    g.impacts.size(), g.impacts.size() == 1 ? "" : "s", *g.t_first_contact * k.time, u("s").c_str(),
+                    g.impacts, g.impacts == 1 ? "" : "s", g.t_first_contact * k.time, u("s").c_str(),
                     g.impulse_max * k.force * k.time, u("N s").c_str(), g.dissipated * k.energy, u("J").c_str());
     } else {
       std::snprintf(line, sizeof line,
                     "%zu impact%s from t = %.4g%s, peak force %.6g%s at t = %.4g, max penetration %.4g%s, "
                     "dissipated %.4g%s\n",
-                    g.impacts.size(), g.impacts.size() == 1 ? "" : "s", *g.t_first_contact * k.time, u("s").c_str(),
+                    g.impacts, g.impacts == 1 ? "" : "s", g.t_first_contact * k.time, u("s").c_str(),
                     g.force_max * k.force, u("N").c_str(), g.t_force_max * k.time, g.penetration_max * k.length,
                     u("m").c_str(), g.dissipated * k.energy, u("J").c_str());
     }
     s << line;
-  } else if (r.two_block->pounding) {
-    const PoundingMargin& g = *r.two_block->pounding;
+  } else if (scene.output.pounding) {
     std::snprintf(
         line, sizeof line, "pounding: min gap %.6g%s at t = %.4g, %s\n", g.min_gap * k.length, u("m").c_str(),
         g.t_min_gap * k.time,
-        g.contact ? ("CONTACT first at t = " + std::to_string(*g.t_first_contact * k.time)).c_str() : "no contact");
+        g.contact ? ("CONTACT first at t = " + std::to_string(g.t_first_contact * k.time)).c_str() : "no contact");
     s << line;
   }
-  if (r.two_block->outside_model_from) s << "WARNING: " << outside_model_warning(scene, *r.two_block->outside_model_from) << "\n";
-  if (r.two_block->energy) {
-    const EnergyBalance& e = *r.two_block->energy;
+  if (g.outside_model()) s << "WARNING: " << outside_model_warning(scene, g.unmodelled_from) << "\n";
+  if (scene.output.energy) {
+    const TwoBlockEnergy e = two_block_energy(r);
     std::snprintf(line, sizeof line, "energy%s: input %.6g, kinetic %.6g, rod1 %.6g, rod2 %.6g, friction %.6g, ",
                   si ? " [J]" : " (per unit m1)", e.input * k.energy, e.kinetic * k.energy, e.rod1 * k.energy,
                   e.rod2 * k.energy, e.friction * k.energy);

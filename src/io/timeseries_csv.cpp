@@ -13,11 +13,13 @@ TimeSeriesCsvWriter::TimeSeriesCsvWriter(std::ostream& out, const Scales& scales
                                          bool flag_outside_model)
     : out_(out), scales_(scales), every_(every == 0 ? 1 : every), flag_outside_model_(flag_outside_model) {}
 
-void TimeSeriesCsvWriter::begin(const RunInfo& info) {
-  steps_ = info.steps;
+void TimeSeriesCsvWriter::begin(const structure::Structure& s, const StructureSolverOptions& o) {
+  phase_.begin(s, o);
+  steps_ = o.steps();
   count_ = 0;
-  gap0_ = info.model.gap0;
-  contact_law_ = info.model.contact.model != structure::ContactModel::none;
+  gap0_ = s.contacts.at(0).gap;
+  link_ = !s.links.empty();
+  contact_law_ = s.contacts.at(0).law.model != structure::ContactModel::none;
   outside_ = false;
   buffer_.clear();
   buffer_.reserve(1 << 16);
@@ -26,17 +28,21 @@ void TimeSeriesCsvWriter::begin(const RunInfo& info) {
   else out_ << "t,x1,x2,v1,v2,f1,f2,q,ag,gap,phase\n";
 }
 
-void TimeSeriesCsvWriter::observe(const State& s) {
+void TimeSeriesCsvWriter::observe(const StructureState& s) {
   const std::size_t index = count_++;
+  // (At every grid point: a located switch needs the point before.)
+  phase_.update(s);
   // The same test as the pounding margin's first contact (observe/pounding.cpp), at every
   // grid point, written or not.
-  if (gap0_ + s.x2 - s.x1 <= 0.0) outside_ = true;
+  const double gap = gap0_ + s.x[1] - s.x[0];
+  if (gap <= 0.0) outside_ = true;
   if (index % every_ != 0 && index != steps_) return;
   const Scales& k = scales_;
-  const double values[] = {s.t * k.time,     s.x1 * k.length,   s.x2 * k.length,
-                           s.v1 * k.velocity, s.v2 * k.velocity, s.f1 * k.force,
-                           s.f2 * k.force,   s.q * k.force,     s.ag * k.acceleration,
-                           (gap0_ + s.x2 - s.x1) * k.length};
+  const double q = link_ ? s.link_force[0] : 0.0;
+  const double values[] = {s.t * k.time,           s.x[0] * k.length,       s.x[1] * k.length,
+                           s.v[0] * k.velocity,    s.v[1] * k.velocity,     s.storey_force[0] * k.force,
+                           s.storey_force[1] * k.force, q * k.force,        s.ag * k.acceleration,
+                           gap * k.length};
   static const char* const columns[] = {"t", "x1", "x2", "v1", "v2", "f1", "f2", "q", "ag", "gap"};
   char number[32];
   for (std::size_t i = 0; i < std::size(values); ++i) {
@@ -47,7 +53,7 @@ void TimeSeriesCsvWriter::observe(const State& s) {
     buffer_.push_back(',');
   }
   if (contact_law_) {
-    const double fc = s.fc * k.force;
+    const double fc = s.contact_force[0] * k.force;
     detail::require_finite_output(fc, "timeseries.csv", "fc", s.t * k.time, s.t);
     auto [end, ec] = std::to_chars(number, number + sizeof number, fc);
     buffer_.append(number, end);
@@ -55,7 +61,7 @@ void TimeSeriesCsvWriter::observe(const State& s) {
   } else if (flag_outside_model_) {
     buffer_.append(outside_ ? "1," : "0,");
   }
-  buffer_.append(to_string(s.phase));
+  buffer_.append(to_string(phase_.phase));
   buffer_.push_back('\n');
   if (buffer_.size() > (1 << 16) - 512) { out_ << buffer_; buffer_.clear(); }
 }

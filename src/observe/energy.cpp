@@ -2,42 +2,69 @@
 
 namespace adjoin {
 
-void EnergyObserver::begin(const RunInfo& info) {
-  rho_ = info.model.rho;
-  contact_law_ = info.model.contact.model != structure::ContactModel::none;
+void EnergyObserver::begin(const structure::Structure& s, const StructureSolverOptions&) {
+  m_[0] = s.a.masses[0];
+  m_[1] = s.b->masses[0];
+  link_ = !s.links.empty();
+  sliders_ = s.ground_sliders().size() == 2;
+  contact_law_ = s.contacts.at(0).law.model != structure::ContactModel::none;
   count_ = 0;
-  balance_ = EnergyBalance{};
-  history_.clear();
+  terms_ = EnergyTerms{};
 }
 
-void EnergyObserver::observe(const State& s) {
+void EnergyObserver::observe(const StructureState& s) {
   // This sample's powers: the right ends of this step's trapezoids, kept as the left ends of
-  // the next step's (the terms as the sums had them, so the sums are the same to the bit).
-  const double input = s.ag * (s.v1 + s.v2 / rho_);
-  const double rod1 = s.f1 * s.v1, rod2 = s.f2 * s.v2, friction = s.q * (s.v1 - s.v2);
-  const double base1 = s.qb1 * s.v1, base2 = s.qb2 * s.v2;
+  // the next step's. The base friction's sliders follow the link in the link arrays.
+  const double v[2] = {s.v[0], s.v[1]}, force[2] = {s.storey_force[0], s.storey_force[1]};
+  const Eigen::Index first_slider = link_ ? 1 : 0;
+  const double slider[2] = {sliders_ ? s.link_force[first_slider] : 0.0, sliders_ ? s.link_force[first_slider + 1] : 0.0};
+  Powers now;
+  now.t = s.t;
+  for (int i = 0; i < 2; ++i) {
+    now.input[i] = s.ag * (m_[i] * v[i]);
+    now.storey[i] = force[i] * v[i];
+    now.base[i] = slider[i] * v[i];
+  }
+  now.link = (link_ ? s.link_force[0] : 0.0) * (v[0] - v[1]);
+  EnergyTerms& e = terms_;
   if (count_ > 0) {
     const double half_dt = 0.5 * (s.t - previous_.t);
-    balance_.input += half_dt * (previous_.input + input);
-    balance_.rod1 += half_dt * (previous_.rod1 + rod1);
-    balance_.rod2 += half_dt * (previous_.rod2 + rod2);
-    balance_.friction += half_dt * (previous_.friction + friction);
-    balance_.base_friction += half_dt * (previous_.base + base1 + base2);
+    for (int i = 0; i < 2; ++i) {
+      e.input[i] += half_dt * (previous_.input[i] + now.input[i]);
+      e.storey[i] += half_dt * (previous_.storey[i] + now.storey[i]);
+      e.base[i] += half_dt * (previous_.base[i] + now.base[i]);
+    }
+    e.link += half_dt * (previous_.link + now.link);
   }
-  previous_ = Powers{s.t, input, rod1, rod2, friction, base1 + base2};
-  balance_.t = s.t;
-  balance_.kinetic = 0.5 * s.v1 * s.v1 + 0.5 * s.v2 * s.v2 / rho_;
+  previous_ = now;
+  e.t = s.t;
+  for (int i = 0; i < 2; ++i) e.kinetic[i] = 0.5 * m_[i] * v[i] * v[i];
   if (contact_law_) {
-    balance_.contact = s.contact_work;
-    balance_.contact_dissipated = s.contact_dissipated;
-    balance_.residual = balance_.input -
-                        (balance_.kinetic + balance_.rod1 + balance_.rod2 + balance_.friction + balance_.contact);
-  } else {
-    balance_.residual = balance_.input - (balance_.kinetic + balance_.rod1 + balance_.rod2 + balance_.friction);
+    e.contact = s.contact_work[0];
+    e.contact_dissipated = s.contact_dissipated[0];
   }
-  if (balance_.base_friction != 0.0) balance_.residual -= balance_.base_friction;
-  if (keep_history_ && count_ % every_ == 0) history_.push_back(balance_);
+  e.residual = e.total_input() - (e.total_kinetic() + e.storey[0] + e.storey[1] + e.link + e.contact);
+  const double base = e.base[0] + e.base[1];
+  if (base != 0.0) e.residual -= base;
   ++count_;
+}
+
+BuildingEnergy EnergyObserver::balance() const {
+  const EnergyTerms& e = terms_;
+  BuildingEnergy out;
+  for (int i = 0; i < 2; ++i) {
+    BuildingEnergy::Part p;
+    p.input = e.input[i];
+    p.kinetic = e.kinetic[i];
+    p.storeys = {e.storey[i]};
+    p.isolator = p.isolator_dissipated = e.base[i];
+    out.buildings.push_back(p);
+  }
+  if (link_) out.links = {e.link};
+  out.contacts = {e.contact};
+  out.input = e.total_input();
+  out.residual = e.residual;
+  return out;
 }
 
 }  // namespace adjoin

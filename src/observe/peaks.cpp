@@ -4,44 +4,50 @@
 
 namespace adjoin {
 
-void PeakObserver::begin(const RunInfo&) {
-  peaks_ = Peaks{};
-  for (SmoothPeak* p : {&f1_, &f2_, &stuck_q_}) p->reset();
-  for (DerivativePeak* p : {&x1_, &x2_, &drift_}) p->reset();
+void PeakObserver::begin(const structure::Structure& s, const StructureSolverOptions& o) {
+  phase_.begin(s, o);
+  link_ = !s.links.empty();
+  for (SmoothPeak* p : {&shear_[0], &shear_[1], &stuck_force_}) p->reset();
+  for (DerivativePeak* p : {&x_[0], &x_[1], &stroke_}) p->reset();
+  for (Peak* p : {&link_force_, &v_[0], &v_[1], &a_abs_[0], &a_abs_[1], &ag_}) *p = Peak{};
 }
 
-void PeakObserver::observe(const State& s) {
+void PeakObserver::observe(const StructureState& s) {
+  phase_.update(s);
+  const double t_switch = phase_.t_switch;
+  const double xa = s.x[0], xb = s.x[1], va = s.v[0], vb = s.v[1];
+  const double a_abs_a = s.a_abs[0], a_abs_b = s.a_abs[1];
+  const double force = link_ ? s.link_force[0] : 0.0;
   // Relative accelerations x'' = (absolute) + a_g.
-  const double acc1 = s.a1 + s.ag, acc2 = s.a2 + s.ag;
-  x1_.update({s.t, s.x1, s.v1, acc1}, s.t_switch);
-  x2_.update({s.t, s.x2, s.v2, acc2}, s.t_switch);
-  drift_.update({s.t, s.x1 - s.x2, s.v1 - s.v2, acc1 - acc2}, s.t_switch);
-  f1_.update(s.f1, s.t);
-  f2_.update(s.f2, s.t);
-  peaks_.v1.update(s.v1, s.t);
-  peaks_.v2.update(s.v2, s.t);
-  peaks_.a1.update(s.a1, s.t);
-  peaks_.a2.update(s.a2, s.t);
-  // q reaches a new largest value where the damper starts to slip: at the located switch.
-  peaks_.q.update(s.q, std::isnan(s.t_switch) ? s.t : s.t_switch);
-  // While stuck, q is the smooth stick force: refine its peaks between samples (the largest
-  // stick force is the threshold below which the damper would have slipped).
-  if (s.phase == Phase::stick) {
-    stuck_q_.update(s.q, s.t);
-    if (stuck_q_.peak().max_abs > peaks_.q.max_abs) peaks_.q = stuck_q_.peak();
+  const double acc_a = a_abs_a + s.ag, acc_b = a_abs_b + s.ag;
+  x_[0].update({s.t, xa, va, acc_a}, t_switch);
+  x_[1].update({s.t, xb, vb, acc_b}, t_switch);
+  stroke_.update({s.t, xa - xb, va - vb, acc_a - acc_b}, t_switch);
+  shear_[0].update(s.storey_force[0], s.t);
+  shear_[1].update(s.storey_force[1], s.t);
+  v_[0].update(va, s.t);
+  v_[1].update(vb, s.t);
+  a_abs_[0].update(a_abs_a, s.t);
+  a_abs_[1].update(a_abs_b, s.t);
+  // The link force reaches a new largest value where the link starts to slip: at the located
+  // switch.
+  link_force_.update(force, std::isnan(t_switch) ? s.t : t_switch);
+  // While stuck, the force is the smooth stick force: refine its peaks between samples (the
+  // largest stick force is the threshold below which the link would have slipped).
+  if (phase_.phase == Phase::stick) {
+    stuck_force_.update(force, s.t);
+    if (stuck_force_.peak().max_abs > link_force_.max_abs) link_force_ = stuck_force_.peak();
   } else {
-    stuck_q_.reset();
+    stuck_force_.reset();
   }
-  peaks_.ag.update(s.ag, s.t);
+  ag_.update(s.ag, s.t);
 }
 
-const Peaks& PeakObserver::peaks() const {
-  peaks_.x1 = x1_.peak();
-  peaks_.x2 = x2_.peak();
-  peaks_.f1 = f1_.peak();
-  peaks_.f2 = f2_.peak();
-  peaks_.drift = drift_.peak();
-  return peaks_;
+std::vector<ChannelPeak> PeakObserver::peaks() const {
+  return {{"A.x1", x_[0].peak()},       {"B.x1", x_[1].peak()},   {"link1.stroke", stroke_.peak()},
+          {"A.shear1", shear_[0].peak()}, {"B.shear1", shear_[1].peak()}, {"link1.force", link_force_},
+          {"A.v1", v_[0]},               {"B.v1", v_[1]},          {"A.a1_abs", a_abs_[0]},
+          {"B.a1_abs", a_abs_[1]},       {"ag", ag_}};
 }
 
 }  // namespace adjoin

@@ -4,11 +4,18 @@
 
 namespace adjoin {
 
-void PhaseObserver::observe(const State& s) {
-  if (intervals_.empty() || intervals_.back().state != s.phase) {
-    const double t = std::isnan(s.t_switch) || intervals_.empty() ? s.t : s.t_switch;
+void PhaseObserver::begin(const structure::Structure& s, const StructureSolverOptions& o) {
+  phase_.begin(s, o);
+  intervals_.clear();
+}
+
+void PhaseObserver::observe(const StructureState& s) {
+  phase_.update(s);
+  const Phase now = phase_.phase;
+  if (intervals_.empty() || intervals_.back().state != now) {
+    const double t = std::isnan(phase_.t_switch) || intervals_.empty() ? s.t : phase_.t_switch;
     if (!intervals_.empty()) intervals_.back().t_end = t;
-    intervals_.push_back(PhaseInterval{s.phase, t, s.t});
+    intervals_.push_back(PhaseInterval{now, t, s.t});
   } else {
     intervals_.back().t_end = s.t;
   }

@@ -7,12 +7,13 @@
 
 namespace adjoin {
 
-void PoundingObserver::begin(const RunInfo& info) {
-  gap0_ = info.model.gap0;
+void PoundingObserver::begin(const structure::Structure& s, const StructureSolverOptions& o) {
+  phase_.begin(s, o);
+  gap0_ = s.contacts.at(0).gap;
   started_ = false;
   sampled_force_max_ = sampled_t_force_max_ = sampled_penetration_ = 0.0;
   margin_ = PoundingMargin{};
-  margin_.model = info.model.contact.model;
+  margin_.model = s.contacts.at(0).law.model;
 }
 
 void PoundingObserver::impact(const Impact& i) { margin_.impacts.push_back(i); }
@@ -49,22 +50,24 @@ void PoundingObserver::end() {
   margin_.t_first_contact = margin_.impacts.front().start;
 }
 
-void PoundingObserver::observe(const State& s) {
-  const Sample now{s.t, gap0_ + s.x2 - s.x1, s.v2 - s.v1, s.a2 - s.a1};
+void PoundingObserver::observe(const StructureState& s) {
+  phase_.update(s);
+  const double t_switch = phase_.t_switch;
+  const Sample now{s.t, gap0_ + s.x[1] - s.x[0], s.v[1] - s.v[0], s.a_abs[1] - s.a_abs[0]};
   // A minimum inside the step: the gap's derivative (the relative velocity) turns from
   // negative to non-negative; refined from the derivatives, with the located switch as a kink
   // (extremum.hpp).
   bool plateau = false;
   if (started_ && previous_.dy < 0.0 && now.dy >= 0.0) {
-    if (now.dy == 0.0 && std::isfinite(s.t_switch)) {
+    if (now.dy == 0.0 && std::isfinite(t_switch)) {
       // The gap stops closing at the kink (the damper sticks: a plateau from t_switch on).
       // The plateau's value is the sample's, its start the kink.
       if (now.y < margin_.min_gap - 1e-13 * (1.0 + std::abs(margin_.min_gap))) {
         margin_.min_gap = now.y;
-        margin_.t_min_gap = s.t_switch;
+        margin_.t_min_gap = t_switch;
       }
       plateau = true;
-    } else if (const Vertex v = step_extremum(previous_, now, s.t_switch);
+    } else if (const Vertex v = step_extremum(previous_, now, t_switch);
                v.y < margin_.min_gap && v.y <= previous_.y && v.y <= now.y) {
       margin_.min_gap = v.y;
       margin_.t_min_gap = v.t;
@@ -83,12 +86,13 @@ void PoundingObserver::observe(const State& s) {
     margin_.t_first_contact = t;
   }
   if (margin_.has_law()) {
-    if (s.fc > sampled_force_max_) {
-      sampled_force_max_ = s.fc;
+    const double force = s.contact_force[0];
+    if (force > sampled_force_max_) {
+      sampled_force_max_ = force;
       sampled_t_force_max_ = s.t;
     }
     sampled_penetration_ = std::max(sampled_penetration_, -now.y);
-    margin_.dissipated = s.contact_dissipated;
+    margin_.dissipated = s.contact_dissipated[0];
   }
   previous_ = now;
   started_ = true;

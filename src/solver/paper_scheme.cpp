@@ -13,11 +13,22 @@
 //
 // Start: x_0 = 0 and x_1 = h^2 a_0 / 2 (central differences from rest). For the decaying sine
 // a_0 = 0, so x_1 = 0 as in the paper.
+//
+// Its states are the 1 + 1 structure's (structure/two_block.hpp; StructureState, so that the
+// observers of any structure watch it): block 1 and rod 1 as building A's floor and storey,
+// block 2 and rod 2 as B's, the damper as link 1 (its phase decided on the grid, no located
+// switch), contact pair 1 at gap0 (no contact law: its force and work are 0). The observers are
+// told locate_switches = false: without a damper, the phase (the sign of the relative
+// velocity) changes at a grid point.
 #include <cmath>
+#include <limits>
 #include <sstream>
+#include <tuple>
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/fractional/weights.hpp"
+#include "adjoin/solver/structure_solver.hpp"
+#include "adjoin/structure/two_block.hpp"
 #include "rod_law.hpp"
 #include "schemes.hpp"
 #include "time_loop.hpp"
@@ -77,15 +88,30 @@ class PaperStepper {
         rod1_(make_rod_law(model.rod1, 1.0, h_, options.history, WeightRule::grunwald_letnikov, n_ + 2,
                            options.history_tolerance)),
         rod2_(make_rod_law(model.rod2, model.eps, h_, options.history, WeightRule::grunwald_letnikov, n_ + 2,
-                           options.history_tolerance)) {}
+                           options.history_tolerance)),
+        structure_(structure::two_block_structure(model)) {
+    observed_.h = options.h;
+    observed_.t_end = options.t_end;
+    observed_.history = options.history;
+    observed_.history_tolerance = options.history_tolerance;
+    observed_.scheme = Scheme::paper;
+    observed_.locate_switches = false;  // the phases are decided on the grid
+    StructureState& s = state_;
+    for (auto* v : {&s.x, &s.v, &s.a_abs, &s.storey_force}) v->setZero(2);
+    const Eigen::Index links = damper_ ? 1 : 0;
+    for (auto* v : {&s.link_force, &s.link_stroke, &s.link_velocity}) v->setZero(links);
+    s.link_phase.assign(static_cast<std::size_t>(links), Phase::stick);
+    s.link_switch.assign(static_cast<std::size_t>(links), std::numeric_limits<double>::quiet_NaN());
+    for (auto* v : {&s.contact_gap, &s.contact_force, &s.contact_work, &s.contact_dissipated}) v->setZero(1);
+  }
 
-  RunInfo info() const { return RunInfo{model_, h_, n_, options_.history}; }
+  std::tuple<const structure::Structure&, const StructureSolverOptions&> info() const { return {structure_, observed_}; }
   std::size_t steps() const { return n_; }
   std::size_t history_bytes() const { return rod1_.bytes() + rod2_.bytes(); }
   double history_error() const { return std::max(rod1_.weight_error(), rod2_.weight_error()); }
   std::size_t history_modes() const { return std::max(rod1_.modes(), rod2_.modes()); }
-  const State& start() { return grid_point(0); }
-  const State& advance(std::size_t n) { return grid_point(n + 1); }
+  const StructureState& start() { return grid_point(0); }
+  const StructureState& advance(std::size_t n) { return grid_point(n + 1); }
 
  private:
   // The model, checked against the stability bound first: model_ is initialised before the
@@ -98,7 +124,7 @@ class PaperStepper {
   // Grid point m: the rod forces and the damper's phase at t_m, the step to x_{m+1}, and the
   // state at t_m. Inlined into advance() (and start()): called from two places, the compiler
   // kept it out of line, a call per step that cost about 1 % on the strong scene with fft.
-  [[gnu::always_inline]] const State& grid_point(std::size_t m) {
+  [[gnu::always_inline]] const StructureState& grid_point(std::size_t m) {
     const double h = h_, h2 = h2_, rho = rho_, mu = mu_;
     const bool damper = damper_;
     const double t = static_cast<double>(m) * h;
@@ -147,19 +173,26 @@ class PaperStepper {
     if (!(std::abs(x1_next) < kRunaway && std::abs(x2_next) < kRunaway)) runaway(x1_next, x2_next, t + h);
     if (first_) { x1_prev_ = x1_next; x2_prev_ = x2_next; }  // x_{-1} = x_1 (at rest at t = 0)
 
-    State& s = state_;
+    StructureState& s = state_;
     s.t = t;
-    s.x1 = x1_; s.x2 = x2_;
-    s.v1 = (x1_next - x1_prev_) / (2.0 * h);
-    s.v2 = (x2_next - x2_prev_) / (2.0 * h);
-    s.a1 = a1; s.a2 = a2;
-    s.f1 = f1; s.f2 = f2; s.q = q; s.ag = ag;
+    s.ag = ag;
+    double* x = s.x.data();
+    double* v = s.v.data();
+    x[0] = x1_;
+    x[1] = x2_;
+    v[0] = (x1_next - x1_prev_) / (2.0 * h);
+    v[1] = (x2_next - x2_prev_) / (2.0 * h);
+    s.a_abs[0] = a1;
+    s.a_abs[1] = a2;
+    s.storey_force[0] = f1;
+    s.storey_force[1] = f2;
     if (damper) {
-      s.phase = phase_;
-    } else {
-      const double w = s.v1 - s.v2;
-      s.phase = w > 0.0 ? Phase::slip_right : (w < 0.0 ? Phase::slip_left : Phase::stick);
+      s.link_force[0] = q;
+      s.link_stroke[0] = x1_ - x2_;
+      s.link_velocity[0] = v[0] - v[1];
+      s.link_phase[0] = phase_;
     }
+    s.contact_gap[0] = gap0_ + x2_ - x1_;
 
     x1_prev_ = x1_; x2_prev_ = x2_;
     x1_ = x1_next; x2_ = x2_next;
@@ -194,13 +227,16 @@ class PaperStepper {
   Phase phase_ = Phase::stick;
   double c_ = 0.0;  // x1 - x2, frozen while stuck
   bool first_ = true;
-  State state_;
+  const double gap0_ = model_.gap0;
+  structure::Structure structure_;
+  StructureSolverOptions observed_;
+  StructureState state_;
 };
 
 }  // namespace
 
 SolverSummary run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                            Observer& observer) {
+                               StructureObserver& observer) {
   return integrate<PaperStepper>(observer, options, model, ground);
 }
 

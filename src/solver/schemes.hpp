@@ -13,12 +13,13 @@ namespace adjoin::detail {
 // Each returns the loop's result: steps, wall time, and the bytes its history engines held
 // (for the memory benchmarks).
 SolverSummary run_paper_scheme(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                            Observer& observer);
+                               StructureObserver& observer);
 
 // "implicit", "implicit-damped" and "implicit-gl", with or without a contact law: the two blocks
-// as a structure on the structure solver, reported as two-block States.
+// as a structure on the structure solver, reported as its states (a contact law's energy
+// checked first).
 SolverSummary run_two_block_on_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                                      Observer& observer);
+                                         StructureObserver& observer);
 
 // The friction force a stuck damper must carry: q = (rho f2 - f1) / (rho + 1).
 inline double stick_force(const Model& model, double f1, double f2) {

@@ -36,25 +36,43 @@ std::string memory_problem(double need_bytes, const std::string& what) {
   return out + text;
 }
 
-SolverSummary simulate(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                       Observer& observer) {
+namespace {
+
+// The checks and the summary's names every two-block run shares.
+void check_run(const SolverOptions& options, const Model& model) {
   std::string error;
   if (!model.IsValid(&error) || !options.IsValid(&error)) throw InputError(error);
 
-  // Each scheme is a stepper driven by the one time loop (time_loop.hpp), which also times
-  // the run (set-up included).
   if (options.scheme == Scheme::paper && model.contact.model != structure::ContactModel::none)
     throw InputError("solver.scheme = \"paper\": a contact law (model.contact) runs on the implicit schemes only; use solver.scheme = \"implicit\"");
   if (options.scheme == Scheme::paper && model.base_friction > 0.0)
     throw InputError("solver.scheme = \"paper\": the base friction (model.base_friction) runs on the implicit schemes only; use solver.scheme = \"implicit\"");
-  SolverSummary summary = options.scheme == Scheme::paper
-                              ? detail::run_paper_scheme(options, model, ground, observer)
-                              : detail::run_two_block_on_structure(options, model, ground, observer);
+}
+
+SolverSummary named(SolverSummary summary, const SolverOptions& options) {
   summary.scheme = to_string(options.scheme);
   summary.history = to_string(options.history);
   summary.h = options.h;
   summary.steps = options.steps();
   return summary;
+}
+
+}  // namespace
+
+// Each scheme is a stepper driven by the one time loop (time_loop.hpp), which also times the
+// run (set-up included).
+SolverSummary simulate(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                       Observer& observer) {
+  TwoBlockStates states(observer, options, model);
+  return simulate_as_structure(options, model, ground, states);
+}
+
+SolverSummary simulate_as_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                                    StructureObserver& observer) {
+  check_run(options, model);
+  return named(options.scheme == Scheme::paper ? detail::run_paper_scheme(options, model, ground, observer)
+                                               : detail::run_two_block_on_structure(options, model, ground, observer),
+               options);
 }
 
 StructureSolverOptions with_scheme(StructureSolverOptions o, Scheme scheme) {

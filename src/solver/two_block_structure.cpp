@@ -3,78 +3,106 @@
 // structure (SPEC §5: one storey each, Zener storeys, one friction link, one contact pair at
 // gap0), so it runs on the structure solver, whose step is the implicit scheme's for vectors
 // (its restart rule and quadrature weights are the scheme's options), in the model's
-// dimensionless units, and its states are reported as the two-block State. Only the paper's
-// explicit scheme has a stepper of its own (paper_scheme.cpp).
+// dimensionless units. Its states go to the observers as they are (simulate_as_structure), or
+// as two-block States (TwoBlockStates, for simulate's Observer). Only the paper's explicit
+// scheme has a stepper of its own (paper_scheme.cpp).
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <utility>
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/core/units.hpp"
+#include "adjoin/solver/simulate.hpp"
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/two_block.hpp"
 #include "schemes.hpp"
 
-namespace adjoin::detail {
-namespace {
+namespace adjoin {
 
-class AsTwoBlock final : public StructureObserver {
- public:
-  AsTwoBlock(Observer& inner, RunInfo info, bool damper, bool locate_switches, double m1, double m2)
-      : inner_(inner), info_(std::move(info)), damper_(damper), locate_(locate_switches), m1_(m1), m2_(m2) {}
-  // The time loop calls this once the stepper is set up (its weights and histories made), so an
-  // observer that times the run (a RunWatch) times its steps, not the set-up.
-  void begin(const structure::Structure&, const StructureSolverOptions&) override { inner_.begin(info_); }
-  void end() override { inner_.end(); }
-  void observe(const StructureState& s) override {
-    State out;
-    out.t = s.t;
-    out.x1 = s.x[0];
-    out.x2 = s.x[1];
-    out.v1 = s.v[0];
-    out.v2 = s.v[1];
-    out.a1 = s.a_abs[0];
-    out.a2 = s.a_abs[1];
-    out.f1 = s.storey_force[0];
-    out.f2 = s.storey_force[1];
-    out.ag = s.ag;
-    if (damper_) {
-      out.q = s.link_force[0];
-      out.phase = s.link_phase[0];
-      if (locate_) out.t_switch = s.link_switch[0];
-    } else {
-      // Without a damper a "phase" is the sign of the relative velocity: its changes are
-      // located where it crosses zero (linear interpolation, second order).
-      const double w = s.v[0] - s.v[1];
-      out.phase = w > 0.0 ? Phase::slip_right : (w < 0.0 ? Phase::slip_left : Phase::stick);
-      // (As the two-block scheme did: not in the first step, which starts from rest.)
-      if (locate_ && points_ >= 2 && out.phase != phase_ && w_ != w)
-        out.t_switch = t_previous_ + std::clamp(w_ / (w_ - w), 0.0, 1.0) * (s.t - t_previous_);
-      w_ = w;
-      phase_ = out.phase;
-      t_previous_ = s.t;
-      ++points_;
-    }
-    // The base friction's sliders follow the link (if any) in the link arrays (SPEC §7).
-    const Eigen::Index sliders = damper_ ? 1 : 0;
-    if (s.link_force.size() >= sliders + 2) {
-      out.qb1 = s.link_force[sliders];
-      out.qb2 = s.link_force[sliders + 1];
-    }
+TwoBlockStates::TwoBlockStates(Observer& inner, const SolverOptions& options, const Model& model)
+    : inner_(inner), damper_(model.mu > 0.0) {
+  info_.model = model;
+  info_.h = options.h;
+  info_.steps = options.steps();
+  info_.history = options.history;
+}
+
+// The time loop calls this once the stepper is set up (its weights and histories made), so an
+// observer that times the run (a RunWatch) times its steps, not the set-up.
+void TwoBlockStates::begin(const structure::Structure&, const StructureSolverOptions& o) {
+  locate_ = o.locate_switches;
+  phase_ = Phase::stick;
+  w_ = t_previous_ = 0.0;
+  points_ = 0;
+  inner_.begin(info_);
+}
+
+void TwoBlockStates::observe(const StructureState& s) {
+  State& out = out_;
+  out.t = s.t;
+  out.x1 = s.x[0];
+  out.x2 = s.x[1];
+  out.v1 = s.v[0];
+  out.v2 = s.v[1];
+  out.a1 = s.a_abs[0];
+  out.a2 = s.a_abs[1];
+  out.f1 = s.storey_force[0];
+  out.f2 = s.storey_force[1];
+  out.ag = s.ag;
+  out.t_switch = std::numeric_limits<double>::quiet_NaN();
+  if (damper_) {
+    out.q = s.link_force[0];
+    out.phase = s.link_phase[0];
+    if (locate_) out.t_switch = s.link_switch[0];
+  } else {
+    // Without a damper a "phase" is the sign of the relative velocity: its changes are
+    // located where it crosses zero (linear interpolation, second order).
+    const double w = s.v[0] - s.v[1];
+    out.phase = w > 0.0 ? Phase::slip_right : (w < 0.0 ? Phase::slip_left : Phase::stick);
+    // (As the two-block scheme did: not in the first step, which starts from rest.)
+    if (locate_ && points_ >= 2 && out.phase != phase_ && w_ != w)
+      out.t_switch = t_previous_ + std::clamp(w_ / (w_ - w), 0.0, 1.0) * (s.t - t_previous_);
+    w_ = w;
+    phase_ = out.phase;
+    t_previous_ = s.t;
+    ++points_;
+  }
+  // The base friction's sliders follow the link (if any) in the link arrays (SPEC §7).
+  const Eigen::Index sliders = damper_ ? 1 : 0;
+  if (s.link_force.size() >= sliders + 2) {
+    out.qb1 = s.link_force[sliders];
+    out.qb2 = s.link_force[sliders + 1];
+  }
+  if (s.contact_force.size() > 0) {
     out.fc = s.contact_force[0];
     out.contact_work = s.contact_work[0];
     out.contact_dissipated = s.contact_dissipated[0];
-    check_contact_energy(s);
-    inner_.observe(out);
   }
+  inner_.observe(out);
+}
+
+namespace detail {
+namespace {
+
+// The contact law stores or dissipates the work done on it, never gives back more: a pair
+// that has given back more than 1 % of the input energy so far had a step too long for its
+// stiffness (as for building runs, study/channel_observer.hpp). Checked before the observers
+// see the state.
+class ContactEnergyCheck final : public StructureObserver {
+ public:
+  ContactEnergyCheck(StructureObserver& inner, double m1, double m2) : inner_(inner), m1_(m1), m2_(m2) {}
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override { inner_.begin(s, o); }
+  void end() override { inner_.end(); }
   void impact(const Impact& i) override { inner_.impact(i); }
+  void observe(const StructureState& s) override {
+    check(s);
+    inner_.observe(s);
+  }
 
  private:
-  // The contact law stores or dissipates the work done on it, never gives back more: a pair
-  // that has given back more than 1 % of the input energy so far had a step too long for its
-  // stiffness (as for building runs, study/building_run.cpp).
-  void check_contact_energy(const StructureState& s) {
+  void check(const StructureState& s) {
     const double power = s.ag * (m1_ * s.v[0] + m2_ * s.v[1]);
     if (started_) input_ += 0.5 * (s.t - t_) * (power + power_);
     started_ = true;
@@ -89,23 +117,16 @@ class AsTwoBlock final : public StructureObserver {
     throw NumericalError(m.str(), s.t);
   }
 
-  Observer& inner_;
-  RunInfo info_;
-  bool damper_, locate_;
+  StructureObserver& inner_;
   double m1_, m2_;
-  // Without a damper: the last grid point's phase, relative velocity and time, and the count.
-  Phase phase_ = Phase::stick;
-  double w_ = 0.0, t_previous_ = 0.0;
-  std::size_t points_ = 0;
   bool started_ = false;
   double t_ = 0.0, power_ = 0.0, input_ = 0.0, input_scale_ = 0.0;
 };
 
 }  // namespace
 
-
 SolverSummary run_two_block_on_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                                      Observer& observer) {
+                                         StructureObserver& observer) {
   const bool contact = model.contact.model != structure::ContactModel::none;
   if (contact && !(model.gap0 >= 0.0))
     throw InputError("model.gap0 must be >= 0 with a contact law (the blocks may not start overlapping)");
@@ -115,16 +136,14 @@ SolverSummary run_two_block_on_structure(const SolverOptions& options, const Mod
   o.t_end = options.t_end;
   o.history = options.history;
   o.history_tolerance = options.history_tolerance;
+  o.locate_switches = options.locate_switches;  // (for the observers: the stepper always locates)
   if (options.scheme == Scheme::implicit_damped) o.restart = StructureSolverOptions::Restart::always;
   if (options.scheme == Scheme::implicit_gl) o.quadrature = StructureSolverOptions::Quadrature::grunwald_letnikov;
-  RunInfo info;
-  info.model = model;
-  info.h = options.h;
-  info.steps = options.steps();
-  info.history = options.history;
-  AsTwoBlock adapter(observer, info, model.mu > 0.0, options.locate_switches, s.a.masses[0], s.b->masses[0]);
   const ScaledGround g(ground, 1.0 / kStandardGravity);
-  return simulate_structure(o, s, g, adapter);
+  if (!contact) return simulate_structure(o, s, g, observer);  // (nothing stored or dissipated to check)
+  ContactEnergyCheck checked(observer, s.a.masses[0], s.b->masses[0]);
+  return simulate_structure(o, s, g, checked);
 }
 
-}  // namespace adjoin::detail
+}  // namespace detail
+}  // namespace adjoin

@@ -47,7 +47,8 @@ Structure two_block_structure(const Model& m, const Scales& k) {
 std::string two_block_channel(const std::string& name) {
   static const std::pair<const char*, const char*> names[] = {
       {"x1", "A.x1"},     {"x2", "B.x1"},     {"drift", "link1.stroke"}, {"f1", "A.shear1"},      {"f2", "B.shear1"},
-      {"q", "link1.force"}, {"a1_abs", "A.a1_abs"}, {"a2_abs", "B.a1_abs"}, {"gap", "contact1.gap"}};
+      {"q", "link1.force"}, {"a1_abs", "A.a1_abs"}, {"a2_abs", "B.a1_abs"}, {"gap", "contact1.gap"},
+      {"v1", "A.v1"},     {"v2", "B.v1"},     {"ag", "ag"}};
   for (const auto& [frozen, channel] : names)
     if (name == frozen) return channel;
   return "";

@@ -18,19 +18,21 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // Every degree of freedom's displacement at every `stride`-th grid point: the coarsest grid of
-// the ladder (a two-block run's x1, x2; a structure's floors). A two-block run also says whether
-// its damper stuck throughout, and its largest |q| (the analytic reference's test).
-class CoarseGrid final : public Observer, public StructureObserver {
+// the ladder (a structure's floors; a two-block run's A.x1, B.x1). Also whether link 1 (a
+// two-block run's damper) stuck throughout, and its largest |force| (the analytic reference's
+// test).
+class CoarseGrid final : public StructureObserver {
  public:
   explicit CoarseGrid(std::size_t stride) : stride_(stride) {}
-  void begin(const RunInfo&) override { start(); }
-  void begin(const structure::Structure&, const StructureSolverOptions&) override { start(); }
-  void observe(const State& s) override {
-    if (s.phase != Phase::stick) all_stuck = false;
-    max_q = std::max(max_q, std::abs(s.q));
-    if (count_++ % stride_ == 0) x.push_back(Eigen::Vector2d(s.x1, s.x2));
+  void begin(const structure::Structure& s, const StructureSolverOptions&) override {
+    start();
+    link_ = !s.links.empty();
   }
   void observe(const StructureState& s) override {
+    if (link_) {
+      if (s.link_phase[0] != Phase::stick) all_stuck = false;
+      max_q = std::max(max_q, std::abs(s.link_force[0]));
+    }
     if (count_++ % stride_ == 0) x.push_back(s.x);
   }
   std::vector<Eigen::VectorXd> x;
@@ -46,28 +48,31 @@ class CoarseGrid final : public Observer, public StructureObserver {
   }
   std::size_t stride_;
   std::size_t count_ = 0;
+  bool link_ = false;
 };
 
 // ---- the reported quantities, by the scene's presentation ----
 
-// A two-block run's, under SPEC §3's names.
-std::vector<QuantityError> two_block_quantities(const Report& report) {
+// A two-block run's: its 1 + 1 structure's refined peaks by channel, each labelled with SPEC
+// §3's name (the stroke: the link's), the contact pair's smallest gap, the friction link's work
+// and last force, the phases' switches.
+std::vector<QuantityError> two_block_quantities(const RunSpec& spec, const Report& r) {
   std::vector<QuantityError> out;
   auto value = [&](const std::string& name, double v) { out.push_back({name, false, v, kNaN}); };
   auto instant = [&](const std::string& name, double t) { out.push_back({name, true, t, kNaN}); };
-  const TwoBlockReport& r = *report.two_block;
-  const std::pair<const char*, const Peak*> peaks[] = {{"x1", &r.peaks.x1}, {"x2", &r.peaks.x2}, {"stroke", &r.peaks.drift},
-                                                       {"f1", &r.peaks.f1}, {"f2", &r.peaks.f2}, {"q", &r.peaks.q}};
-  for (const auto& [name, p] : peaks) {
-    value(std::string("peak ") + name, p->max_abs);
-    instant(std::string("t peak ") + name, p->t);
+  const std::pair<const char*, const char*> peaks[] = {{"x1", "A.x1"},       {"x2", "B.x1"},       {"stroke", "link1.stroke"},
+                                                       {"f1", "A.shear1"}, {"f2", "B.shear1"}, {"q", "link1.force"}};
+  for (const auto& [label, channel] : peaks) {
+    const Peak p = r.peak(channel);
+    value(std::string("peak ") + label, p.max_abs);
+    instant(std::string("t peak ") + label, p.t);
   }
-  if (r.pounding) {
-    value("min gap", r.pounding->min_gap);
-    instant("t min gap", r.pounding->t_min_gap);
+  if (spec.output.pounding) {
+    value("min gap", r.contacts.at(0).min_gap);
+    instant("t min gap", r.contacts.at(0).t_min_gap);
   }
-  if (r.energy) value("friction", r.energy->friction);
-  value("final q", r.final.q);
+  if (spec.output.energy) value("friction", r.link_energy(0));
+  value("final q", r.last_value("link1.force"));
   for (std::size_t i = 1; i < r.phases.size(); ++i) instant("switch " + std::to_string(i), r.phases[i].t_start);
   return out;
 }
@@ -103,16 +108,16 @@ std::vector<QuantityError> structure_quantities(const RunSpec& spec, const Repor
 }
 
 std::vector<QuantityError> reported_quantities(const RunSpec& spec, const Report& r) {
-  return spec.two_block() ? two_block_quantities(r) : structure_quantities(spec, r);
+  return spec.two_block() ? two_block_quantities(spec, r) : structure_quantities(spec, r);
 }
 
 bool is_switch(const std::string& name) { return name.rfind("switch ", 0) == 0 || name.find(" switch ") != std::string::npos; }
 
 // Whether a run switched as the reference did: a two-block run's sequence of phases, each
 // friction link's number of switches.
-bool same_switches(const Report& a, const Report& b) {
-  if (a.two_block) {
-    const auto &pa = a.two_block->phases, &pb = b.two_block->phases;
+bool same_switches(const RunSpec& spec, const Report& a, const Report& b) {
+  if (spec.two_block()) {
+    const auto &pa = a.phases, &pb = b.phases;
     if (pa.size() != pb.size()) return false;
     for (std::size_t i = 0; i < pa.size(); ++i)
       if (pa[i].state != pb[i].state) return false;
@@ -166,7 +171,7 @@ std::optional<Reference> analytic_reference(const RunSpec& scene, double coarse,
   bool stuck = false;
   if (scene.model->mu > 0.0) {
     CoarseGrid probe(1);
-    run(finest_run, {nullptr, &probe});
+    run(finest_run, {&probe, nullptr});
     stuck = probe.all_stuck;
   }
   if (scene.model->mu != 0.0 && !stuck) return std::nullopt;
@@ -175,8 +180,8 @@ std::optional<Reference> analytic_reference(const RunSpec& scene, double coarse,
   Reference ref;
   for (std::size_t j = 0; j < n; ++j) {
     const LinearResponse r = exact.at(static_cast<double>(j) * coarse);
-    if (stuck && std::abs(r.q) >= scene.model->mu) return std::nullopt;  // the exact solution slips
-    ref.x.push_back(Eigen::Vector2d(r.x1, r.x2));
+    if (stuck && std::abs(r.link_force) >= scene.model->mu) return std::nullopt;  // the exact solution slips
+    ref.x.push_back(Eigen::Vector2d(r.x[0], r.x[1]));
   }
   ref.description = stuck ? "analytic: exact solution with the damper stuck throughout (Laplace inversion)"
                           : "analytic: exact solution without damper (Laplace inversion)";
@@ -247,7 +252,7 @@ ConvergenceResult run_convergence(const RunSpec& given, const ConvergenceOptions
         two_block || fft || options.engines.size() > 1 ? HistoryEngine::fft : options.engines.front();
     CoarseGrid grid(stride_of(coarse, h_ref));
     RunSpec s = with(ref_scheme, ref_engine, h_ref);
-    const auto observers = [&] { return two_block ? RunObservers{nullptr, &grid} : RunObservers{&grid, nullptr}; };
+    const auto observers = [&] { return RunObservers{&grid, nullptr}; };
     try {
       ref.report = run(s, observers());
     } catch (const InputError&) {  // no fft engine in this build: fall back to direct
@@ -282,7 +287,7 @@ ConvergenceResult run_convergence(const RunSpec& given, const ConvergenceOptions
         try {
           const RunSpec s = with(scheme, engine, h);
           row.steps = s.solver.steps();
-          const Report r = run(s, two_block ? RunObservers{nullptr, &grid} : RunObservers{&grid, nullptr});
+          const Report r = run(s, RunObservers{&grid, nullptr});
           row.wall_seconds = r.solver.wall_seconds;
           double e = 0.0;
           for (std::size_t j = 0; j < grid.x.size() && j < ref.x.size(); ++j)
@@ -293,12 +298,12 @@ ConvergenceResult run_convergence(const RunSpec& given, const ConvergenceOptions
           previous = row.error;
           if (ref.report) {
             if (two_block) {  // the summary's three values under SPEC §3's names
-              const TwoBlockReport &mine = *r.two_block, &fine = *ref.report->two_block;
-              row.peak_x1 = relative(mine.peaks.x1.max_abs, fine.peaks.x1.max_abs);
-              row.min_gap = relative(mine.pounding->min_gap, fine.pounding->min_gap);
-              row.friction = fine.energy->friction > 0.0 ? relative(mine.energy->friction, fine.energy->friction) : kNaN;
+              const Report& fine = *ref.report;
+              row.peak_x1 = relative(r.peak("A.x1").max_abs, fine.peak("A.x1").max_abs);
+              row.min_gap = relative(r.contacts.at(0).min_gap, fine.contacts.at(0).min_gap);
+              row.friction = fine.link_energy(0) > 0.0 ? relative(r.link_energy(0), fine.link_energy(0)) : kNaN;
             }
-            row.switches_differ = !same_switches(r, *ref.report);
+            row.switches_differ = !same_switches(s, r, *ref.report);
             for (const auto& m : reported_quantities(s, r)) {
               if (row.switches_differ && is_switch(m.name)) continue;
               const auto match = std::find_if(theirs.begin(), theirs.end(), [&](const QuantityError& q) { return q.name == m.name; });

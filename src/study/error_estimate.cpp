@@ -8,7 +8,6 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/structure/channels.hpp"
-#include "adjoin/structure/two_block.hpp"
 #include "step_ladder.hpp"
 
 namespace adjoin {
@@ -71,19 +70,17 @@ void compare_channels(const RunSpec& spec, const Report& fine, const Report& c, 
     e->collapse_t = error(fine.collapse->t, c.collapse->t);
 }
 
-// A two-block spec's values: the paper's peaks, the minimum gap, the friction energy, the
-// switching instants.
-void compare_two_block(const TwoBlockReport& fine, const TwoBlockReport& c, double denominator, ErrorEstimate* e) {
-  // The peaks refined between samples, named by the 1 + 1 structure's channels.
-  const std::pair<const char*, Peak Peaks::*> refined[] = {{"x1", &Peaks::x1}, {"x2", &Peaks::x2}, {"drift", &Peaks::drift},
-                                                           {"f1", &Peaks::f1}, {"f2", &Peaks::f2}, {"q", &Peaks::q}};
-  for (const auto& [name, peak] : refined)
-    add_peak(structure::two_block_channel(name), fine.peaks.*peak, c.peaks.*peak, denominator, e);
-  if (fine.pounding && c.pounding) {
-    e->min_gap = std::abs(richardson(fine.pounding->min_gap, c.pounding->min_gap, denominator));
-    e->t_min_gap = std::abs(richardson(fine.pounding->t_min_gap, c.pounding->t_min_gap, denominator));
+// A two-block spec's values: its 1 + 1 structure's refined peaks (the floors, the link's
+// stroke, the storeys' forces, the link force), the contact pair's smallest gap, the friction
+// link's work, the switching instants.
+void compare_two_block(const RunSpec& spec, const Report& fine, const Report& c, double denominator, ErrorEstimate* e) {
+  for (const char* channel : {"A.x1", "B.x1", "link1.stroke", "A.shear1", "B.shear1", "link1.force"})
+    add_peak(channel, fine.peak(channel), c.peak(channel), denominator, e);
+  if (spec.output.pounding) {
+    e->min_gap = std::abs(richardson(fine.contacts.at(0).min_gap, c.contacts.at(0).min_gap, denominator));
+    e->t_min_gap = std::abs(richardson(fine.contacts.at(0).t_min_gap, c.contacts.at(0).t_min_gap, denominator));
   }
-  if (fine.energy && c.energy) e->friction = std::abs(richardson(fine.energy->friction, c.energy->friction, denominator));
+  if (spec.output.energy) e->friction = std::abs(richardson(fine.link_energy(0), c.link_energy(0), denominator));
   e->switches_matched = fine.phases.size() == c.phases.size();
   for (std::size_t i = 0; e->switches_matched && i < fine.phases.size(); ++i)
     e->switches_matched = fine.phases[i].state == c.phases[i].state;
@@ -97,7 +94,7 @@ ErrorEstimate compare_runs(const RunSpec& spec, const Report& fine, const Report
   ErrorEstimate e;
   e.order = scheme_order(spec.solver.scheme);
   const double denominator = std::pow(ratio, e.order) - 1.0;
-  if (fine.two_block && c.two_block) compare_two_block(*fine.two_block, *c.two_block, denominator, &e);
+  if (spec.two_block()) compare_two_block(spec, fine, c, denominator, &e);
   else compare_channels(spec, fine, c, denominator, &e);
   e.available = true;
   return e;

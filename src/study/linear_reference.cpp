@@ -313,20 +313,20 @@ LinearResponse LinearReference::at(double t) const {
 
   const Values a = channel_values(ch_[0]);
   if (stuck_) {
-    out.x1 = out.x2 = a[0];
-    out.v1 = out.v2 = a[1];
-    out.f1 = a[2];
-    out.f2 = a[3];
-    out.q = (model_.rho * out.f2 - out.f1) / (model_.rho + 1.0);
+    out.x[0] = out.x[1] = a[0];
+    out.v[0] = out.v[1] = a[1];
+    out.storey_force[0] = a[2];
+    out.storey_force[1] = a[3];
+    out.link_force = (model_.rho * out.storey_force[1] - out.storey_force[0]) / (model_.rho + 1.0);
   } else {
     const Values b = channel_values(ch_[1]);
-    out.x1 = a[0];
-    out.v1 = a[1];
-    out.f1 = a[2];
-    out.x2 = b[0];
-    out.v2 = b[1];
-    out.f2 = b[3];
-    out.q = 0.0;
+    out.x[0] = a[0];
+    out.v[0] = a[1];
+    out.storey_force[0] = a[2];
+    out.x[1] = b[0];
+    out.v[1] = b[1];
+    out.storey_force[1] = b[3];
+    out.link_force = 0.0;
   }
   return out;
 }

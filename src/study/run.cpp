@@ -31,167 +31,21 @@ SolverOptions two_block_options(const RunSpec& spec) {
 }
 
 double Report::unmodelled_from() const {
-  if (two_block) return two_block->outside_model_from.value_or(std::numeric_limits<double>::quiet_NaN());
   double t = std::numeric_limits<double>::quiet_NaN();
   for (const auto& c : contacts)
     if (c.outside_model() && !(t <= c.unmodelled_from)) t = c.unmodelled_from;
   return t;
 }
 
+Peak Report::peak(const std::string& channel) const { return find_peak(peaks, channel); }
+
+double Report::last_value(const std::string& channel) const {
+  for (const ChannelValue& v : last)
+    if (v.channel == channel) return v.value;
+  return 0.0;
+}
+
 namespace {
-
-// ---- two-block specs ----
-
-// Keeps only the last state.
-class LastState final : public Observer {
- public:
-  void observe(const State& s) override { last = s; }
-  State last;
-};
-
-// Keeps the acceleration histories that spectra need (only when spectra are asked for).
-class AccelerationRecorder final : public Observer {
- public:
-  void begin(const RunInfo& info) override {
-    for (auto* v : {&ag, &a1, &a2}) { v->clear(); v->reserve(info.steps + 1); }
-  }
-  void observe(const State& s) override {
-    ag.push_back(s.ag);
-    a1.push_back(s.a1);
-    a2.push_back(s.a2);
-  }
-  std::vector<double> ag, a1, a2;
-};
-
-std::vector<SignalSpectrum> spectra_of(const RunSpec& spec, const AccelerationRecorder& recorded) {
-  const SpectraOutput& asked = *spec.output.spectra;
-  const Scales& k = spec.scales;
-  SpectrumOptions options;
-  options.dampings = asked.damping;
-  // Periods are in the scene's time unit already, as is the step below.
-  options.periods = asked.periods.empty() ? default_spectrum_periods() : asked.periods;
-  // The library works in m/s^2 and s; dimensionless accelerations are in g. For a
-  // dimensionless scene, lengths come out multiplied by g and are divided back below.
-  const double dt = spec.solver.h * k.time;
-  const double length_back = k.si ? 1.0 : 1.0 / kStandardGravity;
-  std::vector<SignalSpectrum> out;
-  for (const std::string& signal : asked.signals) {
-    const std::vector<double>& a = signal == "ground" ? recorded.ag : (signal == "block1" ? recorded.a1 : recorded.a2);
-    std::vector<double> accel(a.size());
-    for (std::size_t i = 0; i < a.size(); ++i) accel[i] = a[i] * kStandardGravity;
-    SignalSpectrum s{signal, response_spectrum(dt, accel, options)};
-    for (auto& v : s.spectrum.values) {
-      v.sd *= length_back;
-      v.sv *= length_back;
-      v.psv *= length_back;
-    }
-    out.push_back(std::move(s));
-  }
-  return out;
-}
-
-// A two-block State as the 1 + 1 structure's StructureState (dimensionless), for the
-// structure observers of a two-block run.
-class AsStructure final : public Observer {
- public:
-  AsStructure(StructureObserver& inner, const RunSpec& spec) : inner_(inner), structure_(solver_structure(spec)), options_(spec.solver) {
-    const bool link = !structure_.links.empty(), contact = !structure_.contacts.empty();
-    for (auto* v : {&state_.x, &state_.v, &state_.a_abs, &state_.storey_force}) v->setZero(2);
-    // (after the link, the base friction's two sliders, model.base_friction > 0: SPEC §7)
-    sliders_ = structure_.ground_sliders().size();
-    const Eigen::Index n_links = (link ? 1 : 0) + static_cast<Eigen::Index>(sliders_);
-    for (auto* v : {&state_.link_force, &state_.link_stroke, &state_.link_velocity}) v->setZero(n_links);
-    state_.link_phase.assign(static_cast<std::size_t>(n_links), Phase::stick);
-    state_.link_switch.assign(static_cast<std::size_t>(n_links), 0.0);
-    for (auto* v : {&state_.contact_gap, &state_.contact_force, &state_.contact_work, &state_.contact_dissipated})
-      v->setZero(contact ? 1 : 0);
-    gap0_ = spec.model->gap0;
-  }
-  void begin(const RunInfo&) override { inner_.begin(structure_, options_); }
-  void observe(const State& s) override {
-    StructureState& o = state_;
-    o.t = s.t;
-    o.ag = s.ag;
-    o.x << s.x1, s.x2;
-    o.v << s.v1, s.v2;
-    o.a_abs << s.a1, s.a2;
-    o.storey_force << s.f1, s.f2;
-    if (sliders_ == 2) {  // the blocks' base friction: force, the block's motion, its phase
-      const Eigen::Index k = o.link_force.size() - 2;
-      const double q[2] = {s.qb1, s.qb2}, x[2] = {s.x1, s.x2}, v[2] = {s.v1, s.v2};
-      for (Eigen::Index i = 0; i < 2; ++i) {
-        o.link_force[k + i] = q[i];
-        o.link_stroke[k + i] = x[i];
-        o.link_velocity[k + i] = v[i];
-        o.link_phase[static_cast<std::size_t>(k + i)] = v[i] > 0.0 ? Phase::slip_right : (v[i] < 0.0 ? Phase::slip_left : Phase::stick);
-      }
-    }
-    if (o.link_force.size() - static_cast<Eigen::Index>(sliders_) == 1) {
-      o.link_force[0] = s.q;
-      o.link_stroke[0] = s.x1 - s.x2;
-      o.link_velocity[0] = s.v1 - s.v2;
-      o.link_phase[0] = s.phase;
-      o.link_switch[0] = s.t_switch;
-    }
-    if (o.contact_gap.size() == 1) {
-      o.contact_gap[0] = gap0_ + s.x2 - s.x1;
-      o.contact_force[0] = s.fc;
-      o.contact_work[0] = s.contact_work;
-      o.contact_dissipated[0] = s.contact_dissipated;
-    }
-    inner_.observe(o);
-  }
-  void impact(const Impact& i) override { inner_.impact(i); }
-  void end() override { inner_.end(); }
-
- private:
-  StructureObserver& inner_;
-  structure::Structure structure_;
-  StructureSolverOptions options_;
-  StructureState state_;
-  double gap0_ = 0.0;
-  std::size_t sliders_ = 0;  // the base friction's sliders (0 or 2)
-};
-
-Report run_two_block(const RunSpec& spec, const RunObservers& extra) {
-  const OutputOptions& asked = spec.output;
-  PeakObserver peaks;
-  PhaseObserver phases;
-  PoundingObserver pounding;
-  EnergyObserver energy;
-  LastState last;
-  std::unique_ptr<AccelerationRecorder> accelerations;
-  std::unique_ptr<AsStructure> structure_extra;
-  ObserverList observers({&last});
-  if (asked.peaks) observers.add(&peaks);
-  if (asked.phases) observers.add(&phases);
-  // Always watched (it costs a few operations a step): a run without a contact law whose gap
-  // closes is flagged even when the pounding margin is not reported.
-  observers.add(&pounding);
-  if (asked.energy) observers.add(&energy);
-  if (asked.spectra) {
-    accelerations = std::make_unique<AccelerationRecorder>();
-    observers.add(accelerations.get());
-  }
-  if (extra.two_block) observers.add(extra.two_block);
-  if (extra.structure) {
-    structure_extra = std::make_unique<AsStructure>(*extra.structure, spec);
-    observers.add(structure_extra.get());
-  }
-  if (spec.watch) observers.add(spec.watch);  // (it may stop the run: a refusal)
-
-  Report report;
-  report.solver = simulate(two_block_options(spec), *spec.model, *spec.ground, observers);
-  TwoBlockReport& r = report.two_block.emplace();
-  r.final = last.last;
-  if (asked.phases) r.phases = phases.intervals();
-  if (asked.peaks) r.peaks = peaks.peaks();
-  if (asked.pounding) r.pounding = pounding.margin();
-  if (pounding.margin().outside_model()) r.outside_model_from = pounding.margin().t_first_contact;
-  if (asked.energy) r.energy = energy.balance();
-  if (accelerations) report.spectra = spectra_of(spec, *accelerations);
-  return report;
-}
 
 // ---- buildings ----
 
@@ -218,6 +72,165 @@ class StructureObserverList final : public StructureObserver {
  private:
   std::vector<StructureObserver*> observers_;
 };
+
+// ---- two-block specs ----
+
+// Fans every call out to the two-block run's observers (not owned), in order. None ends a run
+// early (no collapse watch: done() stays false), so the time loop asks one observer, not each.
+class TwoBlockObservers final : public StructureObserver {
+ public:
+  void add(StructureObserver* o) { if (o) observers_.push_back(o); }
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override { for (auto* x : observers_) x->begin(s, o); }
+  void observe(const StructureState& st) override { for (auto* x : observers_) x->observe(st); }
+  void impact(const Impact& e) override { for (auto* x : observers_) x->impact(e); }
+  void end() override { for (auto* x : observers_) x->end(); }
+
+ private:
+  std::vector<StructureObserver*> observers_;
+};
+
+// Keeps the last grid point's values (Report::last) and phase, read at end() from the state
+// observed last (the stepper's own, still valid then: solver/time_loop.hpp), not copied at
+// every step.
+class LastValues final : public StructureObserver {
+ public:
+  void begin(const structure::Structure& s, const StructureSolverOptions&) override {
+    link_ = !s.links.empty();
+    last_ = nullptr;
+  }
+  void observe(const StructureState& s) override { last_ = &s; }
+  void end() override {
+    if (!last_) return;
+    const StructureState& s = *last_;
+    t_ = s.t;
+    const double values[] = {s.x[0], s.x[1], s.v[0], s.v[1], s.storey_force[0], s.storey_force[1], link_ ? s.link_force[0] : 0.0};
+    const char* const channels[] = {"A.x1", "B.x1", "A.v1", "B.v1", "A.shear1", "B.shear1", "link1.force"};
+    values_.clear();
+    for (std::size_t i = 0; i < std::size(channels); ++i) values_.push_back({channels[i], values[i]});
+    // Link 1's phase, or the sign of the floors' relative velocity (observe/pair_phase.hpp).
+    const double w = s.v[0] - s.v[1];
+    phase_ = link_ ? s.link_phase[0] : (w > 0.0 ? Phase::slip_right : (w < 0.0 ? Phase::slip_left : Phase::stick));
+    last_ = nullptr;
+  }
+  void report(Report& r) const {
+    r.last = values_;
+    r.last_phase = phase_;
+    r.t_last = t_;
+  }
+
+ private:
+  const StructureState* last_ = nullptr;
+  bool link_ = false;
+  double t_ = 0.0;
+  std::vector<ChannelValue> values_;
+  Phase phase_ = Phase::stick;
+};
+
+// Keeps the acceleration histories that spectra need (only when spectra are asked for): the
+// ground's and the floors' absolute accelerations, named as the scene names them ("ground",
+// "block1" = A's floor 1, "block2" = B's).
+class AccelerationRecorder final : public StructureObserver {
+ public:
+  void begin(const structure::Structure&, const StructureSolverOptions& o) override {
+    for (auto* v : {&ag, &a_abs[0], &a_abs[1]}) { v->clear(); v->reserve(o.steps() + 1); }
+  }
+  void observe(const StructureState& s) override {
+    ag.push_back(s.ag);
+    a_abs[0].push_back(s.a_abs[0]);
+    a_abs[1].push_back(s.a_abs[1]);
+  }
+  std::vector<double> ag, a_abs[2];
+};
+
+std::vector<SignalSpectrum> spectra_of(const RunSpec& spec, const AccelerationRecorder& recorded) {
+  const SpectraOutput& asked = *spec.output.spectra;
+  const Scales& k = spec.scales;
+  SpectrumOptions options;
+  options.dampings = asked.damping;
+  // Periods are in the scene's time unit already, as is the step below.
+  options.periods = asked.periods.empty() ? default_spectrum_periods() : asked.periods;
+  // The library works in m/s^2 and s; dimensionless accelerations are in g. For a
+  // dimensionless scene, lengths come out multiplied by g and are divided back below.
+  const double dt = spec.solver.h * k.time;
+  const double length_back = k.si ? 1.0 : 1.0 / kStandardGravity;
+  std::vector<SignalSpectrum> out;
+  for (const std::string& signal : asked.signals) {
+    const std::vector<double>& a = signal == "ground" ? recorded.ag : recorded.a_abs[signal == "block1" ? 0 : 1];
+    std::vector<double> accel(a.size());
+    for (std::size_t i = 0; i < a.size(); ++i) accel[i] = a[i] * kStandardGravity;
+    SignalSpectrum s{signal, response_spectrum(dt, accel, options)};
+    for (auto& v : s.spectrum.values) {
+      v.sd *= length_back;
+      v.sv *= length_back;
+      v.psv *= length_back;
+    }
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+// The pounding margin as the 1 + 1 structure's contact pair (its work: the energy observer's).
+ContactReport contact_report(const PoundingMargin& g, double work) {
+  ContactReport c;
+  c.model = g.model;
+  c.min_gap = g.min_gap;
+  c.t_min_gap = g.t_min_gap;
+  c.contact = g.contact;
+  c.t_first_contact = g.t_first_contact.value_or(0.0);
+  c.impact_list = g.impacts;
+  c.impacts = g.impacts.size();
+  c.force_max = g.force_max;
+  c.t_force_max = g.t_force_max;
+  c.penetration_max = g.penetration_max;
+  c.impulse = g.impulse;
+  c.impulse_max = g.impulse_max;
+  c.work = work;
+  c.dissipated = g.dissipated;
+  if (g.outside_model()) c.unmodelled_from = *g.t_first_contact;
+  return c;
+}
+
+Report run_two_block(const RunSpec& spec, const RunObservers& extra) {
+  const OutputOptions& asked = spec.output;
+  PeakObserver peaks;
+  PhaseObserver phases;
+  PoundingObserver pounding;
+  EnergyObserver energy;
+  LastValues last;
+  std::unique_ptr<AccelerationRecorder> accelerations;
+  std::unique_ptr<TwoBlockStates> states;
+  const SolverOptions options = two_block_options(spec);
+  TwoBlockObservers observers;
+  observers.add(&last);
+  if (asked.peaks) observers.add(&peaks);
+  if (asked.phases) observers.add(&phases);
+  // Always watched (it costs a few operations a step): a run without a contact law whose gap
+  // closes is flagged even when the pounding margin is not reported.
+  observers.add(&pounding);
+  if (asked.energy) observers.add(&energy);
+  if (asked.spectra) {
+    accelerations = std::make_unique<AccelerationRecorder>();
+    observers.add(accelerations.get());
+  }
+  if (extra.two_block) {
+    states = std::make_unique<TwoBlockStates>(*extra.two_block, options, *spec.model);
+    observers.add(states.get());
+  }
+  observers.add(extra.structure);
+  observers.add(spec.watch);  // (it may stop the run: a refusal, thrown)
+
+  Report report;
+  report.solver = simulate_as_structure(options, *spec.model, *spec.ground, observers);
+  last.report(report);
+  if (asked.phases) report.phases = phases.intervals();
+  if (asked.peaks) report.peaks = peaks.peaks();
+  if (asked.energy) report.energy = energy.balance();
+  report.contacts = {contact_report(pounding.margin(), energy.terms().contact)};
+  if (accelerations) report.spectra = spectra_of(spec, *accelerations);
+  return report;
+}
+
+// ---- buildings, continued ----
 
 // The structure's Zener elements (each storey of a Zener device, each Zener link) and their
 // distinct orders (the weights are computed once per order).

@@ -43,7 +43,8 @@ std::string duration_text(double seconds) {
 RunWatch::RunWatch(Options options) : options_(std::move(options)) {}
 
 void RunWatch::begin(const structure::Structure& s, const StructureSolverOptions& o) {
-  start(o.steps(), o.h, o.history == HistoryEngine::direct && zener_elements(s) > 0);
+  // (A two-block run's 1 + 1 structure is dimensionless: time_scale gives its step in seconds.)
+  start(o.steps(), o.h * options_.time_scale, o.history == HistoryEngine::direct && zener_elements(s) > 0);
 }
 
 void RunWatch::begin(const RunInfo& info) {

@@ -114,13 +114,15 @@ std::string sa_column(double period) { return "sa_" + shortest(period); }
 
 // Keeps what the intensity measures need: max |a_g| always, the history (m/s^2) only for Sa.
 // A two-block run's a_g is in g (State), a structure's in m/s^2 (StructureState).
-class GroundRecorder final : public Observer, public StructureObserver {
+class GroundRecorder final : public StructureObserver {
  public:
-  explicit GroundRecorder(bool keep) : keep_(keep) {}
-  void begin(const RunInfo& info) override { start(info.steps, 1.0); }
-  void begin(const structure::Structure&, const StructureSolverOptions& o) override { start(o.steps(), kStandardGravity); }
-  void observe(const State& s) override { take(s.ag, s.ag * kStandardGravity); }
-  void observe(const StructureState& st) override { take(st.ag, st.ag); }
+  // two_block: the run's 1 + 1 structure is dimensionless (a_g in g).
+  GroundRecorder(bool keep, bool two_block) : keep_(keep), two_block_(two_block) {}
+  // (pga_g: a two-block run's a_g is in g already, a building's in m/s^2.)
+  void begin(const structure::Structure&, const StructureSolverOptions& o) override {
+    start(o.steps(), two_block_ ? 1.0 : kStandardGravity);
+  }
+  void observe(const StructureState& st) override { take(st.ag, two_block_ ? st.ag * kStandardGravity : st.ag); }
   double pga_g() const { return pga_ / unit_; }
   std::vector<double> ag;  // m/s^2
 
@@ -135,7 +137,7 @@ class GroundRecorder final : public Observer, public StructureObserver {
     pga_ = std::max(pga_, std::abs(own));
     if (keep_) ag.push_back(si);
   }
-  bool keep_;
+  bool keep_, two_block_;
   double pga_ = 0.0, unit_ = 1.0;  // max |a_g| in the run's own unit, and g in it
 };
 
@@ -236,9 +238,9 @@ SweepRow run_sweep_point(const SweepSpec& spec, std::size_t index) {
   RunSpec asked = scene;
   asked.output.peaks = asked.output.phases = asked.output.pounding = asked.output.energy = true;
   asked.output.spectra.reset();
-  GroundRecorder ground(!spec.im_periods.empty());
+  GroundRecorder ground(!spec.im_periods.empty(), scene.two_block());
   try {
-    const Report report = run(asked, scene.two_block() ? RunObservers{nullptr, &ground} : RunObservers{&ground, nullptr});
+    const Report report = run(asked, RunObservers{&ground, nullptr});
     row.channels = channel_cells(spec, asked, report);
     // Intensity measures of the forcing as the solver saw it.
     row.pga_g = ground.pga_g();

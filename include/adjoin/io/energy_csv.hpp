@@ -17,11 +17,12 @@
 
 namespace adjoin {
 
-class EnergyCsvWriter final : public Observer {
+// Of a two-block run's 1 + 1 structure (solver/simulate.hpp simulate_as_structure).
+class EnergyCsvWriter final : public StructureObserver {
  public:
   EnergyCsvWriter(std::ostream& out, const Scales& scales, std::size_t every = 1);
-  void begin(const RunInfo& info) override;
-  void observe(const State& s) override;
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
+  void observe(const StructureState& s) override;
   void end() override;
 
  private:

@@ -30,11 +30,11 @@ std::string impact_csv_row(const Impact& impact, const Scales& scales);
 // approach_speed,rebound_speed,impulse,complete (SI; contact 1-based).
 std::string impacts_csv(const Report& report);
 
-class ImpactsCsvWriter final : public Observer {
+class ImpactsCsvWriter final : public StructureObserver {
  public:
   ImpactsCsvWriter(std::ostream& out, const Scales& scales) : out_(out), scales_(scales) {}
-  void begin(const RunInfo& info) override;
-  void observe(const State& /*state*/) override {}
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
+  void observe(const StructureState& /*state*/) override {}
   void impact(const Impact& impact) override;
   void end() override { out_.flush(); }
 

@@ -24,17 +24,21 @@
 
 #include "adjoin/core/units.hpp"
 #include "adjoin/observe/channel_values.hpp"
+#include "adjoin/observe/pair_phase.hpp"
 #include "adjoin/structure/observer.hpp"
 #include "adjoin/study/run_spec.hpp"
 
 namespace adjoin {
 
-class TimeSeriesCsvWriter final : public Observer {
+// Of a two-block run's 1 + 1 structure (solver/simulate.hpp simulate_as_structure): x1, x2 =
+// A.x1, B.x1; v1, v2 their velocities; f1, f2 = A.shear1, B.shear1; q = link1.force (0 without
+// a link); gap = contact pair 1's; fc its force; phase link 1's (observe/pair_phase.hpp).
+class TimeSeriesCsvWriter final : public StructureObserver {
  public:
   // Writes every `every`-th grid point and always the last one.
   TimeSeriesCsvWriter(std::ostream& out, const Scales& scales, std::size_t every = 1, bool flag_outside_model = false);
-  void begin(const RunInfo& info) override;
-  void observe(const State& s) override;
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
+  void observe(const StructureState& s) override;
   void end() override;
   // Takes effect at the next begin().
   void set_flag_outside_model(bool flag) { flag_outside_model_ = flag; }
@@ -43,9 +47,10 @@ class TimeSeriesCsvWriter final : public Observer {
   std::ostream& out_;
   Scales scales_;
   std::size_t every_, steps_ = 0, count_ = 0;
+  PairPhase phase_;
   double gap0_ = 0.0;
   bool flag_outside_model_ = false;
-  bool contact_law_ = false, outside_ = false;
+  bool link_ = false, contact_law_ = false, outside_ = false;
   std::string buffer_;
 };
 

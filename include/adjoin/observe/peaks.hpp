@@ -1,16 +1,20 @@
 #pragma once
 // Peak absolute values of the response and the times they occur (first occurrence).
 //
-// Displacements and the damper stroke are refined between samples from their derivatives (the
-// velocities), with the damper's located switching instants as kinks (step_extremum in
+// Displacements and the link's stroke are refined between samples from their derivatives (the
+// velocities), with the friction link's located switching instants as kinks (step_extremum in
 // observe/extremum.hpp), so their peaks and times are second order even where a peak sits on a
-// switch. Rod forces are refined by the cubic through the four samples around a local
-// maximum of |y| (observe/extremum.hpp cubic_extremum). Velocities and accelerations have kinks or jumps at phase changes; their
-// peaks are the largest samples. q is refined by a parabola while stuck (the stick force is
-// smooth), and its time is the located switch where it reaches its limit.
+// switch. Storey forces are refined by the cubic through the four samples around a local
+// maximum of |y| (observe/extremum.hpp cubic_extremum). Velocities and accelerations have kinks
+// or jumps at phase changes; their peaks are the largest samples. The link force is refined by
+// a parabola while stuck (the stick force is smooth), and its time is the located switch where
+// it reaches its limit.
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "adjoin/observe/extremum.hpp"
+#include "adjoin/observe/pair_phase.hpp"
 #include "adjoin/structure/observer.hpp"
 
 namespace adjoin {
@@ -87,23 +91,36 @@ class DerivativePeak {
   bool have_ = false;
 };
 
-struct Peaks {
-  Peak x1, x2, v1, v2, a1, a2, f1, f2, q, ag;
-  Peak drift;  // |x1 - x2|, the damper's stroke
+// A channel's peak (its name as structure/channels.hpp names it).
+struct ChannelPeak {
+  std::string channel;
+  Peak peak;
 };
 
-class PeakObserver final : public Observer {
+// The peak of `channel` in `peaks`, or a zero peak if none has that name.
+inline Peak find_peak(const std::vector<ChannelPeak>& peaks, const std::string& channel) {
+  for (const ChannelPeak& p : peaks)
+    if (p.channel == channel) return p.peak;
+  return Peak{};
+}
+
+// The peaks of a run of the 1 + 1 structure (the two blocks, structure/two_block.hpp), refined
+// as the paper's values need: named by the structure's channels A.x1, B.x1 (floors),
+// link1.stroke (x_A1 - x_B1), A.shear1, B.shear1 (storey forces), link1.force, and sampled
+// A.v1, B.v1 (velocities), A.a1_abs, B.a1_abs, ag. Building A's values are index 0, B's 1.
+class PeakObserver final : public StructureObserver {
  public:
-  void begin(const RunInfo&) override;
-  void observe(const State& s) override;
-  const Peaks& peaks() const;
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
+  void observe(const StructureState& s) override;
+  // In the order above (the refined ones first).
+  std::vector<ChannelPeak> peaks() const;
 
  private:
-  // The refined peaks (x1, x2, f1, f2, drift) are the trackers' own and copied in only when
-  // peaks() is asked, not at every step; the others are kept here.
-  mutable Peaks peaks_;
-  SmoothPeak f1_, f2_, stuck_q_;
-  DerivativePeak x1_, x2_, drift_;
+  PairPhase phase_;  // link 1's phase and located switch (the kinks)
+  bool link_ = false;
+  SmoothPeak shear_[2], stuck_force_;
+  DerivativePeak x_[2], stroke_;
+  Peak link_force_, v_[2], a_abs_[2], ag_;
 };
 
 }  // namespace adjoin

@@ -3,9 +3,11 @@
 //
 // On a grid, a phase that the solver assigns to t_m starts an interval at t_m; the previous
 // interval ends there. Schemes that locate switching instants inside a step report them
-// through State::t of the sample where the phase changes (see the scheme's documentation).
+// through the switch time of the sample where the phase changes (see the scheme's
+// documentation).
 #include <vector>
 
+#include "adjoin/observe/pair_phase.hpp"
 #include "adjoin/structure/observer.hpp"
 
 namespace adjoin {
@@ -16,15 +18,18 @@ struct PhaseInterval {
   double t_end = 0.0;
 };
 
-class PhaseObserver final : public Observer {
+// Of a run of the 1 + 1 structure (structure/two_block.hpp): link 1's phases, or without a link
+// the sign of the floors' relative velocity (observe/pair_phase.hpp).
+class PhaseObserver final : public StructureObserver {
  public:
-  void begin(const RunInfo&) override { intervals_.clear(); }
-  void observe(const State& s) override;
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
+  void observe(const StructureState& s) override;
   const std::vector<PhaseInterval>& intervals() const { return intervals_; }
   // Number of phase changes (intervals - 1).
   std::size_t switches() const { return intervals_.empty() ? 0 : intervals_.size() - 1; }
 
  private:
+  PairPhase phase_;
   std::vector<PhaseInterval> intervals_;
 };
 

@@ -6,8 +6,8 @@
 // grid points that bracket it.
 //
 // With a contact law (Model::contact, SPEC §6) the observer also keeps the solver's impacts
-// (Observer::impact): their list, the peak contact force and its time, the largest
-// penetration, and the energy the contact dissipated (State::contact_dissipated). The first
+// (StructureObserver::impact): their list, the peak contact force and its time, the largest
+// penetration, and the energy the contact dissipated (StructureState::contact_dissipated). The first
 // contact is then the first impact's located start; under the Newton law (no penetration) the
 // minimum gap is 0 at that instant. Without a law (model none) the blocks pass
 // through each other: every value computed after the first contact is outside the model
@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "adjoin/observe/extremum.hpp"
+#include "adjoin/observe/pair_phase.hpp"
 #include "adjoin/structure/observer.hpp"
 #include "adjoin/structure/contact.hpp"
 
@@ -45,15 +46,18 @@ struct PoundingMargin {
   bool outside_model() const { return !has_law() && contact; }
 };
 
-class PoundingObserver final : public Observer {
+// Of a run of the 1 + 1 structure (structure/two_block.hpp): contact pair 1, between A's and
+// B's floor 1; the kinks are link 1's located switches (observe/pair_phase.hpp).
+class PoundingObserver final : public StructureObserver {
  public:
-  void begin(const RunInfo& info) override;
-  void observe(const State& s) override;
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
+  void observe(const StructureState& s) override;
   void impact(const Impact& i) override;
   void end() override;
   const PoundingMargin& margin() const { return margin_; }
 
  private:
+  PairPhase phase_;
   double gap0_ = 0.0;
   bool started_ = false;
   Sample previous_{};  // the gap, its rate and its acceleration at the previous sample

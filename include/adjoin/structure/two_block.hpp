@@ -17,7 +17,8 @@ Structure two_block_structure(const Model& model, const Scales& scales = Scales:
 // The channel (structure/channels.hpp) of the 1 + 1 structure that SPEC §3's name `name`
 // presents (SPEC §4): x1 = A.x1, x2 = B.x1, drift = link1.stroke (x1 - x2), f1 = A.shear1,
 // f2 = B.shear1 (the storeys' forces), q = link1.force, a1_abs = A.a1_abs, a2_abs = B.a1_abs,
-// gap = contact1.gap. "" for a name that is not a channel's.
+// gap = contact1.gap, and the two-block run's own values v1 = A.v1, v2 = B.v1 (the floors'
+// velocities) and ag. "" for a name that is not a channel's.
 std::string two_block_channel(const std::string& name);
 
 }  // namespace adjoin::structure

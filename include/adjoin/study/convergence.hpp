@@ -19,10 +19,11 @@
 // The observed order is log2 of the ratio of successive errors over a halving of h.
 //
 // Against a finer run, every reported quantity is compared too (ConvergenceRow::quantities),
-// by the scene's presentation. A two-block scene's: the peaks of x1, x2, the stroke, f1, f2
-// and q with their times, the minimum gap and its time, the friction energy, final.q, and each
-// switching instant (when the run has the reference's sequence of phases; otherwise the row says
-// the switches differ). A structure's (SPEC §5): each channel's peak and, for the peaks refined
+// by the scene's presentation. A two-block scene's (its 1 + 1 structure's, labelled with SPEC §3's
+// names): the peaks of the floors A.x1, B.x1 (x1, x2), link 1's stroke, the storeys' forces
+// (f1, f2) and link 1's force (q) with their times, the minimum gap and its time, the friction
+// link's work, its last force (final q), and each switching instant (when the run has the
+// reference's sequence of phases; otherwise the row says the switches differ). A structure's (SPEC §5): each channel's peak and, for the peaks refined
 // between samples (structure/channels.hpp PeakRule::refined), its time; each link's largest
 // force and stroke and, for friction links, the dissipated energy and each switching instant
 // (when the run switches as often as the reference); each contact pair's smallest gap and its

@@ -37,11 +37,13 @@
 
 namespace adjoin {
 
+// The response as the model's 1 + 1 structure's (structure/two_block.hpp): index 0 is building
+// A's floor and storey (block 1 and rod 1 above), 1 is B's; link 1 is the damper.
 struct LinearResponse {
-  double x1 = 0, x2 = 0;  // displacements relative to the base
-  double v1 = 0, v2 = 0;  // velocities
-  double f1 = 0, f2 = 0;  // rod forces
-  double q = 0;           // damper force ((a): the stick force; (b): 0)
+  double x[2] = {0, 0};             // the floors' displacements relative to the base
+  double v[2] = {0, 0};             // their velocities
+  double storey_force[2] = {0, 0};  // the storeys' (rods') forces
+  double link_force = 0;            // the damper's ((a): the stick force; (b): 0)
 };
 
 class LinearReference {

@@ -4,11 +4,12 @@
 // the spec's scales); spectra are in the scene's units.
 //
 //  - every run: the solver's summary, the in-structure spectra asked for;
-//  - a building run (and a two-block run asked for its channels): the modes, the peak of every
-//    channel (structure/channels.hpp), each link's extremes and switches, each contact pair's
-//    gap and impacts, the energy balance;
-//  - a two-block spec: the paper's values (SPEC §3), refined by its own observers
-//    (observe/peaks.hpp, phases.hpp, pounding.hpp, energy.hpp).
+//  - a building run: the modes, the peak of every channel (structure/channels.hpp), each link's
+//    extremes and switches, each contact pair's gap and impacts, the energy balance;
+//  - a two-block spec: the same report of its 1 + 1 structure (structure/two_block.hpp), from
+//    the two-block observers of that structure (observe/peaks.hpp, phases.hpp, pounding.hpp,
+//    energy.hpp: the paper's refinements), plus its phases and last values; io presents it
+//    under the names of SPEC §3 (io/two_block_names.hpp).
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -33,13 +34,10 @@ struct SignalSpectrum {
 
 // Channels (SPEC §5): A.x3, A.a3_abs (floor 3's displacement, absolute acceleration),
 // A.drift2, A.shear2 (storey 2), A.base_shear, link1.force, link1.stroke; B likewise.
-// Peaks are the largest samples; those of displacements, drifts and strokes are refined by a
-// parabola through the three samples around them (accelerations, shears and link forces have
-// kinks where a damper switches or saturates, and keep their samples).
-struct ChannelPeak {
-  std::string channel;
-  Peak peak;
-};
+// Peaks (ChannelPeak, observe/peaks.hpp) are the largest samples; those of displacements,
+// drifts and strokes are refined by a parabola through the three samples around them
+// (accelerations, shears and link forces have kinks where a damper switches or saturates, and
+// keep their samples). A two-block run's peaks are refined as observe/peaks.hpp says.
 
 struct LinkReport {
   double force_max = 0.0, stroke_max = 0.0;
@@ -77,29 +75,6 @@ struct ContactReport {
   bool outside_model() const { return !std::isnan(unmodelled_from); }
 };
 
-// The energy balance of a run [J], integrated from the grid's powers (trapezoidal): for each
-// building the input a_g 1'M v, the kinetic energy 1/2 v'M v, the work dissipated by its
-// inherent damping v'C v and the work done on each storey (springs' strain energy and the
-// devices' stored and dissipated work together); each link's work; each contact pair's work
-// (its stored energy plus what it dissipated, exact from the solver); and the residual
-// input - kinetic - inherent - storeys - links - contacts, which tends to 0 at the scheme's order.
-struct BuildingEnergy {
-  struct Part {
-    double input = 0.0, kinetic = 0.0, inherent = 0.0;
-    std::vector<double> storeys;
-    // Bilinear storeys (SPEC §7): the plastic work of each storey's law (a part of its storey's
-    // work, dissipated); empty for an elastic building.
-    std::vector<double> hysteretic;
-    // An isolated base (SPEC §7): the work done on its isolator, the slider's dissipated work
-    // plus a friction pendulum's stored energy (0 without a base), and the slider's part.
-    double isolator = 0.0, isolator_dissipated = 0.0;
-  };
-  std::vector<Part> buildings;  // A, then B
-  std::vector<double> links;
-  std::vector<double> contacts;
-  double input = 0.0, residual = 0.0;
-};
-
 // Collapse (SPEC §7): a storey's drift ratio passed its building's collapse_drift_ratio and the
 // run stopped there, an outcome (exit 0), the capacity event of incremental dynamic analysis.
 // The run's outputs end at the grid point that ends the step the crossing was located in.
@@ -115,20 +90,6 @@ struct Collapse {
 struct ChannelValue {
   std::string channel;
   double value = 0.0;
-};
-
-// The paper's values of a two-block run (SPEC §3), dimensionless. Parts the scene did not ask
-// for ([output]) are neither computed nor kept (their optionals are empty).
-struct TwoBlockReport {
-  State final;
-  std::vector<PhaseInterval> phases;  // empty if output.phases = false
-  Peaks peaks;                        // all zero if output.peaks = false
-  std::optional<PoundingMargin> pounding;
-  // The model has no contact law and the gap closed: the first contact time, from which every
-  // value of the run is outside the model (set [model.contact]). Kept even when the pounding
-  // margin was not asked for (output.pounding = false).
-  std::optional<double> outside_model_from;
-  std::optional<EnergyBalance> energy;
 };
 
 // A yielding storey (SPEC §7, summary.json `yield`): whether and when it first yielded (the
@@ -158,7 +119,9 @@ struct BaseReport {
 
 struct Report {
   SolverSummary solver;
-  // The structure's channels (a building run; a two-block run when output.channels is set).
+  // The structure's channels, links, contact pairs and energy (a two-block run's: its 1 + 1
+  // structure's peaks as observe/peaks.hpp names them, its one contact pair, and its energy
+  // when output.energy asks).
   std::vector<structure::Modes> modes;   // A, then B
   std::optional<structure::CoupledModes> coupled;
   std::vector<ChannelPeak> peaks;
@@ -171,8 +134,21 @@ struct Report {
   std::vector<BaseReport> bases;     // the isolated buildings, A's first
   // In-structure spectra ([output.spectra]).
   std::vector<SignalSpectrum> spectra;
-  // A two-block spec's values under the paper's names.
-  std::optional<TwoBlockReport> two_block;
+  // A two-block run (the 1 + 1 structure on the two-block solver): the friction link's phases
+  // (without a link: the sign of the floors' relative velocity), with located switches, and
+  // the last grid point's values (A.x1, B.x1, A.v1, B.v1, A.shear1, B.shear1, link1.force) and
+  // phase. Empty when not asked for (output.phases) or for a building run.
+  std::vector<PhaseInterval> phases;
+  std::vector<ChannelValue> last;
+  Phase last_phase = Phase::stick;
+  double t_last = 0.0;
+
+  // The peak of `channel`, or a zero peak if the report has none by that name.
+  Peak peak(const std::string& channel) const;
+  // The value of `channel` in `last`, 0 if none.
+  double last_value(const std::string& channel) const;
+  // The work on link k (0-based), 0 if the run has no such link.
+  double link_energy(std::size_t k = 0) const { return k < energy.links.size() ? energy.links[k] : 0.0; }
 
   // The earliest time from which the run's values are outside its model (a contact pair
   // without a law whose floors met), NaN if none.

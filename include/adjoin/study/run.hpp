@@ -5,9 +5,10 @@
 //     Report report = run(spec, {&writer});            // and a structure observer
 //
 // A building (SPEC §5) runs on the structure stepper with the observers of its channels (peaks,
-// links, contact pairs, energy). A two-block spec (SPEC §1) runs on the paper's stepper or on
-// the structure stepper as its scheme says (solver/simulate.hpp), with the paper's observers
-// (peaks, phases, pounding margin, energy balance). Every run made from a spec goes through
+// links, contact pairs, energy). A two-block spec (SPEC §1) runs as its 1 + 1 structure on the
+// paper's stepper or on the structure stepper as its scheme says (solver/simulate.hpp
+// simulate_as_structure), with the two-block observers of that structure (peaks, phases,
+// pounding margin, energy balance: observe/). Every run made from a spec goes through
 // here: `adjoin run`, a sweep row, a convergence rung, an error estimate's companion, the
 // tolerance ladder, the seismic joint. Parts the spec did not ask for are neither computed nor
 // kept.
@@ -19,7 +20,9 @@ namespace adjoin {
 // What else sees a run's grid points (not owned; either may be null).
 struct RunObservers {
   StructureObserver* structure = nullptr;  // any run: its StructureState (a two-block run's 1 + 1)
-  Observer* two_block = nullptr;           // a two-block spec: its State (io's two-block writers)
+  // A two-block spec: its 1 + 1 structure's states as two-block States (solver/simulate.hpp
+  // TwoBlockStates), for observers written against the State interface.
+  Observer* two_block = nullptr;
 };
 
 Report run(const RunSpec& spec, const RunObservers& extra = {});

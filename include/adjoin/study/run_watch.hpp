@@ -48,7 +48,7 @@ class RunWatch final : public StructureObserver, public Observer {
     double show_seconds = 5.0;
     std::function<void(const RunProgress&)> show;  // null: nothing shown
     std::function<void()> finish;                   // after a run whose progress was shown
-    // Two-block runs (their RunInfo is dimensionless): the scene's unit of time in seconds,
+    // Two-block runs (dimensionless, their 1 + 1 structure's too): the scene's unit of time in seconds,
     // and how a step is written in messages (" s"; "" for a dimensionless scene).
     double time_scale = 1.0;
     std::string h_unit = " s";

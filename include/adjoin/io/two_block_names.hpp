@@ -1,0 +1,36 @@
+#pragma once
+// The presenter of a two-block run (SPEC §4): its report is the 1 + 1 structure's (study/report.hpp,
+// by channel: A.x1, link1.force, ...), shown under SPEC §3's frozen names (x1, q, rod1, ...) in
+// summary.json, the terminal report, timeseries.csv and energy.csv. The names of the values
+// and their channels are structure/two_block.hpp's two_block_channel; their units are here.
+#include <span>
+
+#include "adjoin/core/units.hpp"
+#include "adjoin/observe/energy.hpp"
+#include "adjoin/study/report.hpp"
+
+namespace adjoin {
+
+// A frozen name and the scale that takes its value to the scene's units.
+struct FrozenName {
+  const char* name;
+  double Scales::*unit;
+};
+
+// summary.json's "peaks", in its order: x1, x2, f1, f2, q, v1, v2, a1_abs, a2_abs, ag, drift.
+std::span<const FrozenName> two_block_peak_names();
+// summary.json's "final" after t: x1, x2, v1, v2, f1, f2, q.
+std::span<const FrozenName> two_block_final_names();
+
+// The energy balance under its frozen names (per unit m1; the scene's scale gives joules):
+// rod1 and rod2 are the work on A's and B's storey, friction the work on the friction link,
+// contact the contact pair's work and contact_dissipated its dissipated part, base_friction
+// the base friction sliders' work (observe/energy.hpp).
+struct TwoBlockEnergy {
+  double input = 0.0, kinetic = 0.0, rod1 = 0.0, rod2 = 0.0, friction = 0.0;
+  double contact = 0.0, contact_dissipated = 0.0, base_friction = 0.0, residual = 0.0;
+};
+TwoBlockEnergy two_block_energy(const EnergyTerms& terms);
+TwoBlockEnergy two_block_energy(const Report& report);
+
+}  // namespace adjoin

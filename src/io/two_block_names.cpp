@@ -1,0 +1,52 @@
+#include "adjoin/io/two_block_names.hpp"
+
+namespace adjoin {
+
+std::span<const FrozenName> two_block_peak_names() {
+  static const FrozenName names[] = {{"x1", &Scales::length},         {"x2", &Scales::length},
+                                     {"f1", &Scales::force},          {"f2", &Scales::force},
+                                     {"q", &Scales::force},           {"v1", &Scales::velocity},
+                                     {"v2", &Scales::velocity},       {"a1_abs", &Scales::acceleration},
+                                     {"a2_abs", &Scales::acceleration}, {"ag", &Scales::acceleration},
+                                     {"drift", &Scales::length}};
+  return names;
+}
+
+std::span<const FrozenName> two_block_final_names() {
+  static const FrozenName names[] = {{"x1", &Scales::length},   {"x2", &Scales::length}, {"v1", &Scales::velocity},
+                                     {"v2", &Scales::velocity}, {"f1", &Scales::force},  {"f2", &Scales::force},
+                                     {"q", &Scales::force}};
+  return names;
+}
+
+TwoBlockEnergy two_block_energy(const EnergyTerms& e) {
+  TwoBlockEnergy out;
+  out.input = e.total_input();
+  out.kinetic = e.total_kinetic();
+  out.rod1 = e.storey[0];
+  out.rod2 = e.storey[1];
+  out.friction = e.link;
+  out.contact = e.contact;
+  out.contact_dissipated = e.contact_dissipated;
+  out.base_friction = e.base[0] + e.base[1];
+  out.residual = e.residual;
+  return out;
+}
+
+TwoBlockEnergy two_block_energy(const Report& r) {
+  TwoBlockEnergy out;
+  const BuildingEnergy& e = r.energy;
+  if (e.buildings.size() != 2) return out;
+  out.input = e.input;
+  out.kinetic = e.buildings[0].kinetic + e.buildings[1].kinetic;
+  out.rod1 = e.buildings[0].storeys.at(0);
+  out.rod2 = e.buildings[1].storeys.at(0);
+  out.friction = r.link_energy(0);
+  out.contact = e.contacts.empty() ? 0.0 : e.contacts[0];
+  out.contact_dissipated = r.contacts.empty() ? 0.0 : r.contacts[0].dissipated;
+  out.base_friction = e.buildings[0].isolator + e.buildings[1].isolator;
+  out.residual = e.residual;
+  return out;
+}
+
+}  // namespace adjoin
