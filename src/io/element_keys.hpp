@@ -8,6 +8,7 @@
 #include <string>
 
 #include "adjoin/core/enum_names.hpp"
+#include "adjoin/structure/device_kinds.hpp"
 
 namespace adjoin::detail {
 
@@ -22,16 +23,11 @@ inline std::set<std::string> link_keys(structure::LinkType type) {
   return {};
 }
 
+// A device's keys come from its kind (structure/device_kinds.hpp).
 inline std::set<std::string> device_keys(structure::DeviceType type) {
-  using T = structure::DeviceType;
-  switch (type) {
-    case T::spring: return {"type", "storeys", "stiffness"};
-    case T::dashpot: return {"type", "storeys", "c", "alpha"};
-    case T::bilinear: return {"type", "storeys", "stiffness", "yield_force", "hardening"};
-    case T::bouc_wen: return {"type", "storeys", "stiffness", "yield_force", "hardening", "n", "beta", "gamma"};
-    case T::zener: return {"type", "storeys", "stiffness", "order", "tau_x", "tau_f"};
-  }
-  return {};
+  std::set<std::string> keys{"type", "storeys"};
+  for (const structure::DeviceKey& key : structure::device_kind(type).keys) keys.insert(key.name);
+  return keys;
 }
 
 }  // namespace adjoin::detail

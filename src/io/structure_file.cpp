@@ -238,6 +238,20 @@ void read_heights(const TableReader& r, Building* b) {
     r.fail(key, problem);
 }
 
+// A device's keys, by its kind (structure/device_kinds.hpp): only the kind's keys; each key's
+// value (or its default) and its check, in the kind's order; then the rule between keys.
+void read_device_keys(const TableReader& r, structure::StoreyDevice* dev) {
+  const structure::DeviceKind& kind = structure::kind_of(*dev);
+  r.only(device_keys(dev->type));
+  for (const structure::DeviceKey& key : kind.keys) {
+    const double v = key.required ? r.number(key.name) : r.number(key.name, key.fallback);
+    if (const std::string problem = key.problem(v); !problem.empty()) r.fail(key.name, problem);
+    key.field(*dev) = v;
+  }
+  if (const std::string problem = kind.joint_problem(*dev); !problem.empty())
+    r.fail(structure::joint_key(kind, [&](const char* key) { return r.has(key); }), problem);
+}
+
 // A bilinear law's post-yield stiffness ratio b, in [0, 1) (default 0: elastic-perfectly-plastic).
 double read_hardening(const TableReader& r) {
   const double b = r.number("hardening", 0.0);
@@ -390,28 +404,7 @@ Building read_building(const toml::table& root, const std::string& name, const T
       structure::StoreyDevice dev;
       dev.type = dr.choice<DeviceType>("type");
       dev.storeys = dr.storeys("storeys", n);
-      if (dev.type == DeviceType::spring) {
-        dr.only(device_keys(dev.type));
-        dev.k = dr.bounded("stiffness", kStiffnessRange);
-      } else if (dev.type == DeviceType::dashpot) {
-        dr.only(device_keys(dev.type));
-        dev.c = dr.bounded("c", kDashpotRange);
-        if (dr.has("alpha")) dev.alpha = dr.bounded("alpha", kAlphaRange);
-      } else if (dev.type == DeviceType::bilinear) {
-        dr.only(device_keys(dev.type));
-        dev.k = dr.bounded("stiffness", kStiffnessRange);
-        dev.yield_force = dr.bounded("yield_force", kForceRange);
-        dev.hardening = read_hardening(dr);
-      } else if (dev.type == DeviceType::bouc_wen) {
-        dr.only(device_keys(dev.type));
-        dev.k = dr.bounded("stiffness", kStiffnessRange);
-        dev.yield_force = dr.bounded("yield_force", kForceRange);
-        dev.hardening = read_hardening(dr);
-        read_bouc_wen_shape(dr, &dev.n, &dev.beta, &dev.gamma);
-      } else {
-        dr.only(device_keys(dev.type));
-        dev.zener = read_zener(dr);
-      }
+      read_device_keys(dr, &dev);
       b.devices.push_back(dev);
     }
   }

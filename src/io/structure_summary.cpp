@@ -16,6 +16,7 @@
 #include "../detail/finite_output.hpp"
 #include "adjoin/core/errors.hpp"
 #include "adjoin/structure/channels.hpp"
+#include "adjoin/structure/device_kinds.hpp"
 
 namespace adjoin::detail {
 namespace {
@@ -25,7 +26,7 @@ bool has_nonlinear_viscous(const structure::Structure& s) {
   for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
     if (b)
       for (const auto& d : b->devices)
-        if (d.type == structure::DeviceType::dashpot && d.alpha != 1.0) return true;
+        if (structure::kind_of(d).family(d) == structure::DeviceFamily::viscous) return true;
   for (const auto& l : s.links)
     if (l.type == structure::LinkType::dashpot && l.alpha != 1.0) return true;
   return false;

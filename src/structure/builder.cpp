@@ -4,6 +4,7 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/structure/contact_rules.hpp"
+#include "adjoin/structure/device_kinds.hpp"
 #include "adjoin/structure/rules.hpp"
 
 namespace adjoin::structure {
@@ -209,64 +210,54 @@ void BuildingBuilder::add_device(StoreyDevice device, const std::vector<int>& st
   b_.devices.push_back(std::move(device));
 }
 
-BuildingBuilder& BuildingBuilder::spring(const std::vector<int>& storeys, double k) {
-  check(device_path() + ".stiffness", bounded_problem(k, kStiffnessRange));
+BuildingBuilder& BuildingBuilder::device(DeviceType type, const std::vector<int>& storeys, const std::map<std::string, double>& values) {
+  const DeviceKind& kind = device_kind(type);
+  const std::string path = device_path();
+  for (const auto& [name, value] : values) {
+    bool known = false;
+    for (const DeviceKey& key : kind.keys) known = known || name == key.name;
+    if (!known) throw FieldError(path + "." + name, "not a key of a " + to_string(type) + " device");
+  }
   StoreyDevice d;
-  d.type = DeviceType::spring;
-  d.k = k;
+  d.type = type;
+  for (const DeviceKey& key : kind.keys) {
+    const auto given = values.find(key.name);
+    if (given == values.end() && key.required) throw FieldError(path + "." + key.name, "missing: a " + to_string(type) + " device needs it");
+    const double v = given == values.end() ? key.fallback : given->second;
+    check(path + "." + key.name, key.problem(v));
+    key.field(d) = v;
+  }
+  // The rule between keys is blamed on the first of its keys changed from its default.
+  auto changed = [&](const char* name) {
+    for (const DeviceKey& key : kind.keys)
+      if (name == std::string(key.name)) return key.required || key.field(d) != key.fallback;
+    return false;
+  };
+  check(path + "." + joint_key(kind, changed), kind.joint_problem(d));
   add_device(d, storeys);
   return *this;
+}
+
+BuildingBuilder& BuildingBuilder::spring(const std::vector<int>& storeys, double k) {
+  return device(DeviceType::spring, storeys, {{"stiffness", k}});
 }
 
 BuildingBuilder& BuildingBuilder::dashpot(const std::vector<int>& storeys, double c, double alpha) {
-  check(device_path() + ".c", bounded_problem(c, kDashpotRange));
-  check(device_path() + ".alpha", bounded_problem(alpha, kAlphaRange));
-  StoreyDevice d;
-  d.type = DeviceType::dashpot;
-  d.c = c;
-  d.alpha = alpha;
-  add_device(d, storeys);
-  return *this;
+  return device(DeviceType::dashpot, storeys, {{"c", c}, {"alpha", alpha}});
 }
 
 BuildingBuilder& BuildingBuilder::bilinear_device(const std::vector<int>& storeys, double k, double yield_force, double hardening) {
-  check(device_path() + ".stiffness", bounded_problem(k, kStiffnessRange));
-  check(device_path() + ".yield_force", bounded_problem(yield_force, kForceRange));
-  check(device_path() + ".hardening", hardening_problem(hardening));
-  StoreyDevice d;
-  d.type = DeviceType::bilinear;
-  d.k = k;
-  d.yield_force = yield_force;
-  d.hardening = hardening;
-  add_device(d, storeys);
-  return *this;
+  return device(DeviceType::bilinear, storeys, {{"stiffness", k}, {"yield_force", yield_force}, {"hardening", hardening}});
 }
 
 BuildingBuilder& BuildingBuilder::bouc_wen_device(const std::vector<int>& storeys, double k, double yield_force, double hardening,
                                                   BoucWenShape shape) {
-  check(device_path() + ".stiffness", bounded_problem(k, kStiffnessRange));
-  check(device_path() + ".yield_force", bounded_problem(yield_force, kForceRange));
-  check(device_path() + ".hardening", hardening_problem(hardening));
-  check_bouc_wen_shape(device_path(), shape);
-  StoreyDevice d;
-  d.type = DeviceType::bouc_wen;
-  d.k = k;
-  d.yield_force = yield_force;
-  d.hardening = hardening;
-  d.n = shape.n;
-  d.beta = shape.beta;
-  d.gamma = shape.gamma;
-  add_device(d, storeys);
-  return *this;
+  return device(DeviceType::bouc_wen, storeys,
+                {{"stiffness", k}, {"yield_force", yield_force}, {"hardening", hardening}, {"n", shape.n}, {"beta", shape.beta}, {"gamma", shape.gamma}});
 }
 
 BuildingBuilder& BuildingBuilder::zener(const std::vector<int>& storeys, const Zener& z) {
-  check_zener(device_path(), z);
-  StoreyDevice d;
-  d.type = DeviceType::zener;
-  d.zener = z;
-  add_device(d, storeys);
-  return *this;
+  return device(DeviceType::zener, storeys, {{"stiffness", z.k}, {"order", z.order}, {"tau_f", z.tau_f}, {"tau_x", z.tau_x}});
 }
 
 Building BuildingBuilder::build() const {

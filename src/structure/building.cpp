@@ -9,11 +9,11 @@
 #include "adjoin/core/units.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/structure/rules.hpp"
+#include "devices/device_parts.hpp"
 
 namespace adjoin::structure {
-namespace {
 
-bool positive(double v) { return std::isfinite(v) && v > 0.0; }
+using devices::positive;
 
 std::string zener_check(const Zener& z) {
   if (!positive(z.k)) return "stiffness must be a positive number";
@@ -32,6 +32,8 @@ std::string bouc_wen_check(double n, double beta, double gamma) {
     return "beta: beta + gamma must be positive (else the Bouc-Wen law never yields)";
   return "";
 }
+
+namespace {
 
 bool building_valid(const Building& b, const std::string& path, std::string* error) {
   auto fail = [&](const std::string& m) {
@@ -52,22 +54,7 @@ bool building_valid(const Building& b, const std::string& path, std::string* err
     if (dev.storeys.empty()) return fail(where + ".storeys: list at least one storey");
     for (int s : dev.storeys)
       if (s < 1 || s > n) return fail(where + ".storeys: storey " + std::to_string(s) + " is not in 1.." + std::to_string(n));
-    if (dev.type == DeviceType::spring && !positive(dev.k)) return fail(where + ".stiffness must be positive (N/m)");
-    if (dev.type == DeviceType::dashpot && !positive(dev.c)) return fail(where + ".c must be positive (N s/m)");
-    if (dev.type == DeviceType::dashpot && !(dev.alpha >= kAlphaRange.lo && dev.alpha <= kAlphaRange.hi))
-      return fail(where + ".alpha must lie in [0.05, 1] (F = c |v|^alpha sign v)");
-    if (dev.type == DeviceType::zener) {
-      const std::string p = zener_check(dev.zener);
-      if (!p.empty()) return fail(where + ": " + p);
-    }
-    if (dev.type == DeviceType::bouc_wen) {
-      if (const std::string p = bouc_wen_check(dev.n, dev.beta, dev.gamma); !p.empty()) return fail(where + "." + p);
-    }
-    if (dev.type == DeviceType::bilinear || dev.type == DeviceType::bouc_wen) {
-      if (!positive(dev.k)) return fail(where + ".stiffness must be positive (N/m)");
-      if (!positive(dev.yield_force)) return fail(where + ".yield_force must be a positive force (N)");
-      if (!(dev.hardening >= 0.0 && dev.hardening < 1.0)) return fail(where + ".hardening must lie in [0, 1)");
-    }
+    if (const std::string p = kind_of(dev).invalid(dev); !p.empty()) return fail(where + p);
   }
   if (b.hysteresis.model == HysteresisModel::bouc_wen) {
     const StoreyHysteresis& y = b.hysteresis;
@@ -121,8 +108,7 @@ bool building_valid(const Building& b, const std::string& path, std::string* err
 Eigen::VectorXd Building::static_stiffness() const {
   Eigen::VectorXd k = springs;
   for (const StoreyDevice& d : devices) {
-    const bool spring = d.type == DeviceType::spring || d.type == DeviceType::bilinear || d.type == DeviceType::bouc_wen;
-    const double add = spring ? d.k : (d.type == DeviceType::zener ? d.zener.k : 0.0);
+    const double add = kind_of(d).relaxed(d);
     for (int s : d.storeys)
       if (s >= 1 && s <= k.size()) k[s - 1] += add;
   }
@@ -132,7 +118,7 @@ Eigen::VectorXd Building::static_stiffness() const {
 bool Building::yields() const {
   if (hysteresis.model != HysteresisModel::elastic) return true;
   for (const StoreyDevice& d : devices)
-    if (d.type != DeviceType::spring && d.type != DeviceType::dashpot && d.type != DeviceType::zener) return true;
+    if (kind_of(d).yields) return true;
   return false;
 }
 

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/structure/device_kinds.hpp"
 
 namespace adjoin {
 namespace {
@@ -18,7 +19,7 @@ std::size_t zener_elements(const structure::Structure& s) {
   for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
     if (b)
       for (const auto& d : b->devices)
-        if (d.type == structure::DeviceType::zener) n += d.storeys.size();
+        if (structure::kind_of(d).family(d) == structure::DeviceFamily::zener) n += d.storeys.size();
   for (const auto& l : s.links)
     if (l.type == structure::LinkType::zener) ++n;
   return n;

@@ -65,8 +65,19 @@ enum class SuiteScaling { fit, uniform };
 namespace structure {
 // A contact pair's law (structure/contact.hpp).
 enum class ContactModel { none, linear, hertz, hertzdamp, jankowski, impact };
-// A storey device, a building's inherent damping, a link (structure/building.hpp).
-enum class DeviceType { spring, dashpot, zener, bilinear, bouc_wen };
+// The storey device kinds (structure/device_kinds.hpp), one row each: the value and the name
+// a scene spells. Each kind's keys, checks and model are its own file,
+// src/structure/devices/<value>.cpp: a new kind is that file and one row here.
+#define ADJOIN_DEVICE_KINDS(ROW) \
+  ROW(spring, "spring")          \
+  ROW(dashpot, "dashpot")        \
+  ROW(zener, "zener")            \
+  ROW(bilinear, "bilinear")      \
+  ROW(bouc_wen, "bouc-wen")
+#define ADJOIN_DEVICE_VALUE(value, name) value,
+enum class DeviceType { ADJOIN_DEVICE_KINDS(ADJOIN_DEVICE_VALUE) };
+#undef ADJOIN_DEVICE_VALUE
+// A building's inherent damping, a link (structure/building.hpp).
 // A storey spring's own law (SPEC §7; structure/building.hpp).
 enum class HysteresisModel { elastic, bilinear, bouc_wen };
 // An isolated base's bearing (SPEC §7; structure/building.hpp).
@@ -167,8 +178,9 @@ struct EnumTable<structure::ContactModel> {
 template <>
 struct EnumTable<structure::DeviceType> {
   using E = structure::DeviceType;
-  static constexpr EnumName<E> entries[] = {{E::spring, "spring"}, {E::dashpot, "dashpot"}, {E::zener, "zener"}, {E::bilinear, "bilinear"},
-                                             {E::bouc_wen, "bouc-wen"}};
+#define ADJOIN_DEVICE_NAME(value, name) {E::value, name},
+  static constexpr EnumName<E> entries[] = {ADJOIN_DEVICE_KINDS(ADJOIN_DEVICE_NAME)};
+#undef ADJOIN_DEVICE_NAME
 };
 
 template <>
