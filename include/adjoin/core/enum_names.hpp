@@ -73,7 +73,8 @@ enum class ContactModel { none, linear, hertz, hertzdamp, jankowski, impact };
   ROW(dashpot, "dashpot")        \
   ROW(zener, "zener")            \
   ROW(bilinear, "bilinear")      \
-  ROW(bouc_wen, "bouc-wen")
+  ROW(bouc_wen, "bouc-wen")      \
+  ROW(kelvin, "kelvin")
 #define ADJOIN_DEVICE_VALUE(value, name) value,
 enum class DeviceType { ADJOIN_DEVICE_KINDS(ADJOIN_DEVICE_VALUE) };
 #undef ADJOIN_DEVICE_VALUE
