@@ -9,18 +9,17 @@
 
 #include "adjoin/core/enum_names.hpp"
 #include "adjoin/structure/device_kinds.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 
 namespace adjoin::detail {
 
+// A link's keys come from its kind (structure/link_kinds.hpp).
 inline std::set<std::string> link_keys(structure::LinkType type) {
-  using T = structure::LinkType;
-  switch (type) {
-    case T::friction: return {"floors", "type", "slip_force", "slip_ratio", "of"};
-    case T::dashpot: return {"floors", "type", "c", "alpha"};
-    case T::spring: return {"floors", "type", "stiffness"};
-    case T::zener: return {"floors", "type", "stiffness", "order", "tau_x", "tau_f"};
-  }
-  return {};
+  const structure::LinkKind& kind = structure::link_kind(type);
+  std::set<std::string> keys{"floors", "type"};
+  for (const structure::LinkKey& key : kind.keys) keys.insert(key.name);
+  keys.insert(kind.own_keys.begin(), kind.own_keys.end());
+  return keys;
 }
 
 // A device's keys come from its kind (structure/device_kinds.hpp).

@@ -17,6 +17,7 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/structure/channels.hpp"
 #include "adjoin/structure/device_kinds.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 
 namespace adjoin::detail {
 namespace {
@@ -28,7 +29,7 @@ bool has_nonlinear_viscous(const structure::Structure& s) {
       for (const auto& d : b->devices)
         if (structure::kind_of(d).family(d) == structure::DeviceFamily::viscous) return true;
   for (const auto& l : s.links)
-    if (l.type == structure::LinkType::dashpot && l.alpha != 1.0) return true;
+    if (structure::kind_of(l).family(l) == structure::LinkFamily::viscous) return true;
   return false;
 }
 
@@ -45,15 +46,7 @@ void require_finite(const ordered_json& j, const std::string& path, double t_end
 
 std::vector<double> as_vector(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
-const char* link_type(structure::LinkType t) {
-  switch (t) {
-    case structure::LinkType::friction: return "friction";
-    case structure::LinkType::dashpot: return "dashpot";
-    case structure::LinkType::spring: return "spring";
-    case structure::LinkType::zener: return "zener";
-  }
-  return "";
-}
+const char* link_type(structure::LinkType t) { return enum_name(t); }
 
 // Values that may be absent: an unstable mode's period and ratios under P-Delta are null.
 ordered_json finite_or_null(const Eigen::VectorXd& v) {

@@ -6,6 +6,7 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/fractional/weights.hpp"
 #include "adjoin/structure/device_kinds.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "rod_law.hpp"
 
@@ -13,7 +14,7 @@ namespace adjoin::detail {
 namespace {
 
 using structure::DeviceFamily;
-using structure::LinkType;
+using structure::LinkFamily;
 
 // Modes with omega h above this are not resolved by the step (as the two-block implicit
 // scheme's kResolvedOmegaH): trapezoidal mechanics passes them undamped.
@@ -78,7 +79,10 @@ void StructureModel::check_inputs() const {
         }
     for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
       if (b) relaxed = relaxed || b->hysteresis.model != structure::HysteresisModel::elastic || b->base || b->ground_friction > 0.0;
-    for (const auto& l : s.links) relaxed = relaxed || l.type == LinkType::zener || l.type == LinkType::friction;
+    for (const auto& l : s.links) {
+      const LinkFamily family = structure::kind_of(l).family(l);
+      relaxed = relaxed || family == LinkFamily::zener || family == LinkFamily::friction;
+    }
     if (relaxed)
       throw InputError("initial displacements need a structure without Zener elements, friction links, yielding storeys or devices and sliding bases");
   }
@@ -171,14 +175,18 @@ void StructureModel::assemble_elements(Assembly& a) {
     const auto& link = s.links[l];
     const Pair p{s.dof('A', link.floor_a), s.dof('B', link.floor_b)};
     link_pair.push_back(p);
-    if (link.type == LinkType::spring) p.add(a.k0_dense, link.k);
-    if (link.type == LinkType::dashpot && link.alpha != 1.0) {  // (a step force, as a damper's: A stays as it was)
+    // By its kind (structure/link_kinds.hpp): its linear spring in K0, its linear dashpot in
+    // C, and the step family that steps the rest.
+    const structure::LinkKind& kind = structure::kind_of(link);
+    const LinkFamily family = kind.family(link);
+    if (const double k = kind.spring(link); k != 0.0) p.add(a.k0_dense, k);
+    if (family == LinkFamily::viscous) {  // (a step force, as a damper's: A stays as it was)
       add_viscous(p, -1, static_cast<int>(l), link.c, link.alpha);
       continue;
     }
-    if (link.type == LinkType::dashpot) p.add(c, link.c);
-    if (link.type == LinkType::zener) zener.push_back(zener_element(p, -1, link.zener));
-    if (link.type == LinkType::friction) friction.push_back(static_cast<int>(l));
+    if (const double c_l = kind.dashpot(link); c_l != 0.0) p.add(c, c_l);
+    if (family == LinkFamily::zener) zener.push_back(zener_element(p, -1, link.zener));
+    if (family == LinkFamily::friction) friction.push_back(static_cast<int>(l));
     else a.coupled = true;
   }
   // The isolated bases' sliders (SPEC §7): friction dampers between the base and the ground,
@@ -197,7 +205,7 @@ void StructureModel::assemble_elements(Assembly& a) {
   {
     int z = static_cast<int>(zener.size());
     for (int l = static_cast<int>(s.links.size()) - 1; l >= 0; --l)
-      if (s.links[l].type == LinkType::zener) link_zener[l] = --z;
+      if (structure::kind_of(s.links[l]).family(s.links[l]) == LinkFamily::zener) link_zener[l] = --z;
   }
   nv = static_cast<int>(viscous.size());
   a.bv = Eigen::MatrixXd::Zero(nv, n);

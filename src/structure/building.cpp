@@ -9,6 +9,7 @@
 #include "adjoin/core/units.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/structure/rules.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 #include "devices/device_parts.hpp"
 
 namespace adjoin::structure {
@@ -167,15 +168,7 @@ bool Structure::IsValid(std::string* error) const {
     if (l.floor_a < 1 || l.floor_a > a.floors() || l.floor_b < 1 || l.floor_b > b->floors())
       return fail(where + ".floors: [" + std::to_string(l.floor_a) + ", " + std::to_string(l.floor_b) + "] is not a floor of A (1.." +
                   std::to_string(a.floors()) + ") and of B (1.." + std::to_string(b->floors()) + ")");
-    if (l.type == LinkType::friction && !positive(l.slip_force)) return fail(where + ".slip_force must be positive (N)");
-    if (l.type == LinkType::dashpot && !positive(l.c)) return fail(where + ".c must be positive (N s/m)");
-    if (l.type == LinkType::dashpot && !(l.alpha >= kAlphaRange.lo && l.alpha <= kAlphaRange.hi))
-      return fail(where + ".alpha must lie in [0.05, 1] (F = c |v|^alpha sign v)");
-    if (l.type == LinkType::spring && !positive(l.k)) return fail(where + ".stiffness must be positive (N/m)");
-    if (l.type == LinkType::zener) {
-      const std::string p = zener_check(l.zener);
-      if (!p.empty()) return fail(where + ": " + p);
-    }
+    if (const std::string p = kind_of(l).invalid(l); !p.empty()) return fail(where + p);
   }
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];

@@ -8,6 +8,7 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/structure/device_kinds.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 
 namespace adjoin::structure {
 namespace {
@@ -173,9 +174,9 @@ CoupledModes coupled_modes(const Structure& s) {
   std::vector<std::pair<int, int>> locked;
   for (const Link& l : s.links) {
     const int i = s.dof('A', l.floor_a), j = s.dof('B', l.floor_b);
-    if (l.type == LinkType::spring) add_between(k, i, j, l.k);
-    if (l.type == LinkType::zener) add_between(k, i, j, l.zener.k);
-    if (l.type == LinkType::friction) locked.emplace_back(i, j);
+    const LinkKind& kind = kind_of(l);
+    if (const double k_l = kind.relaxed(l); k_l != 0.0) add_between(k, i, j, k_l);
+    if (kind.family(l) == LinkFamily::friction) locked.emplace_back(i, j);
   }
   CoupledModes out;
   Eigen::VectorXd omega;

@@ -7,6 +7,7 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/structure/device_kinds.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 #include "adjoin/structure/two_block.hpp"
 #include "adjoin/study/run_watch.hpp"
 #include "channel_observer.hpp"
@@ -234,7 +235,7 @@ std::pair<std::size_t, std::size_t> zener_elements(const structure::Structure& s
       }
   }
   for (const auto& l : s.links)
-    if (l.type == structure::LinkType::zener) {
+    if (structure::kind_of(l).family(l) == structure::LinkFamily::zener) {
       ++elements;
       orders.push_back(l.zener.order);
     }

@@ -7,6 +7,7 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/structure/device_kinds.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 
 namespace adjoin {
 namespace {
@@ -21,7 +22,7 @@ std::size_t zener_elements(const structure::Structure& s) {
       for (const auto& d : b->devices)
         if (structure::kind_of(d).family(d) == structure::DeviceFamily::zener) n += d.storeys.size();
   for (const auto& l : s.links)
-    if (l.type == structure::LinkType::zener) ++n;
+    if (structure::kind_of(l).family(l) == structure::LinkFamily::zener) ++n;
   return n;
 }
 

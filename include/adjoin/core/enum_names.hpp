@@ -84,7 +84,16 @@ enum class HysteresisModel { elastic, bilinear, bouc_wen };
 // An isolated base's bearing (SPEC §7; structure/building.hpp).
 enum class BaseModel { flat_slider, friction_pendulum };
 enum class DampingModel { none, modal, rayleigh };
-enum class LinkType { friction, dashpot, spring, zener };
+// The link kinds (structure/link_kinds.hpp), one row each, as the devices': each kind's keys,
+// checks and model are its own file, src/structure/links/<value>.cpp.
+#define ADJOIN_LINK_KINDS(ROW) \
+  ROW(friction, "friction")    \
+  ROW(dashpot, "dashpot")      \
+  ROW(spring, "spring")        \
+  ROW(zener, "zener")
+#define ADJOIN_LINK_VALUE(value, name) value,
+enum class LinkType { ADJOIN_LINK_KINDS(ADJOIN_LINK_VALUE) };
+#undef ADJOIN_LINK_VALUE
 }  // namespace structure
 
 // ---- the tables ----
@@ -205,7 +214,9 @@ struct EnumTable<structure::DampingModel> {
 template <>
 struct EnumTable<structure::LinkType> {
   using E = structure::LinkType;
-  static constexpr EnumName<E> entries[] = {{E::friction, "friction"}, {E::dashpot, "dashpot"}, {E::spring, "spring"}, {E::zener, "zener"}};
+#define ADJOIN_LINK_NAME(value, name) {E::value, name},
+  static constexpr EnumName<E> entries[] = {ADJOIN_LINK_KINDS(ADJOIN_LINK_NAME)};
+#undef ADJOIN_LINK_NAME
 };
 
 // ---- the functions ----
