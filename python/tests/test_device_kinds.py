@@ -51,3 +51,36 @@ def test_a_bad_device_keyword_is_named(make, field):
     with pytest.raises(adjoin.InputError) as e:
         make(adjoin.StructureBuilder().building("B", 2).mass(1e4))
     assert e.value.field == field
+
+
+def test_a_link_built_by_keys_is_the_typed_one():
+    def pair():
+        s = adjoin.StructureBuilder()
+        s.building("A", 3).mass(4e4).stiffness(5e6).modal_damping(0.05)
+        s.building("B", 2).mass(5e4).stiffness(8e6).modal_damping(0.05)
+        return s
+    by_keys, typed = pair(), pair()
+    by_keys.link("dashpot", 3, 2, c=2.0e5, alpha=0.5).link("spring", 2, 1, stiffness=1.0e6)
+    typed.dashpot_link(3, 2, 2.0e5, 0.5).spring_link(2, 1, 1.0e6)
+    run = dict(timeseries=False, **RUN)
+    a = adjoin.run_structure(by_keys.build(), NORTHRIDGE, scale_pga=0.3, **run)
+    b = adjoin.run_structure(typed.build(), NORTHRIDGE, scale_pga=0.3, **run)
+    assert a.summary["links"] == b.summary["links"]
+    assert a.summary["links"][0]["force_max"] > 0.0
+
+
+@pytest.mark.parametrize(
+    "make, field",
+    [
+        (lambda s: s.link("dashpot", 1, 1), "link.1.c"),
+        (lambda s: s.link("spring", 1, 1, stiffness=1e6, c=1.0), "link.1.c"),
+        (lambda s: s.link("friction", 1, 1, slip_force=1e4), "link.1.type"),
+    ],
+)
+def test_a_bad_link_keyword_is_named(make, field):
+    s = adjoin.StructureBuilder()
+    s.building("A", 1).mass(1e4).stiffness(1e6)
+    s.building("B", 1).mass(1e4).stiffness(1e6)
+    with pytest.raises(adjoin.InputError) as e:
+        make(s)
+    assert e.value.field == field

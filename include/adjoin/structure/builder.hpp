@@ -141,6 +141,11 @@ class StructureBuilder {
   // they are added. A friction link's slip force [N], or a fraction of building `of`'s weight.
   StructureBuilder& friction_link(int floor_a, int floor_b, double slip_force);
   StructureBuilder& friction_link_ratio(int floor_a, int floor_b, double slip_ratio, char of);
+  // A link of any kind but friction (structure/link_kinds.hpp) by its scene keys:
+  // link(LinkType::dashpot, 3, 3, {{"c", 2e5}, {"alpha", 0.5}}), each value checked as a
+  // scene's; a key the kind does not take, or a required one left out, is a FieldError. The
+  // typed calls below use it (a friction link: friction_link or friction_link_ratio).
+  StructureBuilder& link(LinkType type, int floor_a, int floor_b, const std::map<std::string, double>& values);
   StructureBuilder& dashpot_link(int floor_a, int floor_b, double c, double alpha = 1.0);
   StructureBuilder& spring_link(int floor_a, int floor_b, double k);
   StructureBuilder& zener_link(int floor_a, int floor_b, const Zener& z);
