@@ -74,7 +74,8 @@ enum class ContactModel { none, linear, hertz, hertzdamp, jankowski, impact };
   ROW(zener, "zener")            \
   ROW(bilinear, "bilinear")      \
   ROW(bouc_wen, "bouc-wen")      \
-  ROW(kelvin, "kelvin")
+  ROW(kelvin, "kelvin")          \
+  /* a new kind: its row above this line */
 #define ADJOIN_DEVICE_VALUE(value, name) value,
 enum class DeviceType { ADJOIN_DEVICE_KINDS(ADJOIN_DEVICE_VALUE) };
 #undef ADJOIN_DEVICE_VALUE
@@ -90,7 +91,8 @@ enum class DampingModel { none, modal, rayleigh };
   ROW(friction, "friction")    \
   ROW(dashpot, "dashpot")      \
   ROW(spring, "spring")        \
-  ROW(zener, "zener")
+  ROW(zener, "zener")          \
+  /* a new kind: its row above this line */
 #define ADJOIN_LINK_VALUE(value, name) value,
 enum class LinkType { ADJOIN_LINK_KINDS(ADJOIN_LINK_VALUE) };
 #undef ADJOIN_LINK_VALUE
