@@ -109,6 +109,22 @@ void bind_structure(py::module_& m) {
       .def("modal_damping", &BuildingBuilder::modal_damping, py::arg("ratio"), py::return_value_policy::reference_internal, "The same damping ratio [-] (0.05 is 5 %) in every mode.")
       .def("rayleigh_damping", &BuildingBuilder::rayleigh_damping, py::arg("ratio"), py::arg("mode_i") = 1,
            py::arg("mode_j") = 2, py::return_value_policy::reference_internal, "Rayleigh damping with the ratio [-] in modes mode_i and mode_j.")
+      .def(
+          "device",
+          [](BuildingBuilder& b, const std::string& type, const std::vector<int>& storeys, const py::kwargs& keys) -> BuildingBuilder& {
+            structure::DeviceType kind;
+            if (!parse_enum(type, &kind)) {
+              std::string list;
+              for (const auto& name : names<structure::DeviceType>()) list += (list.empty() ? "" : ", ") + name;
+              throw FieldError(b.path() + ".device.type", "expected one of " + list + ", not \"" + type + "\"");
+            }
+            std::map<std::string, double> values;
+            for (const auto& [key, value] : keys) values[py::cast<std::string>(key)] = py::cast<double>(value);
+            return b.device(kind, storeys, values);
+          },
+          py::arg("type"), py::arg("storeys"), py::return_value_policy::reference_internal,
+          "A device of any kind (\"spring\", \"dashpot\", \"kelvin\", ...) in each listed storey (1-based), by its scene "
+          "keys as keywords: device(\"kelvin\", [1], stiffness=2e6, c=1e5). The kinds and their keys: docs/reference/scene-keys.md.")
       .def("spring", &BuildingBuilder::spring, py::arg("storeys"), py::arg("k"), py::return_value_policy::reference_internal, "A spring device of stiffness k [N/m] in each listed storey (1-based).")
       .def("dashpot", &BuildingBuilder::dashpot, py::arg("storeys"), py::arg("c"), py::arg("alpha") = 1.0, py::return_value_policy::reference_internal,
            "A dashpot in each listed storey (1-based): F = c |v|^alpha sign v, c [N (s/m)^alpha], alpha in [0.05, 1] (1: linear).")
@@ -212,6 +228,22 @@ void bind_structure(py::module_& m) {
           },
           py::arg("floor_a"), py::arg("floor_b"), py::arg("slip_ratio"), py::arg("of") = "B",
           py::return_value_policy::reference_internal, "A friction link slipping at slip_ratio [-] of building `of`'s weight.")
+      .def(
+          "link",
+          [](StructureBuilder& s, const std::string& type, int floor_a, int floor_b, const py::kwargs& keys) -> StructureBuilder& {
+            structure::LinkType kind;
+            if (!parse_enum(type, &kind)) {
+              std::string list;
+              for (const auto& name : names<structure::LinkType>()) list += (list.empty() ? "" : ", ") + name;
+              throw FieldError("link.type", "expected one of " + list + ", not \"" + type + "\"");
+            }
+            std::map<std::string, double> values;
+            for (const auto& [key, value] : keys) values[py::cast<std::string>(key)] = py::cast<double>(value);
+            return s.link(kind, floor_a, floor_b, values);
+          },
+          py::arg("type"), py::arg("floor_a"), py::arg("floor_b"), py::return_value_policy::reference_internal,
+          "A link of any kind but friction (\"dashpot\", \"spring\", \"zener\", ...) between floor_a of A and floor_b of B, "
+          "by its scene keys as keywords: link(\"dashpot\", 3, 3, c=2e5, alpha=0.5). A friction link: friction_link.")
       .def("dashpot_link", &StructureBuilder::dashpot_link, py::arg("floor_a"), py::arg("floor_b"), py::arg("c"), py::arg("alpha") = 1.0,
            py::return_value_policy::reference_internal,
            "A viscous link between floor_a of A and floor_b of B: F = c |v|^alpha sign v, c [N (s/m)^alpha], alpha in [0.05, 1].")

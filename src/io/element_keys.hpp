@@ -8,30 +8,25 @@
 #include <string>
 
 #include "adjoin/core/enum_names.hpp"
+#include "adjoin/structure/device_kinds.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 
 namespace adjoin::detail {
 
+// A link's keys come from its kind (structure/link_kinds.hpp).
 inline std::set<std::string> link_keys(structure::LinkType type) {
-  using T = structure::LinkType;
-  switch (type) {
-    case T::friction: return {"floors", "type", "slip_force", "slip_ratio", "of"};
-    case T::dashpot: return {"floors", "type", "c", "alpha"};
-    case T::spring: return {"floors", "type", "stiffness"};
-    case T::zener: return {"floors", "type", "stiffness", "order", "tau_x", "tau_f"};
-  }
-  return {};
+  const structure::LinkKind& kind = structure::link_kind(type);
+  std::set<std::string> keys{"floors", "type"};
+  for (const structure::LinkKey& key : kind.keys) keys.insert(key.name);
+  keys.insert(kind.own_keys.begin(), kind.own_keys.end());
+  return keys;
 }
 
+// A device's keys come from its kind (structure/device_kinds.hpp).
 inline std::set<std::string> device_keys(structure::DeviceType type) {
-  using T = structure::DeviceType;
-  switch (type) {
-    case T::spring: return {"type", "storeys", "stiffness"};
-    case T::dashpot: return {"type", "storeys", "c", "alpha"};
-    case T::bilinear: return {"type", "storeys", "stiffness", "yield_force", "hardening"};
-    case T::bouc_wen: return {"type", "storeys", "stiffness", "yield_force", "hardening", "n", "beta", "gamma"};
-    case T::zener: return {"type", "storeys", "stiffness", "order", "tau_x", "tau_f"};
-  }
-  return {};
+  std::set<std::string> keys{"type", "storeys"};
+  for (const structure::DeviceKey& key : structure::device_kind(type).keys) keys.insert(key.name);
+  return keys;
 }
 
 }  // namespace adjoin::detail

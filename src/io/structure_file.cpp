@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "adjoin/structure/contact_rules.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 #include "element_keys.hpp"
 #include "structure_edits.hpp"
 #include "sweep_scene_tree.hpp"
@@ -195,18 +196,6 @@ class TableReader {
   const detail::CopiedFrom* copied_ = nullptr;
 };
 
-// A Zener element's keys, each checked by the rules as it is read (structure/rules.hpp).
-structure::Zener read_zener(const TableReader& r) {
-  structure::Zener z;
-  z.k = r.bounded("stiffness", kStiffnessRange);
-  z.order = r.number("order");
-  if (const std::string problem = structure::zener_order_problem(z.order); !problem.empty()) r.fail("order", problem);
-  z.tau_f = r.bounded("tau_f", structure::kTauRange);
-  z.tau_x = r.bounded("tau_x", structure::kTauRange);
-  if (const std::string problem = structure::zener_tau_problem(z.tau_x, z.tau_f); !problem.empty()) r.fail("tau_x", problem);
-  return z;
-}
-
 // A uniform storey stiffness for `period` (s), within the rules' stiffness range.
 double stiffness_for_period(const TableReader& r, const Eigen::VectorXd& masses) {
   std::string problem;
@@ -236,6 +225,39 @@ void read_heights(const TableReader& r, Building* b) {
   std::string key;
   if (const std::string problem = structure::heights_problem(*b, r.has("collapse_drift_ratio"), &key); !problem.empty())
     r.fail(key, problem);
+}
+
+// A link's keys, by its kind (structure/link_kinds.hpp), as a device's (below).
+void read_link_keys(const TableReader& r, structure::Link* link) {
+  const structure::LinkKind& kind = structure::kind_of(*link);
+  for (const structure::LinkKey& key : kind.keys) {
+    const double v = key.required ? r.number(key.name) : r.number(key.name, key.fallback);
+    if (const std::string problem = key.problem(v); !problem.empty()) r.fail(key.name, problem);
+    key.field(*link) = v;
+  }
+  if (const std::string problem = kind.joint_problem(*link); !problem.empty()) {
+    const char* blamed = kind.joint_keys.back();
+    for (const char* key : kind.joint_keys)
+      if (r.has(key)) {
+        blamed = key;
+        break;
+      }
+    r.fail(blamed, problem);
+  }
+}
+
+// A device's keys, by its kind (structure/device_kinds.hpp): only the kind's keys; each key's
+// value (or its default) and its check, in the kind's order; then the rule between keys.
+void read_device_keys(const TableReader& r, structure::StoreyDevice* dev) {
+  const structure::DeviceKind& kind = structure::kind_of(*dev);
+  r.only(device_keys(dev->type));
+  for (const structure::DeviceKey& key : kind.keys) {
+    const double v = key.required ? r.number(key.name) : r.number(key.name, key.fallback);
+    if (const std::string problem = key.problem(v); !problem.empty()) r.fail(key.name, problem);
+    key.field(*dev) = v;
+  }
+  if (const std::string problem = kind.joint_problem(*dev); !problem.empty())
+    r.fail(structure::joint_key(kind, [&](const char* key) { return r.has(key); }), problem);
 }
 
 // A bilinear law's post-yield stiffness ratio b, in [0, 1) (default 0: elastic-perfectly-plastic).
@@ -390,28 +412,7 @@ Building read_building(const toml::table& root, const std::string& name, const T
       structure::StoreyDevice dev;
       dev.type = dr.choice<DeviceType>("type");
       dev.storeys = dr.storeys("storeys", n);
-      if (dev.type == DeviceType::spring) {
-        dr.only(device_keys(dev.type));
-        dev.k = dr.bounded("stiffness", kStiffnessRange);
-      } else if (dev.type == DeviceType::dashpot) {
-        dr.only(device_keys(dev.type));
-        dev.c = dr.bounded("c", kDashpotRange);
-        if (dr.has("alpha")) dev.alpha = dr.bounded("alpha", kAlphaRange);
-      } else if (dev.type == DeviceType::bilinear) {
-        dr.only(device_keys(dev.type));
-        dev.k = dr.bounded("stiffness", kStiffnessRange);
-        dev.yield_force = dr.bounded("yield_force", kForceRange);
-        dev.hardening = read_hardening(dr);
-      } else if (dev.type == DeviceType::bouc_wen) {
-        dr.only(device_keys(dev.type));
-        dev.k = dr.bounded("stiffness", kStiffnessRange);
-        dev.yield_force = dr.bounded("yield_force", kForceRange);
-        dev.hardening = read_hardening(dr);
-        read_bouc_wen_shape(dr, &dev.n, &dev.beta, &dev.gamma);
-      } else {
-        dr.only(device_keys(dev.type));
-        dev.zener = read_zener(dr);
-      }
+      read_device_keys(dr, &dev);
       b.devices.push_back(dev);
     }
   }
@@ -524,8 +525,9 @@ structure::Structure detail::structure_from_tree(toml::table& root, const std::s
       l.floor_a = f[0];
       l.floor_b = f[1];
       l.type = r.choice<LinkType>("type");
-      if (l.type == LinkType::friction) {
-        r.only(link_keys(l.type));
+      r.only(link_keys(l.type));
+      if (structure::kind_of(l).family(l) == structure::LinkFamily::friction) {
+        // Its own rule: slip_force [N], or slip_ratio of a building's weight (structure/rules.hpp).
         if (r.has("slip_force") == r.has("slip_ratio")) r.fail("", "give slip_force [N] or slip_ratio with of = \"A\" or \"B\", one of them");
         if (r.has("slip_force")) {
           if (r.has("of")) r.fail("of", "of names the building whose weight slip_ratio is a fraction of; slip_force is in N: remove of, or give slip_ratio");
@@ -535,17 +537,8 @@ structure::Structure detail::structure_from_tree(toml::table& root, const std::s
           const std::string of = r.text("of", {"A", "B"});
           l.slip_force = structure::slip_force_from_ratio(ratio, of == "A" ? s.a : *s.b);
         }
-      } else if (l.type == LinkType::dashpot) {
-        r.only(link_keys(l.type));
-        l.c = r.bounded("c", kDashpotRange);
-        if (r.has("alpha")) l.alpha = r.bounded("alpha", kAlphaRange);
-      } else if (l.type == LinkType::spring) {
-        r.only(link_keys(l.type));
-        l.k = r.bounded("stiffness", kStiffnessRange);
-      } else {
-        r.only(link_keys(l.type));
-        l.zener = read_zener(r);
       }
+      read_link_keys(r, &l);
       s.links.push_back(l);
     }
   } else if (root.contains("link")) {

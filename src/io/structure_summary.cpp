@@ -16,6 +16,8 @@
 #include "../detail/finite_output.hpp"
 #include "adjoin/core/errors.hpp"
 #include "adjoin/structure/channels.hpp"
+#include "adjoin/structure/device_kinds.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 
 namespace adjoin::detail {
 namespace {
@@ -25,9 +27,9 @@ bool has_nonlinear_viscous(const structure::Structure& s) {
   for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
     if (b)
       for (const auto& d : b->devices)
-        if (d.type == structure::DeviceType::dashpot && d.alpha != 1.0) return true;
+        if (structure::kind_of(d).family(d) == structure::DeviceFamily::viscous) return true;
   for (const auto& l : s.links)
-    if (l.type == structure::LinkType::dashpot && l.alpha != 1.0) return true;
+    if (structure::kind_of(l).family(l) == structure::LinkFamily::viscous) return true;
   return false;
 }
 
@@ -44,15 +46,10 @@ void require_finite(const ordered_json& j, const std::string& path, double t_end
 
 std::vector<double> as_vector(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
 
-const char* link_type(structure::LinkType t) {
-  switch (t) {
-    case structure::LinkType::friction: return "friction";
-    case structure::LinkType::dashpot: return "dashpot";
-    case structure::LinkType::spring: return "spring";
-    case structure::LinkType::zener: return "zener";
-  }
-  return "";
-}
+const char* link_type(structure::LinkType t) { return enum_name(t); }
+
+// A friction link (its family, structure/link_kinds.hpp): it reports its slip force and switches.
+bool friction(const structure::Link& l) { return structure::kind_of(l).family(l) == structure::LinkFamily::friction; }
 
 // Values that may be absent: an unstable mode's period and ratios under P-Delta are null.
 ordered_json finite_or_null(const Eigen::VectorXd& v) {
@@ -108,7 +105,7 @@ ordered_json structure_error_json(const RunSpec& scene, const ErrorEstimate& e, 
   for (std::size_t l = 0; l < e.links.size(); ++l) {
     const LinkError& le = e.links[l];
     ordered_json o = {{"force_max", le.force_max}, {"stroke_max", le.stroke_max}};
-    if (scene.structure.links[l].type == structure::LinkType::friction) {
+    if (friction(scene.structure.links[l])) {
       o["energy"] = le.energy;
       o["switch_times"] = le.switches_matched ? ordered_json(le.switches) : ordered_json(nullptr);
       o["switches_note"] = le.switches_note;
@@ -178,7 +175,7 @@ std::string structure_summary_json(const RunSpec& scene, const Report& r, const 
                       {"floors", {link.floor_a, link.floor_b}},
                       {"force_max", lr.force_max},
                       {"stroke_max", lr.stroke_max}};
-    if (link.type == structure::LinkType::friction) {
+    if (friction(link)) {
       o["slip_force"] = link.slip_force;
       o["switches"] = lr.switches;
       o["switch_times"] = lr.switch_times;
@@ -322,7 +319,7 @@ std::string structure_brief_report(const RunSpec& scene, const Report& r, const 
     std::snprintf(line, sizeof line, "link%zu (%s): force max %.4g N, stroke max %.4g m", l + 1, link_type(s.links[l].type),
                   r.links[l].force_max, r.links[l].stroke_max);
     o << line;
-    if (s.links[l].type == structure::LinkType::friction)
+    if (friction(s.links[l]))
       o << ", " << r.links[l].switches << (r.links[l].switches == 1 ? " switch" : " switches");
     o << "\n";
   }

@@ -5,14 +5,16 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/fractional/weights.hpp"
+#include "adjoin/structure/device_kinds.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "rod_law.hpp"
 
 namespace adjoin::detail {
 namespace {
 
-using structure::DeviceType;
-using structure::LinkType;
+using structure::DeviceFamily;
+using structure::LinkFamily;
 
 // Modes with omega h above this are not resolved by the step (as the two-block implicit
 // scheme's kResolvedOmegaH): trapezoidal mechanics passes them undamped.
@@ -71,11 +73,16 @@ void StructureModel::check_inputs() const {
     bool relaxed = false;  // an element whose state at t = 0 is relaxed (or stuck)
     for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
       if (b)
-        for (const auto& d : b->devices)
-          relaxed = relaxed || d.type == DeviceType::zener || d.type == DeviceType::bilinear || d.type == DeviceType::bouc_wen;
+        for (const auto& d : b->devices) {
+          const DeviceFamily family = structure::kind_of(d).family(d);
+          relaxed = relaxed || family == DeviceFamily::zener || family == DeviceFamily::bilinear || family == DeviceFamily::bouc_wen;
+        }
     for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
       if (b) relaxed = relaxed || b->hysteresis.model != structure::HysteresisModel::elastic || b->base || b->ground_friction > 0.0;
-    for (const auto& l : s.links) relaxed = relaxed || l.type == LinkType::zener || l.type == LinkType::friction;
+    for (const auto& l : s.links) {
+      const LinkFamily family = structure::kind_of(l).family(l);
+      relaxed = relaxed || family == LinkFamily::zener || family == LinkFamily::friction;
+    }
     if (relaxed)
       throw InputError("initial displacements need a structure without Zener elements, friction links, yielding storeys or devices and sliding bases");
   }
@@ -127,19 +134,23 @@ void StructureModel::assemble_elements(Assembly& a) {
       const Eigen::VectorXd kg = b.geometric_stiffness();
       for (int st = 0; st < nb; ++st) Pair{offset + st, lower(st)}.add(a.k0_dense, kg[st]);
     }
-    for (const auto& d : b.devices)
+    // Each device by its kind (structure/device_kinds.hpp): its linear spring in K0 (its
+    // linear dashpot is in C above: dashpot_matrix), and the step family that steps the rest.
+    for (const auto& d : b.devices) {
+      const structure::DeviceKind& kind = structure::kind_of(d);
+      const DeviceFamily family = kind.family(d);
+      if (family == DeviceFamily::bouc_wen) continue;  // (below, after the other devices)
       for (int st : d.storeys) {
         const Pair p{offset + st - 1, lower(st - 1)};
-        if (d.type == DeviceType::spring) p.add(a.k0_dense, d.k);
-        if (d.type == DeviceType::dashpot && d.alpha != 1.0) add_viscous(p, offset + st - 1, -1, d.c, d.alpha);
-        if (d.type == DeviceType::zener) zener.push_back(zener_element(p, offset + st - 1, d.zener));
-        if (d.type == DeviceType::bilinear) {  // k in K0; the slider's slip an offset (bilinear_step.hpp)
-          p.add(a.k0_dense, d.k);
+        if (const double k = kind.spring(d); k != 0.0) p.add(a.k0_dense, k);
+        if (family == DeviceFamily::viscous) add_viscous(p, offset + st - 1, -1, d.c, d.alpha);
+        if (family == DeviceFamily::zener) zener.push_back(zener_element(p, offset + st - 1, d.zener));
+        if (family == DeviceFamily::bilinear)  // the slider's slip an offset (bilinear_step.hpp)
           bilinear.push_back({p.i, p.j, offset + st - 1, false, (1.0 - d.hardening) * d.k, (1.0 - d.hardening) * d.yield_force});
-        }
       }
+    }
     for (const auto& d : b.devices)  // (k in K0; r = k_h (z - d) an offset and a step force: bouc_wen_step.hpp)
-      if (d.type == DeviceType::bouc_wen)
+      if (structure::kind_of(d).family(d) == DeviceFamily::bouc_wen)
         for (int st : d.storeys) {
           const Pair p{offset + st - 1, lower(st - 1)};
           p.add(a.k0_dense, d.k);
@@ -164,14 +175,18 @@ void StructureModel::assemble_elements(Assembly& a) {
     const auto& link = s.links[l];
     const Pair p{s.dof('A', link.floor_a), s.dof('B', link.floor_b)};
     link_pair.push_back(p);
-    if (link.type == LinkType::spring) p.add(a.k0_dense, link.k);
-    if (link.type == LinkType::dashpot && link.alpha != 1.0) {  // (a step force, as a damper's: A stays as it was)
+    // By its kind (structure/link_kinds.hpp): its linear spring in K0, its linear dashpot in
+    // C, and the step family that steps the rest.
+    const structure::LinkKind& kind = structure::kind_of(link);
+    const LinkFamily family = kind.family(link);
+    if (const double k = kind.spring(link); k != 0.0) p.add(a.k0_dense, k);
+    if (family == LinkFamily::viscous) {  // (a step force, as a damper's: A stays as it was)
       add_viscous(p, -1, static_cast<int>(l), link.c, link.alpha);
       continue;
     }
-    if (link.type == LinkType::dashpot) p.add(c, link.c);
-    if (link.type == LinkType::zener) zener.push_back(zener_element(p, -1, link.zener));
-    if (link.type == LinkType::friction) friction.push_back(static_cast<int>(l));
+    if (const double c_l = kind.dashpot(link); c_l != 0.0) p.add(c, c_l);
+    if (family == LinkFamily::zener) zener.push_back(zener_element(p, -1, link.zener));
+    if (family == LinkFamily::friction) friction.push_back(static_cast<int>(l));
     else a.coupled = true;
   }
   // The isolated bases' sliders (SPEC §7): friction dampers between the base and the ground,
@@ -190,7 +205,7 @@ void StructureModel::assemble_elements(Assembly& a) {
   {
     int z = static_cast<int>(zener.size());
     for (int l = static_cast<int>(s.links.size()) - 1; l >= 0; --l)
-      if (s.links[l].type == LinkType::zener) link_zener[l] = --z;
+      if (structure::kind_of(s.links[l]).family(s.links[l]) == LinkFamily::zener) link_zener[l] = --z;
   }
   nv = static_cast<int>(viscous.size());
   a.bv = Eigen::MatrixXd::Zero(nv, n);
@@ -461,10 +476,10 @@ void StructureModel::assemble_storeys() {
     }
     for (const auto& d : b.devices)
       for (int st : d.storeys) {
-        if (d.type == DeviceType::spring) storey_spring[offset + st - 1] += d.k;
-        if (d.type == DeviceType::dashpot && d.alpha == 1.0) storey_dashpot[offset + st - 1] += d.c;
-        if (d.type == DeviceType::bilinear) storey_spring[offset + st - 1] += d.k;  // (its slip's offset: the solver's)
-        if (d.type == DeviceType::bouc_wen) storey_spring[offset + st - 1] += d.k;  // (its k_h (z - d): the solver's)
+        // Its linear spring and dashpot (a yielding device's slip or k_h (z - d): the solver's).
+        const structure::DeviceKind& kind = structure::kind_of(d);
+        if (const double k = kind.spring(d); k != 0.0) storey_spring[offset + st - 1] += k;
+        if (const double c_d = kind.dashpot(d); c_d != 0.0) storey_dashpot[offset + st - 1] += c_d;
       }
   };
   storeys_of(s.a, 0);

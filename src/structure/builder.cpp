@@ -4,6 +4,8 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/structure/contact_rules.hpp"
+#include "adjoin/structure/device_kinds.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 #include "adjoin/structure/rules.hpp"
 
 namespace adjoin::structure {
@@ -15,11 +17,6 @@ void check(const std::string& field, const std::string& problem) {
 }
 
 std::string item(const std::string& path, std::size_t index) { return path + "[" + std::to_string(index + 1) + "]"; }
-
-void check_zener(const std::string& path, const Zener& z) {
-  const auto [field, problem] = zener_problem(z);
-  check(path + "." + field, problem);
-}
 
 }  // namespace
 
@@ -209,64 +206,54 @@ void BuildingBuilder::add_device(StoreyDevice device, const std::vector<int>& st
   b_.devices.push_back(std::move(device));
 }
 
-BuildingBuilder& BuildingBuilder::spring(const std::vector<int>& storeys, double k) {
-  check(device_path() + ".stiffness", bounded_problem(k, kStiffnessRange));
+BuildingBuilder& BuildingBuilder::device(DeviceType type, const std::vector<int>& storeys, const std::map<std::string, double>& values) {
+  const DeviceKind& kind = device_kind(type);
+  const std::string path = device_path();
+  for (const auto& [name, value] : values) {
+    bool known = false;
+    for (const DeviceKey& key : kind.keys) known = known || name == key.name;
+    if (!known) throw FieldError(path + "." + name, "not a key of a " + to_string(type) + " device");
+  }
   StoreyDevice d;
-  d.type = DeviceType::spring;
-  d.k = k;
+  d.type = type;
+  for (const DeviceKey& key : kind.keys) {
+    const auto given = values.find(key.name);
+    if (given == values.end() && key.required) throw FieldError(path + "." + key.name, "missing: a " + to_string(type) + " device needs it");
+    const double v = given == values.end() ? key.fallback : given->second;
+    check(path + "." + key.name, key.problem(v));
+    key.field(d) = v;
+  }
+  // The rule between keys is blamed on the first of its keys changed from its default.
+  auto changed = [&](const char* name) {
+    for (const DeviceKey& key : kind.keys)
+      if (name == std::string(key.name)) return key.required || key.field(d) != key.fallback;
+    return false;
+  };
+  check(path + "." + joint_key(kind, changed), kind.joint_problem(d));
   add_device(d, storeys);
   return *this;
+}
+
+BuildingBuilder& BuildingBuilder::spring(const std::vector<int>& storeys, double k) {
+  return device(DeviceType::spring, storeys, {{"stiffness", k}});
 }
 
 BuildingBuilder& BuildingBuilder::dashpot(const std::vector<int>& storeys, double c, double alpha) {
-  check(device_path() + ".c", bounded_problem(c, kDashpotRange));
-  check(device_path() + ".alpha", bounded_problem(alpha, kAlphaRange));
-  StoreyDevice d;
-  d.type = DeviceType::dashpot;
-  d.c = c;
-  d.alpha = alpha;
-  add_device(d, storeys);
-  return *this;
+  return device(DeviceType::dashpot, storeys, {{"c", c}, {"alpha", alpha}});
 }
 
 BuildingBuilder& BuildingBuilder::bilinear_device(const std::vector<int>& storeys, double k, double yield_force, double hardening) {
-  check(device_path() + ".stiffness", bounded_problem(k, kStiffnessRange));
-  check(device_path() + ".yield_force", bounded_problem(yield_force, kForceRange));
-  check(device_path() + ".hardening", hardening_problem(hardening));
-  StoreyDevice d;
-  d.type = DeviceType::bilinear;
-  d.k = k;
-  d.yield_force = yield_force;
-  d.hardening = hardening;
-  add_device(d, storeys);
-  return *this;
+  return device(DeviceType::bilinear, storeys, {{"stiffness", k}, {"yield_force", yield_force}, {"hardening", hardening}});
 }
 
 BuildingBuilder& BuildingBuilder::bouc_wen_device(const std::vector<int>& storeys, double k, double yield_force, double hardening,
                                                   BoucWenShape shape) {
-  check(device_path() + ".stiffness", bounded_problem(k, kStiffnessRange));
-  check(device_path() + ".yield_force", bounded_problem(yield_force, kForceRange));
-  check(device_path() + ".hardening", hardening_problem(hardening));
-  check_bouc_wen_shape(device_path(), shape);
-  StoreyDevice d;
-  d.type = DeviceType::bouc_wen;
-  d.k = k;
-  d.yield_force = yield_force;
-  d.hardening = hardening;
-  d.n = shape.n;
-  d.beta = shape.beta;
-  d.gamma = shape.gamma;
-  add_device(d, storeys);
-  return *this;
+  return device(DeviceType::bouc_wen, storeys,
+                {{"stiffness", k}, {"yield_force", yield_force}, {"hardening", hardening}, {"n", shape.n}, {"beta", shape.beta}, {"gamma", shape.gamma}});
 }
 
 BuildingBuilder& BuildingBuilder::zener(const std::vector<int>& storeys, const Zener& z) {
-  check_zener(device_path(), z);
-  StoreyDevice d;
-  d.type = DeviceType::zener;
-  d.zener = z;
-  add_device(d, storeys);
-  return *this;
+  return device(DeviceType::zener, storeys, {{"stiffness", z.k}, {"order", z.order}, {"tau_f", z.tau_f}, {"tau_x", z.tau_x}});
 }
 
 Building BuildingBuilder::build() const {
@@ -373,20 +360,41 @@ StructureBuilder& StructureBuilder::friction_link_ratio(int floor_a, int floor_b
   return *this;
 }
 
+StructureBuilder& StructureBuilder::link(LinkType type, int floor_a, int floor_b, const std::map<std::string, double>& values) {
+  const LinkKind& kind = link_kind(type);
+  const std::string path = link_path();
+  if (!kind.own_keys.empty())
+    throw FieldError(path + ".type", "a " + to_string(type) + " link has a rule of its own: use friction_link or friction_link_ratio");
+  for (const auto& [name, value] : values) {
+    bool known = false;
+    for (const LinkKey& key : kind.keys) known = known || name == key.name;
+    if (!known) throw FieldError(path + "." + name, "not a key of a " + to_string(type) + " link");
+  }
+  Link l;
+  l.type = type;
+  l.floor_a = floor_a;
+  l.floor_b = floor_b;
+  for (const LinkKey& key : kind.keys) {
+    const auto given = values.find(key.name);
+    if (given == values.end() && key.required) throw FieldError(path + "." + key.name, "missing: a " + to_string(type) + " link needs it");
+    const double v = given == values.end() ? key.fallback : given->second;
+    check(path + "." + key.name, key.problem(v));
+    key.field(l) = v;
+  }
+  if (const std::string problem = kind.joint_problem(l); !problem.empty()) check(path + "." + kind.joint_keys.front(), problem);
+  return add_link(l);
+}
+
 StructureBuilder& StructureBuilder::dashpot_link(int floor_a, int floor_b, double c, double alpha) {
-  check(link_path() + ".c", bounded_problem(c, kDashpotRange));
-  check(link_path() + ".alpha", bounded_problem(alpha, kAlphaRange));
-  return add_link({LinkType::dashpot, floor_a, floor_b, 0.0, c, 0.0, {}, alpha});
+  return link(LinkType::dashpot, floor_a, floor_b, {{"c", c}, {"alpha", alpha}});
 }
 
 StructureBuilder& StructureBuilder::spring_link(int floor_a, int floor_b, double k) {
-  check(link_path() + ".stiffness", bounded_problem(k, kStiffnessRange));
-  return add_link({LinkType::spring, floor_a, floor_b, 0.0, 0.0, k, {}});
+  return link(LinkType::spring, floor_a, floor_b, {{"stiffness", k}});
 }
 
 StructureBuilder& StructureBuilder::zener_link(int floor_a, int floor_b, const Zener& z) {
-  check_zener(link_path(), z);
-  return add_link({LinkType::zener, floor_a, floor_b, 0.0, 0.0, 0.0, z});
+  return link(LinkType::zener, floor_a, floor_b, {{"stiffness", z.k}, {"order", z.order}, {"tau_f", z.tau_f}, {"tau_x", z.tau_x}});
 }
 
 ContactBuilder& StructureBuilder::contact(int floor_a, int floor_b, double gap) {

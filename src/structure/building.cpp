@@ -9,11 +9,12 @@
 #include "adjoin/core/units.hpp"
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/structure/rules.hpp"
+#include "adjoin/structure/link_kinds.hpp"
+#include "devices/device_parts.hpp"
 
 namespace adjoin::structure {
-namespace {
 
-bool positive(double v) { return std::isfinite(v) && v > 0.0; }
+using devices::positive;
 
 std::string zener_check(const Zener& z) {
   if (!positive(z.k)) return "stiffness must be a positive number";
@@ -32,6 +33,8 @@ std::string bouc_wen_check(double n, double beta, double gamma) {
     return "beta: beta + gamma must be positive (else the Bouc-Wen law never yields)";
   return "";
 }
+
+namespace {
 
 bool building_valid(const Building& b, const std::string& path, std::string* error) {
   auto fail = [&](const std::string& m) {
@@ -52,22 +55,7 @@ bool building_valid(const Building& b, const std::string& path, std::string* err
     if (dev.storeys.empty()) return fail(where + ".storeys: list at least one storey");
     for (int s : dev.storeys)
       if (s < 1 || s > n) return fail(where + ".storeys: storey " + std::to_string(s) + " is not in 1.." + std::to_string(n));
-    if (dev.type == DeviceType::spring && !positive(dev.k)) return fail(where + ".stiffness must be positive (N/m)");
-    if (dev.type == DeviceType::dashpot && !positive(dev.c)) return fail(where + ".c must be positive (N s/m)");
-    if (dev.type == DeviceType::dashpot && !(dev.alpha >= kAlphaRange.lo && dev.alpha <= kAlphaRange.hi))
-      return fail(where + ".alpha must lie in [0.05, 1] (F = c |v|^alpha sign v)");
-    if (dev.type == DeviceType::zener) {
-      const std::string p = zener_check(dev.zener);
-      if (!p.empty()) return fail(where + ": " + p);
-    }
-    if (dev.type == DeviceType::bouc_wen) {
-      if (const std::string p = bouc_wen_check(dev.n, dev.beta, dev.gamma); !p.empty()) return fail(where + "." + p);
-    }
-    if (dev.type == DeviceType::bilinear || dev.type == DeviceType::bouc_wen) {
-      if (!positive(dev.k)) return fail(where + ".stiffness must be positive (N/m)");
-      if (!positive(dev.yield_force)) return fail(where + ".yield_force must be a positive force (N)");
-      if (!(dev.hardening >= 0.0 && dev.hardening < 1.0)) return fail(where + ".hardening must lie in [0, 1)");
-    }
+    if (const std::string p = kind_of(dev).invalid(dev); !p.empty()) return fail(where + p);
   }
   if (b.hysteresis.model == HysteresisModel::bouc_wen) {
     const StoreyHysteresis& y = b.hysteresis;
@@ -121,8 +109,7 @@ bool building_valid(const Building& b, const std::string& path, std::string* err
 Eigen::VectorXd Building::static_stiffness() const {
   Eigen::VectorXd k = springs;
   for (const StoreyDevice& d : devices) {
-    const bool spring = d.type == DeviceType::spring || d.type == DeviceType::bilinear || d.type == DeviceType::bouc_wen;
-    const double add = spring ? d.k : (d.type == DeviceType::zener ? d.zener.k : 0.0);
+    const double add = kind_of(d).relaxed(d);
     for (int s : d.storeys)
       if (s >= 1 && s <= k.size()) k[s - 1] += add;
   }
@@ -132,7 +119,7 @@ Eigen::VectorXd Building::static_stiffness() const {
 bool Building::yields() const {
   if (hysteresis.model != HysteresisModel::elastic) return true;
   for (const StoreyDevice& d : devices)
-    if (d.type != DeviceType::spring && d.type != DeviceType::dashpot && d.type != DeviceType::zener) return true;
+    if (kind_of(d).yields) return true;
   return false;
 }
 
@@ -181,15 +168,7 @@ bool Structure::IsValid(std::string* error) const {
     if (l.floor_a < 1 || l.floor_a > a.floors() || l.floor_b < 1 || l.floor_b > b->floors())
       return fail(where + ".floors: [" + std::to_string(l.floor_a) + ", " + std::to_string(l.floor_b) + "] is not a floor of A (1.." +
                   std::to_string(a.floors()) + ") and of B (1.." + std::to_string(b->floors()) + ")");
-    if (l.type == LinkType::friction && !positive(l.slip_force)) return fail(where + ".slip_force must be positive (N)");
-    if (l.type == LinkType::dashpot && !positive(l.c)) return fail(where + ".c must be positive (N s/m)");
-    if (l.type == LinkType::dashpot && !(l.alpha >= kAlphaRange.lo && l.alpha <= kAlphaRange.hi))
-      return fail(where + ".alpha must lie in [0.05, 1] (F = c |v|^alpha sign v)");
-    if (l.type == LinkType::spring && !positive(l.k)) return fail(where + ".stiffness must be positive (N/m)");
-    if (l.type == LinkType::zener) {
-      const std::string p = zener_check(l.zener);
-      if (!p.empty()) return fail(where + ": " + p);
-    }
+    if (const std::string p = kind_of(l).invalid(l); !p.empty()) return fail(where + p);
   }
   for (std::size_t i = 0; i < contacts.size(); ++i) {
     const Contact& c = contacts[i];

@@ -7,6 +7,8 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/core/units.hpp"
+#include "adjoin/structure/device_kinds.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 
 namespace adjoin::structure {
 namespace {
@@ -56,8 +58,8 @@ Eigen::MatrixXd dashpot_matrix(const Building& b) {
   const int n = b.floors();
   Eigen::MatrixXd c = Eigen::MatrixXd::Zero(n, n);
   for (const StoreyDevice& d : b.devices)
-    if (d.type == DeviceType::dashpot && d.alpha == 1.0)  // (a nonlinear one has no matrix)
-      for (int s : d.storeys) add_between(c, s - 1, s - 2, d.c);
+    if (const double c_d = kind_of(d).dashpot(d); c_d != 0.0)  // (a nonlinear dashpot has no matrix)
+      for (int s : d.storeys) add_between(c, s - 1, s - 2, c_d);
   return c;
 }
 
@@ -71,10 +73,9 @@ Eigen::MatrixXcd complex_stiffness_matrix(const Building& b, double w) {
   Eigen::MatrixXcd k = Eigen::MatrixXcd::Zero(n, n);
   for (int s = 0; s < n; ++s) add_between(k, s, s - 1, std::complex<double>(b.springs[s], 0.0));
   for (const StoreyDevice& d : b.devices) {
-    std::complex<double> value = 0.0;
-    if (d.type == DeviceType::spring || d.type == DeviceType::bilinear || d.type == DeviceType::bouc_wen)
-      value = d.k;  // (bilinear, bouc-wen: initial stiffness)
-    if (d.type == DeviceType::zener) value = zener_stiffness(d.zener, w);
+    const DeviceKind& kind = kind_of(d);
+    std::complex<double> value = kind.spring(d);  // (a yielding device: its initial stiffness)
+    if (kind.family(d) == DeviceFamily::zener) value = zener_stiffness(d.zener, w);
     if (value != 0.0)
       for (int s : d.storeys) add_between(k, s - 1, s - 2, value);
   }
@@ -173,9 +174,9 @@ CoupledModes coupled_modes(const Structure& s) {
   std::vector<std::pair<int, int>> locked;
   for (const Link& l : s.links) {
     const int i = s.dof('A', l.floor_a), j = s.dof('B', l.floor_b);
-    if (l.type == LinkType::spring) add_between(k, i, j, l.k);
-    if (l.type == LinkType::zener) add_between(k, i, j, l.zener.k);
-    if (l.type == LinkType::friction) locked.emplace_back(i, j);
+    const LinkKind& kind = kind_of(l);
+    if (const double k_l = kind.relaxed(l); k_l != 0.0) add_between(k, i, j, k_l);
+    if (kind.family(l) == LinkFamily::friction) locked.emplace_back(i, j);
   }
   CoupledModes out;
   Eigen::VectorXd omega;

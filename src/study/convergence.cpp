@@ -9,6 +9,7 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
 #include "adjoin/structure/channels.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 #include "adjoin/study/linear_reference.hpp"
 #include "adjoin/study/run.hpp"
 
@@ -92,7 +93,7 @@ std::vector<QuantityError> structure_quantities(const RunSpec& spec, const Repor
     const std::string link = "link" + std::to_string(l + 1);
     value(link + " force_max", r.links[l].force_max);
     value(link + " stroke_max", r.links[l].stroke_max);
-    if (spec.structure.links[l].type == structure::LinkType::friction) {
+    if (structure::kind_of(spec.structure.links[l]).family(spec.structure.links[l]) == structure::LinkFamily::friction) {
       value(link + " energy", r.links[l].energy);
       for (std::size_t i = 0; i < r.links[l].switch_times.size(); ++i)
         instant(link + " switch " + std::to_string(i + 1), r.links[l].switch_times[i]);

@@ -8,6 +8,7 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/structure/channels.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 #include "step_ladder.hpp"
 
 namespace adjoin {
@@ -47,7 +48,7 @@ void compare_channels(const RunSpec& spec, const Report& fine, const Report& c, 
     LinkError le;
     le.force_max = error(f.force_max, g.force_max);
     le.stroke_max = error(f.stroke_max, g.stroke_max);
-    if (spec.structure.links.at(l).type == structure::LinkType::friction) {
+    if (structure::kind_of(spec.structure.links.at(l)).family(spec.structure.links.at(l)) == structure::LinkFamily::friction) {
       le.energy = error(f.energy, g.energy);
       le.switches_matched = f.switch_times.size() == g.switch_times.size();
       if (le.switches_matched) {

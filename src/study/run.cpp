@@ -6,6 +6,8 @@
 #include <utility>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/structure/device_kinds.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 #include "adjoin/structure/two_block.hpp"
 #include "adjoin/study/run_watch.hpp"
 #include "channel_observer.hpp"
@@ -240,13 +242,13 @@ std::pair<std::size_t, std::size_t> zener_elements(const structure::Structure& s
   for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr}) {
     if (!b) continue;
     for (const auto& d : b->devices)
-      if (d.type == structure::DeviceType::zener) {
+      if (structure::kind_of(d).family(d) == structure::DeviceFamily::zener) {
         elements += d.storeys.size();
         orders.push_back(d.zener.order);
       }
   }
   for (const auto& l : s.links)
-    if (l.type == structure::LinkType::zener) {
+    if (structure::kind_of(l).family(l) == structure::LinkFamily::zener) {
       ++elements;
       orders.push_back(l.zener.order);
     }

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "adjoin/core/errors.hpp"
+#include "adjoin/structure/device_kinds.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 
 namespace adjoin {
 namespace {
@@ -18,9 +20,9 @@ std::size_t zener_elements(const structure::Structure& s) {
   for (const structure::Building* b : {&s.a, s.b ? &*s.b : nullptr})
     if (b)
       for (const auto& d : b->devices)
-        if (d.type == structure::DeviceType::zener) n += d.storeys.size();
+        if (structure::kind_of(d).family(d) == structure::DeviceFamily::zener) n += d.storeys.size();
   for (const auto& l : s.links)
-    if (l.type == structure::LinkType::zener) ++n;
+    if (structure::kind_of(l).family(l) == structure::LinkFamily::zener) ++n;
   return n;
 }
 

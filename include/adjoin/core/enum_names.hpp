@@ -65,14 +65,37 @@ enum class SuiteScaling { fit, uniform };
 namespace structure {
 // A contact pair's law (structure/contact.hpp).
 enum class ContactModel { none, linear, hertz, hertzdamp, jankowski, impact };
-// A storey device, a building's inherent damping, a link (structure/building.hpp).
-enum class DeviceType { spring, dashpot, zener, bilinear, bouc_wen };
+// The storey device kinds (structure/device_kinds.hpp), one row each: the value and the name
+// a scene spells. Each kind's keys, checks and model are its own file,
+// src/structure/devices/<value>.cpp: a new kind is that file and one row here.
+#define ADJOIN_DEVICE_KINDS(ROW) \
+  ROW(spring, "spring")          \
+  ROW(dashpot, "dashpot")        \
+  ROW(zener, "zener")            \
+  ROW(bilinear, "bilinear")      \
+  ROW(bouc_wen, "bouc-wen")      \
+  ROW(kelvin, "kelvin")          \
+  /* a new kind: its row above this line */
+#define ADJOIN_DEVICE_VALUE(value, name) value,
+enum class DeviceType { ADJOIN_DEVICE_KINDS(ADJOIN_DEVICE_VALUE) };
+#undef ADJOIN_DEVICE_VALUE
+// A building's inherent damping, a link (structure/building.hpp).
 // A storey spring's own law (SPEC §7; structure/building.hpp).
 enum class HysteresisModel { elastic, bilinear, bouc_wen };
 // An isolated base's bearing (SPEC §7; structure/building.hpp).
 enum class BaseModel { flat_slider, friction_pendulum };
 enum class DampingModel { none, modal, rayleigh };
-enum class LinkType { friction, dashpot, spring, zener };
+// The link kinds (structure/link_kinds.hpp), one row each, as the devices': each kind's keys,
+// checks and model are its own file, src/structure/links/<value>.cpp.
+#define ADJOIN_LINK_KINDS(ROW) \
+  ROW(friction, "friction")    \
+  ROW(dashpot, "dashpot")      \
+  ROW(spring, "spring")        \
+  ROW(zener, "zener")          \
+  /* a new kind: its row above this line */
+#define ADJOIN_LINK_VALUE(value, name) value,
+enum class LinkType { ADJOIN_LINK_KINDS(ADJOIN_LINK_VALUE) };
+#undef ADJOIN_LINK_VALUE
 }  // namespace structure
 
 // ---- the tables ----
@@ -167,8 +190,9 @@ struct EnumTable<structure::ContactModel> {
 template <>
 struct EnumTable<structure::DeviceType> {
   using E = structure::DeviceType;
-  static constexpr EnumName<E> entries[] = {{E::spring, "spring"}, {E::dashpot, "dashpot"}, {E::zener, "zener"}, {E::bilinear, "bilinear"},
-                                             {E::bouc_wen, "bouc-wen"}};
+#define ADJOIN_DEVICE_NAME(value, name) {E::value, name},
+  static constexpr EnumName<E> entries[] = {ADJOIN_DEVICE_KINDS(ADJOIN_DEVICE_NAME)};
+#undef ADJOIN_DEVICE_NAME
 };
 
 template <>
@@ -192,7 +216,9 @@ struct EnumTable<structure::DampingModel> {
 template <>
 struct EnumTable<structure::LinkType> {
   using E = structure::LinkType;
-  static constexpr EnumName<E> entries[] = {{E::friction, "friction"}, {E::dashpot, "dashpot"}, {E::spring, "spring"}, {E::zener, "zener"}};
+#define ADJOIN_LINK_NAME(value, name) {E::value, name},
+  static constexpr EnumName<E> entries[] = {ADJOIN_LINK_KINDS(ADJOIN_LINK_NAME)};
+#undef ADJOIN_LINK_NAME
 };
 
 // ---- the functions ----

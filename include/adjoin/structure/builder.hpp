@@ -17,6 +17,7 @@
 // "building.B.base.friction", "link[2].slip_force", "contact[1].restitution". SI units throughout.
 #include <deque>
 #include <optional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -49,7 +50,11 @@ class BuildingBuilder {
   BuildingBuilder& no_damping();
   BuildingBuilder& modal_damping(double ratio);
   BuildingBuilder& rayleigh_damping(double ratio, int mode_i = 1, int mode_j = 2);
-  // A device in parallel with the spring of each listed storey (1-based, each once).
+  // A device of any kind (structure/device_kinds.hpp) in parallel with the spring of each
+  // listed storey (1-based, each once), by its scene keys: device(DeviceType::dashpot, {1, 2},
+  // {{"c", 1e5}, {"alpha", 0.5}}). Each value is checked as a scene's; a key the kind does not
+  // take, or a required one left out, is a FieldError. The typed calls below use it.
+  BuildingBuilder& device(DeviceType type, const std::vector<int>& storeys, const std::map<std::string, double>& values);
   BuildingBuilder& spring(const std::vector<int>& storeys, double k);
   // alpha: F = c |v|^alpha sign v (1: the linear dashpot; c in N (s/m)^alpha).
   BuildingBuilder& dashpot(const std::vector<int>& storeys, double c, double alpha = 1.0);
@@ -136,6 +141,11 @@ class StructureBuilder {
   // they are added. A friction link's slip force [N], or a fraction of building `of`'s weight.
   StructureBuilder& friction_link(int floor_a, int floor_b, double slip_force);
   StructureBuilder& friction_link_ratio(int floor_a, int floor_b, double slip_ratio, char of);
+  // A link of any kind but friction (structure/link_kinds.hpp) by its scene keys:
+  // link(LinkType::dashpot, 3, 3, {{"c", 2e5}, {"alpha", 0.5}}), each value checked as a
+  // scene's; a key the kind does not take, or a required one left out, is a FieldError. The
+  // typed calls below use it (a friction link: friction_link or friction_link_ratio).
+  StructureBuilder& link(LinkType type, int floor_a, int floor_b, const std::map<std::string, double>& values);
   StructureBuilder& dashpot_link(int floor_a, int floor_b, double c, double alpha = 1.0);
   StructureBuilder& spring_link(int floor_a, int floor_b, double k);
   StructureBuilder& zener_link(int floor_a, int floor_b, const Zener& z);
