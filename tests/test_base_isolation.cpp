@@ -23,6 +23,7 @@
 #include "adjoin/structure/building.hpp"
 #include "adjoin/structure/channels.hpp"
 #include "adjoin/study/run.hpp"
+#include "state_recorder.hpp"
 
 using namespace adjoin;
 using namespace adjoin::structure;
@@ -63,11 +64,7 @@ class NoGround final : public GroundMotion {
   double duration() const override { return 0.0; }
 };
 
-class Recorder final : public StructureObserver {
- public:
-  void observe(const StructureState& s) override { states.push_back(s); }
-  std::vector<StructureState> states;
-};
+using Recorder = adjoin::test::StateRecorder;
 
 // A rigid block of mass m_b on an isolated base: the base carries a one-storey superstructure
 // of a millionth of its mass on a 20 Hz storey, so the block is the base to 1e-6.

@@ -21,6 +21,7 @@
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/structure/building.hpp"
 #include "cli_helpers.hpp"
+#include "state_recorder.hpp"
 
 using namespace adjoin;
 using namespace adjoin::structure;
@@ -41,11 +42,7 @@ class HalfSine final : public GroundMotion {
   int n_;
 };
 
-class Recorder final : public StructureObserver {
- public:
-  void observe(const StructureState& s) override { states.push_back(s); }
-  std::vector<StructureState> states;
-};
+using Recorder = adjoin::test::StateRecorder;
 
 // The exact response of u'' + c u' + w^2 (u - u_p) = A sin(W t) [t < td] while elastic, u'' + c u' = A
 // sin(W t) [t < td] - s F/m while plastic (s the slip direction), from rest. Yield

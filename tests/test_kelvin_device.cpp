@@ -19,17 +19,14 @@
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/study/builder.hpp"
 #include "adjoin/study/run.hpp"
+#include "state_recorder.hpp"
 
 using namespace adjoin;
 using namespace adjoin::structure;
 
 namespace {
 
-class Recorder final : public StructureObserver {
- public:
-  void observe(const StructureState& s) override { states.push_back(s); }
-  std::vector<StructureState> states;
-};
+using Recorder = adjoin::test::StateRecorder;
 
 StoreyDevice device(DeviceType type, std::vector<int> storeys, double k, double c) {
   StoreyDevice d;

@@ -18,6 +18,7 @@
 #include "adjoin/solver/structure_solver.hpp"
 #include "adjoin/study/run.hpp"
 #include "scene_helpers.hpp"
+#include "state_recorder.hpp"
 
 using namespace adjoin;
 using adjoin::test::paper_scene;
@@ -59,11 +60,7 @@ double largest_difference(const std::vector<State>& a, const std::vector<State>&
   return diff / scale;
 }
 
-class Recorder final : public StructureObserver {
- public:
-  void observe(const StructureState& s) override { states.push_back(s); }
-  std::vector<StructureState> states;
-};
+using Recorder = adjoin::test::StateRecorder;
 
 }  // namespace
 

@@ -23,17 +23,14 @@
 #include "adjoin/structure/modal.hpp"
 #include "adjoin/study/run.hpp"
 #include "scene_helpers.hpp"
+#include "state_recorder.hpp"
 
 using namespace adjoin;
 using namespace adjoin::structure;
 
 namespace {
 
-class Recorder final : public StructureObserver {
- public:
-  void observe(const StructureState& s) override { states.push_back(s); }
-  std::vector<StructureState> states;
-};
+using Recorder = adjoin::test::StateRecorder;
 
 class GridRecorder final : public Observer {
  public:

@@ -21,17 +21,14 @@
 #include "adjoin/study/builder.hpp"
 #include "adjoin/study/run.hpp"
 #include "cli_helpers.hpp"
+#include "state_recorder.hpp"
 
 using namespace adjoin;
 using namespace adjoin::structure;
 
 namespace {
 
-class Recorder final : public StructureObserver {
- public:
-  void observe(const StructureState& s) override { states.push_back(s); }
-  std::vector<StructureState> states;
-};
+using Recorder = adjoin::test::StateRecorder;
 
 // One floor of mass m on a storey with only a viscous damper (and a spring so soft, 1e-6 N/m,
 // that over the run its force stays below 1e-6 N against the damper's 1e6 N).
