@@ -43,6 +43,59 @@ using structure::LinkType;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// The step kernels (step_kernels.hpp) with their passes over a few entries inline: below
+// kInline entries a call through the kernel table and its vector loop's set-up cost more than
+// the arithmetic (the two-block scene's structure has two floors and one damper). Each entry
+// by the kernel's own operations in its order (step_kernels.cpp), so the same bits either way.
+class SmallPasses {
+ public:
+  using Index = Eigen::Index;
+  static constexpr Index kInline = 4;
+  explicit SmallPasses(const detail::StepKernels& k) : k_(k) {}
+
+  template <class... A>
+  void free_rhs(A... a) const { k_.free_rhs(a...); }
+  template <class... A>
+  void some_columns(A... a) const { k_.some_columns(a...); }
+  template <class... A>
+  void drifts(A... a) const { k_.drifts(a...); }
+  void end_velocities(Index n, const double* vf, const double* cvf, const double* rv, const double* rc, double h, double* v,
+                      double* cv) const {
+    if (n >= kInline) return k_.end_velocities(n, vf, cvf, rv, rc, h, v, cv);
+    for (Index i = 0; i < n; ++i) {
+      v[i] = vf[i] - h * rv[i];
+      cv[i] = cvf[i] - h * rc[i];
+    }
+  }
+  void trapezoid(Index n, const double* x0, const double* v0, const double* v1, double c, double* x1) const {
+    if (n >= kInline) return k_.trapezoid(n, x0, v0, v1, c, x1);
+    for (Index i = 0; i < n; ++i) x1[i] = x0[i] + c * (v0[i] + v1[i]);
+  }
+  void accelerations(Index n, const double* m, const double* inv_m, const double* cv, const double* p, double ag, double* a) const {
+    if (n >= kInline) return k_.accelerations(n, m, inv_m, cv, p, ag, a);
+    for (Index i = 0; i < n; ++i) a[i] = ((m[i] * ag - cv[i]) - p[i]) * inv_m[i] - ag;
+  }
+  void axpy(Index n, double a, const double* x, double* y) const {
+    if (n >= kInline) return k_.axpy(n, a, x, y);
+    for (Index i = 0; i < n; ++i) y[i] += x[i] * a;
+  }
+  bool out_of_range(Index n, const double* x, const double* v, double limit) const {
+    if (n >= kInline) return k_.out_of_range(n, x, v, limit);
+    int bad = 0;
+    for (Index i = 0; i < n; ++i) bad |= static_cast<int>(!(std::abs(x[i]) <= limit)) | static_cast<int>(!(v[i] - v[i] == 0.0));
+    return bad != 0;
+  }
+  void columns(Index rows, Index cols, const double* m, const double* q, double* out) const {
+    if (rows >= kInline) return k_.columns(rows, cols, m, q, out);
+    for (Index r = 0; r < rows; ++r) out[r] = m[r] * q[0];
+    for (Index j = 1; j < cols; ++j)
+      for (Index r = 0; r < rows; ++r) out[r] += m[j * rows + r] * q[j];
+  }
+
+ private:
+  const detail::StepKernels& k_;
+};
+
 // The structure step as a stepper of the one time loop (solver/time_loop.hpp): the constant
 // model (structure_model.hpp: the assembly, the step's matrices, the restart rule) and the
 // per-run workspace (structure_workspace.hpp: the state and the work vectors) built in the
@@ -636,8 +689,12 @@ class StructureStepper {
     else kernels.columns(m.nt + m.nd, m.nf, ws.sm->trial_rows.data(), q.data(), ws.trial_change.data());
     if (m.trial_every_floor && !ws.restart) {  // (the same, in passes the compiler vectorises)
       // (v1 = v_free - h A^-1 B' q, as v_free + (A^-1 B' q)(-h): the same numbers)
-      std::copy_n(ws.v_free.data(), m.n, ws.v1.data());
-      kernels.axpy(m.n, -m.h, ws.trial_change.data(), ws.v1.data());
+      if (m.n < SmallPasses::kInline) {
+        for (int i = 0; i < m.n; ++i) ws.v1[i] = ws.v_free[i] + ws.trial_change[i] * -m.h;  // (axpy's y + x a)
+      } else {
+        std::copy_n(ws.v_free.data(), m.n, ws.v1.data());
+        kernels.axpy(m.n, -m.h, ws.trial_change.data(), ws.v1.data());
+      }
       kernels.trapezoid(m.n, now.x.data(), now.v.data(), ws.v1.data(), 0.5 * m.h, ws.x1.data());
     } else {
       for (std::size_t t = 0; t < m.trial_dofs.size(); ++t) {
@@ -1142,7 +1199,7 @@ class StructureStepper {
   const detail::StructureModel m;
   detail::StepWorkspace ws;
   const GroundMotion& ground;
-  const detail::StepKernels& kernels;
+  const SmallPasses kernels;  // (the step kernels, a few entries' passes inline)
   const detail::BilinearKernels& bilinear_kernels;
 };
 
