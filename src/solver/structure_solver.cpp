@@ -714,8 +714,9 @@ class StructureStepper {
         ws.p1[k] += sign * (el.stiffness * el.pair.of(ws.x1) + ws.offsets[e]);
       }
       // (the viscous dampers at their latest end velocities)
-      for (const auto& [e, sign] : m.damper_viscous[d])
-        ws.p1[k] += sign * m.viscous_laws[static_cast<std::size_t>(e)].force(ws.viscous_w1[e]);
+      if (m.nv > 0)
+        for (const auto& [e, sign] : m.damper_viscous[d])
+          ws.p1[k] += sign * m.viscous_laws[static_cast<std::size_t>(e)].force(ws.viscous_w1[e]);
       if (!m.damper_bilinear[d].empty()) {
         double pk = ws.p1[k];  // (summed in a register: the same sum, without a store per element)
         for (const auto& [e, sign] : m.damper_bilinear[d]) {
@@ -725,10 +726,11 @@ class StructureStepper {
         }
         ws.p1[k] = pk;
       }
-      for (const auto& [e, sign] : m.damper_bouc_wen[d]) {  // (at the latest z_n+1; K0 holds k d1)
-        const detail::BoucWenElement& el = m.bouc_wen[static_cast<std::size_t>(e)];
-        ws.p1[k] += sign * el.k * (ws.bouc_wen[e].z1 - (ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0)));
-      }
+      if (m.nw > 0)
+        for (const auto& [e, sign] : m.damper_bouc_wen[d]) {  // (at the latest z_n+1; K0 holds k d1)
+          const detail::BoucWenElement& el = m.bouc_wen[static_cast<std::size_t>(e)];
+          ws.p1[k] += sign * el.k * (ws.bouc_wen[e].z1 - (ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0)));
+        }
     }
   }
 
@@ -874,6 +876,13 @@ class StructureStepper {
   // Stick exact: a stuck damper's two floors get one velocity, bit for bit (their
   // mass-weighted mean, which moves them by rounding only).
   void stick_exact(StructureState& next) {
+    if (m.nf == 1) {  // (one damper: its floors are damper_dofs, all touched when it is stuck, none if not)
+      if (ws.states[0] != DamperState::stick) return;
+      for (int k : m.damper_dofs) ws.v_pre[k] = next.v[k];
+      join_stuck_floors(next);
+      follow_moves(next, m.damper_dofs);
+      return;
+    }
     // (touched: the stuck dampers' floors, ascending, from damper_dofs: sorted and unique.)
     // (every entry is some damper's floor: cleared there, without a call to memset)
     for (int f = 0; f < m.nf; ++f) {
@@ -889,6 +898,12 @@ class StructureStepper {
     for (std::size_t d = 0; d < m.damper_dofs.size(); ++d)
       if (ws.touched_flag[d]) ws.touched.push_back(m.damper_dofs[d]);
     for (int k : ws.touched) ws.v_pre[k] = next.v[k];
+    join_stuck_floors(next);
+    follow_moves(next, ws.touched);
+  }
+  // Each stuck damper's floors moved to their mass-weighted mean velocity (twice: a floor
+  // shared by two dampers), a base's slider's base to the ground's.
+  void join_stuck_floors(StructureState& next) const {
     for (int pass = 0; pass < 2; ++pass)
       for (int f = 0; f < m.nf; ++f)
         if (ws.states[f] == DamperState::stick) {
@@ -900,8 +915,11 @@ class StructureStepper {
           const double v = (m.mass[i] * next.v[i] + m.mass[j] * next.v[j]) / (m.mass[i] + m.mass[j]);
           next.v[i] = next.v[j] = v;
         }
-    // ... and C v follows those moves column by column (O(n) each), not by a product with C.
-    for (int k : ws.touched) {
+  }
+  // ... and C v follows the moves of the floors `touched` (ascending) column by column (O(n)
+  // each), not by a product with C.
+  void follow_moves(const StructureState& next, const std::vector<int>& touched) {
+    for (int k : touched) {
       const double dv = next.v[k] - ws.v_pre[k];
       if (dv == 0.0) continue;
       const StepBlock& b = m.trapezoidal->blocks[m.block_of[k]];  // (C's other rows are zero in column k; theta plays no part)
