@@ -47,6 +47,16 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // kInline entries a call through the kernel table and its vector loop's set-up cost more than
 // the arithmetic (the two-block scene's structure has two floors and one damper). Each entry
 // by the kernel's own operations in its order (step_kernels.cpp), so the same bits either way.
+// One column's product for one damper, inline: out = 0 + a q, as DenseProduct sums each row
+// from 0 (damper_response), ...
+void one_column(Eigen::Index rows, const double* __restrict a, double q, double* __restrict out) {
+  for (Eigen::Index r = 0; r < rows; ++r) out[r] = 0.0 + a[r] * q;
+}
+// ... and out = a q, as the columns kernel's first column (trial_rows).
+void trial_column(Eigen::Index rows, const double* __restrict a, double q, double* __restrict out) {
+  for (Eigen::Index r = 0; r < rows; ++r) out[r] = a[r] * q;
+}
+
 class SmallPasses {
  public:
   using Index = Eigen::Index;
@@ -686,6 +696,7 @@ class StructureStepper {
   void trial_state(const StructureState& now, const Eigen::VectorXd& q) {
     // (q: the trial's, nonzero at the slipping elements only)
     if (m.nh > 0) sparse_columns(ws.sm->trial_rows, m.nt + m.nd, q, ws.bilinear_plastic, ws.trial_change.data());
+    else if (m.nf == 1 && m.nt + m.nd <= SmallPasses::kInline) trial_column(m.nt + m.nd, ws.sm->trial_rows.data(), q[0], ws.trial_change.data());
     else kernels.columns(m.nt + m.nd, m.nf, ws.sm->trial_rows.data(), q.data(), ws.trial_change.data());
     if (m.trial_every_floor && !ws.restart) {  // (the same, in passes the compiler vectorises)
       // (v1 = v_free - h A^-1 B' q, as v_free + (A^-1 B' q)(-h): the same numbers)
@@ -809,6 +820,10 @@ class StructureStepper {
   void correct(std::size_t step, const StructureState& now, StructureState& next) {
     if (m.nh > 0) {
       sparse_columns(ws.sm->damper_response_columns, 2 * m.n, ws.q_step, ws.bilinear_active, ws.response_q.data());
+      kernels.end_velocities(m.n, ws.v_free.data(), ws.cv_free.data(), ws.response_q.data(), ws.response_q.data() + m.n, m.h,
+                             next.v.data(), ws.cv_next.data());
+    } else if (m.nf == 1 && m.n <= SmallPasses::kInline) {  // (one damper: its column of the response, inline)
+      one_column(2 * m.n, ws.sm->damper_response.matrix().data(), ws.q_step[0], ws.response_q.data());
       kernels.end_velocities(m.n, ws.v_free.data(), ws.cv_free.data(), ws.response_q.data(), ws.response_q.data() + m.n, m.h,
                              next.v.data(), ws.cv_next.data());
     } else if (m.nf > 0) {
