@@ -57,6 +57,18 @@ void trial_column(Eigen::Index rows, const double* __restrict a, double q, doubl
   for (Eigen::Index r = 0; r < rows; ++r) out[r] = a[r] * q;
 }
 
+// The free step's predictor x1 = x + c v and right-hand side (the banded kernel's free_rhs
+// without K), for the dense K_eff's small structures: the pointers do not alias (no run-time
+// checks before the compiler's vector loop).
+void predictor(Eigen::Index n, const double* __restrict x, const double* __restrict v, double c, double* __restrict x1) {
+  for (Eigen::Index i = 0; i < n; ++i) x1[i] = x[i] + c * v[i];
+}
+void free_rhs_rows(Eigen::Index n, const double* __restrict m, const double* __restrict v, const double* __restrict cv,
+                   const double* __restrict p0, const double* __restrict p, const double* __restrict off, double c, double s,
+                   double* __restrict rhs) {
+  for (Eigen::Index i = 0; i < n; ++i) rhs[i] = m[i] * v[i] + c * ((((m[i] * s - cv[i]) - p0[i]) - p[i]) - off[i]);
+}
+
 class SmallPasses {
  public:
   using Index = Eigen::Index;
@@ -237,10 +249,10 @@ class StructureStepper {
       }
     } else {  // (plain loops, not Eigen expressions, whose dynamic-size set-up outweighs two floors' sums)
       const double c = 0.5 * m.h, s_ag = now.ag + next.ag;
-      for (int i = 0; i < m.n; ++i) ws.x1[i] = now.x[i] + c * now.v[i];
+      predictor(m.n, now.x.data(), now.v.data(), c, ws.x1.data());
       m.k_eff.apply(ws.x1, ws.p1);
-      for (int i = 0; i < m.n; ++i)
-        ws.rhs[i] = m.mass[i] * now.v[i] + c * ((((m.mass[i] * s_ag - ws.cv_now[i]) - ws.internal[i]) - ws.p1[i]) - ws.off_dof[i]);
+      free_rhs_rows(m.n, m.mass.data(), now.v.data(), ws.cv_now.data(), ws.internal.data(), ws.p1.data(), ws.off_dof.data(), c, s_ag,
+                    ws.rhs.data());
     }
     // v_free = A^-1 rhs and its damping forces C v_free: the step's only O(n^2) work (with
     // dense C).
