@@ -43,10 +43,6 @@ using structure::LinkType;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-// The step kernels (step_kernels.hpp) with their passes over a few entries inline: below
-// kInline entries a call through the kernel table and its vector loop's set-up cost more than
-// the arithmetic (the two-block scene's structure has two floors and one damper). Each entry
-// by the kernel's own operations in its order (step_kernels.cpp), so the same bits either way.
 // One column's product for one damper, inline: out = 0 + a q, as DenseProduct sums each row
 // from 0 (damper_response), ...
 void one_column(Eigen::Index rows, const double* __restrict a, double q, double* __restrict out) {
@@ -69,6 +65,11 @@ void free_rhs_rows(Eigen::Index n, const double* __restrict m, const double* __r
   for (Eigen::Index i = 0; i < n; ++i) rhs[i] = m[i] * v[i] + c * ((((m[i] * s - cv[i]) - p0[i]) - p[i]) - off[i]);
 }
 
+// The step kernels (step_kernels.hpp) with their passes over a few entries inline: below
+// kInline entries a call through the kernel table and its vector loop's set-up cost more than
+// the arithmetic (the two-block scene's structure has two floors and one damper). Each entry
+// by the kernel's own operations in its order (step_kernels.cpp), so the same bits either way;
+// the pointers do not alias, as the kernels' do (__restrict: no run-time overlap checks).
 class SmallPasses {
  public:
   using Index = Eigen::Index;
@@ -81,23 +82,25 @@ class SmallPasses {
   void some_columns(A... a) const { k_.some_columns(a...); }
   template <class... A>
   void drifts(A... a) const { k_.drifts(a...); }
-  void end_velocities(Index n, const double* vf, const double* cvf, const double* rv, const double* rc, double h, double* v,
-                      double* cv) const {
+  void end_velocities(Index n, const double* __restrict vf, const double* __restrict cvf, const double* __restrict rv,
+                      const double* __restrict rc, double h, double* __restrict v, double* __restrict cv) const {
     if (n >= kInline) return k_.end_velocities(n, vf, cvf, rv, rc, h, v, cv);
     for (Index i = 0; i < n; ++i) {
       v[i] = vf[i] - h * rv[i];
       cv[i] = cvf[i] - h * rc[i];
     }
   }
-  void trapezoid(Index n, const double* x0, const double* v0, const double* v1, double c, double* x1) const {
+  void trapezoid(Index n, const double* __restrict x0, const double* __restrict v0, const double* __restrict v1, double c,
+                 double* __restrict x1) const {
     if (n >= kInline) return k_.trapezoid(n, x0, v0, v1, c, x1);
     for (Index i = 0; i < n; ++i) x1[i] = x0[i] + c * (v0[i] + v1[i]);
   }
-  void accelerations(Index n, const double* m, const double* inv_m, const double* cv, const double* p, double ag, double* a) const {
+  void accelerations(Index n, const double* __restrict m, const double* __restrict inv_m, const double* __restrict cv,
+                     const double* __restrict p, double ag, double* __restrict a) const {
     if (n >= kInline) return k_.accelerations(n, m, inv_m, cv, p, ag, a);
     for (Index i = 0; i < n; ++i) a[i] = ((m[i] * ag - cv[i]) - p[i]) * inv_m[i] - ag;
   }
-  void axpy(Index n, double a, const double* x, double* y) const {
+  void axpy(Index n, double a, const double* __restrict x, double* __restrict y) const {
     if (n >= kInline) return k_.axpy(n, a, x, y);
     for (Index i = 0; i < n; ++i) y[i] += x[i] * a;
   }
@@ -107,7 +110,7 @@ class SmallPasses {
     for (Index i = 0; i < n; ++i) bad |= static_cast<int>(!(std::abs(x[i]) <= limit)) | static_cast<int>(!(v[i] - v[i] == 0.0));
     return bad != 0;
   }
-  void columns(Index rows, Index cols, const double* m, const double* q, double* out) const {
+  void columns(Index rows, Index cols, const double* __restrict m, const double* __restrict q, double* __restrict out) const {
     if (rows >= kInline) return k_.columns(rows, cols, m, q, out);
     for (Index r = 0; r < rows; ++r) out[r] = m[r] * q[0];
     for (Index j = 1; j < cols; ++j)
