@@ -219,7 +219,12 @@ class StructureStepper {
     // (Else it stays zero; with bilinear elements alone it changes only when a slip u_p did.)
     if (!m.zener.empty() || m.nw > 0 || (m.nh > 0 && ws.bilinear_slipped)) {
       ws.bilinear_slipped = false;
-      ws.off_dof.setZero();
+      if (m.n <= 2) {  // (one or two floors: two stores, not a call to memset)
+        ws.off_dof[0] = 0.0;
+        ws.off_dof[m.n - 1] = 0.0;
+      } else {
+        ws.off_dof.setZero();
+      }
       for (std::size_t e = 0; e < m.zener.size(); ++e) m.zener[e].pair.add(ws.off_dof, ws.offsets[static_cast<Eigen::Index>(e)]);
       // The bilinear elements' slips: -k_h u_p (bilinear_step.hpp).
       if (m.nh > 0) detail::bilinear_scatter(bilinear_kernels, ws.bilinear_layout, ws.bilinear.offset.data(), ws.off_dof.data());
@@ -1028,7 +1033,9 @@ class StructureStepper {
     grid_forces(ws.cv_next, p_grid, next.ag, next.link_phase, &ws.q_grid, &ws.stick_grid);
     // Absolute accelerations at the grid point: x'' - a_g.
     // The dampers' forces B' q are added at their floors only.
-    kernels.accelerations(m.n, m.mass.data(), m.inv_mass.data(), ws.cv_next.data(), p_grid.data(), next.ag, next.a_abs.data());
+    // (Every floor a damper's, as in the two-block scene: all are written below.)
+    if (m.nf == 0 || m.nd < m.n)
+      kernels.accelerations(m.n, m.mass.data(), m.inv_mass.data(), ws.cv_next.data(), p_grid.data(), next.ag, next.a_abs.data());
     if (m.nf > 0) {
       damper_bt(ws.q_grid);
       for (std::size_t d = 0; d < m.damper_dofs.size(); ++d) {
