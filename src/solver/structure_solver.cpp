@@ -1033,8 +1033,7 @@ class StructureStepper {
     grid_forces(ws.cv_next, p_grid, next.ag, next.link_phase, &ws.q_grid, &ws.stick_grid);
     // Absolute accelerations at the grid point: x'' - a_g.
     // The dampers' forces B' q are added at their floors only.
-    // (Every floor a damper's, as in the two-block scene: all are written below.)
-    if (m.nf == 0 || m.nd < m.n)
+    if (!dampers_on_every_floor)  // (else the dampers' loop below writes them all)
       kernels.accelerations(m.n, m.mass.data(), m.inv_mass.data(), ws.cv_next.data(), p_grid.data(), next.ag, next.a_abs.data());
     if (m.nf > 0) {
       damper_bt(ws.q_grid);
@@ -1252,6 +1251,8 @@ class StructureStepper {
   static constexpr double g = kStandardGravity;
   double ag_next = 0.0;  // a_g at t_n+1 (for the dampers against the ground, at the trial's end)
   const detail::StructureModel m;
+  // Every floor is a damper's (the two-block scene): report() writes each acceleration once.
+  const bool dampers_on_every_floor = m.nf > 0 && m.nd == m.n;
   detail::StepWorkspace ws;
   const GroundMotion& ground;
   const SmallPasses kernels;  // (the step kernels, a few entries' passes inline)
