@@ -43,6 +43,84 @@ using structure::LinkType;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// One column's product for one damper, inline: out = 0 + a q, as DenseProduct sums each row
+// from 0 (damper_response), ...
+void one_column(Eigen::Index rows, const double* __restrict a, double q, double* __restrict out) {
+  for (Eigen::Index r = 0; r < rows; ++r) out[r] = 0.0 + a[r] * q;
+}
+// ... and out = a q, as the columns kernel's first column (trial_rows).
+void trial_column(Eigen::Index rows, const double* __restrict a, double q, double* __restrict out) {
+  for (Eigen::Index r = 0; r < rows; ++r) out[r] = a[r] * q;
+}
+
+// The free step's predictor x1 = x + c v and right-hand side (the banded kernel's free_rhs
+// without K), for the dense K_eff's small structures: the pointers do not alias (no run-time
+// checks before the compiler's vector loop).
+void predictor(Eigen::Index n, const double* __restrict x, const double* __restrict v, double c, double* __restrict x1) {
+  for (Eigen::Index i = 0; i < n; ++i) x1[i] = x[i] + c * v[i];
+}
+void free_rhs_rows(Eigen::Index n, const double* __restrict m, const double* __restrict v, const double* __restrict cv,
+                   const double* __restrict p0, const double* __restrict p, const double* __restrict off, double c, double s,
+                   double* __restrict rhs) {
+  for (Eigen::Index i = 0; i < n; ++i) rhs[i] = m[i] * v[i] + c * ((((m[i] * s - cv[i]) - p0[i]) - p[i]) - off[i]);
+}
+
+// The step kernels (step_kernels.hpp) with their passes over a few entries inline: below
+// kInline entries a call through the kernel table and its vector loop's set-up cost more than
+// the arithmetic (the two-block scene's structure has two floors and one damper). Each entry
+// by the kernel's own operations in its order (step_kernels.cpp), so the same bits either way;
+// the pointers do not alias, as the kernels' do (__restrict: no run-time overlap checks).
+class SmallPasses {
+ public:
+  using Index = Eigen::Index;
+  static constexpr Index kInline = 4;
+  explicit SmallPasses(const detail::StepKernels& k) : k_(k) {}
+
+  template <class... A>
+  void free_rhs(A... a) const { k_.free_rhs(a...); }
+  template <class... A>
+  void some_columns(A... a) const { k_.some_columns(a...); }
+  template <class... A>
+  void drifts(A... a) const { k_.drifts(a...); }
+  void end_velocities(Index n, const double* __restrict vf, const double* __restrict cvf, const double* __restrict rv,
+                      const double* __restrict rc, double h, double* __restrict v, double* __restrict cv) const {
+    if (n >= kInline) return k_.end_velocities(n, vf, cvf, rv, rc, h, v, cv);
+    for (Index i = 0; i < n; ++i) {
+      v[i] = vf[i] - h * rv[i];
+      cv[i] = cvf[i] - h * rc[i];
+    }
+  }
+  void trapezoid(Index n, const double* __restrict x0, const double* __restrict v0, const double* __restrict v1, double c,
+                 double* __restrict x1) const {
+    if (n >= kInline) return k_.trapezoid(n, x0, v0, v1, c, x1);
+    for (Index i = 0; i < n; ++i) x1[i] = x0[i] + c * (v0[i] + v1[i]);
+  }
+  void accelerations(Index n, const double* __restrict m, const double* __restrict inv_m, const double* __restrict cv,
+                     const double* __restrict p, double ag, double* __restrict a) const {
+    if (n >= kInline) return k_.accelerations(n, m, inv_m, cv, p, ag, a);
+    for (Index i = 0; i < n; ++i) a[i] = ((m[i] * ag - cv[i]) - p[i]) * inv_m[i] - ag;
+  }
+  void axpy(Index n, double a, const double* __restrict x, double* __restrict y) const {
+    if (n >= kInline) return k_.axpy(n, a, x, y);
+    for (Index i = 0; i < n; ++i) y[i] += x[i] * a;
+  }
+  bool out_of_range(Index n, const double* x, const double* v, double limit) const {
+    if (n >= kInline) return k_.out_of_range(n, x, v, limit);
+    int bad = 0;
+    for (Index i = 0; i < n; ++i) bad |= static_cast<int>(!(std::abs(x[i]) <= limit)) | static_cast<int>(!(v[i] - v[i] == 0.0));
+    return bad != 0;
+  }
+  void columns(Index rows, Index cols, const double* __restrict m, const double* __restrict q, double* __restrict out) const {
+    if (rows >= kInline) return k_.columns(rows, cols, m, q, out);
+    for (Index r = 0; r < rows; ++r) out[r] = m[r] * q[0];
+    for (Index j = 1; j < cols; ++j)
+      for (Index r = 0; r < rows; ++r) out[r] += m[j * rows + r] * q[j];
+  }
+
+ private:
+  const detail::StepKernels& k_;
+};
+
 // The structure step as a stepper of the one time loop (solver/time_loop.hpp): the constant
 // model (structure_model.hpp: the assembly, the step's matrices, the restart rule) and the
 // per-run workspace (structure_workspace.hpp: the state and the work vectors) built in the
@@ -141,7 +219,12 @@ class StructureStepper {
     // (Else it stays zero; with bilinear elements alone it changes only when a slip u_p did.)
     if (!m.zener.empty() || m.nw > 0 || (m.nh > 0 && ws.bilinear_slipped)) {
       ws.bilinear_slipped = false;
-      ws.off_dof.setZero();
+      if (m.n <= 2) {  // (one or two floors: two stores, not a call to memset)
+        ws.off_dof[0] = 0.0;
+        ws.off_dof[m.n - 1] = 0.0;
+      } else {
+        ws.off_dof.setZero();
+      }
       for (std::size_t e = 0; e < m.zener.size(); ++e) m.zener[e].pair.add(ws.off_dof, ws.offsets[static_cast<Eigen::Index>(e)]);
       // The bilinear elements' slips: -k_h u_p (bilinear_step.hpp).
       if (m.nh > 0) detail::bilinear_scatter(bilinear_kernels, ws.bilinear_layout, ws.bilinear.offset.data(), ws.off_dof.data());
@@ -174,10 +257,10 @@ class StructureStepper {
       }
     } else {  // (plain loops, not Eigen expressions, whose dynamic-size set-up outweighs two floors' sums)
       const double c = 0.5 * m.h, s_ag = now.ag + next.ag;
-      for (int i = 0; i < m.n; ++i) ws.x1[i] = now.x[i] + c * now.v[i];
+      predictor(m.n, now.x.data(), now.v.data(), c, ws.x1.data());
       m.k_eff.apply(ws.x1, ws.p1);
-      for (int i = 0; i < m.n; ++i)
-        ws.rhs[i] = m.mass[i] * now.v[i] + c * ((((m.mass[i] * s_ag - ws.cv_now[i]) - ws.internal[i]) - ws.p1[i]) - ws.off_dof[i]);
+      free_rhs_rows(m.n, m.mass.data(), now.v.data(), ws.cv_now.data(), ws.internal.data(), ws.p1.data(), ws.off_dof.data(), c, s_ag,
+                    ws.rhs.data());
     }
     // v_free = A^-1 rhs and its damping forces C v_free: the step's only O(n^2) work (with
     // dense C).
@@ -633,11 +716,16 @@ class StructureStepper {
   void trial_state(const StructureState& now, const Eigen::VectorXd& q) {
     // (q: the trial's, nonzero at the slipping elements only)
     if (m.nh > 0) sparse_columns(ws.sm->trial_rows, m.nt + m.nd, q, ws.bilinear_plastic, ws.trial_change.data());
+    else if (m.nf == 1 && m.nt + m.nd <= SmallPasses::kInline) trial_column(m.nt + m.nd, ws.sm->trial_rows.data(), q[0], ws.trial_change.data());
     else kernels.columns(m.nt + m.nd, m.nf, ws.sm->trial_rows.data(), q.data(), ws.trial_change.data());
     if (m.trial_every_floor && !ws.restart) {  // (the same, in passes the compiler vectorises)
       // (v1 = v_free - h A^-1 B' q, as v_free + (A^-1 B' q)(-h): the same numbers)
-      std::copy_n(ws.v_free.data(), m.n, ws.v1.data());
-      kernels.axpy(m.n, -m.h, ws.trial_change.data(), ws.v1.data());
+      if (m.n < SmallPasses::kInline) {
+        for (int i = 0; i < m.n; ++i) ws.v1[i] = ws.v_free[i] + ws.trial_change[i] * -m.h;  // (axpy's y + x a)
+      } else {
+        std::copy_n(ws.v_free.data(), m.n, ws.v1.data());
+        kernels.axpy(m.n, -m.h, ws.trial_change.data(), ws.v1.data());
+      }
       kernels.trapezoid(m.n, now.x.data(), now.v.data(), ws.v1.data(), 0.5 * m.h, ws.x1.data());
     } else {
       for (std::size_t t = 0; t < m.trial_dofs.size(); ++t) {
@@ -657,8 +745,9 @@ class StructureStepper {
         ws.p1[k] += sign * (el.stiffness * el.pair.of(ws.x1) + ws.offsets[e]);
       }
       // (the viscous dampers at their latest end velocities)
-      for (const auto& [e, sign] : m.damper_viscous[d])
-        ws.p1[k] += sign * m.viscous_laws[static_cast<std::size_t>(e)].force(ws.viscous_w1[e]);
+      if (m.nv > 0)
+        for (const auto& [e, sign] : m.damper_viscous[d])
+          ws.p1[k] += sign * m.viscous_laws[static_cast<std::size_t>(e)].force(ws.viscous_w1[e]);
       if (!m.damper_bilinear[d].empty()) {
         double pk = ws.p1[k];  // (summed in a register: the same sum, without a store per element)
         for (const auto& [e, sign] : m.damper_bilinear[d]) {
@@ -668,10 +757,11 @@ class StructureStepper {
         }
         ws.p1[k] = pk;
       }
-      for (const auto& [e, sign] : m.damper_bouc_wen[d]) {  // (at the latest z_n+1; K0 holds k d1)
-        const detail::BoucWenElement& el = m.bouc_wen[static_cast<std::size_t>(e)];
-        ws.p1[k] += sign * el.k * (ws.bouc_wen[e].z1 - (ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0)));
-      }
+      if (m.nw > 0)
+        for (const auto& [e, sign] : m.damper_bouc_wen[d]) {  // (at the latest z_n+1; K0 holds k d1)
+          const detail::BoucWenElement& el = m.bouc_wen[static_cast<std::size_t>(e)];
+          ws.p1[k] += sign * el.k * (ws.bouc_wen[e].z1 - (ws.x1[el.i] - (el.j >= 0 ? ws.x1[el.j] : 0.0)));
+        }
     }
   }
 
@@ -752,6 +842,10 @@ class StructureStepper {
       sparse_columns(ws.sm->damper_response_columns, 2 * m.n, ws.q_step, ws.bilinear_active, ws.response_q.data());
       kernels.end_velocities(m.n, ws.v_free.data(), ws.cv_free.data(), ws.response_q.data(), ws.response_q.data() + m.n, m.h,
                              next.v.data(), ws.cv_next.data());
+    } else if (m.nf == 1 && m.n <= SmallPasses::kInline) {  // (one damper: its column of the response, inline)
+      one_column(2 * m.n, ws.sm->damper_response.matrix().data(), ws.q_step[0], ws.response_q.data());
+      kernels.end_velocities(m.n, ws.v_free.data(), ws.cv_free.data(), ws.response_q.data(), ws.response_q.data() + m.n, m.h,
+                             next.v.data(), ws.cv_next.data());
     } else if (m.nf > 0) {
       ws.sm->damper_response.apply(ws.q_step.data(), ws.response_q.data());
       kernels.end_velocities(m.n, ws.v_free.data(), ws.cv_free.data(), ws.response_q.data(), ws.response_q.data() + m.n, m.h,
@@ -817,6 +911,13 @@ class StructureStepper {
   // Stick exact: a stuck damper's two floors get one velocity, bit for bit (their
   // mass-weighted mean, which moves them by rounding only).
   void stick_exact(StructureState& next) {
+    if (m.nf == 1) {  // (one damper: its floors are damper_dofs, all touched when it is stuck, none if not)
+      if (ws.states[0] != DamperState::stick) return;
+      for (int k : m.damper_dofs) ws.v_pre[k] = next.v[k];
+      join_stuck_floors(next);
+      follow_moves(next, m.damper_dofs);
+      return;
+    }
     // (touched: the stuck dampers' floors, ascending, from damper_dofs: sorted and unique.)
     // (every entry is some damper's floor: cleared there, without a call to memset)
     for (int f = 0; f < m.nf; ++f) {
@@ -832,6 +933,12 @@ class StructureStepper {
     for (std::size_t d = 0; d < m.damper_dofs.size(); ++d)
       if (ws.touched_flag[d]) ws.touched.push_back(m.damper_dofs[d]);
     for (int k : ws.touched) ws.v_pre[k] = next.v[k];
+    join_stuck_floors(next);
+    follow_moves(next, ws.touched);
+  }
+  // Each stuck damper's floors moved to their mass-weighted mean velocity (twice: a floor
+  // shared by two dampers), a base's slider's base to the ground's.
+  void join_stuck_floors(StructureState& next) const {
     for (int pass = 0; pass < 2; ++pass)
       for (int f = 0; f < m.nf; ++f)
         if (ws.states[f] == DamperState::stick) {
@@ -843,8 +950,11 @@ class StructureStepper {
           const double v = (m.mass[i] * next.v[i] + m.mass[j] * next.v[j]) / (m.mass[i] + m.mass[j]);
           next.v[i] = next.v[j] = v;
         }
-    // ... and C v follows those moves column by column (O(n) each), not by a product with C.
-    for (int k : ws.touched) {
+  }
+  // ... and C v follows the moves of the floors `touched` (ascending) column by column (O(n)
+  // each), not by a product with C.
+  void follow_moves(const StructureState& next, const std::vector<int>& touched) {
+    for (int k : touched) {
       const double dv = next.v[k] - ws.v_pre[k];
       if (dv == 0.0) continue;
       const StepBlock& b = m.trapezoidal->blocks[m.block_of[k]];  // (C's other rows are zero in column k; theta plays no part)
@@ -923,7 +1033,8 @@ class StructureStepper {
     grid_forces(ws.cv_next, p_grid, next.ag, next.link_phase, &ws.q_grid, &ws.stick_grid);
     // Absolute accelerations at the grid point: x'' - a_g.
     // The dampers' forces B' q are added at their floors only.
-    kernels.accelerations(m.n, m.mass.data(), m.inv_mass.data(), ws.cv_next.data(), p_grid.data(), next.ag, next.a_abs.data());
+    if (!dampers_on_every_floor)  // (else the dampers' loop below writes them all)
+      kernels.accelerations(m.n, m.mass.data(), m.inv_mass.data(), ws.cv_next.data(), p_grid.data(), next.ag, next.a_abs.data());
     if (m.nf > 0) {
       damper_bt(ws.q_grid);
       for (std::size_t d = 0; d < m.damper_dofs.size(); ++d) {
@@ -1140,9 +1251,11 @@ class StructureStepper {
   static constexpr double g = kStandardGravity;
   double ag_next = 0.0;  // a_g at t_n+1 (for the dampers against the ground, at the trial's end)
   const detail::StructureModel m;
+  // Every floor is a damper's (the two-block scene): report() writes each acceleration once.
+  const bool dampers_on_every_floor = m.nf > 0 && m.nd == m.n;
   detail::StepWorkspace ws;
   const GroundMotion& ground;
-  const detail::StepKernels& kernels;
+  const SmallPasses kernels;  // (the step kernels, a few entries' passes inline)
   const detail::BilinearKernels& bilinear_kernels;
 };
 
