@@ -15,8 +15,6 @@ constexpr std::array<KeySpec, 3> kKeys = {{
     {"ground.u0", Kind::number}, {"ground.omega", Kind::number}, {"ground.k", Kind::number},
 }};
 
-}  // namespace
-
 std::span<const KeySpec> decaying_sine_keys() { return kKeys; }
 
 std::shared_ptr<const GroundMotion> read_decaying_sine(const SceneReader& r, const Scales& s) {
@@ -30,5 +28,9 @@ std::shared_ptr<const GroundMotion> read_decaying_sine(const SceneReader& r, con
                               : std::string();
   return std::make_shared<DecayingSine>(u0 / s.length, omega * s.time, k * s.time, si);
 }
+
+}  // namespace
+
+GroundSource decaying_sine_source() { return {"decaying-sine", decaying_sine_keys, read_decaying_sine}; }
 
 }  // namespace adjoin::detail

@@ -34,8 +34,6 @@ constexpr std::array<KeySpec, 25> kKeys = {{
     {"ground.time_scale", Kind::number},
 }};
 
-}  // namespace
-
 std::span<const KeySpec> filtered_noise_keys() { return kKeys; }
 
 // source = "filtered-noise": white noise shaped by a Kanai-Tajimi or Clough-Penzien spectrum
@@ -139,5 +137,9 @@ std::shared_ptr<const GroundMotion> read_filtered_noise(const SceneReader& r, co
     return std::make_shared<RecordMotion>(std::move(matched), time_scale, kStandardGravity);
   });
 }
+
+}  // namespace
+
+GroundSource filtered_noise_source() { return {"filtered-noise", filtered_noise_keys, read_filtered_noise}; }
 
 }  // namespace adjoin::detail

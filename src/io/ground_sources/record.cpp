@@ -30,8 +30,6 @@ constexpr std::array<KeySpec, 19> kKeys = {{
     {"ground.resample_dt", Kind::number}, {"ground.scale_pga", Kind::number},
 }};
 
-}  // namespace
-
 std::span<const KeySpec> record_source_keys() { return kKeys; }
 
 // source = "record": read, process, and scale to the solver's units. A dimensionless scene
@@ -118,5 +116,9 @@ std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, con
     return std::make_shared<RecordMotion>(std::move(record), time_scale, kStandardGravity);
   });
 }
+
+}  // namespace
+
+GroundSource record_source() { return {"record", record_source_keys, read_record_source}; }
 
 }  // namespace adjoin::detail

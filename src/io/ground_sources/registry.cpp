@@ -3,7 +3,6 @@
 #include "registry.hpp"
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -13,34 +12,35 @@
 #include "adjoin/io/text_file.hpp"
 
 namespace adjoin::detail {
-namespace {
 
-// In the order of the scene schema's ground keys.
-constexpr std::array<GroundSource, 3> kSources = {{
-    {"decaying-sine", decaying_sine_keys, read_decaying_sine},
-    {"record", record_source_keys, read_record_source},
-    {"filtered-noise", filtered_noise_keys, read_filtered_noise},
-}};
+std::span<const GroundSource> ground_sources() {
+#define ADJOIN_GROUND_SOURCE_ENTRY(id) id##_source(),
+  static const std::vector<GroundSource> sources = {ADJOIN_GROUND_SOURCES(ADJOIN_GROUND_SOURCE_ENTRY)};
+#undef ADJOIN_GROUND_SOURCE_ENTRY
+  return sources;
+}
+
+namespace {
 
 // "\"decaying-sine\", \"record\" or \"filtered-noise\"".
 std::string source_names() {
+  const std::span<const GroundSource> sources = ground_sources();
   std::string out;
-  for (std::size_t i = 0; i < kSources.size(); ++i)
-    out += (i == 0 ? "" : i + 1 == kSources.size() ? " or " : ", ") + ("\"" + std::string(kSources[i].name) + "\"");
+  for (std::size_t i = 0; i < sources.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == sources.size() ? " or " : ", ") + ("\"" + std::string(sources[i].name) + "\"");
   return out;
 }
 
 }  // namespace
 
-std::span<const GroundSource> ground_sources() { return kSources; }
-
 std::shared_ptr<const GroundMotion> read_ground(const SceneReader& r, const Scales& scales) {
+  const std::span<const GroundSource> sources = ground_sources();
   const std::string source = r.string("ground.source", "");
   if (source.empty()) r.fail("ground", "missing key ground.source (" + source_names() + ")");
-  const auto entry = std::find_if(kSources.begin(), kSources.end(), [&](const GroundSource& s) { return s.name == source; });
-  if (entry == kSources.end()) {
+  const auto entry = std::find_if(sources.begin(), sources.end(), [&](const GroundSource& s) { return s.name == source; });
+  if (entry == sources.end()) {
     std::vector<std::string> names;
-    for (const GroundSource& s : kSources) names.emplace_back(s.name);
+    for (const GroundSource& s : sources) names.emplace_back(s.name);
     std::sort(names.begin(), names.end());
     r.fail("ground.source", "ground.source = " + escaped_excerpt(source) + " is not a known source; did you mean \"" +
                                 nearest(source, names) + "\"?");

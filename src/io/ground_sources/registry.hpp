@@ -3,7 +3,7 @@
 // as the record readers are (ground/readers/). Each entry has the name `ground.source` takes,
 // the [ground] keys the source accepts (with their types: the scene schema draws its ground
 // keys from here) and the function that builds the motion from them. A new source is one file
-// here and one row in registry.cpp.
+// here (defining `GroundSource <id>_source()`) and one row of ADJOIN_GROUND_SOURCES below.
 #include <memory>
 #include <span>
 #include <string>
@@ -50,12 +50,16 @@ std::string ground_key(const SceneReader& r, double time_scale, const std::strin
 // 1 s) for dimensionless ones.
 double record_time_scale(const SceneReader& r, const Scales& scales);
 
-// The sources (one .cpp each).
-std::span<const KeySpec> decaying_sine_keys();
-std::shared_ptr<const GroundMotion> read_decaying_sine(const SceneReader& r, const Scales& scales);
-std::span<const KeySpec> record_source_keys();
-std::shared_ptr<const GroundMotion> read_record_source(const SceneReader& r, const Scales& scales);
-std::span<const KeySpec> filtered_noise_keys();
-std::shared_ptr<const GroundMotion> read_filtered_noise(const SceneReader& r, const Scales& scales);
+// The sources, one .cpp each, in the order the scene schema lists their keys: each row is the
+// id of a file's `GroundSource <id>_source()`.
+#define ADJOIN_GROUND_SOURCES(ROW) \
+  ROW(decaying_sine)               \
+  ROW(record)                      \
+  ROW(filtered_noise)              \
+  /* a new source: its row above this line */
+
+#define ADJOIN_DECLARE_GROUND_SOURCE(id) GroundSource id##_source();
+ADJOIN_GROUND_SOURCES(ADJOIN_DECLARE_GROUND_SOURCE)
+#undef ADJOIN_DECLARE_GROUND_SOURCE
 
 }  // namespace adjoin::detail
