@@ -15,7 +15,7 @@ constexpr Eigen::Index kEigenBlockColumns = 128;
 // Multiplies and adds separately, as Eigen's baseline kernel does (no fused multiply-add: that
 // rounds once, not twice, and would change the sums).
 // The column-major a has leading dimension `stride`.
-__attribute__((target("avx"))) [[gnu::always_inline]] inline void product_avx_body(const double* a, Eigen::Index stride,
+[[gnu::always_inline]] __attribute__((target("avx"))) inline void product_avx_body(const double* a, Eigen::Index stride,
                                                                                      Eigen::Index rows, Eigen::Index cols,
                                                                                      const double* x, double* y) {
   Eigen::Index i = 0;
