@@ -6,6 +6,7 @@
 //   build/bench/bench_history --benchmark_filter=fft       the fast engine only
 //   build/bench/bench_history --benchmark_filter='(fft|soe)/(16384|262144|4194304)$'   fft against soe
 //   build/bench/bench_history --benchmark_filter='fft/(1048576|1066667)$'   the solver's size
+//   build/bench/bench_history --benchmark_filter=40          40 histories: one bank against 40 apart
 //
 // Counters: time_per_step (s) = run time / N; bytes_per_step = bytes() / N. The direct engine
 // is quadratic (2^20 steps take over ten minutes), so it is registered up to 2^17 only; set
@@ -19,6 +20,7 @@
 #include <vector>
 
 #include "adjoin/fractional/history.hpp"
+#include "adjoin/fractional/soe_bank.hpp"
 #include "adjoin/fractional/soe_history.hpp"
 #include "adjoin/fractional/weights.hpp"
 
@@ -55,7 +57,41 @@ void run(benchmark::State& state, adjoin::HistoryEngine engine) {
       static_cast<double>(bytes) / static_cast<double>(steps);
 }
 
+// 40 histories of order 0.53 stepped together, as the 2 x 20 Zener pair's (soe_bank.hpp), against
+// 40 SoeHistories: time_per_element_step = run time / (N * 40).
+void run_many(benchmark::State& state, bool bank) {
+  const auto steps = static_cast<std::size_t>(state.range(0));
+  constexpr std::size_t kMembers = 40;
+  adjoin::soe_compression(adjoin::WeightRule::grunwald_letnikov, 0.53, 1e-12, steps + 1);
+  const std::vector<double> orders(kMembers, 0.53);
+  std::vector<double> input(1024);  // (a table: 40 sines a step would cost more than the histories)
+  for (std::size_t i = 0; i < input.size(); ++i) input[i] = std::sin(1e-2 * static_cast<double>(i));
+  for (auto _ : state) {
+    std::vector<std::unique_ptr<adjoin::ConvolutionHistory>> histories;
+    if (bank) {
+      histories = adjoin::make_soe_histories(adjoin::WeightRule::grunwald_letnikov, orders, steps + 1, 1e-12);
+    } else {
+      for (std::size_t e = 0; e < kMembers; ++e)
+        histories.push_back(adjoin::make_history(adjoin::HistoryEngine::soe, adjoin::WeightRule::grunwald_letnikov, 0.53, steps + 1, 1e-12));
+    }
+    double y = 0.0;
+    for (std::size_t m = 0; m <= steps; ++m)
+      for (std::size_t e = 0; e < kMembers; ++e) {
+        y = input[(m + e) & 1023] - 0.1 * histories[e]->lag_sum();
+        histories[e]->push(y);
+      }
+    benchmark::DoNotOptimize(y);
+    state.PauseTiming();
+    histories.clear();
+    state.ResumeTiming();
+  }
+  state.counters["time_per_element_step"] = benchmark::Counter(
+      static_cast<double>(steps * kMembers), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 void BM_direct(benchmark::State& state) { run(state, adjoin::HistoryEngine::direct); }
+void BM_soe_bank40(benchmark::State& state) { run_many(state, true); }
+void BM_soe_alone40(benchmark::State& state) { run_many(state, false); }
 void BM_fft(benchmark::State& state) { run(state, adjoin::HistoryEngine::fft); }
 void BM_soe(benchmark::State& state) { run(state, adjoin::HistoryEngine::soe); }
 
@@ -68,6 +104,8 @@ BENCHMARK(BM_fft)->RangeMultiplier(2)->Range(1 << 12, 1 << 22)->Unit(benchmark::
 // cut short, as in most runs.
 BENCHMARK(BM_fft)->Arg(1066667)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_soe)->RangeMultiplier(2)->Range(1 << 12, 1 << 22)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_soe_bank40)->RangeMultiplier(4)->Range(1 << 14, 1 << 20)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_soe_alone40)->RangeMultiplier(4)->Range(1 << 14, 1 << 20)->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {
   if (const char* flag = std::getenv("ADJOIN_BENCH_DIRECT_2E20"); flag != nullptr && *flag == '1')

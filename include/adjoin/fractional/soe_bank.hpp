@@ -1,0 +1,81 @@
+#pragma once
+// Many soe histories of one order, stepped together (issue 24 Part 3: the state of all modes of
+// all elements laid out for the vector units).
+//
+// A building with a Zener device in every storey carries one history per device, usually all of
+// one order, so all of one compression (soe_history.hpp): the same decays and gains for every
+// device, only the states differ. A SoeBank keeps the states of its members side by side, four
+// members to a block (a block is one AVX2 register wide):
+//
+//     state of mode q of member e:   s[(e / 4) * Q + q][e % 4]
+//
+// so one step updates four members per vector operation with each coefficient loaded once,
+// instead of one member's modes per operation with its own copy of the loop's bookkeeping (about
+// 360 instructions per element and step for a SoeHistory at Q = 59, three times as many as here).
+//
+// Each member's arithmetic is the SoeHistory's, operation for operation (the same partial sums
+// in the same order): a member's lag sums equal those of a SoeHistory pushed the same values,
+// bit for bit (tests/test_soe_bank.cpp).
+//
+// Use: every member pushes one value per step (ConvolutionHistory::push on its member history);
+// the step is taken when the last member has pushed, and only then are the members' lag sums
+// those of the next step. The structure stepper reads every lag sum at a step's start and pushes
+// every member at its end, so this holds there.
+#include <cstddef>
+#include <memory>
+#include <vector>
+
+#include "adjoin/fractional/history.hpp"
+#include "adjoin/fractional/soe_history.hpp"
+
+namespace adjoin {
+
+class SoeBank {
+ public:
+  static constexpr std::size_t kLanes = 4;  // members per block
+
+  // `members` histories accepting `count` pushes each (y_0..y_{count-1}).
+  SoeBank(std::shared_ptr<const SoeCompression> compression, std::size_t count, std::size_t members);
+
+  std::size_t members() const { return members_; }
+  // Steps pushed by every member so far.
+  std::size_t size() const { return pushed_; }
+  // sum_{j=1}^{m} w_j y_{m-j} of member e, m = size().
+  double lag_sum(std::size_t e) const { return lag_[e]; }
+  // Member e's value y_m; once every member has given its own, the bank steps.
+  void push(std::size_t e, double y);
+  bool staged(std::size_t e) const { return staged_[e] != 0; }
+  std::size_t bytes() const;
+  const SoeCompression& compression() const { return *c_; }
+
+ private:
+  void step();
+  void step_block(std::size_t block);
+
+  std::shared_ptr<const SoeCompression> c_;
+  // The compression's coefficients, each repeated over the four lanes (so a vector operation
+  // reads them from memory as they are, without a broadcast).
+  struct Wide {
+    std::vector<double> decay, gain, a, b, p, r, near_reversed;
+  };
+  Wide wide_;
+  std::size_t count_, members_, blocks_;
+  std::size_t pushed_ = 0, staged_count_ = 0;
+  std::vector<char> staged_;
+  std::vector<double> incoming_;  // the values staged for the step, one per lane
+  std::size_t line_;              // values kept per lane: n0 + 1 + the shift's slack
+  std::size_t end_;               // the line's next free row (as SoeHistory's end_)
+  std::vector<double> recent_;    // per block, its line of values: [block][row][lane]
+  std::vector<double> s_;         // one-term states: [block][mode][lane]
+  std::vector<double> s1_, s2_;   // two-term states: the last and the one before, likewise
+  std::vector<double> lag_;       // per lane
+};
+
+// Histories of the weights of `rule` at orders[i], each accepting `count` pushes, for sequences
+// pushed together once per step (see SoeBank: every history pushes once before any lag sum is
+// read again). Histories of equal order share one SoeBank; an order met once gets a SoeHistory.
+// The histories keep their banks alive.
+std::vector<std::unique_ptr<ConvolutionHistory>> make_soe_histories(WeightRule rule, const std::vector<double>& orders,
+                                                                    std::size_t count, double tolerance);
+
+}  // namespace adjoin
