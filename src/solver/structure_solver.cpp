@@ -43,14 +43,33 @@ using structure::LinkType;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
+// body(i) for i = 0..n-1; written out for two and four entries (the two-block scene's two
+// floors, and its [v; C v] columns), where the compiler's loop with its vector set-up and
+// remainder costs more than the arithmetic. Each entry's operations are the loop's, so the
+// same bits.
+template <class Body>
+[[gnu::always_inline]] inline void small_loop(Eigen::Index n, Body&& body) {
+  if (n == 2) {
+    body(0);
+    body(1);
+  } else if (n == 4) {
+    body(0);
+    body(1);
+    body(2);
+    body(3);
+  } else {
+    for (Eigen::Index i = 0; i < n; ++i) body(i);
+  }
+}
+
 // One column's product for one damper, inline: out = 0 + a q, as DenseProduct sums each row
 // from 0 (damper_response), ...
 void one_column(Eigen::Index rows, const double* __restrict a, double q, double* __restrict out) {
-  for (Eigen::Index r = 0; r < rows; ++r) out[r] = 0.0 + a[r] * q;
+  small_loop(rows, [&](Eigen::Index r) { out[r] = 0.0 + a[r] * q; });
 }
 // ... and out = a q, as the columns kernel's first column (trial_rows).
 void trial_column(Eigen::Index rows, const double* __restrict a, double q, double* __restrict out) {
-  for (Eigen::Index r = 0; r < rows; ++r) out[r] = a[r] * q;
+  small_loop(rows, [&](Eigen::Index r) { out[r] = a[r] * q; });
 }
 
 // The free step's predictor x1 = x + c v and right-hand side (the banded kernel's free_rhs
@@ -85,29 +104,29 @@ class SmallPasses {
   void end_velocities(Index n, const double* __restrict vf, const double* __restrict cvf, const double* __restrict rv,
                       const double* __restrict rc, double h, double* __restrict v, double* __restrict cv) const {
     if (n >= kInline) return k_.end_velocities(n, vf, cvf, rv, rc, h, v, cv);
-    for (Index i = 0; i < n; ++i) {
+    small_loop(n, [&](Index i) {
       v[i] = vf[i] - h * rv[i];
       cv[i] = cvf[i] - h * rc[i];
-    }
+    });
   }
   void trapezoid(Index n, const double* __restrict x0, const double* __restrict v0, const double* __restrict v1, double c,
                  double* __restrict x1) const {
     if (n >= kInline) return k_.trapezoid(n, x0, v0, v1, c, x1);
-    for (Index i = 0; i < n; ++i) x1[i] = x0[i] + c * (v0[i] + v1[i]);
+    small_loop(n, [&](Index i) { x1[i] = x0[i] + c * (v0[i] + v1[i]); });
   }
   void accelerations(Index n, const double* __restrict m, const double* __restrict inv_m, const double* __restrict cv,
                      const double* __restrict p, double ag, double* __restrict a) const {
     if (n >= kInline) return k_.accelerations(n, m, inv_m, cv, p, ag, a);
-    for (Index i = 0; i < n; ++i) a[i] = ((m[i] * ag - cv[i]) - p[i]) * inv_m[i] - ag;
+    small_loop(n, [&](Index i) { a[i] = ((m[i] * ag - cv[i]) - p[i]) * inv_m[i] - ag; });
   }
   void axpy(Index n, double a, const double* __restrict x, double* __restrict y) const {
     if (n >= kInline) return k_.axpy(n, a, x, y);
-    for (Index i = 0; i < n; ++i) y[i] += x[i] * a;
+    small_loop(n, [&](Index i) { y[i] += x[i] * a; });
   }
   bool out_of_range(Index n, const double* x, const double* v, double limit) const {
     if (n >= kInline) return k_.out_of_range(n, x, v, limit);
     int bad = 0;
-    for (Index i = 0; i < n; ++i) bad |= static_cast<int>(!(std::abs(x[i]) <= limit)) | static_cast<int>(!(v[i] - v[i] == 0.0));
+    small_loop(n, [&](Index i) { bad |= static_cast<int>(!(std::abs(x[i]) <= limit)) | static_cast<int>(!(v[i] - v[i] == 0.0)); });
     return bad != 0;
   }
   void columns(Index rows, Index cols, const double* __restrict m, const double* __restrict q, double* __restrict out) const {
@@ -721,7 +740,11 @@ class StructureStepper {
     if (m.trial_every_floor && !ws.restart) {  // (the same, in passes the compiler vectorises)
       // (v1 = v_free - h A^-1 B' q, as v_free + (A^-1 B' q)(-h): the same numbers)
       if (m.n < SmallPasses::kInline) {
-        for (int i = 0; i < m.n; ++i) ws.v1[i] = ws.v_free[i] + ws.trial_change[i] * -m.h;  // (axpy's y + x a)
+        double* v1 = ws.v1.data();
+        const double* vf = ws.v_free.data();
+        const double* tc = ws.trial_change.data();
+        const double minus_h = -m.h;
+        small_loop(m.n, [&](Eigen::Index i) { v1[i] = vf[i] + tc[i] * minus_h; });  // (axpy's y + x a)
       } else {
         std::copy_n(ws.v_free.data(), m.n, ws.v1.data());
         kernels.axpy(m.n, -m.h, ws.trial_change.data(), ws.v1.data());
