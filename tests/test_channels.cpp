@@ -96,6 +96,7 @@ TEST_CASE("a channel's value is its quantity's definition at the state", "[chann
   st.storey_force = random(7);
   st.link_force = random(1);
   st.link_stroke = random(1);
+  st.link_velocity = random(1);
   const ChannelValues values(s, structure::channels(s));
   std::vector<double> row(values.size());
 
@@ -119,6 +120,7 @@ TEST_CASE("a channel's value is its quantity's definition at the state", "[chann
         Approx(-(s.b->masses[0] * st.a_abs[4] + s.b->masses[1] * st.a_abs[5] + s.b->masses[2] * st.a_abs[6])).epsilon(1e-15));
   CHECK(value_of("link1.force") == st.link_force[0]);
   CHECK(value_of("link1.stroke") == st.link_stroke[0]);
+  CHECK(value_of("link1.velocity") == st.link_velocity[0]);
   CHECK(value_of("contact1.gap") == Approx(s.contacts[0].gap - (st.x[3] - st.x[6])).epsilon(1e-15));
   CHECK(value_of("contact1.force") == 0.0);
   // The solver's own gap and force, when it reports them, are taken as they are.

@@ -87,6 +87,8 @@ inline bool yielding(const Building& b) { return b.hysteresis.model != Hysteresi
       "contact pair's compressive force")                                                                            \
   ROW(hysteretic, storey, "hyst", "", "m", sampled, false, computed(hysteretic_value), yielding, "hysteretic variable", \
       "storey's hysteretic variable z of a yielding storey (bilinear: at most F_y / k in size; Bouc-Wen: its z)")    \
+  ROW(link_velocity, link, "velocity", "", "m/s", sampled, false, entry(&StructureState::link_velocity), every_building, \
+      "velocity", "link velocity, the stroke's rate (a damper's design speed)")                                     \
   /* a new quantity: its row above this line */
 
 #define ADJOIN_QUANTITY_VALUE(value, ...) value,
