@@ -48,9 +48,12 @@ TEST_CASE("a structure's channels: every floor, storey, building, link and conta
           "[channels]") {
   const structure::Structure s = two_buildings(5, 3, 2, 1);
   const auto list = structure::channels(s);
-  // Per building 4 per floor or storey (x, drift, a_abs, shear) and the base shear; 2 per link
-  // and per contact pair.
-  CHECK(list.size() == static_cast<std::size_t>((4 * 5 + 1) + (4 * 3 + 1) + 2 * 2 + 2 * 1));
+  // Per building 4 per floor or storey (x, drift, a_abs, shear) and the base shear; per link
+  // each link quantity of the table (force, stroke, ...), 2 per contact pair.
+  std::size_t per_link = 0;
+  for (const auto& q : structure::quantities()) per_link += q.scope == structure::ChannelScope::link;
+  CHECK(per_link >= 2);
+  CHECK(list.size() == static_cast<std::size_t>((4 * 5 + 1) + (4 * 3 + 1) + 2 * 1) + 2 * per_link);
   std::set<std::string> names;
   for (const auto& c : list) names.insert(c.name);
   CHECK(names.size() == list.size());
@@ -93,6 +96,7 @@ TEST_CASE("a channel's value is its quantity's definition at the state", "[chann
   st.storey_force = random(7);
   st.link_force = random(1);
   st.link_stroke = random(1);
+  st.link_velocity = random(1);
   const ChannelValues values(s, structure::channels(s));
   std::vector<double> row(values.size());
 
@@ -116,6 +120,7 @@ TEST_CASE("a channel's value is its quantity's definition at the state", "[chann
         Approx(-(s.b->masses[0] * st.a_abs[4] + s.b->masses[1] * st.a_abs[5] + s.b->masses[2] * st.a_abs[6])).epsilon(1e-15));
   CHECK(value_of("link1.force") == st.link_force[0]);
   CHECK(value_of("link1.stroke") == st.link_stroke[0]);
+  CHECK(value_of("link1.velocity") == st.link_velocity[0]);
   CHECK(value_of("contact1.gap") == Approx(s.contacts[0].gap - (st.x[3] - st.x[6])).epsilon(1e-15));
   CHECK(value_of("contact1.force") == 0.0);
   // The solver's own gap and force, when it reports them, are taken as they are.

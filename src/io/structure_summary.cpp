@@ -175,14 +175,10 @@ std::string structure_summary_json(const RunSpec& scene, const Report& r, const 
                       {"floors", {link.floor_a, link.floor_b}},
                       {"force_max", lr.force_max},
                       {"stroke_max", lr.stroke_max}};
+    for (const structure::LinkValue& v : structure::kind_of(link).summary) o[v.name] = v.value(link);  // (its kind's)
     if (friction(link)) {
-      o["slip_force"] = link.slip_force;
       o["switches"] = lr.switches;
       o["switch_times"] = lr.switch_times;
-    }
-    if (link.type == structure::LinkType::dashpot) {
-      o["c"] = link.c;
-      o["alpha"] = link.alpha;
     }
     o["energy"] = lr.energy;  // dissipated, whatever the type (SPEC §7)
     links.push_back(o);

@@ -185,6 +185,7 @@ void StructureModel::assemble_elements(Assembly& a) {
       continue;
     }
     if (const double c_l = kind.dashpot(link); c_l != 0.0) p.add(c, c_l);
+    if (family == LinkFamily::linear) linear_links.push_back({static_cast<int>(l), kind.spring(link), kind.dashpot(link)});
     if (family == LinkFamily::zener) zener.push_back(zener_element(p, -1, link.zener));
     if (family == LinkFamily::friction) friction.push_back(static_cast<int>(l));
     else a.coupled = true;

@@ -134,6 +134,13 @@ class StructureModel {
   std::vector<double> base_slip_force;  // per ground slider (Structure::ground_sliders()), its slip force
   std::vector<int> friction;    // link indices (a base's slider: links.size() + its base's index)
   std::vector<int> link_zener;  // per link, its Zener element (or -1)
+  // The links of the linear family, their force k * stroke + c * velocity (their kind's spring
+  // and dashpot: structure/link_kinds.hpp).
+  struct LinearLink {
+    int link;
+    double k, c;
+  };
+  std::vector<LinearLink> linear_links;
   Banded k0, k_eff;             // K0 and K_eff (with the Zener elements' effective stiffness)
   std::vector<double> storey_spring, storey_dashpot;  // per storey: springs and spring devices; dashpots
   bool dashpots_a = false, dashpots_b = false;        // a building has dashpot devices

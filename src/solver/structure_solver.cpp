@@ -39,7 +39,6 @@ namespace {
 using detail::DamperState;
 using detail::Pair;
 using detail::StepBlock;
-using structure::LinkType;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
@@ -1261,10 +1260,12 @@ class StructureStepper {
       st.link_stroke[l] = p.of(st.x);
       st.link_velocity[l] = p.of(st.v);
       if (l >= m.s.links.size()) continue;  // a base's slider: a friction damper (below)
-      const auto& link = m.s.links[l];
-      if (link.type == LinkType::spring) st.link_force[l] = link.k * st.link_stroke[l];
-      if (link.type == LinkType::dashpot) st.link_force[l] = link.c * st.link_velocity[l];
-      if (link.type == LinkType::zener) st.link_force[l] = ws.zener_force[m.link_zener[l]];
+      if (m.link_zener[l] >= 0) st.link_force[l] = ws.zener_force[m.link_zener[l]];
+    }
+    // The linear family's (a spring's k s, a linear dashpot's c v: one term when the other is 0).
+    for (const detail::StructureModel::LinearLink& e : m.linear_links) {
+      const double s = st.link_stroke[e.link], v = st.link_velocity[e.link];
+      st.link_force[e.link] = e.c == 0.0 ? e.k * s : e.k == 0.0 ? e.c * v : e.k * s + e.c * v;
     }
     for (int k = 0; k < m.nv; ++k)
       if (m.viscous[static_cast<std::size_t>(k)].link >= 0) st.link_force[m.viscous[static_cast<std::size_t>(k)].link] = ws.viscous_force[k];

@@ -5,30 +5,35 @@
 namespace adjoin::structure {
 namespace {
 
-constexpr QuantityInfo kQuantities[] = {
-    {Quantity::displacement, ChannelScope::floor, "x", "", "m", PeakRule::refined, true,
-     "floor displacement relative to the ground"},
-    {Quantity::drift, ChannelScope::storey, "drift", "", "m", PeakRule::refined, false,
-     "storey drift x_i - x_(i-1)"},
-    {Quantity::drift_ratio, ChannelScope::storey, "drift_ratio", "", "-", PeakRule::refined, false,
-     "storey drift ratio (x_i - x_(i-1)) / h_i (buildings with storey heights)"},
-    {Quantity::absolute_acceleration, ChannelScope::floor, "a", "_abs", "m/s^2", PeakRule::sampled, true,
-     "floor absolute acceleration"},
-    {Quantity::storey_shear, ChannelScope::storey, "shear", "", "N", PeakRule::sampled, false,
-     "storey shear (spring and devices)"},
-    {Quantity::base_shear, ChannelScope::building, "base_shear", "", "N", PeakRule::sampled, false,
-     "base shear -sum m_i a_i,abs"},
-    {Quantity::link_force, ChannelScope::link, "force", "", "N", PeakRule::sampled, true,
-     "link force (-q on A's floor, +q on B's)"},
-    {Quantity::link_stroke, ChannelScope::link, "stroke", "", "m", PeakRule::refined, true,
-     "link stroke x_A,i - x_B,j"},
-    {Quantity::contact_gap, ChannelScope::contact, "gap", "", "m", PeakRule::none, true,
-     "contact pair's gap (negative: overlap)"},
-    {Quantity::contact_force, ChannelScope::contact, "force", "", "N", PeakRule::none, true,
-     "contact pair's compressive force"},
-    {Quantity::hysteretic, ChannelScope::storey, "hyst", "", "m", PeakRule::sampled, false,
-     "storey's hysteretic variable z of a yielding storey (bilinear: at most F_y / k in size; Bouc-Wen: its z)"},
-};
+// The quantities computed by a function of their own (StateRead::function).
+// The sum of the floors' inertia forces.
+double base_shear_value(const Structure& s, const Channel& c, const StructureState& st) {
+  const Building& b = c.building == 'A' ? s.a : *s.b;
+  const int first = s.dof(c.building, 1);
+  double shear = 0.0;
+  for (int i = 0; i < b.floors(); ++i) shear -= b.masses[i] * st.a_abs[first + i];
+  return shear;
+}
+// Without the solver's gaps (a state made elsewhere), from the floors.
+double contact_gap_value(const Structure& s, const Channel& c, const StructureState& st) {
+  const auto k = static_cast<Eigen::Index>(c.index - 1);
+  if (st.contact_gap.size() == static_cast<Eigen::Index>(s.contacts.size())) return st.contact_gap[k];
+  const Contact& pair = s.contacts[static_cast<std::size_t>(k)];
+  return pair.gap - (st.x[s.dof('A', pair.floor_a)] - st.x[s.dof('B', pair.floor_b)]);
+}
+double contact_force_value(const Structure& s, const Channel& c, const StructureState& st) {
+  const auto k = static_cast<Eigen::Index>(c.index - 1);
+  return st.contact_force.size() == static_cast<Eigen::Index>(s.contacts.size()) ? st.contact_force[k] : 0.0;
+}
+double hysteretic_value(const Structure&, const Channel& c, const StructureState& st) {
+  return st.hyst.size() > c.dof ? st.hyst[c.dof] : 0.0;
+}
+
+// The table, in Quantity's order (info() indexes it).
+#define ADJOIN_QUANTITY_ROW(value, scope, stem, suffix, unit, peak, timeseries, read, applies, label, meaning) \
+  {Quantity::value, ChannelScope::scope, stem, suffix, unit, PeakRule::peak, timeseries, read, applies, label, meaning},
+const QuantityInfo kQuantities[] = {ADJOIN_QUANTITIES(ADJOIN_QUANTITY_ROW)};
+#undef ADJOIN_QUANTITY_ROW
 
 std::string element_name(const QuantityInfo& q, char building, int index) {
   switch (q.scope) {
@@ -46,11 +51,7 @@ std::string element_name(const QuantityInfo& q, char building, int index) {
 
 std::span<const QuantityInfo> quantities() { return kQuantities; }
 
-const QuantityInfo& info(Quantity q) {
-  for (const auto& i : kQuantities)
-    if (i.quantity == q) return i;
-  return kQuantities[0];  // unreachable: every Quantity has its row
-}
+const QuantityInfo& info(Quantity q) { return kQuantities[static_cast<std::size_t>(q)]; }
 
 std::vector<Channel> channels(const Structure& s) {
   std::vector<Channel> out;
@@ -58,8 +59,7 @@ std::vector<Channel> channels(const Structure& s) {
     for (const auto& q : kQuantities) {
       if (q.scope == ChannelScope::building) out.push_back({element_name(q, name, 0), q.quantity, name, 0, -1});
       if (q.scope != ChannelScope::floor && q.scope != ChannelScope::storey) continue;
-      if (q.quantity == Quantity::drift_ratio && !b.has_heights()) continue;  // needs the storey heights
-      if (q.quantity == Quantity::hysteretic && b.hysteresis.model == HysteresisModel::elastic) continue;
+      if (!q.applies(b)) continue;  // (drift ratios need the storey heights; z, yielding storeys)
       // An isolated base's displacement is floor 0's (X.x0, SPEC §7), before floor 1's.
       if (q.quantity == Quantity::displacement && b.base) out.push_back({element_name(q, name, 0), q.quantity, name, 0, s.base_dof(name)});
       for (int i = 1; i <= b.floors(); ++i) out.push_back({element_name(q, name, i), q.quantity, name, i, s.dof(name, i)});

@@ -15,6 +15,7 @@
 #include "adjoin/observe/channel_values.hpp"
 #include "adjoin/observe/peak_table.hpp"
 #include "adjoin/structure/channels.hpp"
+#include "adjoin/structure/link_kinds.hpp"
 #include "adjoin/structure/observer.hpp"
 #include "adjoin/study/report.hpp"
 
@@ -44,7 +45,10 @@ class ChannelObserver final : public StructureObserver {
     values_ = ChannelValues(s, std::move(smooth));
     peaks_.reset(n_smooth, values_.size());
     links_.assign(s.links.size(), LinkReport{});
-    last_force_stroke_.assign(s.links.size(), 0.0);
+    last_force_.assign(s.links.size(), 0.0);
+    last_stroke_.assign(s.links.size(), 0.0);
+    friction_.clear();
+    for (const structure::Link& l : s.links) friction_.push_back(structure::kind_of(l).family(l) == structure::LinkFamily::friction);
     contacts_.assign(s.contacts.size(), ContactReport{});
     for (std::size_t k = 0; k < s.contacts.size(); ++k) contacts_[k].model = s.contacts[k].law.model;
     contact_work_.assign(s.contacts.size(), 0.0);
@@ -85,14 +89,15 @@ class ChannelObserver final : public StructureObserver {
       LinkReport& r = links_[l];
       r.force_max = std::max(r.force_max, std::abs(st.link_force[l]));
       r.stroke_max = std::max(r.stroke_max, std::abs(st.link_stroke[l]));
-      if (s_.links[l].type == structure::LinkType::friction && !first_ && st.link_phase[l] != last_phase_[l]) {
+      if (friction_[l] && !first_ && st.link_phase[l] != last_phase_[l]) {
         ++r.switches;
         r.switch_times.push_back(std::isnan(st.link_switch[l]) ? st.t : st.link_switch[l]);
       }
       // Work of the link's force on its relative motion (trapezoidal in time); links() takes
-      // off what an elastic link still holds.
+      // off what an elastic link still holds (its kind's rule, from its last force and stroke).
       if (!first_) r.energy += 0.5 * (st.t - last_t_) * (st.link_force[l] * st.link_velocity[l] + last_power_[l]);
-      last_force_stroke_[l] = 0.5 * st.link_force[l] * st.link_stroke[l];
+      last_force_[l] = st.link_force[l];
+      last_stroke_[l] = st.link_stroke[l];
     }
     const auto n_contacts = static_cast<Eigen::Index>(s_.contacts.size());
     for (std::size_t k = 0; k < s_.contacts.size(); ++k) {
@@ -239,12 +244,12 @@ class ChannelObserver final : public StructureObserver {
     return out;
   }
   // The links, each with the work dissipated in it (LinkReport::energy): the work done on it,
-  // less what a spring or a Zener link still holds at the last grid point.
+  // less what its elastic part still holds at the last grid point (LinkKind::dissipated).
   std::vector<LinkReport> links() const {
     std::vector<LinkReport> out = links_;
     for (std::size_t l = 0; l < out.size(); ++l) {
-      if (s_.links[l].type == structure::LinkType::spring) out[l].energy = 0.0;
-      if (s_.links[l].type == structure::LinkType::zener) out[l].energy -= last_force_stroke_[l];
+      const structure::Link& link = s_.links[l];
+      out[l].energy = structure::kind_of(link).dissipated(link, out[l].energy, last_force_[l], last_stroke_[l]);
     }
     return out;
   }
@@ -288,7 +293,8 @@ class ChannelObserver final : public StructureObserver {
   PeakTable peaks_;
   std::vector<std::size_t> order_;  // the channels' places in values_, in the channels' order
   std::vector<LinkReport> links_;
-  std::vector<double> last_force_stroke_;  // per link, 1/2 F s at the last grid point [J]
+  std::vector<double> last_force_, last_stroke_;  // per link, at the last grid point
+  std::vector<char> friction_;                     // per link: a friction link's (it counts switches)
   std::vector<ContactReport> contacts_;
   std::vector<double> contact_work_;  // the solver's contact_work at the last grid point
   std::vector<Phase> last_phase_;

@@ -92,6 +92,7 @@ enum class DampingModel { none, modal, rayleigh };
   ROW(dashpot, "dashpot")      \
   ROW(spring, "spring")        \
   ROW(zener, "zener")          \
+  ROW(kelvin, "kelvin")        \
   /* a new kind: its row above this line */
 #define ADJOIN_LINK_VALUE(value, name) value,
 enum class LinkType { ADJOIN_LINK_KINDS(ADJOIN_LINK_VALUE) };

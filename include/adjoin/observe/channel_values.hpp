@@ -4,6 +4,7 @@
 //
 //     ChannelValues values(structure, structure::channels(structure));
 //     values.read(state, row.data());   // row.size() == values.channels().size()
+#include <algorithm>
 #include <vector>
 
 #include "adjoin/solver/structure_solver.hpp"
@@ -11,76 +12,53 @@
 
 namespace adjoin {
 
-// Under storey 1 of c's building: its isolated base's displacement (SPEC §7), or the ground's 0.
-inline double base_x(const structure::Structure& s, const structure::Channel& c, const StructureState& st) {
-  const int base = s.base_dof(c.building);
-  return base >= 0 ? st.x[base] : 0.0;
+// The state's entry a channel of an `entry` quantity reads: its floor's or storey's (its dof),
+// or its link's or contact pair's (its index).
+inline int entry_index(const structure::QuantityInfo& q, const structure::Channel& c) {
+  return q.scope == structure::ChannelScope::floor || q.scope == structure::ChannelScope::storey ? c.dof : c.index - 1;
+}
+// A storey's floor below: storey 1's is its building's isolated base, or -1 (the ground's 0).
+inline int floor_below(const structure::Structure& s, const structure::Channel& c) {
+  return c.index > 1 ? c.dof - 1 : s.base_dof(c.building);
 }
 
-// Inline: observers read every channel at every grid point.
+// The value of channel c at the state, as its quantity's row says (structure/channels.hpp).
 inline double channel_value(const structure::Structure& s, const structure::Channel& c, const StructureState& st) {
-  using structure::Quantity;
-  const auto k = static_cast<Eigen::Index>(c.index - 1);  // a link's or contact pair's index
-  switch (c.quantity) {
-    case Quantity::displacement: return st.x[c.dof];
-    case Quantity::absolute_acceleration: return st.a_abs[c.dof];
-    case Quantity::drift: return st.x[c.dof] - (c.index > 1 ? st.x[c.dof - 1] : base_x(s, c, st));
-    case Quantity::drift_ratio: {
-      const structure::Building& b = c.building == 'A' ? s.a : *s.b;
-      return (st.x[c.dof] - (c.index > 1 ? st.x[c.dof - 1] : base_x(s, c, st))) / b.heights[c.index - 1];
-    }
-    case Quantity::storey_shear: return st.storey_force[c.dof];
-    case Quantity::base_shear: {
-      // The sum of the floors' inertia forces.
-      const structure::Building& b = c.building == 'A' ? s.a : *s.b;
-      const int first = s.dof(c.building, 1);
-      double shear = 0.0;
-      for (int i = 0; i < b.floors(); ++i) shear -= b.masses[i] * st.a_abs[first + i];
-      return shear;
-    }
-    case Quantity::link_force: return st.link_force[k];
-    case Quantity::link_stroke: return st.link_stroke[k];
-    case Quantity::contact_gap: {
-      if (st.contact_gap.size() == static_cast<Eigen::Index>(s.contacts.size())) return st.contact_gap[k];
-      const structure::Contact& pair = s.contacts[static_cast<std::size_t>(k)];
-      return pair.gap - (st.x[s.dof('A', pair.floor_a)] - st.x[s.dof('B', pair.floor_b)]);
-    }
-    case Quantity::hysteretic: return st.hyst.size() > c.dof ? st.hyst[c.dof] : 0.0;
-    case Quantity::contact_force:
-      return st.contact_force.size() == static_cast<Eigen::Index>(s.contacts.size()) ? st.contact_force[k] : 0.0;
-  }
-  return 0.0;
+  using structure::StateRead;
+  const structure::QuantityInfo& q = structure::info(c.quantity);
+  if (q.read.form == StateRead::function) return q.read.value(s, c, st);
+  const Eigen::VectorXd& y = st.*q.read.vector;
+  if (q.read.form == StateRead::entry) return y[entry_index(q, c)];
+  const int below = floor_below(s, c);
+  const double d = y[c.dof] - (below >= 0 ? y[below] : 0.0);
+  if (q.read.form == StateRead::drift) return d;
+  const structure::Building& b = c.building == 'A' ? s.a : *s.b;
+  return d / b.heights[c.index - 1];
 }
 
-// Reads many channels at each grid point. The common channels (floors' displacements and
-// absolute accelerations, drifts and drift ratios, storey shears, links' forces and strokes) are
-// each one or two entries of a state vector: read() takes them in plain loops over index lists
-// made once, per vector, with no switch per channel; the rest go through channel_value. The
-// values are channel_value's, bit for bit.
+// Reads many channels at each grid point. The channels whose value is an entry of a state
+// vector, or a difference of two over a divisor (floors' displacements and absolute
+// accelerations, drifts and drift ratios, storey shears, links' forces and strokes, ...), are
+// taken in plain loops over index lists made once, per vector, with no switch per channel;
+// the rest by their quantity's function. The values are channel_value's, bit for bit.
 class ChannelValues {
  public:
   ChannelValues() = default;  // no channels
   ChannelValues(const structure::Structure& s, std::vector<structure::Channel> channels)
       : s_(&s), channels_(std::move(channels)) {
-    using structure::Quantity;
+    using structure::StateRead;
     for (std::size_t k = 0; k < channels_.size(); ++k) {
       const structure::Channel& c = channels_[k];
-      const int link = c.index - 1;
-      switch (c.quantity) {
-        case Quantity::displacement: add(kX, {k, c.dof, -1, 1.0}); break;
-        case Quantity::absolute_acceleration: add(kAcceleration, {k, c.dof, -1, 1.0}); break;
-        case Quantity::storey_shear: add(kStoreyForce, {k, c.dof, -1, 1.0}); break;
-        case Quantity::link_force: add(kLinkForce, {k, link, -1, 1.0}); break;
-        case Quantity::link_stroke: add(kLinkStroke, {k, link, -1, 1.0}); break;
-        case Quantity::drift:
-        case Quantity::drift_ratio: {
-          // x[dof] minus the floor below's, or the isolated base's (-1: the ground's 0).
-          const int below = c.index > 1 ? c.dof - 1 : s.base_dof(c.building);
+      const structure::QuantityInfo& q = structure::info(c.quantity);
+      switch (q.read.form) {
+        case StateRead::entry: add(q.read.vector, {k, entry_index(q, c), -1, 1.0}); break;
+        case StateRead::drift: add(q.read.vector, {k, c.dof, floor_below(s, c), 1.0}); break;
+        case StateRead::drift_over_height: {
           const structure::Building& b = c.building == 'A' ? s.a : *s.b;
-          add(kX, {k, c.dof, below, c.quantity == Quantity::drift ? 1.0 : b.heights[c.index - 1]});
+          add(q.read.vector, {k, c.dof, floor_below(s, c), b.heights[c.index - 1]});
           break;
         }
-        default: other_.push_back(k);
+        case StateRead::function: other_.push_back({k, q.read.value}); break;
       }
     }
   }
@@ -88,14 +66,12 @@ class ChannelValues {
   std::size_t size() const { return channels_.size(); }
   // out[k] = the value of channels()[k] at `state`.
   void read(const StructureState& state, double* out) const {
-    const double* vectors[kVectors] = {state.x.data(), state.a_abs.data(), state.storey_force.data(),
-                                       state.link_force.data(), state.link_stroke.data()};
-    for (int v = 0; v < kVectors; ++v) {
-      const double* y = vectors[v];
-      for (const Copy& c : copies_[v]) out[c.channel] = y[c.i];
-      for (const Term& t : plan_[v]) out[t.channel] = (y[t.i] - (t.j >= 0 ? y[t.j] : 0.0)) / t.divisor;
+    for (const Group& g : groups_) {
+      const double* y = (state.*g.vector).data();
+      for (const Copy& c : g.copies) out[c.channel] = y[c.i];
+      for (const Term& t : g.terms) out[t.channel] = (y[t.i] - (t.j >= 0 ? y[t.j] : 0.0)) / t.divisor;
     }
-    for (std::size_t k : other_) out[k] = channel_value(*s_, channels_[k], state);
+    for (const Other& o : other_) out[o.channel] = o.value(*s_, channels_[o.channel], state);
   }
 
  private:
@@ -111,16 +87,26 @@ class ChannelValues {
     std::size_t channel;
     int i;
   };
-  enum { kX, kAcceleration, kStoreyForce, kLinkForce, kLinkStroke, kVectors };
-  void add(int vector, const Term& t) {
-    if (t.j < 0 && t.divisor == 1.0) copies_[vector].push_back({t.channel, t.i});
-    else plan_[vector].push_back(t);
+  // The channels read from one of the state's vectors.
+  struct Group {
+    const Eigen::VectorXd StructureState::*vector;
+    std::vector<Copy> copies;
+    std::vector<Term> terms;
+  };
+  struct Other {
+    std::size_t channel;
+    double (*value)(const structure::Structure&, const structure::Channel&, const StructureState&);
+  };
+  void add(const Eigen::VectorXd StructureState::*vector, const Term& t) {
+    auto g = std::find_if(groups_.begin(), groups_.end(), [&](const Group& h) { return h.vector == vector; });
+    if (g == groups_.end()) g = groups_.insert(groups_.end(), Group{vector, {}, {}});
+    if (t.j < 0 && t.divisor == 1.0) g->copies.push_back({t.channel, t.i});
+    else g->terms.push_back(t);
   }
   const structure::Structure* s_ = nullptr;
   std::vector<structure::Channel> channels_;
-  std::vector<Copy> copies_[kVectors];
-  std::vector<Term> plan_[kVectors];
-  std::vector<std::size_t> other_;  // read by channel_value
+  std::vector<Group> groups_;  // in the order their vectors first appear
+  std::vector<Other> other_;   // read by their quantity's function
 };
 
 }  // namespace adjoin

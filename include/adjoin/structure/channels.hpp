@@ -4,8 +4,8 @@
 // its name pattern, unit, which element it belongs to, how its peak is found and whether the
 // time series carries it; channels(structure) lists the structure's channels from it. The
 // peaks in summary.json, the columns of timeseries.csv, the in-structure spectra's signals
-// and the error estimate all iterate over this list, so adding a quantity is one row here
-// and one case where its value is read (observe/channel_values.hpp).
+// and the error estimate all iterate over this list, so adding a quantity is one row of
+// ADJOIN_QUANTITIES (below): the row says where its value is in the state.
 //
 // Names: A.x3 (floor 3's displacement relative to the ground), A.a3_abs (its absolute
 // acceleration), A.drift2 (storey 2's drift x_2 - x_1; A.drift_ratio2 = A.drift2 / h_2 when the
@@ -20,25 +20,12 @@
 #include <vector>
 
 #include "adjoin/structure/building.hpp"
+#include "adjoin/structure/state.hpp"
 
 namespace adjoin::structure {
 
 // What a channel's element is.
 enum class ChannelScope { floor, storey, building, link, contact };
-
-enum class Quantity {
-  displacement,           // floor: x [m]
-  absolute_acceleration,  // floor: a_abs [m/s^2]
-  drift,                  // storey: x_i - x_{i-1} [m]
-  drift_ratio,            // storey: drift / h_i [-] (a building with storey heights only)
-  storey_shear,           // storey: spring + devices [N]
-  base_shear,             // building: -sum m_i a_i,abs [N]
-  link_force,             // link [N]
-  link_stroke,            // link: x_A,i - x_B,j [m]
-  contact_gap,            // contact pair: gap - s [m] (negative: overlap)
-  contact_force,          // contact pair: compressive force [N]
-  hysteretic,             // storey: its bilinear law's z [m] (only for a building whose storeys yield)
-};
 
 // How the peak of a channel is found from its grid samples. Smooth signals (displacements,
 // drifts, strokes, gaps) are refined by the parabola through the three samples around the
@@ -46,6 +33,67 @@ enum class Quantity {
 // link forces) keep their largest sample. A contact pair's gap and force have no peak here:
 // its report gives the smallest gap and the impacts' located peak forces instead.
 enum class PeakRule { refined, sampled, none };
+
+struct Channel;
+
+// Where a quantity's value is in the state (observe/channel_values.hpp reads it so, in one
+// place): `entry`, one entry of one of the state's vectors (a floor's or storey's: the
+// channel's dof; a link's or contact pair's: its index); `drift`, a storey's floor's entry less
+// the floor below's (storey 1: the isolated base's, or 0), `drift_over_height` that over the
+// storey's height; `function`, computed by `value` (a function of channels.cpp).
+struct StateRead {
+  enum Form { entry, drift, drift_over_height, function };
+  Form form = function;
+  const Eigen::VectorXd StructureState::*vector = nullptr;
+  double (*value)(const Structure&, const Channel&, const StructureState&) = nullptr;
+};
+constexpr StateRead entry(const Eigen::VectorXd StructureState::*v) { return {StateRead::entry, v, nullptr}; }
+constexpr StateRead drift(const Eigen::VectorXd StructureState::*v) { return {StateRead::drift, v, nullptr}; }
+constexpr StateRead drift_over_height(const Eigen::VectorXd StructureState::*v) { return {StateRead::drift_over_height, v, nullptr}; }
+constexpr StateRead computed(double (*f)(const Structure&, const Channel&, const StructureState&)) { return {StateRead::function, nullptr, f}; }
+
+// Which buildings have a floor or storey quantity's channels.
+inline bool every_building(const Building&) { return true; }
+inline bool with_heights(const Building& b) { return b.has_heights(); }
+inline bool yielding(const Building& b) { return b.hysteresis.model != HysteresisModel::elastic; }
+
+// Every quantity, one row each, in the order a building's, a link's or a contact pair's
+// channels are listed: its value (Quantity::<value>), its element, the name's stem and suffix
+// (A.<stem><i><suffix>, link<k>.<stem>), unit, peak rule, whether timeseries.csv carries it,
+// where its value is read (StateRead; a `computed` one's function is in channels.cpp), which
+// buildings have it, a plot's label and what it is (docs/reference/channels.md). A new
+// quantity is its row here: the peaks in summary.json, timeseries.csv, the observers, the
+// channel recorder, the plots and the reference follow the table.
+#define ADJOIN_QUANTITIES(ROW)                                                                                      \
+  ROW(displacement, floor, "x", "", "m", refined, true, entry(&StructureState::x), every_building, "displacement",   \
+      "floor displacement relative to the ground")                                                                   \
+  ROW(drift, storey, "drift", "", "m", refined, false, drift(&StructureState::x), every_building, "drift",           \
+      "storey drift x_i - x_(i-1)")                                                                                  \
+  ROW(drift_ratio, storey, "drift_ratio", "", "-", refined, false, drift_over_height(&StructureState::x), with_heights, \
+      "drift ratio", "storey drift ratio (x_i - x_(i-1)) / h_i (buildings with storey heights)")                   \
+  ROW(absolute_acceleration, floor, "a", "_abs", "m/s^2", sampled, true, entry(&StructureState::a_abs), every_building, \
+      "absolute acceleration", "floor absolute acceleration")                                                        \
+  ROW(storey_shear, storey, "shear", "", "N", sampled, false, entry(&StructureState::storey_force), every_building,  \
+      "shear", "storey shear (spring and devices)")                                                                  \
+  ROW(base_shear, building, "base_shear", "", "N", sampled, false, computed(base_shear_value), every_building,       \
+      "base shear", "base shear -sum m_i a_i,abs")                                                                   \
+  ROW(link_force, link, "force", "", "N", sampled, true, entry(&StructureState::link_force), every_building, "force", \
+      "link force (-q on A's floor, +q on B's)")                                                                     \
+  ROW(link_stroke, link, "stroke", "", "m", refined, true, entry(&StructureState::link_stroke), every_building,      \
+      "stroke", "link stroke x_A,i - x_B,j")                                                                        \
+  ROW(contact_gap, contact, "gap", "", "m", none, true, computed(contact_gap_value), every_building, "gap",          \
+      "contact pair's gap (negative: overlap)")                                                                      \
+  ROW(contact_force, contact, "force", "", "N", none, true, computed(contact_force_value), every_building, "force",  \
+      "contact pair's compressive force")                                                                            \
+  ROW(hysteretic, storey, "hyst", "", "m", sampled, false, computed(hysteretic_value), yielding, "hysteretic variable", \
+      "storey's hysteretic variable z of a yielding storey (bilinear: at most F_y / k in size; Bouc-Wen: its z)")    \
+  ROW(link_velocity, link, "velocity", "", "m/s", sampled, false, entry(&StructureState::link_velocity), every_building, \
+      "velocity", "link velocity, the stroke's rate (a damper's design speed)")                                     \
+  /* a new quantity: its row above this line */
+
+#define ADJOIN_QUANTITY_VALUE(value, ...) value,
+enum class Quantity { ADJOIN_QUANTITIES(ADJOIN_QUANTITY_VALUE) };
+#undef ADJOIN_QUANTITY_VALUE
 
 struct QuantityInfo {
   Quantity quantity;
@@ -55,6 +103,9 @@ struct QuantityInfo {
   const char* unit;
   PeakRule peak;
   bool timeseries;     // a column of timeseries.csv
+  StateRead read;
+  bool (*applies)(const Building&);  // a floor or storey quantity: whether the building has it
+  const char* label;                 // a plot's axis: "<label>, floor 3, building A [unit]"
   const char* meaning;
 };
 

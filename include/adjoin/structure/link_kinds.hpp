@@ -2,11 +2,13 @@
 // The link kinds (SPEC §5, §7) as one table, as the storey devices' (device_kinds.hpp): per kind
 // its scene keys (the field each sets, its default, its check), how a link made in code is
 // checked, and what it adds to the model — its linear spring (K0, the coupled periods), its
-// linear dashpot (C) — and the step family the solver hands it to at assembly.
+// linear dashpot (C) — and the step family the solver hands it to at assembly; and what its
+// report holds: the part of its work it dissipates, the fields summary.json gives it.
 //
 // Each kind lives in its own file, src/structure/links/<kind>.cpp; the table's rows are
-// ADJOIN_LINK_KINDS (core/enum_names.hpp). The scene reader, validation, modal analysis and the
-// solver's assembly loop over it.
+// ADJOIN_LINK_KINDS (core/enum_names.hpp). The scene reader, validation, modal analysis, the
+// solver (its assembly and the link forces it reports, by family), the run's link report and
+// summary.json loop over it: nothing else switches on LinkType.
 #include <string>
 #include <vector>
 
@@ -17,7 +19,7 @@ namespace adjoin::structure {
 // How the solver steps a link; chosen once at assembly, each family keeps its own fast step.
 enum class LinkFamily {
   friction,  // a Coulomb friction damper: the non-smooth step (exact stick)
-  linear,    // its spring in K0 and its dashpot in C (spring, linear dashpot)
+  linear,    // its spring in K0 and its dashpot in C; its force spring * stroke + dashpot * velocity
   viscous,   // a nonlinear dashpot F = c |v|^alpha sign v (solver/viscous_step.hpp)
   zener,     // a fractional Zener element and its history (solver/rod_law.hpp)
 };
@@ -29,6 +31,12 @@ struct LinkKey {
   bool required;
   double fallback;
   std::string (*problem)(double);
+};
+
+// One of a link's own values summary.json gives beside its force, stroke and energy.
+struct LinkValue {
+  const char* name;
+  double (*value)(const Link&);
 };
 
 struct LinkKind {
@@ -47,6 +55,12 @@ struct LinkKind {
   double (*dashpot)(const Link&);  // linear dashpot in C [N s/m]
   double (*relaxed)(const Link&);  // its stiffness in the coupled periods [N/m]
   LinkFamily (*family)(const Link&);
+  // The part of the work done on it that it dissipated, given that work and its force and
+  // stroke at the end [J]: what an elastic part still holds is not dissipated (SPEC §7).
+  double (*dissipated)(const Link&, double work, double force, double stroke);
+  // Its values in summary.json's `links` entry, after force_max and stroke_max (a friction
+  // link's family adds its switches after them).
+  std::vector<LinkValue> summary;
 };
 
 const LinkKind& link_kind(LinkType type);

@@ -2,7 +2,6 @@
 // plot_run_channels): a two-block run's columns, or a building run's from the channel table.
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <sstream>
 #include <tuple>
 
@@ -31,7 +30,6 @@ struct ChannelText {
 };
 ChannelText channel_text(const std::string& name) {
   using structure::ChannelScope;
-  using structure::Quantity;
   auto with_unit = [](const std::string& label, const std::string& unit) { return ChannelText{label, pretty_unit(unit)}; };
   static const std::vector<std::tuple<const char*, const char*, const char*>> two_block{
       {"x1", "displacement x_1", "m"}, {"x2", "displacement x_2", "m"},  {"v1", "velocity v_1", "m/s"},
@@ -67,14 +65,7 @@ ChannelText channel_text(const std::string& name) {
     } else {
       continue;
     }
-    static const std::map<Quantity, const char*> what{
-        {Quantity::displacement, "displacement"},       {Quantity::absolute_acceleration, "absolute acceleration"},
-        {Quantity::drift, "drift"},                     {Quantity::storey_shear, "shear"},
-        {Quantity::drift_ratio, "drift ratio"},
-        {Quantity::base_shear, "base shear"},           {Quantity::link_force, "force"},
-        {Quantity::link_stroke, "stroke"},              {Quantity::contact_gap, "gap"},
-        {Quantity::contact_force, "force"}};
-    return with_unit(std::string(what.at(q.quantity)) + ", " + element, q.unit);
+    return with_unit(std::string(q.label) + ", " + element, q.unit);
   }
   return {name, ""};
 }

@@ -23,6 +23,8 @@ const LinkKind& dashpot_link_kind() {
       .dashpot = [](const Link& l) { return l.alpha == 1.0 ? l.c : 0.0; },
       .relaxed = none,
       .family = [](const Link& l) { return l.alpha == 1.0 ? LinkFamily::linear : LinkFamily::viscous; },
+      .dissipated = all_of_it,
+      .summary = {{"c", [](const Link& l) { return l.c; }}, {"alpha", [](const Link& l) { return l.alpha; }}},
   };
   return kind;
 }

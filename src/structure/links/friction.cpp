@@ -19,6 +19,8 @@ const LinkKind& friction_link_kind() {
       .dashpot = none,
       .relaxed = none,
       .family = [](const Link&) { return LinkFamily::friction; },
+      .dissipated = all_of_it,
+      .summary = {{"slip_force", [](const Link& l) { return l.slip_force; }}},
   };
   return kind;
 }

@@ -10,5 +10,7 @@ using devices::positive;
 inline double none(const Link&) { return 0.0; }
 inline std::string no_joint_problem(const Link&) { return ""; }
 inline std::string alpha_problem(double v) { return bounded_problem(v, kAlphaRange); }
+// A link that keeps nothing: all the work done on it is dissipated.
+inline double all_of_it(const Link&, double work, double, double) { return work; }
 
 }  // namespace adjoin::structure::links

@@ -18,6 +18,8 @@ const LinkKind& spring_link_kind() {
       .dashpot = none,
       .relaxed = [](const Link& l) { return l.k; },
       .family = [](const Link&) { return LinkFamily::linear; },
+      .dissipated = [](const Link&, double, double, double) { return 0.0; },  // (elastic: it holds it all)
+      .summary = {},
   };
   return kind;
 }

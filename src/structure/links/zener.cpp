@@ -25,6 +25,8 @@ const LinkKind& zener_link_kind() {
       .dashpot = none,
       .relaxed = [](const Link& l) { return l.zener.k; },
       .family = [](const Link&) { return LinkFamily::zener; },
+      .dissipated = [](const Link&, double work, double force, double stroke) { return work - 0.5 * force * stroke; },
+      .summary = {},
   };
   return kind;
 }
