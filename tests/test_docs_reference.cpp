@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "building_scene_error.hpp"
 #include "adjoin/core/errors.hpp"
 #include "adjoin/io/building_scene.hpp"
 #include "adjoin/io/scene.hpp"
@@ -186,17 +187,7 @@ t_end = 1
 
 // The reader's message for kBuilding with `from` replaced by `to`.
 std::string building_error(const std::string& from, const std::string& to) {
-  std::string text = kBuilding;
-  const auto at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  text.replace(at, from.size(), to);
-  try {
-    parse_building_scene(text, std::filesystem::path(ADJOIN_TEST_TMP) / "docs-keys.toml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  FAIL("the building reader accepted " << to);
-  return {};
+  return test::building_scene_error(kBuilding, from, to, "docs-keys.toml");
 }
 
 // The list after "expected one of " in the message, quotes dropped.

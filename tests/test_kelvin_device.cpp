@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "building_scene_error.hpp"
 #include "adjoin/core/errors.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
 #include "adjoin/io/building_scene.hpp"
@@ -81,17 +82,7 @@ t_end = 4.0
 )";
 
 std::string scene_error(const std::string& from, const std::string& to) {
-  std::string text = kScene;
-  const auto at = text.find(from);
-  REQUIRE(at != std::string::npos);
-  text.replace(at, from.size(), to);
-  try {
-    parse_building_scene(text, std::filesystem::path(ADJOIN_TEST_TMP) / "kelvin.toml");
-  } catch (const InputError& e) {
-    return e.what();
-  }
-  FAIL("the reader accepted " << to);
-  return {};
+  return test::building_scene_error(kScene, from, to, "kelvin.toml");
 }
 
 }  // namespace
