@@ -51,45 +51,48 @@ namespace {
 
 // ---- buildings ----
 
-// Fans every call out to a list of structure observers (not owned), in order.
-class StructureObserverList final : public StructureObserver {
+// Fans every call out to a list of structure observers (not owned), in order. Only the
+// observers added as able to stop the run (a collapse watch, the caller's) are ever asked
+// done(), by the StoppableObserverList made of this one when there are any: the report's own
+// observers never stop a run, and a list that does not override done() costs the time loop
+// nothing at each step (its call is devirtualised).
+class StructureObserverList : public StructureObserver {
  public:
-  void add(StructureObserver* o) { if (o) observers_.push_back(o); }
+  void add(StructureObserver* o, bool may_stop = true) {
+    if (!o) return;
+    observers_.push_back(o);
+    if (may_stop) stoppers_.push_back(o);
+  }
   // A list's observers join this one in their order (one virtual call per observer and step,
   // not two); any other observer is added.
   void add_flat(StructureObserver* o) {
-    if (const auto* list = dynamic_cast<const StructureObserverList*>(o))
-      for (StructureObserver* x : list->observers_) add(x);
-    else
+    if (const auto* list = dynamic_cast<const StructureObserverList*>(o)) {
+      observers_.insert(observers_.end(), list->observers_.begin(), list->observers_.end());
+      stoppers_.insert(stoppers_.end(), list->stoppers_.begin(), list->stoppers_.end());
+    } else {
       add(o);
+    }
   }
+  bool may_stop() const { return !stoppers_.empty(); }
   void begin(const structure::Structure& s, const StructureSolverOptions& o) override { for (auto* x : observers_) x->begin(s, o); }
   void observe(const StructureState& st) override { for (auto* x : observers_) x->observe(st); }
   void impact(const Impact& e) override { for (auto* x : observers_) x->impact(e); }
   void end() override { for (auto* x : observers_) x->end(); }
-  bool done() const override {
-    return std::any_of(observers_.begin(), observers_.end(), [](const StructureObserver* x) { return x->done(); });
-  }
 
- private:
-  std::vector<StructureObserver*> observers_;
+ protected:
+  std::vector<StructureObserver*> observers_, stoppers_;
 };
 
-// ---- two-block specs ----
-
-// Fans every call out to the two-block run's observers (not owned), in order. None ends a run
-// early (no collapse watch: done() stays false), so the time loop asks one observer, not each.
-class TwoBlockObservers final : public StructureObserver {
+// A list whose stoppers are asked done() after each state.
+class StoppableObserverList final : public StructureObserverList {
  public:
-  void add(StructureObserver* o) { if (o) observers_.push_back(o); }
-  void begin(const structure::Structure& s, const StructureSolverOptions& o) override { for (auto* x : observers_) x->begin(s, o); }
-  void observe(const StructureState& st) override { for (auto* x : observers_) x->observe(st); }
-  void impact(const Impact& e) override { for (auto* x : observers_) x->impact(e); }
-  void end() override { for (auto* x : observers_) x->end(); }
-
- private:
-  std::vector<StructureObserver*> observers_;
+  explicit StoppableObserverList(const StructureObserverList& list) : StructureObserverList(list) {}
+  bool done() const override {
+    return std::any_of(stoppers_.begin(), stoppers_.end(), [](const StructureObserver* x) { return x->done(); });
+  }
 };
+
+// ---- the 1 + 1 structure's refined report (a scene written with the two-block keys) ----
 
 // Keeps the last grid point's values (Report::last) and phase, read at end() from the state
 // observed last (the stepper's own, still valid then: solver/time_loop.hpp), not copied at
@@ -192,45 +195,51 @@ ContactReport contact_report(const PoundingMargin& g, double work) {
   return c;
 }
 
-Report run_two_block(const RunSpec& spec, const RunObservers& extra) {
-  const OutputOptions& asked = spec.output;
-  PeakObserver peaks;
-  PhaseObserver phases;
-  PoundingObserver pounding;
-  EnergyObserver energy;
-  LastValues last;
-  std::unique_ptr<AccelerationRecorder> accelerations;
-  std::unique_ptr<TwoBlockStates> states;
-  const SolverOptions options = two_block_options(spec);
-  TwoBlockObservers observers;
-  observers.add(&last);
-  if (asked.peaks) observers.add(&peaks);
-  if (asked.phases) observers.add(&phases);
-  // Always watched (it costs a few operations a step): a run without a contact law whose gap
-  // closes is flagged even when the pounding margin is not reported.
-  observers.add(&pounding);
-  if (asked.energy) observers.add(&energy);
-  if (asked.spectra) {
-    accelerations = std::make_unique<AccelerationRecorder>();
-    observers.add(accelerations.get());
-  }
-  if (extra.two_block) {
-    states = std::make_unique<TwoBlockStates>(*extra.two_block, options, *spec.model);
-    observers.add(states.get());
-  }
-  observers.add(extra.structure);
-  observers.add(spec.watch);  // (it may stop the run: a refusal, thrown)
+// The observers a run's report is made of, chosen by how the scene presents the structure:
+// its channels (a building scene), or the paper's refined values of the 1 + 1 structure (a
+// scene written with the two-block keys: SPEC §3's quantities, observe/peaks.hpp, phases.hpp,
+// pounding.hpp, energy.hpp). Either joins the run's one list of observers and fills the one
+// Report when the run is over.
+class ReportObservers {
+ public:
+  virtual ~ReportObservers() = default;
+  virtual void join(StructureObserverList& all) = 0;
+  virtual void fill(const RunSpec& spec, Report& r) const = 0;
+};
 
-  Report report;
-  report.solver = simulate_as_structure(options, *spec.model, *spec.ground, observers);
-  last.report(report);
-  if (asked.phases) report.phases = phases.intervals();
-  if (asked.peaks) report.peaks = peaks.peaks();
-  if (asked.energy) report.energy = energy.balance();
-  report.contacts = {contact_report(pounding.margin(), energy.terms().contact)};
-  if (accelerations) report.spectra = spectra_of(spec, *accelerations);
-  return report;
-}
+class PairReport final : public ReportObservers {
+ public:
+  explicit PairReport(const OutputOptions& asked) : asked_(asked) {
+    if (asked.spectra) accelerations_ = std::make_unique<AccelerationRecorder>();
+  }
+  void join(StructureObserverList& all) override {
+    all.add(&last_, false);
+    if (asked_.peaks) all.add(&peaks_, false);
+    if (asked_.phases) all.add(&phases_, false);
+    // Always watched (it costs a few operations a step): a run without a contact law whose gap
+    // closes is flagged even when the pounding margin is not reported.
+    all.add(&pounding_, false);
+    if (asked_.energy) all.add(&energy_, false);
+    all.add(accelerations_.get(), false);
+  }
+  void fill(const RunSpec& spec, Report& r) const override {
+    last_.report(r);
+    if (asked_.phases) r.phases = phases_.intervals();
+    if (asked_.peaks) r.peaks = peaks_.peaks();
+    if (asked_.energy) r.energy = energy_.balance();
+    r.contacts = {contact_report(pounding_.margin(), energy_.terms().contact)};
+    if (accelerations_) r.spectra = spectra_of(spec, *accelerations_);
+  }
+
+ private:
+  const OutputOptions& asked_;
+  PeakObserver peaks_;
+  PhaseObserver phases_;
+  PoundingObserver pounding_;
+  EnergyObserver energy_;
+  LastValues last_;
+  std::unique_ptr<AccelerationRecorder> accelerations_;
+};
 
 // ---- buildings, continued ----
 
@@ -262,43 +271,50 @@ std::string shortest(double v) {
   return text;
 }
 
-Report run_building(const RunSpec& spec, const RunObservers& extra) {
-  Report r;
-  const structure::Structure& s = spec.structure;
-  r.modes.push_back(structure::building_modes(s.a));
-  if (s.b) {
-    r.modes.push_back(structure::building_modes(*s.b));
-    r.coupled = structure::coupled_modes(s);
+// A structure's channels, links, contact pairs, energy balance, yielding storeys and isolated
+// bases (study/channel_observer.hpp, yield_observer.hpp), and the modes.
+class ChannelReport final : public ReportObservers {
+ public:
+  ChannelReport(const structure::Structure& s, const OutputOptions& asked)
+      : s_(s), observer_(s), yielding_(s), asked_(asked.spectra) {
+    if (asked_) recorder_ = std::make_unique<detail::SignalRecorder>(s, asked_->signals);
   }
-  detail::ChannelObserver observer(s);
-  detail::YieldObserver yielding(s);
-  const auto& asked = spec.output.spectra;
-  std::unique_ptr<detail::SignalRecorder> recorder;
-  if (asked) recorder = std::make_unique<detail::SignalRecorder>(s, asked->signals);
-  StructureObserverList all;
-  all.add(&observer);
-  if (yielding.watches()) all.add(&yielding);  // (its report is empty otherwise)
-  all.add(recorder.get());
-  all.add(extra.structure);
-  r.solver = simulate_spec(spec, s, all, &r.collapse);
-  if (recorder) {
-    SpectrumOptions options;
-    options.dampings = asked->damping;
-    options.periods = asked->periods.empty() ? default_spectrum_periods() : asked->periods;
-    for (std::size_t k = 0; k < asked->signals.size(); ++k)
-      r.spectra.push_back({asked->signals[k], response_spectrum(spec.solver.h, recorder->histories[k], options)});
+  void join(StructureObserverList& all) override {
+    all.add(&observer_, false);
+    if (yielding_.watches()) all.add(&yielding_, false);  // (its report is empty otherwise)
+    all.add(recorder_.get(), false);
   }
-  r.peaks = observer.peaks();
-  r.links = observer.links();
-  r.contacts = observer.contacts();
-  r.energy = observer.energy();
-  r.residual = observer.residual();
-  r.bases = observer.bases();
-  r.yield = yielding.report();
-  for (const BuildingYield& y : r.yield)
-    for (const StoreyYield& st : y.storeys) r.energy.buildings[y.building == 'A' ? 0 : 1].hysteretic.push_back(st.plastic_work);
-  return r;
-}
+  void fill(const RunSpec& spec, Report& r) const override {
+    r.modes.push_back(structure::building_modes(s_.a));
+    if (s_.b) {
+      r.modes.push_back(structure::building_modes(*s_.b));
+      r.coupled = structure::coupled_modes(s_);
+    }
+    if (recorder_) {
+      SpectrumOptions options;
+      options.dampings = asked_->damping;
+      options.periods = asked_->periods.empty() ? default_spectrum_periods() : asked_->periods;
+      for (std::size_t k = 0; k < asked_->signals.size(); ++k)
+        r.spectra.push_back({asked_->signals[k], response_spectrum(spec.solver.h, recorder_->histories[k], options)});
+    }
+    r.peaks = observer_.peaks();
+    r.links = observer_.links();
+    r.contacts = observer_.contacts();
+    r.energy = observer_.energy();
+    r.residual = observer_.residual();
+    r.bases = observer_.bases();
+    r.yield = yielding_.report();
+    for (const BuildingYield& y : r.yield)
+      for (const StoreyYield& st : y.storeys) r.energy.buildings[y.building == 'A' ? 0 : 1].hysteretic.push_back(st.plastic_work);
+  }
+
+ private:
+  const structure::Structure& s_;
+  detail::ChannelObserver observer_;
+  detail::YieldObserver yielding_;
+  const std::optional<SpectraOutput>& asked_;
+  std::unique_ptr<detail::SignalRecorder> recorder_;
+};
 
 }  // namespace
 
@@ -342,15 +358,41 @@ SolverSummary simulate_spec(const RunSpec& spec, const structure::Structure& s, 
   detail::CollapseObserver collapse_watch;  // first: the others see the state it stops at
   if (detail::CollapseObserver::watches(s)) watched.add(&collapse_watch);
   watched.add_flat(&observer);
-  watched.add(spec.watch);
-  const StructureSolverOptions options = with_scheme(spec.solver, spec.solver.scheme);
-  SolverSummary summary = simulate_structure(options, s, *spec.ground, watched);
+  watched.add(spec.watch, false);  // (it refuses a run by throwing, never by done())
+  // A two-block spec runs on the paper's stepper or on the structure stepper as its scheme
+  // says, in its model's units (solver/simulate.hpp simulate_as_structure).
+  StoppableObserverList stoppable(watched);
+  StructureObserver& observers = watched.may_stop() ? static_cast<StructureObserver&>(stoppable) : watched;
+  SolverSummary summary = spec.two_block() ? simulate_as_structure(two_block_options(spec), *spec.model, *spec.ground, observers)
+                                           : simulate_structure(with_scheme(spec.solver, spec.solver.scheme), s, *spec.ground, observers);
   if (collapse) *collapse = collapse_watch.collapse();
   return summary;
 }
 
+// Every spec runs here: its structure (a two-block spec's: the 1 + 1 structure of its model,
+// made by simulate_spec's stepper) through simulate_spec with one list of observers (the report's, then the caller's), and the
+// report made of them.
 Report run(const RunSpec& spec, const RunObservers& extra) {
-  return spec.two_block() ? run_two_block(spec, extra) : run_building(spec, extra);
+  // (A two-block spec's structure is made by its stepper from its model: spec.structure is
+  // empty and only a building's channels need it here.)
+  const structure::Structure& s = spec.structure;
+  std::unique_ptr<ReportObservers> made;
+  if (spec.two_block())
+    made = std::make_unique<PairReport>(spec.output);
+  else
+    made = std::make_unique<ChannelReport>(s, spec.output);
+  std::unique_ptr<TwoBlockStates> states;
+  StructureObserverList all;
+  made->join(all);
+  if (extra.two_block && spec.two_block()) {
+    states = std::make_unique<TwoBlockStates>(*extra.two_block, two_block_options(spec), *spec.model);
+    all.add(states.get(), false);
+  }
+  all.add(extra.structure);
+  Report r;
+  r.solver = simulate_spec(spec, s, all, &r.collapse);
+  made->fill(spec, r);
+  return r;
 }
 
 }  // namespace adjoin

@@ -4,12 +4,14 @@
 //     Report report = run(spec);                       // the run's own observers
 //     Report report = run(spec, {&writer});            // and a structure observer
 //
-// A building (SPEC §5) runs on the structure stepper with the observers of its channels (peaks,
-// links, contact pairs, energy). A two-block spec (SPEC §1) runs as its 1 + 1 structure on the
-// paper's stepper or on the structure stepper as its scheme says (solver/simulate.hpp
-// simulate_as_structure), with the two-block observers of that structure (peaks, phases,
-// pounding margin, energy balance: observe/). Every run made from a spec goes through
-// here: `adjoin run`, a sweep row, a convergence rung, an error estimate's companion, the
+// Every spec takes one path: its structure through simulate_spec (below) with one list of
+// structure observers, the report's and the caller's. A building (SPEC §5) runs on the structure
+// stepper; a two-block spec (SPEC §1) runs as its 1 + 1 structure on the paper's stepper or on
+// the structure stepper as its scheme says (solver/simulate.hpp simulate_as_structure). The
+// report's observers are chosen by how the scene presents it: a building's channels (peaks,
+// links, contact pairs, energy), or the paper's refined values of the 1 + 1 structure (peaks,
+// phases, pounding margin, energy balance: observe/), which io shows under SPEC §3's names
+// (io/two_block_names.hpp). Every run made from a spec goes through here: `adjoin run`, a sweep row, a convergence rung, an error estimate's companion, the
 // tolerance ladder, the seismic joint. Parts the spec did not ask for are neither computed nor
 // kept.
 #include "adjoin/study/report.hpp"
@@ -27,8 +29,8 @@ struct RunObservers {
 
 Report run(const RunSpec& spec, const RunObservers& extra = {});
 
-// Integrates `s` (the spec's structure or an edit of it of the same size) with the spec's
-// ground and solver options, the spec's memory checked first (check_memory) and its steps
+// Integrates `s` (the spec's structure or an edit of it of the same size; for a two-block spec,
+// its model's 1 + 1 structure, `s` unused) with the spec's ground and solver options, the spec's memory checked first (check_memory) and its steps
 // shown to the spec's watch: a building run whose observers the caller chooses (the seismic
 // joint's bisection). A building with storey heights is watched for collapse (SPEC §7): a
 // storey's |drift / h| past its collapse_drift_ratio ends the run there, an outcome, which
