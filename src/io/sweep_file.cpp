@@ -17,11 +17,23 @@
 #include "adjoin/io/sweep_file.hpp"
 #include "adjoin/io/sweep_scenes.hpp"
 #include "adjoin/io/text_file.hpp"
+#include "adjoin/io/two_block_names.hpp"
 #include "adjoin/study/sweep_columns.hpp"
 #include "adjoin/study/sweep.hpp"
 
 namespace adjoin {
 namespace {
+
+// The column names every two-block sweep table has (an axis may not take one of them).
+const std::vector<std::string>& fixed_column_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n = {"index", "motion", "units"};
+    for (const auto& c : two_block_sweep_channels()) n.push_back(c.name);
+    for (const char* last : {"pga_g", "wall_seconds", "error"}) n.push_back(last);
+    return n;
+  }();
+  return names;
+}
 
 std::string shortest(double v) { return sweep_number_cell(v); }
 
@@ -212,7 +224,7 @@ std::vector<double> range_values(const SweepReader& r, const toml::table& axis, 
   if (!n_value || n_value->get() < 1 || n_value->get() > 100000000)
     r.fail(n_node, "axis " + name + ": n must be an integer from 1 to 1e8");
   const auto n = static_cast<std::size_t>(n_value->get());
-  if (const std::string problem = sweep_axis_memory_problem(n); !problem.empty())
+  if (const std::string problem = sweep_axis_memory_problem(n, fixed_column_names().size()); !problem.empty())
     r.fail(n_node, "axis " + name + ": n = " + std::to_string(n) + " points " + problem + "; use fewer points");
   std::string spacing = "lin";
   if (auto node = axis.get("spacing")) {
@@ -413,7 +425,7 @@ SweepSpec parse_sweep(const std::string& text, const std::string& name) {
   spec.common.line = r.line(root.get("set") ? root.get("set") : root.get("unset"));
   read_edits(r, root, folder, spec.common);
 
-  std::set<std::string> column_names(sweep_fixed_column_names().begin(), sweep_fixed_column_names().end());
+  std::set<std::string> column_names(fixed_column_names().begin(), fixed_column_names().end());
   if (auto node = root.get("variant")) spec.axes.push_back(read_variants(r, *node, folder, column_names));
   if (auto node = root.get("axis")) {
     auto axes = node->as_array();

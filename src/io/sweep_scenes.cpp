@@ -10,6 +10,7 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/io/scene.hpp"
+#include "adjoin/io/two_block_names.hpp"
 #include "sweep_scene_tree.hpp"
 #include "toml_text.hpp"
 
@@ -105,6 +106,10 @@ SceneSweepScenes::SceneSweepScenes(const SweepSpec& spec, const std::string& bas
 SceneSweepScenes::~SceneSweepScenes() = default;
 
 bool SceneSweepScenes::building() const { return base_->building; }
+
+const std::vector<SweepChannel>* SceneSweepScenes::presented_channels() const {
+  return building() ? nullptr : &two_block_sweep_channels();
+}
 
 RunSpec SceneSweepScenes::base() const {
   if (base_->building) return detail::building_scene_from_tree(base_->tree, base_->file, {}, {});

@@ -149,19 +149,9 @@ std::string one_line(std::string text) {
 
 }  // namespace
 
-const std::vector<std::string>& sweep_fixed_column_names() {
-  static const std::vector<std::string> names = [] {
-    std::vector<std::string> n = {"index", "motion", "units"};
-    for (const auto& c : two_block_sweep_channels()) n.push_back(c.name);
-    for (const char* last : {"pga_g", "wall_seconds", "error"}) n.push_back(last);
-    return n;
-  }();
-  return names;
-}
-
-std::string sweep_axis_memory_problem(std::size_t n) {
+std::string sweep_axis_memory_problem(std::size_t n, std::size_t columns) {
   // Sized before the points are made: a huge axis is refused now, not by bad_alloc later.
-  const double need = static_cast<double>(n) * (kBytesPerValue + bytes_per_run(sweep_fixed_column_names().size() + 1));
+  const double need = static_cast<double>(n) * (kBytesPerValue + bytes_per_run(columns + 1));
   if (memory_budget() > 0.0 && need > memory_budget())
     return "would need about " + gigabytes(need) + " of memory for the sweep's table alone, " + budget_text();
   return "";
@@ -240,7 +230,7 @@ SweepRow run_sweep_point(const SweepSpec& spec, std::size_t index) {
   asked.output.spectra.reset();
   GroundRecorder ground(!spec.im_periods.empty(), scene.two_block());
   try {
-    const Report report = run(asked, RunObservers{&ground, nullptr});
+    const Report report = run(asked, RunObservers{&ground});
     row.channels = channel_cells(spec, asked, report);
     // Intensity measures of the forcing as the solver saw it.
     row.pga_g = ground.pga_g();

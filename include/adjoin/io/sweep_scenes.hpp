@@ -22,6 +22,8 @@ class SceneSweepScenes final : public SweepScenes {
   // The base scene without edits, checked as `adjoin run BASE` checks it.
   RunSpec base() const;
   RunSpec scene(const SweepSpec& spec, std::size_t index) const override;
+  // A two-block base: SPEC §3's columns (io/two_block_names.hpp two_block_sweep_channels).
+  const std::vector<SweepChannel>* presented_channels() const override;
 
  private:
   // A building base's run: its edits made as --set makes them (io/structure_edits.hpp).

@@ -4,10 +4,12 @@
 // summary.json, the terminal report, timeseries.csv and energy.csv. The names of the values
 // and their channels are structure/two_block.hpp's two_block_channel; their units are here.
 #include <span>
+#include <string>
 
 #include "adjoin/core/units.hpp"
 #include "adjoin/observe/energy.hpp"
 #include "adjoin/study/report.hpp"
+#include "adjoin/study/sweep_columns.hpp"
 
 namespace adjoin {
 
@@ -32,5 +34,17 @@ struct TwoBlockEnergy {
 };
 TwoBlockEnergy two_block_energy(const EnergyTerms& terms);
 TwoBlockEnergy two_block_energy(const Report& report);
+
+// A convergence quantity of a two-block run (study/convergence.hpp: "peak A.x1", "t peak
+// link1.stroke", "final link1.force") under SPEC §3's names ("peak x1", "t peak stroke",
+// "final q"); any other name as it is.
+std::string two_block_quantity_name(const std::string& name);
+
+// A two-block sweep's columns between `units` and `pga_g` (SPEC §3: x1, x2, drift, f1, f2,
+// a1_abs, a2_abs, min_gap, contact, outside_model, contact.impacts, contact.force_max,
+// contact.penetration_max, energy_input, share_rod1, share_rod2, share_friction,
+// share_residual, stick_intervals, slip_intervals, switches), one row each, in the scene's
+// units (io/two_block_sweep_columns.cpp).
+const std::vector<SweepChannel>& two_block_sweep_channels();
 
 }  // namespace adjoin

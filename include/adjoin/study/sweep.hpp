@@ -95,6 +95,7 @@ struct SweepAxis {
 };
 
 struct SweepSpec;
+struct SweepChannel;  // study/sweep_columns.hpp
 struct SweepRow;
 
 // How a run's description is made from the base scene and the run's edits. io implements it
@@ -105,6 +106,10 @@ class SweepScenes {
   // The description of run `index` (InputError prefixed with the sweep file, the line of the
   // edit that caused it and the run).
   virtual RunSpec scene(const SweepSpec& spec, std::size_t index) const = 0;
+  // The columns between `units` and `pga_g` when io presents the base under names of its own
+  // (a scene written with the two-block keys: SPEC §3's x1 ... switches, io/two_block_names.hpp);
+  // null: the base structure's channel columns (study/sweep_columns.hpp).
+  virtual const std::vector<SweepChannel>* presented_channels() const { return nullptr; }
 };
 
 // Where finished rows go (io's journal, io/sweep_files.hpp, writes them as they come, so that
@@ -149,11 +154,10 @@ struct SweepSpec {
 // caused it and the run); a structure's groups checked against the base's (study/sweep_columns.hpp).
 RunSpec sweep_scene(const SweepSpec& spec, std::size_t index);
 
-// The column names every two-block sweep table has (an axis may not take one of them).
-const std::vector<std::string>& sweep_fixed_column_names();
-// "" if the table of a sweep with one axis of `n` points fits in this machine's memory; else
-// why not ("would need about 4.1 GB of memory for the sweep's table alone, more than ...").
-std::string sweep_axis_memory_problem(std::size_t n);
+// "" if the table of a sweep with one axis of `n` points and `columns` other columns fits in
+// this machine's memory; else why not ("would need about 4.1 GB of memory for the sweep's
+// table alone, more than ...").
+std::string sweep_axis_memory_problem(std::size_t n, std::size_t columns);
 
 struct SweepRow {
   std::size_t index = 0;

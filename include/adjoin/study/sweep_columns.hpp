@@ -5,8 +5,8 @@
 //  - a structure (SPEC §5, any scene not written with the two-block keys): building_sweep_channels(),
 //    column templates ("X.drift_max", "linkN.stroke_max") expanded over the base structure's
 //    buildings (A, then B), links and contacts, in scene order, then the whole's;
-//  - a scene written with the two-block keys: two_block_sweep_channels(), SPEC §3's names
-//    (x1, x2, drift, f1, ... switches) in their frozen order, in the scene's units.
+//  - a base io presents under names of its own (a scene written with the two-block keys): the
+//    table its SweepScenes gives (SweepScenes::presented_channels; io/two_block_names.hpp).
 //
 // A column is one table row: its name, type, unit and meaning (docs/reference/outputs.md and
 // --help) and how it is read from the Report.
@@ -31,7 +31,7 @@ enum class ChannelScope { building, link, contact, whole };
 // One column template.
 struct SweepChannel {
   ChannelScope scope;
-  std::string name;     // "X.roof_max" (X: A or B), "linkN.force_max" (N from 1), "energy_input", "x1"
+  std::string name;     // "X.roof_max" (X: A or B), "linkN.force_max" (N from 1), "energy_input"
   ColumnType type;      // number, integer (a count, a storey) or boolean
   std::string unit;     // "m", "N", "m/s^2", "J", "s", or "" (a ratio, a count; two-block: the scene's units)
   std::string meaning;  // for docs/reference/outputs.md and --help
@@ -44,7 +44,6 @@ struct SweepChannel {
 
 // The registries, in column order within each scope.
 const std::vector<SweepChannel>& building_sweep_channels();
-const std::vector<SweepChannel>& two_block_sweep_channels();
 
 // How many of each group a table has columns for.
 struct ChannelCounts {
