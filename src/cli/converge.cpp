@@ -18,6 +18,7 @@
 #include "adjoin/io/table_plots.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/io/structure_file.hpp"
+#include "adjoin/io/two_block_names.hpp"
 #include "adjoin/study/convergence.hpp"
 #include "adjoin/study/run_watch.hpp"
 #include "command.hpp"
@@ -169,7 +170,11 @@ int converge_command(const ConvergeArgs& args) {
   if (!options.IsValid(&error)) throw InputError((two_block ? "--steps/--schemes/--history: " : "--steps/--history: ") + error);
   check_steps(args, scene.solver.h * time_unit, scene.solver.t_end * time_unit, scene.scales.si ? " s" : "");
   check_output_folder(output_folder(args, scene.name));  // before the ladder runs
-  return write_and_print(args, run_convergence(scene, options), scene.name, time_unit);
+  ConvergenceResult result = run_convergence(scene, options);
+  if (two_block)  // shown under SPEC §3's names (io/two_block_names.hpp)
+    for (auto& row : result.rows)
+      for (auto& q : row.quantities) q.name = two_block_quantity_name(q.name);
+  return write_and_print(args, result, scene.name, time_unit);
 }
 
 // The output folder: --out, or out/<scene name>/.

@@ -1,5 +1,8 @@
 #include "adjoin/io/two_block_names.hpp"
 
+#include <string>
+#include <utility>
+
 namespace adjoin {
 
 std::span<const FrozenName> two_block_peak_names() {
@@ -17,6 +20,19 @@ std::span<const FrozenName> two_block_final_names() {
                                      {"v2", &Scales::velocity}, {"f1", &Scales::force},  {"f2", &Scales::force},
                                      {"q", &Scales::force}};
   return names;
+}
+
+std::string two_block_quantity_name(const std::string& name) {
+  static const std::pair<const char*, const char*> names[] = {{"A.x1", "x1"},         {"B.x1", "x2"},
+                                                              {"link1.stroke", "stroke"}, {"A.shear1", "f1"},
+                                                              {"B.shear1", "f2"},     {"link1.force", "q"}};
+  for (const char* prefix : {"peak ", "t peak ", "final "}) {
+    const std::string p = prefix;
+    if (name.rfind(p, 0) != 0) continue;
+    for (const auto& [channel, frozen] : names)
+      if (name.substr(p.size()) == channel) return p + frozen;
+  }
+  return name;
 }
 
 TwoBlockEnergy two_block_energy(const EnergyTerms& e) {

@@ -54,26 +54,24 @@ class CoarseGrid final : public StructureObserver {
 
 // ---- the reported quantities, by the scene's presentation ----
 
-// A two-block run's: its 1 + 1 structure's refined peaks by channel, each labelled with SPEC
-// §3's name (the stroke: the link's), the contact pair's smallest gap, the friction link's work
-// and last force, the phases' switches.
+// A two-block run's: its 1 + 1 structure's refined peaks, labelled by channel (io presents
+// them under SPEC §3's names: io/two_block_names.hpp two_block_quantity_name), the contact
+// pair's smallest gap, the friction link's work and last force, the phases' switches.
 std::vector<QuantityError> two_block_quantities(const RunSpec& spec, const Report& r) {
   std::vector<QuantityError> out;
   auto value = [&](const std::string& name, double v) { out.push_back({name, false, v, kNaN}); };
   auto instant = [&](const std::string& name, double t) { out.push_back({name, true, t, kNaN}); };
-  const std::pair<const char*, const char*> peaks[] = {{"x1", "A.x1"},       {"x2", "B.x1"},       {"stroke", "link1.stroke"},
-                                                       {"f1", "A.shear1"}, {"f2", "B.shear1"}, {"q", "link1.force"}};
-  for (const auto& [label, channel] : peaks) {
+  for (const char* channel : {"A.x1", "B.x1", "link1.stroke", "A.shear1", "B.shear1", "link1.force"}) {
     const Peak p = r.peak(channel);
-    value(std::string("peak ") + label, p.max_abs);
-    instant(std::string("t peak ") + label, p.t);
+    value(std::string("peak ") + channel, p.max_abs);
+    instant(std::string("t peak ") + channel, p.t);
   }
   if (spec.output.pounding) {
     value("min gap", r.contacts.at(0).min_gap);
     instant("t min gap", r.contacts.at(0).t_min_gap);
   }
   if (spec.output.energy) value("friction", r.link_energy(0));
-  value("final q", r.last_value("link1.force"));
+  value("final link1.force", r.last_value("link1.force"));
   for (std::size_t i = 1; i < r.phases.size(); ++i) instant("switch " + std::to_string(i), r.phases[i].t_start);
   return out;
 }
@@ -253,7 +251,7 @@ ConvergenceResult run_convergence(const RunSpec& given, const ConvergenceOptions
         two_block || fft || options.engines.size() > 1 ? HistoryEngine::fft : options.engines.front();
     CoarseGrid grid(stride_of(coarse, h_ref));
     RunSpec s = with(ref_scheme, ref_engine, h_ref);
-    const auto observers = [&] { return RunObservers{&grid, nullptr}; };
+    const auto observers = [&] { return RunObservers{&grid}; };
     try {
       ref.report = run(s, observers());
     } catch (const InputError&) {  // no fft engine in this build: fall back to direct
@@ -288,7 +286,7 @@ ConvergenceResult run_convergence(const RunSpec& given, const ConvergenceOptions
         try {
           const RunSpec s = with(scheme, engine, h);
           row.steps = s.solver.steps();
-          const Report r = run(s, RunObservers{&grid, nullptr});
+          const Report r = run(s, RunObservers{&grid});
           row.wall_seconds = r.solver.wall_seconds;
           double e = 0.0;
           for (std::size_t j = 0; j < grid.x.size() && j < ref.x.size(); ++j)

@@ -19,10 +19,11 @@
 // The observed order is log2 of the ratio of successive errors over a halving of h.
 //
 // Against a finer run, every reported quantity is compared too (ConvergenceRow::quantities),
-// by the scene's presentation. A two-block scene's (its 1 + 1 structure's, labelled with SPEC §3's
-// names): the peaks of the floors A.x1, B.x1 (x1, x2), link 1's stroke, the storeys' forces
-// (f1, f2) and link 1's force (q) with their times, the minimum gap and its time, the friction
-// link's work, its last force (final q), and each switching instant (when the run has the
+// by the scene's presentation. A two-block scene's (its 1 + 1 structure's, labelled by channel;
+// `adjoin converge` shows them under SPEC §3's names, io/two_block_names.hpp): the peaks of the
+// floors A.x1, B.x1, link 1's stroke, the storeys' forces A.shear1, B.shear1 and link 1's force
+// with their times, the minimum gap and its time, the friction link's work, its last force
+// (final link1.force), and each switching instant (when the run has the
 // reference's sequence of phases; otherwise the row says the switches differ). A structure's (SPEC §5): each channel's peak and, for the peaks refined
 // between samples (structure/channels.hpp PeakRule::refined), its time; each link's largest
 // force and stroke and, for friction links, the dissipated energy and each switching instant
@@ -57,7 +58,7 @@ struct ConvergenceOptions {
 };
 
 struct QuantityError {
-  std::string name;     // "peak x1", "t peak x1", "min gap", "switch 3", ...
+  std::string name;     // "peak A.x1", "t peak A.x1", "min gap", "switch 3", ...
   bool instant = false;  // an instant (absolute error in time) rather than a value (relative)
   double error = 0.0;
   double order = 0.0;    // NaN for the first rung or when the previous rung lacks it
