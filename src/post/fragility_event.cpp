@@ -64,7 +64,7 @@ std::vector<Token> tokenize(const std::string& text) {
 }
 
 // User text in a message: printable and short.
-std::string quoted(const std::string& text) {
+std::string in_quotes(const std::string& text) {
   std::string out;
   for (char c : text.substr(0, 60)) out += std::isprint(static_cast<unsigned char>(c)) ? c : '?';
   return "\"" + out + (text.size() > 60 ? "...\"" : "\"");
@@ -117,7 +117,7 @@ class EventParser {
     if (column == columns_.end()) {
       std::string list;
       for (const std::string& c : columns_) list += (list.empty() ? "" : ", ") + c;
-      throw InputError(prefix() + "no column " + quoted(t.text) + " (at character " + std::to_string(t.at) +
+      throw InputError(prefix() + "no column " + in_quotes(t.text) + " (at character " + std::to_string(t.at) +
                        "); the table has: " + list);
     }
     ++next_;
@@ -151,11 +151,11 @@ class EventParser {
     return tokens_[next_].kind == Token::name && tokens_[next_].text == word;
   }
 
-  std::string prefix() const { return event_.option_ + " " + quoted(event_.text_) + ": "; }
+  std::string prefix() const { return event_.option_ + " " + in_quotes(event_.text_) + ": "; }
 
   [[noreturn]] void fail(const std::string& expected) const {
     const Token& t = tokens_[next_];
-    const std::string found = t.kind == Token::end ? "the end" : quoted(t.text) + " at character " + std::to_string(t.at);
+    const std::string found = t.kind == Token::end ? "the end" : in_quotes(t.text) + " at character " + std::to_string(t.at);
     throw InputError(prefix() + expected + ", found " + found);
   }
 
