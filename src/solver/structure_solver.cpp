@@ -1092,7 +1092,9 @@ class StructureStepper {
 
   // A runaway or non-finite response stops the run (NumericalError with the time).
   void check_range(const StructureState& next) const {
-    if (!kernels.out_of_range(m.n, next.x.data(), next.v.data(), 1e6)) return;
+    if (kernels.out_of_range(m.n, next.x.data(), next.v.data(), 1e6)) range_error(next);
+  }
+  [[noreturn]] [[gnu::cold]] [[gnu::noinline]] void range_error(const StructureState& next) const {
     std::ostringstream message;
     message << "the response became " << (next.x.allFinite() ? "larger than 1e6 m" : "non-finite") << " at t = " << next.t
             << " s at solver.h = " << m.h << " s; check the ground motion's scale and the structure's units";
@@ -1292,7 +1294,7 @@ class StructureStepper {
     correct_pair(step, now, next);
     locate_switches(step, now, next);
     report_pair(next);
-    carry_over(step, now, next);
+    carry_over_pair(step, now, next);
     std::swap(ws.now_p, ws.next_p);
     return *ws.now_p;
   }
@@ -1412,7 +1414,7 @@ class StructureStepper {
       v[k] = ws.v_free[k] - h * r[k];
       cv[k] = ws.cv_free[k] - h * r[2 + k];
     }
-    stick_exact(next);
+    stick_exact_pair(next);
     const double *x0 = now.x.data(), *v0 = now.v.data();
     double* x = next.x.data();
     if (ws.restart) {
@@ -1430,6 +1432,36 @@ class StructureStepper {
       ws.zener_force[e] = el.stiffness * el.pair.of(next.x) + ws.offsets[static_cast<Eigen::Index>(e)];
       el.pair.add(ws.p_next, ws.zener_force[e]);
     }
+  }
+  // stick_exact for the one damper: stuck, its floors join at their mass-weighted mean
+  // velocity (join_stuck_floors' two passes), and C v follows the moves (follow_moves).
+  void stick_exact_pair(StructureState& next) {
+    if (ws.states[0] != DamperState::stick) return;
+    double* v = next.v.data();
+    const double before[2] = {v[0], v[1]};
+    const double mi = m.mass[pair_i], mj = m.mass[pair_j];
+    for (int pass = 0; pass < 2; ++pass) {
+      const double mean = (mi * v[pair_i] + mj * v[pair_j]) / (mi + mj);
+      v[pair_i] = v[pair_j] = mean;
+    }
+    for (int k = 0; k < 2; ++k) {
+      const double dv = v[k] - before[k];
+      if (dv == 0.0) continue;
+      const StepBlock& b = m.trapezoidal->blocks[m.block_of[k]];
+      kernels.axpy(b.size, dv, b.c.col(k - b.offset).data(), ws.cv_next.data() + b.offset);
+    }
+  }
+  // carry_over for the one damper.
+  void carry_over_pair(std::size_t step, const StructureState& now, const StructureState& next) {
+    ws.internal.swap(ws.p_next);
+    ws.cv_now.swap(ws.cv_next);
+    ws.friction_now.swap(ws.q_grid);
+    ws.stick_force_prev.swap(ws.stick_force_now);
+    ws.stick_force_now.swap(ws.stick_grid);
+    const Phase ph = now.link_phase[0];
+    ws.prev_stuck[0] = ph == Phase::stick && step > 0;
+    ws.prev_same_slip[0] = step > 0 && ph != Phase::stick && next.link_phase[0] == ph;
+    ws.w_prev[0] = now.link_velocity[0];
   }
   // report: the grid point's damper force, accelerations (both floors are the damper's),
   // storey and link forces; the Zener histories committed.
@@ -1454,7 +1486,9 @@ class StructureStepper {
     next.link_stroke[0] = x[pair_i] - x[pair_j];
     next.link_velocity[0] = v[pair_i] - v[pair_j];
     next.link_force[0] = q;
-    check_range(next);
+    // (check_range's test, inline: |x| <= 1e6 false for NaN, v - v not 0 for an infinite v)
+    const bool bad = !(std::abs(x[0]) <= 1e6) | !(std::abs(x[1]) <= 1e6) | !(v[0] - v[0] == 0.0) | !(v[1] - v[1] == 0.0);
+    if (bad) [[unlikely]] range_error(next);
     for (std::size_t e = 0; e < ws.laws.size(); ++e) ws.laws[e]->commit(m.zener[e].pair.of(next.x), ws.zener_force[e]);
     for (std::size_t k = 0; k < m.s.contacts.size(); ++k)
       next.contact_gap[static_cast<Eigen::Index>(k)] = m.s.contacts[k].gap - m.contact_pair[k].of(next.x);
