@@ -131,6 +131,8 @@ class BoxQp {
   // `candidates` (ascending), if given: the only unknowns that may be held or fixed nonzero.
   void solve_held(const Eigen::VectorXd& w0, const std::vector<char>& held, const Eigen::VectorXd& fixed,
                   Eigen::VectorXd* q, const std::vector<int>* candidates = nullptr);
+  // One unknown's S_00^-1, as solve_held uses it (a one-damper step's own solve).
+  double single() { return inverses_.single(); }
 
  private:
   SubsetInverses inverses_;
