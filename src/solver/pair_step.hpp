@@ -9,7 +9,7 @@
 // work vectors' dynamic sizes and its calls cost several times the arithmetic (about 1.9k
 // instructions a step against the pair's few hundred). The pair step repeats the general
 // step's floating-point operations in their order on the same work vectors, so a run gives
-// the same numbers bit for bit either way (tests/solver/test_pair_step.cpp checks it).
+// the same numbers bit for bit either way (tests/test_pair_step.cpp checks it).
 #include "structure_model.hpp"
 
 namespace adjoin::detail {
