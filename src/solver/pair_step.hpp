@@ -6,10 +6,12 @@
 // structure is one, and so is a building pair of one storey each with one friction link.
 //
 // Why a step of its own: on two floors the general step's loops over its device lists, its
-// work vectors' dynamic sizes and its calls cost several times the arithmetic (about 1.9k
-// instructions a step against the pair's few hundred). The pair step repeats the general
-// step's floating-point operations in their order on the same work vectors, so a run gives
-// the same numbers bit for bit either way (tests/test_pair_step.cpp checks it).
+// work vectors' dynamic sizes and its calls cost several times the arithmetic. The pair step
+// (PairStepper, pair_step.cpp) repeats the general step's floating-point operations in their
+// order on scalars, its constants read once per run, so a run gives the same numbers bit for
+// bit either way (tests/test_pair_step.cpp checks it); the paper's strong scene's step costs
+// about 0.6k instructions besides the ground's sample and the rods' histories (1.1k when the
+// pair step ran on the general step's work vectors, 1.9k for the general step).
 #include "box_qp.hpp"
 #include "structure_model.hpp"
 
@@ -86,6 +88,66 @@ struct PairCarry {
   double stick_start_t = 0.0, stick_start_q = 0.0;
   bool prev_stuck = false, prev_same_slip = false;
   DamperState state = DamperState::stick;  // the damper's after the last step
+};
+
+}  // namespace adjoin::detail
+
+#include <cstddef>
+#include <limits>
+
+#include "adjoin/ground/ground_motion.hpp"
+#include "structure_workspace.hpp"
+
+namespace adjoin::detail {
+
+// The pair step itself (pair_step.cpp): one grid step of the structure stepper for a structure
+// that takes_pair_step, on the stepper's model and workspace. The same numbers bit for bit as
+// the general step (tests/test_pair_step.cpp).
+class PairStepper {
+ public:
+  // The general step's code for the pair step's rare branches (the structure stepper's).
+  class Fallbacks {
+   public:
+    // The kinks of a slip that ended inside the step, into x (integrate_kinks on ws.states,
+    // ws.kink_theta and ws.kink_jump, which the pair step has set).
+    virtual void kinks(Eigen::VectorXd* x) = 0;
+    // The error of a response out of range (check_range's).
+    [[noreturn]] virtual void out_of_range(const StructureState& next) = 0;
+
+   protected:
+    ~Fallbacks() = default;
+  };
+
+  PairStepper(const StructureModel& model, StepWorkspace& workspace, const GroundMotion& ground_motion, Fallbacks& general);
+  // The step from t_n to t_n+1 (n = step) from ws.now_p into ws.next_p, as the structure
+  // stepper's advance(); swaps them and returns the state at t_n+1.
+  const StructureState& advance(std::size_t step);
+
+ private:
+  // The step's values the decisions pass on (the general step's ws.onset, crossing, ...).
+  struct Step {
+    static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+    double vf[2] = {}, cvf[2] = {}, w_free = 0.0;
+    double onset = kNaN, crossing = kNaN, kink_theta = kNaN, kink_jump = 0.0;
+  };
+  // The constants (PairConstants) and the carried state (PairCarry) from the model and from
+  // the state start() left in the workspace; at the first step of a run.
+  void begin_run();
+  // decide_dampers for the one damper; returns its step force, its state in `decided`.
+  double decide(const StructureState& now, const PairTheta& th, bool restart, const double* offsets, Step& s,
+                DamperState& decided);
+  void decide_stuck(const StructureState& now, double stick1, Step& s, bool& hold2, double& fixed2, DamperState& decided);
+  void decide_slipping(const StructureState& now, double fixed, double w1, const double* cv1, const double* p1, Step& s, bool& hold2,
+                       double& fixed2, DamperState& decided);
+  double relative_accel(const double* cv, const double* p, double btq) const;
+  double grid_force(const double* cv, const double* p, Phase ph, double* stick) const;
+
+  const StructureModel& m;
+  StepWorkspace& ws;
+  const GroundMotion& ground;
+  Fallbacks& fallbacks;
+  PairConstants pc;
+  PairCarry carry;
 };
 
 }  // namespace adjoin::detail
