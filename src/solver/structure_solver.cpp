@@ -146,7 +146,7 @@ class SmallPasses {
 // constructor; one grid step in advance(), in phases: the free step (predict), the dampers'
 // and contact pairs' local solve, the step's end (correct), the switches, the grid point's
 // report, and the carry-over to the next step.
-class StructureStepper {
+class StructureStepper final : private detail::PairStepper::Fallbacks {
  public:
   StructureStepper(const StructureSolverOptions& options, const structure::Structure& s, const GroundMotion& ground_)
       : m(options, s), ws(m), ground(ground_), kernels(detail::step_kernels()), bilinear_kernels(detail::bilinear_kernels()) {}
@@ -210,7 +210,7 @@ class StructureStepper {
 
   // The step from t_n to t_n+1 (n = step): the state at t_n+1.
   const StructureState& advance(std::size_t step) {
-    if (pair) return advance_pair(step);
+    if (pair) return pair_stepper.advance(step);
     const StructureState& now = *ws.now_p;
     StructureState& next = *ws.next_p;
     // (next's phases and switches are set below for the friction links; the other links' stay
@@ -1279,220 +1279,9 @@ class StructureStepper {
       if (m.viscous[static_cast<std::size_t>(k)].link >= 0) st.link_force[m.viscous[static_cast<std::size_t>(k)].link] = ws.viscous_force[k];
     for (int f = 0; f < m.nf; ++f) st.link_force[m.friction[f]] = q_friction[f];
   }
-  // ---- the pair step: the 1 + 1 structure's (pair_step.hpp) ----
-  // Each phase below repeats its general phase's floating-point operations in their order for
-  // two floors and one damper between them (f = 0, its floors i and j, damper_dofs = trial_dofs
-  // = {0, 1}, no contact, viscous, bilinear or Bouc-Wen element): the same numbers bit for bit,
-  // without the general phases' loops over device lists and their set-up. Rare branches (the
-  // first step, a restart's predictor, an onset's check, a kink) call the general code.
-  const StructureState& advance_pair(std::size_t step) {
-    const StructureState& now = *ws.now_p;
-    StructureState& next = *ws.next_p;
-    begin_pair(step, next);
-    predict_pair(now, next);
-    local_solve_pair(step, now);
-    correct_pair(step, now, next);
-    locate_switches(step, now, next);
-    report_pair(next);
-    carry_over_pair(step, now, next);
-    std::swap(ws.now_p, ws.next_p);
-    return *ws.now_p;
-  }
-  // begin_step: the Zener elements' offsets added as they are read (each reads its own law only).
-  void begin_pair(std::size_t step, StructureState& next) {
-    next.t = static_cast<double>(step + 1) * m.h;
-    next.ag = g * ground.ag(next.t);
-    ag_next = next.ag;
-    ws.off_dof[0] = 0.0;
-    ws.off_dof[1] = 0.0;
-    for (std::size_t e = 0; e < ws.laws.size(); ++e) {
-      const double offset = ws.laws[e]->offset();
-      ws.offsets[static_cast<Eigen::Index>(e)] = offset;
-      m.zener[e].pair.add(ws.off_dof, offset);
-    }
-    ws.restart = ws.restart_left > 0;
-    if (ws.restart) --ws.restart_left;
-    ws.sm = ws.restart ? m.backward.get() : m.trapezoidal.get();
-    ws.box_qp = ws.restart ? ws.box_qp_backward.get() : ws.box_qp_trapezoidal.get();
-  }
-  // predict: the free step (K_eff of two floors, Banded::apply's sums).
-  void predict_pair(const StructureState& now, const StructureState& next) {
-    if (ws.restart) {
-      m.k_eff.apply(now.x, ws.p1);
-      ws.rhs = m.mass.cwiseProduct(now.v) + m.h * (m.mass * next.ag - ws.p1 - ws.off_dof);
-    } else {
-      const double c = 0.5 * m.h, s_ag = now.ag + next.ag;
-      const double *x = now.x.data(), *v = now.v.data(), *mass = m.mass.data(), *cv = ws.cv_now.data(), *p0 = ws.internal.data(),
-                   *off = ws.off_dof.data();
-      double *x1 = ws.x1.data(), *p1 = ws.p1.data(), *rhs = ws.rhs.data();
-      x1[0] = x[0] + c * v[0];
-      x1[1] = x[1] + c * v[1];
-      p1[0] = (0.0 + k_eff_bands.di[0] * x1[0]) + k_eff_bands.up[0] * x1[1];
-      p1[1] = (0.0 + k_eff_bands.lo[0] * x1[0]) + k_eff_bands.di[1] * x1[1];
-      for (int k = 0; k < 2; ++k) rhs[k] = mass[k] * v[k] + c * ((((mass[k] * s_ag - cv[k]) - p0[k]) - p1[k]) - off[k]);
-    }
-    for (const StepBlock& b : ws.sm->blocks)
-      b.step.apply_halves(ws.rhs.data() + b.offset, ws.v_free.data() + b.offset, ws.cv_free.data() + b.offset);
-  }
-  // local_solve with decide_dampers for the one damper (solve_held: S_00^-1 w for a held one).
-  void local_solve_pair(std::size_t step, const StructureState& now) {
-    ws.q_step[0] = 0.0;
-    ws.onset[0] = ws.crossing[0] = ws.kink_theta[0] = kNaN;
-    ws.kink_jump[0] = 0.0;
-    ws.decided[0] = DamperState::stick;
-    ws.w_free[0] = ws.v_free[pair_i] - ws.v_free[pair_j];
-    ws.any_contact = false;
-    if (step == 0) {
-      const detail::BoxQpResult& r = ws.box_qp->solve(ws.w_free, m.limit, ws.states);
-      ws.q_step = r.q;
-      ws.decided = r.state;
-    } else {
-      decide_pair(now);
-    }
-    ws.states.swap(ws.decided);
-  }
-  void decide_pair(const StructureState& now) {
-    const Phase ph = now.link_phase[0];
-    const double lim = m.limit[0], single = ws.box_qp->single();
-    ws.hold[0] = ph == Phase::stick;
-    ws.fixed[0] = ws.hold[0] ? 0.0 : (ph == Phase::slip_right ? lim : -lim);
-    ws.q_trial[0] = ws.hold[0] != 0 ? single * ws.w_free[0] : ws.fixed[0];
-    trial_pair(now, ws.q_trial[0]);
-    grid_force_single(ws.cv1, ws.p1, ag_next, ph, ws.q1.data(), ws.stick1.data());
-    ws.w1[0] = ws.v1[pair_i] - ws.v1[pair_j];
-    if (ws.hold[0]) decide_stuck(0, now);
-    else decide_slipping(0, now);
-    if (ws.hold2[0] == ws.hold[0] && ws.fixed2[0] == ws.fixed[0]) ws.q_step[0] = ws.q_trial[0];
-    else ws.q_step[0] = ws.hold2[0] != 0 ? single * ws.w_free[0] : ws.fixed2[0];
-    if (std::isnan(ws.onset[0])) return;
-    // A starting damper that the others leave no room to slip stays stuck this step.
-    ws.w_end.noalias() = ws.w_free - ws.sm->delassus * ws.q_step;
-    if (ws.w_end[0] * ws.fixed2[0] <= 0.0) {
-      ws.hold2[0] = true;
-      ws.onset[0] = kNaN;
-      ws.decided[0] = DamperState::stick;
-      ws.q_step[0] = single * ws.w_free[0];
-    }
-  }
-  // trial_state for trial force q: trial_column, then both floors' v, x, C v and P.
-  void trial_pair(const StructureState& now, double q) {
-    const double* a = ws.sm->trial_rows.data();
-    double* tc = ws.trial_change.data();
-    for (int r = 0; r < 4; ++r) tc[r] = a[r] * q;
-    const double h = m.h;
-    const double *x0 = now.x.data(), *v0 = now.v.data(), *vf = ws.v_free.data(), *cvf = ws.cv_free.data();
-    double *v1 = ws.v1.data(), *x1 = ws.x1.data(), *cv1 = ws.cv1.data(), *p1 = ws.p1.data();
-    if (!ws.restart) {
-      const double minus_h = -h, c = 0.5 * h;
-      for (int k = 0; k < 2; ++k) v1[k] = vf[k] + tc[k] * minus_h;
-      for (int k = 0; k < 2; ++k) x1[k] = x0[k] + c * (v0[k] + v1[k]);
-    } else {
-      for (int k = 0; k < 2; ++k) {
-        v1[k] = vf[k] - h * tc[k];
-        x1[k] = x0[k] + h * v1[k];
-      }
-    }
-    // (K0's rows as Banded::row sums them; + B_c' p, zero without contact laws)
-    const double p_rows[2] = {(0.0 + k0_bands.di[0] * x1[0]) + k0_bands.up[0] * x1[1], (0.0 + k0_bands.lo[0] * x1[0]) + k0_bands.di[1] * x1[1]};
-    for (int k = 0; k < 2; ++k) {
-      cv1[k] = cvf[k] - h * tc[2 + k];
-      p1[k] = p_rows[k] + ws.contact_bt[k];
-      for (const auto& [e, sign] : m.damper_zener[static_cast<std::size_t>(k)]) {
-        const auto& el = m.zener[static_cast<std::size_t>(e)];
-        p1[k] += sign * (el.stiffness * el.pair.of(ws.x1) + ws.offsets[e]);
-      }
-    }
-  }
-  // correct: the end velocities from the damper's column, x, P.
-  void correct_pair(std::size_t step, const StructureState& now, StructureState& next) {
-    const double* a = ws.sm->damper_response.matrix().data();
-    const double q = ws.q_step[0], h = m.h;
-    double r[4];
-    for (int k = 0; k < 4; ++k) r[k] = 0.0 + a[k] * q;
-    double *v = next.v.data(), *cv = ws.cv_next.data();
-    for (int k = 0; k < 2; ++k) {
-      v[k] = ws.v_free[k] - h * r[k];
-      cv[k] = ws.cv_free[k] - h * r[2 + k];
-    }
-    stick_exact_pair(next);
-    const double *x0 = now.x.data(), *v0 = now.v.data();
-    double* x = next.x.data();
-    if (ws.restart) {
-      for (int k = 0; k < 2; ++k) x[k] = x0[k] + h * v[k];
-    } else {
-      const double c = 0.5 * h;
-      for (int k = 0; k < 2; ++k) x[k] = x0[k] + c * (v0[k] + v[k]);
-      if (step > 0 && !std::isnan(ws.kink_theta[0])) integrate_kinks(ws.states, ws.kink_theta, ws.kink_jump, &next.x);
-    }
-    double* p = ws.p_next.data();
-    p[0] = (0.0 + k0_bands.di[0] * x[0]) + k0_bands.up[0] * x[1];
-    p[1] = (0.0 + k0_bands.lo[0] * x[0]) + k0_bands.di[1] * x[1];
-    for (std::size_t e = 0; e < m.zener.size(); ++e) {
-      const auto& el = m.zener[e];
-      ws.zener_force[e] = el.stiffness * el.pair.of(next.x) + ws.offsets[static_cast<Eigen::Index>(e)];
-      el.pair.add(ws.p_next, ws.zener_force[e]);
-    }
-  }
-  // stick_exact for the one damper: stuck, its floors join at their mass-weighted mean
-  // velocity (join_stuck_floors' two passes), and C v follows the moves (follow_moves).
-  void stick_exact_pair(StructureState& next) {
-    if (ws.states[0] != DamperState::stick) return;
-    double* v = next.v.data();
-    const double before[2] = {v[0], v[1]};
-    const double mi = m.mass[pair_i], mj = m.mass[pair_j];
-    for (int pass = 0; pass < 2; ++pass) {
-      const double mean = (mi * v[pair_i] + mj * v[pair_j]) / (mi + mj);
-      v[pair_i] = v[pair_j] = mean;
-    }
-    for (int k = 0; k < 2; ++k) {
-      const double dv = v[k] - before[k];
-      if (dv == 0.0) continue;
-      const StepBlock& b = m.trapezoidal->blocks[m.block_of[k]];
-      kernels.axpy(b.size, dv, b.c.col(k - b.offset).data(), ws.cv_next.data() + b.offset);
-    }
-  }
-  // carry_over for the one damper.
-  void carry_over_pair(std::size_t step, const StructureState& now, const StructureState& next) {
-    ws.internal.swap(ws.p_next);
-    ws.cv_now.swap(ws.cv_next);
-    ws.friction_now.swap(ws.q_grid);
-    ws.stick_force_prev.swap(ws.stick_force_now);
-    ws.stick_force_now.swap(ws.stick_grid);
-    const Phase ph = now.link_phase[0];
-    ws.prev_stuck[0] = ph == Phase::stick && step > 0;
-    ws.prev_same_slip[0] = step > 0 && ph != Phase::stick && next.link_phase[0] == ph;
-    ws.w_prev[0] = now.link_velocity[0];
-  }
-  // report: the grid point's damper force, accelerations (both floors are the damper's),
-  // storey and link forces; the Zener histories committed.
-  void report_pair(StructureState& next) {
-    grid_force_single(ws.cv_next, ws.p_next, next.ag, next.link_phase[0], ws.q_grid.data(), ws.stick_grid.data());
-    const double q = ws.q_grid[0], ag = next.ag;
-    double* btq = ws.btq_dampers.data();
-    btq[m.pi[0]] = 0.0 + q;  // (damper_bt's sums)
-    btq[m.pj[0]] = 0.0 - q;
-    for (int k = 0; k < 2; ++k)
-      next.a_abs[k] = (m.mass[k] * ag - ws.cv_next[k] - ws.p_next[k] - btq[k]) * m.inv_mass[k] - ag;
-    // fill_links: each building's one storey (its spring, and its dashpots if any), the Zener
-    // elements in their storeys, the damper's stroke, velocity and force.
-    const double *x = next.x.data(), *v = next.v.data();
-    double* force = next.storey_force.data();
-    force[0] = m.storey_spring[0] * x[0] + (m.dashpots_a ? m.storey_dashpot[0] * v[0] : 0.0);
-    force[1] = m.storey_spring[1] * x[1] + (m.dashpots_b ? m.storey_dashpot[1] * v[1] : 0.0);
-    for (std::size_t e = 0; e < m.zener.size(); ++e)
-      if (m.zener[e].storey >= 0) force[m.zener[e].storey] += ws.zener_force[e];
-    if (next.hyst.size() != 2) next.hyst.setZero(2);
-    next.hyst_yield.resize(2, kNaN);
-    next.link_stroke[0] = x[pair_i] - x[pair_j];
-    next.link_velocity[0] = v[pair_i] - v[pair_j];
-    next.link_force[0] = q;
-    // (check_range's test, inline: |x| <= 1e6 false for NaN, v - v not 0 for an infinite v)
-    const bool bad = !(std::abs(x[0]) <= 1e6) | !(std::abs(x[1]) <= 1e6) | !(v[0] - v[0] == 0.0) | !(v[1] - v[1] == 0.0);
-    if (bad) [[unlikely]] range_error(next);
-    for (std::size_t e = 0; e < ws.laws.size(); ++e) ws.laws[e]->commit(m.zener[e].pair.of(next.x), ws.zener_force[e]);
-    for (std::size_t k = 0; k < m.s.contacts.size(); ++k)
-      next.contact_gap[static_cast<Eigen::Index>(k)] = m.s.contacts[k].gap - m.contact_pair[k].of(next.x);
-  }
+  // ---- the pair step (pair_step.hpp): the general code for its rare branches ----
+  void kinks(Eigen::VectorXd* x) override { integrate_kinks(ws.states, ws.kink_theta, ws.kink_jump, x); }
+  [[noreturn]] void out_of_range(const StructureState& next) override { range_error(next); }
 
   // ---- the model (constant), the workspace (the run's state), the ground ----
   static constexpr double g = kStandardGravity;
@@ -1504,11 +1293,9 @@ class StructureStepper {
   const GroundMotion& ground;
   const SmallPasses kernels;  // (the step kernels, a few entries' passes inline)
   const detail::BilinearKernels& bilinear_kernels;
-  // The pair step (pair_step.hpp): whether it applies, the damper's floors, K_eff's and K0's
-  // diagonals (two floors: lo[0], di[0], di[1], up[0]).
+  // The pair step (pair_step.hpp): whether it applies, and its stepper (on m and ws).
   const bool pair = detail::takes_pair_step(m);
-  const int pair_i = pair ? m.fi[0] : 0, pair_j = pair ? m.fj[0] : 0;
-  const detail::Tridiagonal k_eff_bands = m.k_eff.diagonals(), k0_bands = m.k0.diagonals();
+  detail::PairStepper pair_stepper{m, ws, ground, *this};
 };
 
 }  // namespace
