@@ -154,6 +154,29 @@ TEST_CASE("in-structure spectra of floors are the spectra of the floors' acceler
   CHECK(spectra.at("psa")[10 + 5] == Approx(roof / kStandardGravity).epsilon(0.02));  // T = 0.02 s, 5 %
 }
 
+TEST_CASE("in-structure spectra without a list of signals are the ground's and each building's first floor's", "[building_run]") {
+  const auto dir = std::filesystem::path(ADJOIN_TEST_TMP) / "building-spectra-default";
+  std::filesystem::remove_all(dir);
+  const BuildingScene scene =
+      load_building_scene(kScene, {"output.every=1", "solver.t_end=6", "output.spectra.periods=[0.02]"});
+  const RunFiles files = run_to_folder(scene, dir);
+  REQUIRE(files.report.spectra.size() == 3);
+  const auto columns = read_columns(dir / "timeseries.csv");
+  const char* signals[] = {"ground", "A.a1_abs", "B.a1_abs"};
+  const char* columns_of[] = {"ag", "A.a1_abs", "B.a1_abs"};
+  for (std::size_t k = 0; k < 3; ++k) {
+    INFO(signals[k]);
+    CHECK(files.report.spectra[k].signal == signals[k]);
+    // The spectrum of the column of timeseries.csv that names the same history.
+    SpectrumOptions options;
+    options.periods = {0.02};
+    options.dampings = {0.05};
+    const ResponseSpectrum direct = response_spectrum(scene.solver.h, columns.at(columns_of[k]), options);
+    CHECK(files.report.spectra[k].spectrum.at(0, 0).psa == Approx(direct.values[0].psa).epsilon(1e-8));
+  }
+  CHECK(files.report.spectra[1].spectrum.at(0, 0).psa != files.report.spectra[2].spectrum.at(0, 0).psa);
+}
+
 TEST_CASE("the SI record scene written in building keys gives the two-block results", "[building_run]") {
   const Scene two_block = load_scene(std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/si-record.toml",
                                      {"solver.history=fft", "solver.scheme=implicit", "solver.t_end=29"});

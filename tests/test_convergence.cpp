@@ -44,7 +44,7 @@ TEST_CASE("weak scene: analytic reference, orders 1 (paper, implicit-gl) and 2 (
   CHECK(last_order(r, "implicit") == Approx(2.0).margin(0.05));
   for (const auto& row : r.rows) {
     CHECK(row.wall_seconds > 0.0);
-    CHECK(std::isnan(row.peak_x1));  // the exact solution gives trajectories only
+    CHECK(std::isnan(row.peak_a1));  // the exact solution gives trajectories only
   }
 }
 
@@ -66,7 +66,7 @@ TEST_CASE("strong scene: a fine reference run, and the summary errors too", "[co
   CHECK(r.reference.find("finer run") != std::string::npos);
   CHECK(last_order(r, "implicit") == Approx(2.0).margin(0.2));
   for (const auto& row : r.rows) {
-    CHECK(std::isfinite(row.peak_x1));
+    CHECK(std::isfinite(row.peak_a1));
     CHECK(std::isfinite(row.friction));
     if (row.scheme == "implicit") CHECK(row.friction < 1e-4);  // converged within 1e-4 already at h = 0.008
   }

@@ -66,7 +66,7 @@ void write_table(const ConvergenceResult& result, double time_unit, std::ostream
     auto v = [](double x) { return std::isnan(x) ? std::string() : std::to_string(x); };
     csv << r.scheme << "," << r.history << "," << cell(r.h * time_unit, "%.10g") << "," << r.steps << "," << v(r.wall_seconds)
         << "," << (std::isnan(r.error) ? "" : cell(r.error, "%.6e")) << "," << v(r.order) << ","
-        << (std::isnan(r.peak_x1) ? "" : cell(r.peak_x1, "%.6e")) << ","
+        << (std::isnan(r.peak_a1) ? "" : cell(r.peak_a1, "%.6e")) << ","
         << (std::isnan(r.min_gap) ? "" : cell(r.min_gap, "%.6e")) << ","
         << (std::isnan(r.friction) ? "" : cell(r.friction, "%.6e")) << "\n";
   }
@@ -225,7 +225,7 @@ int write_and_print(const ConvergeArgs& args, const ConvergenceResult& result, c
     }
     std::printf("%-12s %-7s %10.4g %8zu %10.4g %10s %6s %10s %10s %10s\n", r.scheme.c_str(), r.history.c_str(),
                 r.h * time_unit, r.steps, r.wall_seconds, cell(r.error).c_str(), cell(r.order, "%.2f").c_str(),
-                cell(r.peak_x1).c_str(), cell(r.min_gap).c_str(), cell(r.friction).c_str());
+                cell(r.peak_a1).c_str(), cell(r.min_gap).c_str(), cell(r.friction).c_str());
   }
   const bool quantities = write_quantities(result, time_unit, files);
   if (quantities) print_quantities(result, time_unit);

@@ -12,6 +12,7 @@
 #include "adjoin/io/impacts_csv.hpp"
 #include "adjoin/io/summary.hpp"
 #include "adjoin/io/timeseries_csv.hpp"
+#include "adjoin/io/two_block_names.hpp"
 
 namespace adjoin {
 
@@ -125,7 +126,8 @@ RunFiles run_to(const Scene& scene, RunOutputs& set, const RunWarning& warn) {
     again.h = files.report.solver.h;
     simulate_as_structure(again, *scene.model, *scene.ground, restarting);
   }
-  if (!files.report.spectra.empty()) set.open("spectra.csv") << spectra_csv(files.report);
+  if (!files.report.spectra.empty()) set.open("spectra.csv") << (scene.two_block() ? spectra_csv(two_block_signal_names(files.report.spectra))
+                                                                                        : spectra_csv(files.report));
   if (!scene.two_block() && has_contact_law(scene)) set.open("impacts.csv") << impacts_csv(files.report);
   set.open("summary.json") << summary_json(scene, files.report, files.estimate ? &*files.estimate : nullptr,
                                            files.tolerant ? &*files.tolerant : nullptr);

@@ -23,6 +23,7 @@
 #include "scene_reader.hpp"
 #include "adjoin/io/file_name.hpp"
 #include "adjoin/io/text_file.hpp"
+#include "adjoin/io/two_block_names.hpp"
 #include "adjoin/solver/simulate.hpp"
 
 namespace adjoin {
@@ -472,12 +473,19 @@ void read_output(const SceneReader& r, Scene& scene) {
   out.energy_history = r.boolean("output.energy_history", false);
   if (r.has("output.spectra")) {
     SpectraOutput spectra;
-    if (r.has("output.spectra.signals")) spectra.signals = r.strings("output.spectra.signals");
-    for (auto signal = spectra.signals.begin(); signal != spectra.signals.end(); ++signal) {
-      if (*signal != "ground" && *signal != "block1" && *signal != "block2")
-        r.fail("output.spectra.signals", "output.spectra.signals: " + escaped_excerpt(*signal) + " must be \"ground\", \"block1\" or \"block2\"");
-      if (std::find(spectra.signals.begin(), signal, *signal) != signal)
-        r.fail("output.spectra.signals", "output.spectra.signals: " + escaped_excerpt(*signal) + " is listed twice; list each signal once");
+    // A two-block scene names its blocks' accelerations "block1" and "block2" (SPEC §3); the run
+    // names them by the 1 + 1 structure's floors (A.a1_abs, B.a1_abs: the default), and its
+    // files name them back (io/two_block_names.hpp). (A building scene's signals are checked
+    // against its structure: io/building_scene.cpp.)
+    if (r.has("output.spectra.signals")) {
+      spectra.signals = r.strings("output.spectra.signals");
+      for (auto signal = spectra.signals.begin(); signal != spectra.signals.end(); ++signal) {
+        if (*signal != "ground" && *signal != "block1" && *signal != "block2")
+          r.fail("output.spectra.signals", "output.spectra.signals: " + escaped_excerpt(*signal) + " must be \"ground\", \"block1\" or \"block2\"");
+        if (std::find(spectra.signals.begin(), signal, *signal) != signal)
+          r.fail("output.spectra.signals", "output.spectra.signals: " + escaped_excerpt(*signal) + " is listed twice; list each signal once");
+      }
+      for (std::string& signal : spectra.signals) signal = two_block_signal_channel(signal);
     }
     if (r.has("output.spectra.damping")) spectra.damping = r.numbers("output.spectra.damping");
     for (double d : spectra.damping)

@@ -179,7 +179,7 @@ std::string summary_json(const Scene& scene, const Report& r, const ErrorEstimat
       for (std::size_t i = 0; i < sig.spectrum.periods.size(); ++i)
         if (!best || sig.spectrum.at(0, i).psa > best->psa) best = &sig.spectrum.at(0, i);
       if (best)
-        spectra[sig.signal] =
+        spectra[two_block_signal_name(sig.signal)] =
             ordered_json{{"damping", best->damping}, {"max_psa_g", best->psa}, {"period", best->period}};
     }
     j["spectra"] = spectra;

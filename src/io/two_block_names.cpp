@@ -2,6 +2,7 @@
 
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace adjoin {
 
@@ -33,6 +34,27 @@ std::string two_block_quantity_name(const std::string& name) {
       if (name.substr(p.size()) == channel) return p + frozen;
   }
   return name;
+}
+
+namespace {
+constexpr std::pair<const char*, const char*> kSignals[] = {{"block1", "A.a1_abs"}, {"block2", "B.a1_abs"}};
+}  // namespace
+
+std::string two_block_signal_channel(const std::string& signal) {
+  for (const auto& [frozen, channel] : kSignals)
+    if (signal == frozen) return channel;
+  return signal;
+}
+
+std::string two_block_signal_name(const std::string& channel) {
+  for (const auto& [frozen, floor] : kSignals)
+    if (channel == floor) return frozen;
+  return channel;
+}
+
+std::vector<SignalSpectrum> two_block_signal_names(std::vector<SignalSpectrum> spectra) {
+  for (SignalSpectrum& s : spectra) s.signal = two_block_signal_name(s.signal);
+  return spectra;
 }
 
 TwoBlockEnergy two_block_energy(const EnergyTerms& e) {

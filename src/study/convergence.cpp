@@ -281,7 +281,7 @@ ConvergenceResult run_convergence(const RunSpec& given, const ConvergenceOptions
         row.scheme = scheme_text(scheme);
         row.history = to_string(engine);
         row.h = h;
-        row.peak_x1 = row.min_gap = row.friction = kNaN;
+        row.peak_a1 = row.min_gap = row.friction = kNaN;
         CoarseGrid grid(stride_of(coarse, h));
         try {
           const RunSpec s = with(scheme, engine, h);
@@ -298,7 +298,7 @@ ConvergenceResult run_convergence(const RunSpec& given, const ConvergenceOptions
           if (ref.report) {
             if (two_block) {  // the summary's three values under SPEC §3's names
               const Report& fine = *ref.report;
-              row.peak_x1 = relative(r.peak("A.x1").max_abs, fine.peak("A.x1").max_abs);
+              row.peak_a1 = relative(r.peak("A.x1").max_abs, fine.peak("A.x1").max_abs);
               row.min_gap = relative(r.contacts.at(0).min_gap, fine.contacts.at(0).min_gap);
               row.friction = fine.link_energy(0) > 0.0 ? relative(r.link_energy(0), fine.link_energy(0)) : kNaN;
             }
@@ -325,7 +325,7 @@ ConvergenceResult run_convergence(const RunSpec& given, const ConvergenceOptions
         } catch (const NumericalError& e) {
           row.failed = true;
           row.message = e.what();
-          row.error = row.order = row.peak_x1 = row.min_gap = row.friction = kNaN;
+          row.error = row.order = row.peak_a1 = row.min_gap = row.friction = kNaN;
           previous = kNaN;
           previous_quantities.clear();
         }

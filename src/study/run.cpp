@@ -132,8 +132,8 @@ class LastValues final : public StructureObserver {
 };
 
 // Keeps the acceleration histories that spectra need (only when spectra are asked for): the
-// ground's and the floors' absolute accelerations, named as the scene names them ("ground",
-// "block1" = A's floor 1, "block2" = B's).
+// ground's and the 1 + 1 structure's floors' absolute accelerations ("ground", A.a1_abs,
+// B.a1_abs).
 class AccelerationRecorder final : public StructureObserver {
  public:
   void begin(const structure::Structure&, const StructureSolverOptions& o) override {
@@ -160,7 +160,7 @@ std::vector<SignalSpectrum> spectra_of(const RunSpec& spec, const AccelerationRe
   const double length_back = k.si ? 1.0 : 1.0 / kStandardGravity;
   std::vector<SignalSpectrum> out;
   for (const std::string& signal : asked.signals) {
-    const std::vector<double>& a = signal == "ground" ? recorded.ag : recorded.a_abs[signal == "block1" ? 0 : 1];
+    const std::vector<double>& a = signal == "ground" ? recorded.ag : recorded.a_abs[signal == "A.a1_abs" ? 0 : 1];
     std::vector<double> accel(a.size());
     for (std::size_t i = 0; i < a.size(); ++i) accel[i] = a[i] * kStandardGravity;
     SignalSpectrum s{signal, response_spectrum(dt, accel, options)};

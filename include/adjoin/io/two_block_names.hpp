@@ -40,6 +40,12 @@ TwoBlockEnergy two_block_energy(const Report& report);
 // "final q"); any other name as it is.
 std::string two_block_quantity_name(const std::string& name);
 
+// The in-structure spectra's signals of a two-block scene (SPEC §3: "block1", "block2") and the
+// 1 + 1 structure's floors they are (A.a1_abs, B.a1_abs); "ground" and any other name as it is.
+std::string two_block_signal_channel(const std::string& signal);
+std::string two_block_signal_name(const std::string& channel);
+std::vector<SignalSpectrum> two_block_signal_names(std::vector<SignalSpectrum> spectra);
+
 // A two-block sweep's columns between `units` and `pga_g` (SPEC §3: x1, x2, drift, f1, f2,
 // a1_abs, a2_abs, min_gap, contact, outside_model, contact.impacts, contact.force_max,
 // contact.penetration_max, energy_input, share_rod1, share_rod2, share_friction,

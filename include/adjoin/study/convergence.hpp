@@ -14,7 +14,7 @@
 // Errors (all relative, dimensionless):
 //  - error: max over the coarsest grid's points of |x1 - x1_ref|, |x2 - x2_ref|, divided by
 //    max |x_ref|: a trajectory error in the max norm;
-//  - peak_x1, min_gap, friction: relative errors of those summary values (against the fine
+//  - peak_a1, min_gap, friction: relative errors of those summary values (against the fine
 //    run; against the exact solution only the trajectory error is given).
 // The observed order is log2 of the ratio of successive errors over a halving of h.
 //
@@ -71,7 +71,9 @@ struct ConvergenceRow {
   double wall_seconds = 0.0;
   double error = 0.0;
   double order = 0.0;  // NaN for the first row of a (scheme, history) ladder
-  double peak_x1 = 0.0, min_gap = 0.0, friction = 0.0;  // relative errors; NaN if not available
+  // A two-block run's summary values (the peak of A.x1, the minimum gap, the friction work):
+  // relative errors against the reference; NaN if not available (convergence.csv: err_peak_x1, ...).
+  double peak_a1 = 0.0, min_gap = 0.0, friction = 0.0;
   std::vector<QuantityError> quantities;  // empty against an analytic reference
   bool switches_differ = false;  // the run's sequence of phases is not the reference's
   bool failed = false;  // the run stopped with a NumericalError (e.g. the paper scheme beyond its bound)

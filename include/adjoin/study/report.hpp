@@ -28,7 +28,7 @@
 namespace adjoin {
 
 struct SignalSpectrum {
-  std::string signal;  // "ground", a floor's X.aN_abs, or a two-block scene's "block1", "block2"
+  std::string signal;  // "ground" or a floor's X.aN_abs (run_spec.hpp SpectraOutput)
   ResponseSpectrum spectrum;
 };
 

@@ -22,8 +22,9 @@ namespace adjoin {
 
 // Response spectra computed inside a run ([output.spectra]; its presence asks for them).
 struct SpectraOutput {
-  // "ground" (a_g), "block1", "block2" (the blocks' absolute accelerations: in-structure spectra).
-  std::vector<std::string> signals{"ground", "block1", "block2"};
+  // "ground" (a_g) or a floor's absolute acceleration X.aN_abs (in-structure spectra). A
+  // two-block scene's "block1" and "block2" are A.a1_abs and B.a1_abs (io presents them so).
+  std::vector<std::string> signals{"ground", "A.a1_abs", "B.a1_abs"};
   std::vector<double> damping{0.05};
   std::vector<double> periods;  // in the scene's time unit; empty: 100 log-spaced from 0.01 to 10
 };
