@@ -157,7 +157,7 @@ const StructureState& PairStepper::advance(std::size_t step) {
     next.link_force[0] = q;
   }
   // (check_range's test, inline: |x| <= 1e6 false for NaN, v - v not 0 for an infinite v)
-  const bool bad = !(std::abs(x[0]) <= 1e6) | !(std::abs(x[1]) <= 1e6) | !(v[0] - v[0] == 0.0) | !(v[1] - v[1] == 0.0);
+  const int bad = int{!(std::abs(x[0]) <= 1e6)} | int{!(std::abs(x[1]) <= 1e6)} | int{!(v[0] - v[0] == 0.0)} | int{!(v[1] - v[1] == 0.0)};
   if (bad) [[unlikely]] fallbacks.out_of_range(next);
   for (int e = 0; e < c.n_zener; ++e)
     ws.laws[static_cast<std::size_t>(e)]->commit(xs[c.zener[e].i] - xs[c.zener[e].j], zener_force[e]);
