@@ -71,9 +71,9 @@ std::filesystem::path fresh(const std::string& name) {
 }
 
 // Records the impacts the solver streams.
-class ImpactRecorder final : public Observer {
+class ImpactRecorder final : public StructureObserver {
  public:
-  void observe(const State& /*s*/) override {}
+  void observe(const StructureState& /*s*/) override {}
   void impact(const Impact& i) override { impacts.push_back(i); }
   std::vector<Impact> impacts;
 };
@@ -377,7 +377,7 @@ TEST_CASE("with a contact law: impacts.csv holds the impacts the solver streamed
           "[pounding][outputs]") {
   const Scene scene = linear_contact_scene({"output.energy_history=true"});
   ImpactRecorder recorded;
-  run(scene, {nullptr, &recorded});
+  run(scene, {&recorded});
   REQUIRE(recorded.impacts.size() >= 2);
 
   const auto dir = fresh("pounding-linear");
