@@ -147,7 +147,7 @@ TEST_CASE("no contact law and a closing gap: summary, time series and terminal f
   const Scene scene = load_scene(kStrong, {"model.gap0=0.3"});
   std::ostringstream plain;
   TimeSeriesCsvWriter writer(plain, scene.scales);
-  run(scene, {&writer, nullptr});
+  run(scene, {&writer});
   const auto plain_lines = lines_of(plain.str());
   REQUIRE(plain_lines.size() == lines.size());
   CHECK(plain_lines[0] == "t,x1,x2,v1,v2,f1,f2,q,ag,gap,phase");

@@ -18,11 +18,11 @@ namespace {
 using adjoin::Impact;
 
 // What the trivial steppers below tell begin() and report at each grid point.
-struct RunInfo {
+struct Info {
   double h = 0.0;
   std::size_t steps = 0;
 };
-struct State {
+struct Point {
   double t = 0.0, x = 0.0, v = 0.0;
 };
 
@@ -35,8 +35,8 @@ class Decay {
       : h_(h), steps_(steps), impact_step_(impact_step), throw_step_(throw_step) {
     ++*constructed;
   }
-  RunInfo info() const {
-    RunInfo i;
+  Info info() const {
+    Info i;
     i.h = h_;
     i.steps = steps_;
     return i;
@@ -45,14 +45,14 @@ class Decay {
   std::size_t history_bytes() const { return 1234; }
   double history_error() const { return 0.5; }
   std::size_t history_modes() const { return 7; }
-  const State& start() {
+  const Point& start() {
     ++starts;
     state_.t = 0.0;
     state_.x = 1.0;
     state_.v = -1.0;
     return state_;
   }
-  const State& advance(std::size_t n) {
+  const Point& advance(std::size_t n) {
     if (n + 1 != next_) throw std::logic_error("advance out of order");
     ++next_;
     if (throw_step_ != 0 && n + 1 == throw_step_) throw std::runtime_error("runaway");
@@ -74,19 +74,19 @@ class Decay {
   double h_;
   std::size_t steps_, impact_step_, throw_step_;
   std::size_t next_ = 1;
-  State state_;
+  Point state_;
   std::vector<Impact> impacts_;
 };
 
 // Records every call as a letter (b, o, i, e) and the observed states.
 class Recorder final {
  public:
-  void begin(const RunInfo& info) {
+  void begin(const Info& info) {
     calls += 'b';
     h = info.h;
     steps = info.steps;
   }
-  void observe(const State& s) {
+  void observe(const Point& s) {
     calls += 'o';
     states.push_back(s);
   }
@@ -98,7 +98,7 @@ class Recorder final {
   std::string calls;
   double h = 0.0;
   std::size_t steps = 0;
-  std::vector<State> states;
+  std::vector<Point> states;
   std::vector<double> impact_starts;
 };
 
