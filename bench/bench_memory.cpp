@@ -8,7 +8,8 @@
 // Prints, for t_end = 16 .. 1024 (8,000 .. 512,000 steps, fft history): the peak heap of a run
 // asking for the summary only (the solver's own history: a constant number of bytes per step,
 // plus FFTW's buffers, which operator new does not see) and how much more a run keeps when it
-// also records the time series in memory (sizeof(State) per step). A streaming CSV writer
+// also records the time series in memory (a ChannelRecorder of every channel: 8 bytes per
+// channel per step). A streaming CSV writer
 // (adjoin run with output.timeseries) keeps a 64 KiB buffer whatever the length.
 #include <atomic>
 #include <cstdio>
@@ -17,7 +18,7 @@
 #include <string>
 
 #include "adjoin/io/scene.hpp"
-#include "adjoin/observe/time_series.hpp"
+#include "adjoin/observe/channel_recorder.hpp"
 #include "adjoin/study/run.hpp"
 
 namespace {
@@ -54,10 +55,10 @@ int main() {
       const adjoin::Scene scene = adjoin::load_scene(
           std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/paper-strong.toml",
           {"solver.scheme=implicit", "solver.history=fft", "solver.t_end=" + std::to_string(t_end), "output.timeseries=false"});
-      adjoin::TimeSeriesRecorder recorder;
+      adjoin::ChannelRecorder recorder;
       const long long before = live.load();
       peak.store(before);
-      const adjoin::Report r = adjoin::run(scene, {nullptr, keep_series ? &recorder : nullptr});
+      const adjoin::Report r = adjoin::run(scene, {keep_series ? &recorder : nullptr});
       used[keep_series] = peak.load() - before;
       steps = r.solver.steps;
     }

@@ -11,13 +11,15 @@
 namespace {
 
 // An observer that prints the blocks every 2 time units and remembers the largest |x1 - x2|.
-class Printer final : public adjoin::Observer {
+// The scene runs as its 1 + 1 structure, in the scene's units: floor 0 is block 1 (A.x1),
+// floor 1 block 2 (B.x1), link 0 the damper.
+class Printer final : public adjoin::StructureObserver {
  public:
-  void observe(const adjoin::State& s) override {
-    max_stroke = std::max(max_stroke, std::abs(s.x1 - s.x2));
+  void observe(const adjoin::StructureState& s) override {
+    max_stroke = std::max(max_stroke, std::abs(s.x[0] - s.x[1]));
     if (std::fmod(s.t + 1e-9, 2.0) < 1e-6)
-      std::printf("t = %5.2f  x1 = %+.5f  x2 = %+.5f  q = %+.4f  %s\n", s.t, s.x1, s.x2, s.q,
-                  adjoin::to_string(s.phase));
+      std::printf("t = %5.2f  x1 = %+.5f  x2 = %+.5f  q = %+.4f  %s\n", s.t, s.x[0], s.x[1], s.link_force[0],
+                  adjoin::to_string(s.link_phase[0]));
   }
   double max_stroke = 0.0;
 };
@@ -29,7 +31,7 @@ int main(int argc, char** argv) {
   try {
     const adjoin::Scene scene = adjoin::load_scene(file);
     Printer printer;
-    const adjoin::Report report = adjoin::run(scene, {nullptr, &printer});
+    const adjoin::Report report = adjoin::run(scene, {&printer});
 
     std::printf("\n%zu phases; the damper sticks for good at t* = %.3f\n", report.phases.size(),
                 report.phases.back().t_start);

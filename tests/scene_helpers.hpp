@@ -4,8 +4,8 @@
 #include <vector>
 
 #include "adjoin/io/scene.hpp"
-#include "adjoin/observe/time_series.hpp"
 #include "adjoin/study/run.hpp"
+#include "state_recorder.hpp"
 
 namespace adjoin::test {
 
@@ -14,11 +14,12 @@ inline Scene paper_scene(const char* which, std::vector<std::string> overrides =
   return load_scene(std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/paper-" + which + ".toml", overrides);
 }
 
-// Every grid point of a run of the scene.
-inline std::vector<State> trajectory(const Scene& scene) {
-  TimeSeriesRecorder recorder;
-  run(scene, {nullptr, &recorder});
-  return recorder.states();
+// Every grid point of a run of the scene: a two-block scene's as its 1 + 1 structure's states
+// (state_recorder.hpp), in the scene's units.
+inline std::vector<StructureState> trajectory(const Scene& scene) {
+  StateRecorder recorder;
+  run(scene, {&recorder});
+  return recorder.states;
 }
 
 }  // namespace adjoin::test

@@ -8,9 +8,9 @@
 #include <sstream>
 
 #include "adjoin/io/scene.hpp"
-#include "adjoin/observe/time_series.hpp"
 #include "adjoin/study/run.hpp"
 #include "cli_helpers.hpp"
+#include "state_recorder.hpp"
 #include "needs_program.hpp"
 
 using namespace adjoin;
@@ -28,8 +28,8 @@ TEST_CASE("adjoin run writes summary.json and timeseries.csv per the SPEC", "[cl
 
   // The library's own run of the same scene, to compare against.
   const Scene scene = load_scene(scene_file);
-  TimeSeriesRecorder recorder;
-  const Report report = run(scene, {nullptr, &recorder});
+  test::StateRecorder recorder;
+  const Report report = run(scene, {&recorder});
 
   const auto j = nlohmann::json::parse(test::slurp(dir / "summary.json"));
   CHECK(j["scene"] == "paper-strong");
@@ -68,14 +68,14 @@ TEST_CASE("adjoin run writes summary.json and timeseries.csv per the SPEC", "[cl
   std::size_t rows = 0;
   double worst = 0.0;
   while (std::getline(csv, line)) {
-    const State& s = recorder.states().at(rows);
+    const StructureState& s = recorder.states.at(rows);
     std::istringstream fields(line);
     std::vector<std::string> f;
     for (std::string field; std::getline(fields, field, ',');) f.push_back(field);
     REQUIRE(f.size() == 11);
-    const double expected[] = {s.t, s.x1, s.x2, s.v1, s.v2, s.f1, s.f2, s.q, s.ag, 2.0 + s.x2 - s.x1};
+    const double expected[] = {s.t, s.x[0], s.x[1], s.v[0], s.v[1], s.storey_force[0], s.storey_force[1], s.link_force[0], s.ag, 2.0 + s.x[1] - s.x[0]};
     for (std::size_t k = 0; k < 10; ++k) worst = std::max(worst, std::abs(std::stod(f[k]) - expected[k]));
-    REQUIRE(f[10] == to_string(s.phase));
+    REQUIRE(f[10] == to_string(s.link_phase[0]));
     ++rows;
   }
   CHECK(rows == 8001);

@@ -243,9 +243,9 @@ TEST_CASE("impact times, peak forces and peak displacements converge at order 2 
     for (double h : {0.004, 0.002, 0.001}) {
       std::vector<std::string> keys{"solver.scheme=implicit", "model.gap0=0.3", "solver.h=" + std::to_string(h)};
       keys.insert(keys.end(), law.keys.begin(), law.keys.end());
-      class Log final : public Observer {
+      class Log final : public StructureObserver {
        public:
-        void observe(const State& s) override { x1 = std::max(x1, std::abs(s.x1)); }
+        void observe(const StructureState& s) override { x1 = std::max(x1, std::abs(s.x[0])); }
         void impact(const Impact& i) override {
           if (impacts++ == 0) start = i.start;
           force = std::max(force, i.force_max);
@@ -253,7 +253,7 @@ TEST_CASE("impact times, peak forces and peak displacements converge at order 2 
         double x1 = 0.0, start = 0.0, force = 0.0;
         int impacts = 0;
       } log;
-      const Report report = run(test::paper_scene("strong", keys), {nullptr, &log});
+      const Report report = run(test::paper_scene("strong", keys), {&log});
       REQUIRE(log.impacts >= 1);
       drift.push_back(report.peak("link1.stroke").max_abs);
       t_first.push_back(log.start);

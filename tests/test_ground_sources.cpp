@@ -10,9 +10,9 @@
 #include "adjoin/post/spectrum_matching.hpp"
 #include "adjoin/core/units.hpp"
 #include "adjoin/io/scene.hpp"
-#include "adjoin/observe/time_series.hpp"
 #include "adjoin/study/run.hpp"
 #include "cli_helpers.hpp"
+#include "state_recorder.hpp"
 
 using namespace adjoin;
 
@@ -68,15 +68,15 @@ TEST_CASE("a filtered-noise scene is reproducible from its seed and changes with
   // EC8 type 2 test. Here: the runs are deterministic and the seed matters.
   auto run = [&](const char* seed) {
     Scene s = load_scene(kScenes + "si-noise.toml", {std::string("ground.seed=") + seed, "solver.t_end=5", "output.spectra.periods=[0.5]"});
-    TimeSeriesRecorder rec;
-    adjoin::run(s, {nullptr, &rec});
-    return rec.states();
+    test::StateRecorder rec;
+    adjoin::run(s, {&rec});
+    return rec.states;
   };
   const auto a = run("7"), b = run("7"), c = run("8");
   REQUIRE(a.size() == b.size());
   bool identical = true, different = false;
   for (std::size_t i = 0; i < a.size(); ++i) {
-    identical &= a[i].x1 == b[i].x1 && a[i].ag == b[i].ag;
+    identical &= a[i].x[0] == b[i].x[0] && a[i].ag == b[i].ag;
     different |= a[i].ag != c[i].ag;
   }
   CHECK(identical);

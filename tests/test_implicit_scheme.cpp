@@ -6,7 +6,6 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
 #include "adjoin/io/scene.hpp"
-#include "adjoin/observe/time_series.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/study/run.hpp"
 #include "scene_helpers.hpp"
@@ -39,11 +38,11 @@ TEST_CASE("implicit, weak excitation: stick throughout, exactly one velocity", "
   for (const char* scheme : {"implicit", "implicit-gl"}) {
     const Scene scene = paper_scene("weak", {std::string("solver.scheme=") + scheme});
     double max_q = 0.0;
-    for (const State& s : trajectory(scene)) {
-      REQUIRE(s.phase == Phase::stick);
-      REQUIRE(s.x1 == s.x2);
-      REQUIRE(s.v1 == s.v2);
-      max_q = std::max(max_q, std::abs(s.q));
+    for (const StructureState& s : trajectory(scene)) {
+      REQUIRE(s.link_phase[0] == Phase::stick);
+      REQUIRE(s.x[0] == s.x[1]);
+      REQUIRE(s.v[0] == s.v[1]);
+      max_q = std::max(max_q, std::abs(s.link_force[0]));
     }
     CHECK(max_q < scene.model->mu);
     CHECK(max_q > 0.5 * scene.model->mu);
@@ -72,19 +71,19 @@ TEST_CASE("implicit, strong excitation: the paper's phase structure, exact final
   const auto states = trajectory(scene);
   double c = std::nan("");
   for (std::size_t i = 1; i < states.size(); ++i) {
-    const State& s = states[i];
-    REQUIRE(scene.model->gap0 + s.x2 - s.x1 > 0.0);
-    REQUIRE(std::abs(s.q) <= mu);
-    if (s.phase == Phase::stick) REQUIRE(s.v1 == s.v2);  // stick holds exactly: no chatter
+    const StructureState& s = states[i];
+    REQUIRE(scene.model->gap0 + s.x[1] - s.x[0] > 0.0);
+    REQUIRE(std::abs(s.link_force[0]) <= mu);
+    if (s.link_phase[0] == Phase::stick) REQUIRE(s.v[0] == s.v[1]);  // stick holds exactly: no chatter
     // In slip, q sits on the limit, except in the step where the slip reverses (its average).
-    if (s.phase != Phase::stick && states[i - 1].phase == s.phase) {
-      REQUIRE(std::abs(s.q) == mu);
-      REQUIRE((s.q > 0) == (s.phase == Phase::slip_right));
+    if (s.link_phase[0] != Phase::stick && states[i - 1].link_phase[0] == s.link_phase[0]) {
+      REQUIRE(std::abs(s.link_force[0]) == mu);
+      REQUIRE((s.link_force[0] > 0) == (s.link_phase[0] == Phase::slip_right));
     }
     if (s.t > t_star + 2 * scene.solver.h) {
-      if (std::isnan(c)) c = s.x1 - s.x2;
-      REQUIRE(s.x1 - s.x2 == Approx(c).margin(1e-14));  // frozen (to rounding)
-      REQUIRE(std::abs(s.q) < mu);
+      if (std::isnan(c)) c = s.x[0] - s.x[1];
+      REQUIRE(s.x[0] - s.x[1] == Approx(c).margin(1e-14));  // frozen (to rounding)
+      REQUIRE(std::abs(s.link_force[0]) < mu);
     }
   }
   CHECK(std::abs(c) > 1e-3);
@@ -132,14 +131,14 @@ TEST_CASE("implicit, elastic rods without damper: second order against the close
   const DecayingSine ground(1.5, 1.5, 0.5);
   std::vector<double> errors;
   for (double h : {0.02, 0.01, 0.005}) {
-    TimeSeriesRecorder recorder;
+    test::StateRecorder recorder;
     SolverOptions options;
     options.h = h;
-    simulate(options, model, ground, recorder);
+    simulate_as_structure(options, model, ground, recorder);
     double e = 0.0;
-    for (const State& s : recorder.states()) {
-      e = std::max(e, std::abs(s.x1 - sdof_decaying_sine(1.0, 1.5, 1.5, 0.5, s.t)));
-      e = std::max(e, std::abs(s.x2 - sdof_decaying_sine(std::sqrt(model.rho * model.eps), 1.5, 1.5, 0.5, s.t)));
+    for (const StructureState& s : recorder.states) {
+      e = std::max(e, std::abs(s.x[0] - sdof_decaying_sine(1.0, 1.5, 1.5, 0.5, s.t)));
+      e = std::max(e, std::abs(s.x[1] - sdof_decaying_sine(std::sqrt(model.rho * model.eps), 1.5, 1.5, 0.5, s.t)));
     }
     errors.push_back(e);
   }
@@ -168,16 +167,16 @@ TEST_CASE("shortcuts agree with the general path: mu = 0 and elastic rods", "[im
   auto run = [](std::vector<std::string> o, bool elastic_rod2 = false) {
     Scene scene = paper_scene("strong", o);
     if (elastic_rod2) scene.model->rod2 = Rod::Elastic();
-    TimeSeriesRecorder r;
-    adjoin::run(scene, {nullptr, &r});
-    return r.states();
+    test::StateRecorder r;
+    adjoin::run(scene, {&r});
+    return r.states;
   };
   // mu = 0 skips the damper logic; a vanishing slip force goes through it.
   const auto free = run({"model.mu=0"});
   const auto tiny = run({"model.mu=1e-13"});
   REQUIRE(free.size() == tiny.size());
   double worst = 0.0;
-  for (std::size_t i = 0; i < free.size(); ++i) worst = std::max({worst, std::abs(free[i].x1 - tiny[i].x1), std::abs(free[i].x2 - tiny[i].x2)});
+  for (std::size_t i = 0; i < free.size(); ++i) worst = std::max({worst, std::abs(free[i].x[0] - tiny[i].x[0]), std::abs(free[i].x[1] - tiny[i].x[1])});
   CHECK(worst < 1e-10);
   CHECK(worst > 0.0);  // really two different paths
 
@@ -185,7 +184,7 @@ TEST_CASE("shortcuts agree with the general path: mu = 0 and elastic rods", "[im
   const auto elastic = run({"model.mu=0"}, true);
   const auto nearly = run({"model.rod2.tau_x=0.2000000001", "model.mu=0"});
   worst = 0.0;
-  for (std::size_t i = 0; i < elastic.size(); ++i) worst = std::max(worst, std::abs(elastic[i].x2 - nearly[i].x2));
+  for (std::size_t i = 0; i < elastic.size(); ++i) worst = std::max(worst, std::abs(elastic[i].x[1] - nearly[i].x[1]));
   CHECK(worst < 1e-8);
   CHECK(worst > 0.0);
 }

@@ -57,7 +57,7 @@ Report free_run(const structure::Structure& s, double x0, double h, double t_end
   o.t_end = t_end;
   RunSpec spec = building_run_spec(s, std::make_shared<DecayingSine>(0.0, 1.0, 0.0), o);
   spec.solver.x0 = Eigen::VectorXd::Constant(1, x0);
-  return run(spec, {trace, nullptr});
+  return run(spec, {trace});
 }
 
 std::vector<std::string> split(const std::string& line) {

@@ -8,7 +8,6 @@
 #include "adjoin/ground/decaying_sine.hpp"
 #include "adjoin/io/scene.hpp"
 #include "adjoin/observe/energy.hpp"
-#include "adjoin/observe/time_series.hpp"
 #include "adjoin/solver/simulate.hpp"
 #include "adjoin/study/run.hpp"
 #include "scene_helpers.hpp"
@@ -39,11 +38,11 @@ TEST_CASE("weak excitation: stick throughout, x1 == x2, |q| < mu", "[paper]") {
   CHECK(report.phases[0].t_end == Approx(16.0));
 
   double max_q = 0.0, max_x = 0.0;
-  for (const State& s : trajectory(scene)) {
-    REQUIRE(s.x1 == s.x2);  // stuck blocks move as one: exactly
-    REQUIRE(s.v1 == s.v2);
-    max_q = std::max(max_q, std::abs(s.q));
-    max_x = std::max(max_x, std::abs(s.x1));
+  for (const StructureState& s : trajectory(scene)) {
+    REQUIRE(s.x[0] == s.x[1]);  // stuck blocks move as one: exactly
+    REQUIRE(s.v[0] == s.v[1]);
+    max_q = std::max(max_q, std::abs(s.link_force[0]));
+    max_x = std::max(max_x, std::abs(s.x[0]));
   }
   CHECK(max_q < scene.model->mu);
   CHECK(max_q > 0.5 * scene.model->mu);  // the damper is loaded, just not enough to slip
@@ -86,18 +85,18 @@ TEST_CASE("strong excitation: short stick, alternating slips, final stick", "[pa
   double c = 0.0, q_before = 0.0, q_at = 0.0, max_f = 0.0, late_f = 0.0;
   bool have_c = false;
   for (std::size_t i = 0; i < states.size(); ++i) {
-    const State& s = states[i];
-    REQUIRE(scene.model->gap0 + s.x2 - s.x1 > 0.0);  // no pounding
-    max_f = std::max({max_f, std::abs(s.f1), std::abs(s.f2)});
-    if (s.t > 14.0) late_f = std::max({late_f, std::abs(s.f1), std::abs(s.f2)});
-    if (s.phase != Phase::stick) {
-      REQUIRE(std::abs(s.q) == mu);  // q sits on the friction limit while slipping
-      REQUIRE((s.q > 0) == (s.phase == Phase::slip_right));
+    const StructureState& s = states[i];
+    REQUIRE(scene.model->gap0 + s.x[1] - s.x[0] > 0.0);  // no pounding
+    max_f = std::max({max_f, std::abs(s.storey_force[0]), std::abs(s.storey_force[1])});
+    if (s.t > 14.0) late_f = std::max({late_f, std::abs(s.storey_force[0]), std::abs(s.storey_force[1])});
+    if (s.link_phase[0] != Phase::stick) {
+      REQUIRE(std::abs(s.link_force[0]) == mu);  // q sits on the friction limit while slipping
+      REQUIRE((s.link_force[0] > 0) == (s.link_phase[0] == Phase::slip_right));
     }
     if (s.t >= t_star - 1e-12) {
-      if (!have_c) { c = s.x1 - s.x2; have_c = true; q_at = s.q; q_before = states[i - 1].q; }
-      REQUIRE(s.x1 - s.x2 == Approx(c).margin(1e-12));  // x1 - x2 frozen
-      REQUIRE(std::abs(s.q) < mu);                       // strictly inside the friction cone
+      if (!have_c) { c = s.x[0] - s.x[1]; have_c = true; q_at = s.link_force[0]; q_before = states[i - 1].link_force[0]; }
+      REQUIRE(s.x[0] - s.x[1] == Approx(c).margin(1e-12));  // x1 - x2 frozen
+      REQUIRE(std::abs(s.link_force[0]) < mu);                       // strictly inside the friction cone
     }
   }
   CHECK(std::abs(c) > 1e-3);                 // the blocks stick apart, not together
@@ -136,15 +135,15 @@ TEST_CASE("elastic rods, no damper: central differences match the closed-form SD
 
   std::vector<double> errors;
   for (double h : {0.01, 0.005, 0.0025}) {
-    TimeSeriesRecorder recorder;
+    test::StateRecorder recorder;
     SolverOptions options;
     options.h = h;
     options.t_end = 16.0;
-    simulate(options, model, ground, recorder);
+    simulate_as_structure(options, model, ground, recorder);
     double error = 0.0;
-    for (const State& s : recorder.states()) {
-      error = std::max(error, std::abs(s.x1 - sdof_decaying_sine(w1, u0, W, k, s.t)));
-      error = std::max(error, std::abs(s.x2 - sdof_decaying_sine(w2, u0, W, k, s.t)));
+    for (const StructureState& s : recorder.states) {
+      error = std::max(error, std::abs(s.x[0] - sdof_decaying_sine(w1, u0, W, k, s.t)));
+      error = std::max(error, std::abs(s.x[1] - sdof_decaying_sine(w2, u0, W, k, s.t)));
     }
     errors.push_back(error);
   }

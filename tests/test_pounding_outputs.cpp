@@ -71,9 +71,9 @@ std::filesystem::path fresh(const std::string& name) {
 }
 
 // Records the impacts the solver streams.
-class ImpactRecorder final : public Observer {
+class ImpactRecorder final : public StructureObserver {
  public:
-  void observe(const State& /*s*/) override {}
+  void observe(const StructureState& /*s*/) override {}
   void impact(const Impact& i) override { impacts.push_back(i); }
   std::vector<Impact> impacts;
 };
@@ -147,7 +147,7 @@ TEST_CASE("no contact law and a closing gap: summary, time series and terminal f
   const Scene scene = load_scene(kStrong, {"model.gap0=0.3"});
   std::ostringstream plain;
   TimeSeriesCsvWriter writer(plain, scene.scales);
-  run(scene, {&writer, nullptr});
+  run(scene, {&writer});
   const auto plain_lines = lines_of(plain.str());
   REQUIRE(plain_lines.size() == lines.size());
   CHECK(plain_lines[0] == "t,x1,x2,v1,v2,f1,f2,q,ag,gap,phase");
@@ -377,7 +377,7 @@ TEST_CASE("with a contact law: impacts.csv holds the impacts the solver streamed
           "[pounding][outputs]") {
   const Scene scene = linear_contact_scene({"output.energy_history=true"});
   ImpactRecorder recorded;
-  run(scene, {nullptr, &recorded});
+  run(scene, {&recorded});
   REQUIRE(recorded.impacts.size() >= 2);
 
   const auto dir = fresh("pounding-linear");

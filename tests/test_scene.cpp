@@ -7,9 +7,9 @@
 #include "adjoin/core/errors.hpp"
 #include "adjoin/ground/decaying_sine.hpp"
 #include "adjoin/io/scene.hpp"
-#include "adjoin/observe/time_series.hpp"
 #include "adjoin/study/run.hpp"
 #include "cli_helpers.hpp"
+#include "state_recorder.hpp"
 
 using namespace adjoin;
 
@@ -133,14 +133,14 @@ t_end = )" + num(16.0 * T0) + "\n";
   CHECK(a.model->rod1.tau_x == Approx(b.model->rod1.tau_x).epsilon(1e-14));
   CHECK(a.model->rod2.tau_f == Approx(b.model->rod2.tau_f).epsilon(1e-14));
   CHECK(a.solver.steps() == b.solver.steps());
-  TimeSeriesRecorder ra, rb;
-  run(a, {nullptr, &ra});
-  run(b, {nullptr, &rb});
-  REQUIRE(ra.states().size() == rb.states().size());
+  test::StateRecorder ra, rb;
+  run(a, {&ra});
+  run(b, {&rb});
+  REQUIRE(ra.states.size() == rb.states.size());
   double worst = 0.0;
-  for (std::size_t i = 0; i < ra.states().size(); ++i) {
-    worst = std::max(worst, std::abs(ra.states()[i].x1 - rb.states()[i].x1));
-    worst = std::max(worst, std::abs(ra.states()[i].x2 - rb.states()[i].x2));
+  for (std::size_t i = 0; i < ra.states.size(); ++i) {
+    worst = std::max(worst, std::abs(ra.states[i].x[0] - rb.states[i].x[0]));
+    worst = std::max(worst, std::abs(ra.states[i].x[1] - rb.states[i].x[1]));
   }
   // The twin's inputs went through SI and back: equal up to rounding, amplified a little by
   // the grid-based phase switching.

@@ -51,7 +51,7 @@ double largest_weight_error(const SoeCompression& c, std::size_t N) {
 }
 
 template <class Get>
-double largest_difference(const std::vector<State>& a, const std::vector<State>& b, Get get) {
+double largest_difference(const std::vector<StructureState>& a, const std::vector<StructureState>& b, Get get) {
   double scale = 0.0, diff = 0.0;
   for (std::size_t i = 0; i < a.size(); ++i) {
     scale = std::max(scale, std::abs(get(a[i])));
@@ -153,15 +153,15 @@ TEST_CASE("the strong scene with soe follows direct on both steppers, with the s
     REQUIRE(direct.size() == soe.size());
     int switches = 0;
     for (std::size_t i = 0; i < direct.size(); ++i) {
-      CHECK(direct[i].phase == soe[i].phase);
-      switches += i > 0 && direct[i].phase != direct[i - 1].phase;
+      CHECK(direct[i].link_phase[0] == soe[i].link_phase[0]);
+      switches += i > 0 && direct[i].link_phase[0] != direct[i - 1].link_phase[0];
     }
     CHECK(switches >= 4);  // stick, alternating slips, final stick
-    const double dx1 = largest_difference(direct, soe, [](const State& x) { return x.x1; });
-    const double dx2 = largest_difference(direct, soe, [](const State& x) { return x.x2; });
-    const double df1 = largest_difference(direct, soe, [](const State& x) { return x.f1; });
-    const double df2 = largest_difference(direct, soe, [](const State& x) { return x.f2; });
-    const double dq = largest_difference(direct, soe, [](const State& x) { return x.q; });
+    const double dx1 = largest_difference(direct, soe, [](const StructureState& x) { return x.x[0]; });
+    const double dx2 = largest_difference(direct, soe, [](const StructureState& x) { return x.x[1]; });
+    const double df1 = largest_difference(direct, soe, [](const StructureState& x) { return x.storey_force[0]; });
+    const double df2 = largest_difference(direct, soe, [](const StructureState& x) { return x.storey_force[1]; });
+    const double dq = largest_difference(direct, soe, [](const StructureState& x) { return x.link_force[0]; });
     INFO(scheme << ": relative differences x1 " << dx1 << ", x2 " << dx2 << ", f1 " << df1 << ", f2 " << df2 << ", q " << dq);
     CHECK(std::max({dx1, dx2, df1, df2, dq}) < 1e-10);
   }
@@ -178,14 +178,14 @@ TEST_CASE("a record scene with over a hundred switches: soe follows direct with 
   int switches = 0;
   bool same = true;
   for (std::size_t i = 0; i < direct.size(); ++i) {
-    same = same && direct[i].phase == soe[i].phase;
-    switches += i > 0 && direct[i].phase != direct[i - 1].phase;
+    same = same && direct[i].link_phase[0] == soe[i].link_phase[0];
+    switches += i > 0 && direct[i].link_phase[0] != direct[i - 1].link_phase[0];
   }
   CHECK(same);
   CHECK(switches > 100);
-  const double dx1 = largest_difference(direct, soe, [](const State& x) { return x.x1; });
-  const double dq = largest_difference(direct, soe, [](const State& x) { return x.q; });
-  const double df2 = largest_difference(direct, soe, [](const State& x) { return x.f2; });
+  const double dx1 = largest_difference(direct, soe, [](const StructureState& x) { return x.x[0]; });
+  const double dq = largest_difference(direct, soe, [](const StructureState& x) { return x.link_force[0]; });
+  const double df2 = largest_difference(direct, soe, [](const StructureState& x) { return x.storey_force[1]; });
   INFO(switches << " switches; relative differences x1 " << dx1 << ", q " << dq << ", f2 " << df2);
   CHECK(std::max({dx1, dq, df2}) < 1e-10);
 }

@@ -11,13 +11,20 @@
 #include <vector>
 
 #include "../src/solver/time_loop.hpp"
-#include "adjoin/structure/observer.hpp"
+#include "adjoin/structure/state.hpp"
 
 namespace {
 
 using adjoin::Impact;
-using adjoin::RunInfo;
-using adjoin::State;
+
+// What the trivial steppers below tell begin() and report at each grid point.
+struct Info {
+  double h = 0.0;
+  std::size_t steps = 0;
+};
+struct Point {
+  double t = 0.0, x = 0.0, v = 0.0;
+};
 
 // x' = -x from x(0) = 1, stepped exactly (x_{n+1} = x_n e^{-h}), and v = x' = -x; at the
 // step named `impact_step` it reports an impact, and at `throw_step` it fails as a scheme
@@ -28,8 +35,8 @@ class Decay {
       : h_(h), steps_(steps), impact_step_(impact_step), throw_step_(throw_step) {
     ++*constructed;
   }
-  RunInfo info() const {
-    RunInfo i;
+  Info info() const {
+    Info i;
     i.h = h_;
     i.steps = steps_;
     return i;
@@ -38,14 +45,14 @@ class Decay {
   std::size_t history_bytes() const { return 1234; }
   double history_error() const { return 0.5; }
   std::size_t history_modes() const { return 7; }
-  const State& start() {
+  const Point& start() {
     ++starts;
     state_.t = 0.0;
-    state_.x1 = 1.0;
-    state_.v1 = -1.0;
+    state_.x = 1.0;
+    state_.v = -1.0;
     return state_;
   }
-  const State& advance(std::size_t n) {
+  const Point& advance(std::size_t n) {
     if (n + 1 != next_) throw std::logic_error("advance out of order");
     ++next_;
     if (throw_step_ != 0 && n + 1 == throw_step_) throw std::runtime_error("runaway");
@@ -56,8 +63,8 @@ class Decay {
       impacts_.push_back(i);
     }
     state_.t = static_cast<double>(n + 1) * h_;
-    state_.x1 *= std::exp(-h_);
-    state_.v1 = -state_.x1;
+    state_.x *= std::exp(-h_);
+    state_.v = -state_.x;
     return state_;
   }
   const std::vector<Impact>& impacts() const { return impacts_; }
@@ -67,31 +74,31 @@ class Decay {
   double h_;
   std::size_t steps_, impact_step_, throw_step_;
   std::size_t next_ = 1;
-  State state_;
+  Point state_;
   std::vector<Impact> impacts_;
 };
 
 // Records every call as a letter (b, o, i, e) and the observed states.
-class Recorder final : public adjoin::Observer {
+class Recorder final {
  public:
-  void begin(const RunInfo& info) override {
+  void begin(const Info& info) {
     calls += 'b';
     h = info.h;
     steps = info.steps;
   }
-  void observe(const State& s) override {
+  void observe(const Point& s) {
     calls += 'o';
     states.push_back(s);
   }
-  void impact(const Impact& i) override {
+  void impact(const Impact& i) {
     calls += 'i';
     impact_starts.push_back(i.start);
   }
-  void end() override { calls += 'e'; }
+  void end() { calls += 'e'; }
   std::string calls;
   double h = 0.0;
   std::size_t steps = 0;
-  std::vector<State> states;
+  std::vector<Point> states;
   std::vector<double> impact_starts;
 };
 
@@ -113,9 +120,9 @@ TEST_CASE("time loop: every grid point observed once in order, between begin and
   for (std::size_t m = 0; m <= n; ++m) {
     CHECK(r.states[m].t == static_cast<double>(m) * h);
     // n multiplications by e^{-h}: the exact solution to a few ulps per step.
-    CHECK(r.states[m].x1 == Approx(std::exp(-static_cast<double>(m) * h)).epsilon(1e-13));
+    CHECK(r.states[m].x == Approx(std::exp(-static_cast<double>(m) * h)).epsilon(1e-13));
   }
-  CHECK(r.states.back().x1 == Approx(std::exp(-2.5)).epsilon(1e-13));
+  CHECK(r.states.back().x == Approx(std::exp(-2.5)).epsilon(1e-13));
   CHECK(result.steps == n);
   CHECK(result.history_bytes == 1234);
   CHECK(result.history_error == 0.5);  // the stepper's own, passed through

@@ -29,7 +29,7 @@ void check_same_balance(const std::vector<std::string>& overrides) {
   scene.output.energy = true;
   const structure::Structure s = structure::two_block_structure(*scene.model);
   detail::ChannelObserver channels(s);
-  const Report r = run(scene, {&channels, nullptr});
+  const Report r = run(scene, {&channels});
   const BuildingEnergy mine = r.energy, theirs = channels.energy();
   REQUIRE(mine.buildings.size() == 2);
   REQUIRE(theirs.buildings.size() == 2);

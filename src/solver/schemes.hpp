@@ -1,5 +1,5 @@
 #pragma once
-// The schemes behind simulate() (internal). Each is a stepper (time_loop.hpp) private to its
+// The schemes behind simulate_as_structure() (internal). Each is a stepper (time_loop.hpp) private to its
 // source file; these run it through the one time loop, from rest over the grid of `options`,
 // reporting every grid point to `observer`.
 #include "adjoin/ground/ground_motion.hpp"

@@ -7,6 +7,7 @@
 
 #include "adjoin/core/errors.hpp"
 #include "adjoin/solver/structure_solver.hpp"
+#include "adjoin/structure/two_block.hpp"
 #include "schemes.hpp"
 
 namespace adjoin {
@@ -16,7 +17,9 @@ double estimated_history_bytes(const SolverOptions& options, const Model& model)
   // doubles); the fft engine also keeps its blocks' spectra (measured about 57 bytes; 64
   // allowed). Elastic rods keep nothing; soe keeps a constant few kilobytes (in the 4096).
   const double per_rod_step = options.history == HistoryEngine::fft ? 64.0 : options.history == HistoryEngine::soe ? 0.0 : 16.0;
-  const int rods = (model.rod1.elastic ? 0 : 1) + (model.rod2.elastic ? 0 : 1);
+  // The rods with memory: the 1 + 1 structure's Zener storeys (one device each).
+  const structure::Structure s = structure::two_block_structure(model);
+  const double rods = static_cast<double>(s.a.devices.size() + s.b->devices.size());
   return rods * per_rod_step * (static_cast<double>(options.steps()) + 2.0) + 4096.0;
 }
 
@@ -61,12 +64,6 @@ SolverSummary named(SolverSummary summary, const SolverOptions& options) {
 
 // Each scheme is a stepper driven by the one time loop (time_loop.hpp), which also times the
 // run (set-up included).
-SolverSummary simulate(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                       Observer& observer) {
-  TwoBlockStates states(observer, options, model);
-  return simulate_as_structure(options, model, ground, states);
-}
-
 SolverSummary simulate_as_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                                     StructureObserver& observer) {
   check_run(options, model);

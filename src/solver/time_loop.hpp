@@ -39,11 +39,10 @@
 // Why a template over the stepper and not a virtual Stepper base: a step of the two-block
 // schemes costs tens of nanoseconds, so an indirect call per step would show; as a template
 // the loop is compiled with each stepper's advance() in view and can inline it, and the loop
-// is still written once. The observer stays a virtual interface (Observer,
-// StructureObserver): it is the library's public extension point and is called once per
-// grid point anyway. The state and observer types are template parameters too, so the same
-// loop drives the two-block schemes (State, Observer) and the structure solver
-// (StructureState, StructureObserver).
+// is still written once. The observer stays a virtual interface (StructureObserver): it is
+// the library's public extension point and is called once per grid point anyway. The state
+// and observer types are template parameters too (any stepper and observer that fit, as the
+// loop's tests use).
 #include <chrono>
 #include <concepts>
 #include <cstddef>

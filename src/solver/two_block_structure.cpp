@@ -3,9 +3,8 @@
 // structure (SPEC §5: one storey each, Zener storeys, one friction link, one contact pair at
 // gap0), so it runs on the structure solver, whose step is the implicit scheme's for vectors
 // (its restart rule and quadrature weights are the scheme's options), in the model's
-// dimensionless units. Its states go to the observers as they are (simulate_as_structure), or
-// as two-block States (TwoBlockStates, for simulate's Observer). Only the paper's explicit
-// scheme has a stepper of its own (paper_scheme.cpp).
+// dimensionless units. Its states go to the observers as they are (simulate_as_structure).
+// Only the paper's explicit scheme has a stepper of its own (paper_scheme.cpp).
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -20,68 +19,6 @@
 #include "schemes.hpp"
 
 namespace adjoin {
-
-TwoBlockStates::TwoBlockStates(Observer& inner, const SolverOptions& options, const Model& model)
-    : inner_(inner), damper_(model.mu > 0.0) {
-  info_.model = model;
-  info_.h = options.h;
-  info_.steps = options.steps();
-  info_.history = options.history;
-}
-
-// The time loop calls this once the stepper is set up (its weights and histories made), so an
-// observer that times the run (a RunWatch) times its steps, not the set-up.
-void TwoBlockStates::begin(const structure::Structure&, const StructureSolverOptions& o) {
-  locate_ = o.locate_switches;
-  phase_ = Phase::stick;
-  w_ = t_previous_ = 0.0;
-  points_ = 0;
-  inner_.begin(info_);
-}
-
-void TwoBlockStates::observe(const StructureState& s) {
-  State& out = out_;
-  out.t = s.t;
-  out.x1 = s.x[0];
-  out.x2 = s.x[1];
-  out.v1 = s.v[0];
-  out.v2 = s.v[1];
-  out.a1 = s.a_abs[0];
-  out.a2 = s.a_abs[1];
-  out.f1 = s.storey_force[0];
-  out.f2 = s.storey_force[1];
-  out.ag = s.ag;
-  out.t_switch = std::numeric_limits<double>::quiet_NaN();
-  if (damper_) {
-    out.q = s.link_force[0];
-    out.phase = s.link_phase[0];
-    if (locate_) out.t_switch = s.link_switch[0];
-  } else {
-    // Without a damper a "phase" is the sign of the relative velocity: its changes are
-    // located where it crosses zero (linear interpolation, second order).
-    const double w = s.v[0] - s.v[1];
-    out.phase = w > 0.0 ? Phase::slip_right : (w < 0.0 ? Phase::slip_left : Phase::stick);
-    // (As the two-block scheme did: not in the first step, which starts from rest.)
-    if (locate_ && points_ >= 2 && out.phase != phase_ && w_ != w)
-      out.t_switch = t_previous_ + std::clamp(w_ / (w_ - w), 0.0, 1.0) * (s.t - t_previous_);
-    w_ = w;
-    phase_ = out.phase;
-    t_previous_ = s.t;
-    ++points_;
-  }
-  // The base friction's sliders follow the link (if any) in the link arrays (SPEC §7).
-  const Eigen::Index sliders = damper_ ? 1 : 0;
-  if (s.link_force.size() >= sliders + 2) {
-    out.qb1 = s.link_force[sliders];
-    out.qb2 = s.link_force[sliders + 1];
-  }
-  if (s.contact_force.size() > 0) {
-    out.fc = s.contact_force[0];
-    out.contact_work = s.contact_work[0];
-    out.contact_dissipated = s.contact_dissipated[0];
-  }
-  inner_.observe(out);
-}
 
 namespace detail {
 namespace {

@@ -170,7 +170,7 @@ std::optional<Reference> analytic_reference(const RunSpec& scene, double coarse,
   bool stuck = false;
   if (scene.model->mu > 0.0) {
     CoarseGrid probe(1);
-    run(finest_run, {&probe, nullptr});
+    run(finest_run, {&probe});
     stuck = probe.all_stuck;
   }
   if (scene.model->mu != 0.0 && !stuck) return std::nullopt;

@@ -381,13 +381,8 @@ Report run(const RunSpec& spec, const RunObservers& extra) {
     made = std::make_unique<PairReport>(spec.output);
   else
     made = std::make_unique<ChannelReport>(s, spec.output);
-  std::unique_ptr<TwoBlockStates> states;
   StructureObserverList all;
   made->join(all);
-  if (extra.two_block && spec.two_block()) {
-    states = std::make_unique<TwoBlockStates>(*extra.two_block, two_block_options(spec), *spec.model);
-    all.add(states.get(), false);
-  }
   all.add(extra.structure);
   Report r;
   r.solver = simulate_spec(spec, s, all, &r.collapse);

@@ -49,13 +49,7 @@ void RunWatch::begin(const structure::Structure& s, const StructureSolverOptions
   start(o.steps(), o.h * options_.time_scale, o.history == HistoryEngine::direct && zener_elements(s) > 0);
 }
 
-void RunWatch::begin(const RunInfo& info) {
-  const bool rods = !info.model.rod1.elastic || !info.model.rod2.elastic;
-  start(info.steps, info.h * options_.time_scale, info.history == HistoryEngine::direct && rods);
-}
-
 void RunWatch::observe(const StructureState&) { step(); }
-void RunWatch::observe(const State&) { step(); }
 
 void RunWatch::start(std::size_t steps, double h_seconds, bool direct) {
   ++run_;

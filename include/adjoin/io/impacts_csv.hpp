@@ -3,7 +3,7 @@
 // its report once the run is done (impacts_csv below): one row per impact in the order they
 // started, with its pair first (contact, 1-based), SI. A two-block run's is streamed: its
 // impacts (SPEC §6) to CSV as the solver reports them (one row per
-// Observer::impact, in order), in the scene's units like timeseries.csv (dimensionless, or s,
+// StructureObserver::impact, in order), in the scene's units like timeseries.csv (dimensionless, or s,
 // N, m, m/s and N s for SI scenes):
 //
 //     t_start,duration,force_max,t_force_max,penetration_max,approach_speed,rebound_speed,impulse,complete

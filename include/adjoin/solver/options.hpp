@@ -27,7 +27,7 @@ struct SolverOptions {
   // non-finite value); not settable from scenes.
   bool stability_check = true;
   // Implicit schemes: report the switching instants inside the step where a phase changes
-  // (State::t_switch, by linear interpolation of the relative velocity or of the stick
+  // (StructureState::link_switch, by linear interpolation of the relative velocity or of the stick
   // force), instead of at the grid point that ends it.
   bool locate_switches = true;
 
@@ -39,7 +39,7 @@ struct SolverOptions {
 };
 
 // What a run reports of itself, whichever stepper ran it (the time loop fills the counts and
-// the wall time; simulate() and simulate_structure() the names and the step).
+// the wall time; simulate_as_structure() and simulate_structure() the names and the step).
 struct SolverSummary {
   std::string scheme;
   std::string history;

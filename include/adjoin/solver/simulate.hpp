@@ -1,7 +1,7 @@
 #pragma once
-// The one entry point of the solver:
+// The two-block entry point of the solver:
 //
-//     SolverSummary summary = simulate(options, model, ground, observer);
+//     SolverSummary summary = simulate_as_structure(options, model, ground, observer);
 //
 // integrates the model of SPEC §1 from rest at t = 0 to options.t_end on the grid
 // t_m = m h, and reports every grid point to `observer` as it goes. The model and the
@@ -27,47 +27,18 @@
 
 namespace adjoin {
 
-// SolverSummary: solver/options.hpp.
-SolverSummary simulate(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                       Observer& observer);
-
-// The same run reported as the model's 1 + 1 structure's states (structure/two_block.hpp
-// two_block_structure(model), in its dimensionless units), so that the observers of any
-// structure watch it: the implicit schemes' states as the structure stepper makes them, the
-// paper scheme's made the same way (its damper as link 1, its phase as link 1's; without a
-// damper the observers see no link). begin() is told the options with locate_switches as given
+// SolverSummary: solver/options.hpp. The run is reported as the model's 1 + 1 structure's
+// states (structure/two_block.hpp two_block_structure(model), in its dimensionless units), so
+// that the observers of any structure watch it: the implicit schemes' states as the structure
+// stepper makes them, the paper scheme's made the same way (its damper as link 1, its phase as
+// link 1's; without a damper the observers see no link). begin() is told the options with locate_switches as given
 // for the implicit schemes, false for the paper scheme (it does not locate its switches).
-// simulate() above is this run shown through TwoBlockStates.
 SolverSummary simulate_as_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                                     StructureObserver& observer);
 
-// Shows a run of the 1 + 1 structure (simulate_as_structure) to an Observer as two-block
-// States: x1, x2 = the floors A.x1, B.x1; f1, f2 = the storeys' forces; q = link 1's force and
-// the phase link 1's (without a link: the sign of v1 - v2, its changes located where it
-// crosses zero when the options given to begin() locate switches); fc and the contact's work =
-// contact pair 1's; qb1, qb2 = the base friction sliders' forces.
-class TwoBlockStates final : public StructureObserver {
- public:
-  TwoBlockStates(Observer& inner, const SolverOptions& options, const Model& model);
-  void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
-  void observe(const StructureState& s) override;
-  void impact(const Impact& i) override { inner_.impact(i); }
-  void end() override { inner_.end(); }
-
- private:
-  Observer& inner_;
-  RunInfo info_;
-  bool damper_ = false, locate_ = true;
-  State out_;
-  // Without a damper: the last grid point's phase, relative velocity and time, and the count.
-  Phase phase_ = Phase::stick;
-  double w_ = 0.0, t_previous_ = 0.0;
-  std::size_t points_ = 0;
-};
-
-// An upper bound of the memory simulate() will hold (SolverSummary::history_bytes: the rods'
-// history engines, which grow with the number of steps), known before the run, so that a run
-// too large for the machine can be refused up front rather than fail after minutes.
+// An upper bound of the memory simulate_as_structure() will hold (SolverSummary::history_bytes:
+// the rods' history engines, which grow with the number of steps), known before the run, so
+// that a run too large for the machine can be refused up front rather than fail after minutes.
 double estimated_history_bytes(const SolverOptions& options, const Model& model);
 
 // The machine's physical memory in bytes (0 if unknown).

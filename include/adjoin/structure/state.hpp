@@ -1,7 +1,7 @@
 #pragma once
-// What the solvers report at each grid point t_m = m h: State from the two-block solver
-// (solver/simulate.hpp), in dimensionless units; StructureState from the structure solver
-// (solver/structure_solver.hpp), in SI units.
+// What the solver reports at each grid point t_m = m h: StructureState, in the structure's
+// units (SI; a two-block scene's 1 + 1 structure, structure/two_block.hpp, in its
+// dimensionless ones), and each impact of a contact pair.
 #include <limits>
 #include <string>
 #include <vector>
@@ -12,32 +12,8 @@
 
 namespace adjoin {
 
-struct State {
-  double t = 0.0;
-  double x1 = 0.0, x2 = 0.0;  // displacements relative to the base
-  double v1 = 0.0, v2 = 0.0;  // velocities relative to the base
-  double a1 = 0.0, a2 = 0.0;  // absolute accelerations x'' + u'' = x'' - a_g
-  double f1 = 0.0, f2 = 0.0;  // rod forces
-  double q = 0.0;             // damper force
-  double ag = 0.0;            // forcing a_g = -u''
-  // The damper's phase: implicit schemes give the phase over the step that ends at t; the
-  // paper scheme the phase it decided at t for the step that starts there.
-  Phase phase = Phase::stick;
-  // If the phase changed during the step that ends at t and the scheme located the switch:
-  // its time (t - 2h < t_switch <= t: the onset that ends a stick shorter than a step, which
-  // began in the step before, may lie there). Otherwise NaN: the switch is taken at t.
-  double t_switch = std::numeric_limits<double>::quiet_NaN();
-  // Pounding (a model with a contact law, SPEC §6): the contact force at t (compressive > 0),
-  // and, accumulated from t = 0, the work the blocks have done on the contact (its stored
-  // elastic energy plus what it dissipated) and the part dissipated.
-  double fc = 0.0, contact_work = 0.0, contact_dissipated = 0.0;
-  // Base friction (model.base_friction, SPEC §7): each block's friction force on its base,
-  // acting -qb_i on block i (0 without).
-  double qb1 = 0.0, qb2 = 0.0;
-};
-
 // One impact of a contact pair, from the first touch (located inside its step) to separation.
-// In SI units from the building solver, in the dimensionless units of SPEC §1 from simulate().
+// In the structure's units, like StructureState.
 struct Impact {
   int contact = 0;                 // 0-based contact index
   double start = 0.0;              // first touch [s]

@@ -19,12 +19,9 @@
 
 namespace adjoin {
 
-// What else sees a run's grid points (not owned; either may be null).
+// What else sees a run's grid points (not owned; may be null).
 struct RunObservers {
   StructureObserver* structure = nullptr;  // any run: its StructureState (a two-block run's 1 + 1)
-  // A two-block spec: its 1 + 1 structure's states as two-block States (solver/simulate.hpp
-  // TwoBlockStates), for observers written against the State interface.
-  Observer* two_block = nullptr;
 };
 
 Report run(const RunSpec& spec, const RunObservers& extra = {});

@@ -41,7 +41,7 @@ struct RunProgress {
 // "2 h 05 min", "3 min 20 s", "12 s": a duration for messages.
 std::string duration_text(double seconds);
 
-class RunWatch final : public StructureObserver, public Observer {
+class RunWatch final : public StructureObserver {
  public:
   struct Options {
     double refuse_seconds = 2.0 * 3600.0;  // 0: never refuse
@@ -57,9 +57,6 @@ class RunWatch final : public StructureObserver, public Observer {
 
   void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
   void observe(const StructureState& st) override;
-  // A two-block run (RunSpec::watch): the same.
-  void begin(const RunInfo& info) override;
-  void observe(const State& st) override;
   void end() override;
 
   // The estimate of the current run's wall time from its steps so far [s] (0 before any).
