@@ -391,8 +391,8 @@ int rotd_command(const SpectrumArgs& args, const SpectrumOptions& elastic, const
   if (args.plot.empty()) return 0;
   std::vector<Curve> curves;
   for (std::size_t d = 0; d < s.dampings.size(); ++d) {
-    char suffix[32];
-    std::snprintf(suffix, sizeof suffix, s.dampings.size() > 1 ? " (%g %%)" : "", 100.0 * s.dampings[d]);
+    char suffix[32] = "";
+    if (s.dampings.size() > 1) std::snprintf(suffix, sizeof suffix, " (%g %%)", 100.0 * s.dampings[d]);
     Curve c00{std::string("RotD00") + suffix, {}, {}}, c50{std::string("RotD50") + suffix, {}, {}},
         c100{std::string("RotD100") + suffix, {}, {}}, gm{std::string("GMRotI50") + suffix, {}, {}};
     for (std::size_t i = 0; i < s.periods.size(); ++i) {
