@@ -134,13 +134,17 @@ class PairStepper {
   // the state start() left in the workspace; at the first step of a run.
   void begin_run();
   // decide_dampers for the one damper; returns its step force, its state in `decided`.
-  double decide(const StructureState& now, const PairTheta& th, bool restart, const double* offsets, Step& s,
-                DamperState& decided);
-  void decide_stuck(const StructureState& now, double stick1, Step& s, bool& hold2, double& fixed2, DamperState& decided);
-  void decide_slipping(const StructureState& now, double fixed, double w1, const double* cv1, const double* p1, Step& s, bool& hold2,
-                       double& fixed2, DamperState& decided);
-  double relative_accel(const double* cv, const double* p, double btq) const;
-  double grid_force(const double* cv, const double* p, Phase ph, double* stick) const;
+  // (These are inlined into advance(), which alone calls them (pair_step.cpp): as calls
+  // they cost about 200 instructions a step of a two-block run; there is no FMA contraction in
+  // this file's baseline build, so inlining leaves every result bit for bit.)
+  [[gnu::always_inline]] inline double decide(const StructureState& now, const PairTheta& th, bool restart, const double* offsets,
+                                              Step& s, DamperState& decided);
+  [[gnu::always_inline]] inline void decide_stuck(const StructureState& now, double stick1, Step& s, bool& hold2, double& fixed2,
+                                                  DamperState& decided);
+  [[gnu::always_inline]] inline void decide_slipping(const StructureState& now, double fixed, double w1, const double* cv1,
+                                                     const double* p1, Step& s, bool& hold2, double& fixed2, DamperState& decided);
+  [[gnu::always_inline]] inline double relative_accel(const double* cv, const double* p, double btq) const;
+  [[gnu::always_inline]] inline double grid_force(const double* cv, const double* p, Phase ph, double* stick) const;
 
   const StructureModel& m;
   StepWorkspace& ws;
