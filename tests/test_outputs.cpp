@@ -68,6 +68,23 @@ TEST_CASE("the rigid oscillator's SA is the block's peak absolute acceleration",
   CHECK(r.peak("A.a1_abs").max_abs != Approx(r.peak("ag").max_abs));
 }
 
+// A scene's reader refuses unknown signal names; a spec edited in code is checked by run() itself
+// (a two-block run keeps the ground's and the two floors' accelerations only).
+TEST_CASE("a two-block spec made in code with a signal it does not keep is refused by run()", "[outputs][spectra]") {
+  Scene scene = load_scene(kStrong, {"solver.scheme=implicit", "output.spectra.periods=[0.0]", "output.timeseries=false"});
+  REQUIRE(scene.output.spectra);
+  scene.output.spectra->signals = {"ground", "A.x1"};
+  CHECK_THROWS_WITH(run(scene), Catch::Contains("output.spectra.signals: \"A.x1\" is not a signal of a two-block run"));
+  // The kept signals in any order: each spectrum is its own signal's (at T = 0, SA is the
+  // signal's peak; B's floor and the ground differ, as the test above shows).
+  scene.output.spectra->signals = {"B.a1_abs", "ground"};
+  const Report r = run(scene);
+  REQUIRE(r.spectra.size() == 2);
+  CHECK(r.spectra[0].signal == "B.a1_abs");
+  CHECK(r.spectra[0].spectrum.at(0, 0).sa == Approx(r.peak("B.a1_abs").max_abs).epsilon(1e-12));
+  CHECK(r.spectra[1].spectrum.at(0, 0).sa == Approx(r.peak("ag").max_abs).epsilon(1e-12));
+}
+
 TEST_CASE("what is not asked is not computed: summary parts are null, nothing extra is kept", "[outputs]") {
   const Scene scene = load_scene(kStrong, {"output.phases=false", "output.pounding=false", "output.energy=false", "output.timeseries=false"});
   const Report r = run(scene);

@@ -1,5 +1,6 @@
 // Grünwald–Letnikov weights against their closed form, and the GL derivative of t^p against
-// the exact fractional derivative: error small and first order in h.
+// the exact fractional derivative: error small and first order in h; the weights kept for the process
+// (convolution_weights) equal the recurrences' bit for bit.
 #include <catch2/catch.hpp>
 
 #include <algorithm>
@@ -95,4 +96,28 @@ TEST_CASE("GL derivative of t^p converges at first order", "[weights]") {
     INFO("error / h at h = 1/6400: " << errors.back() * 6400.0 << ", predicted " << constant);
     CHECK(errors.back() * 6400.0 == Approx(constant).epsilon(0.01));
   }
+}
+
+// convolution_weights keeps long sequences for the process and copies their prefixes: whatever
+// the order of the calls, each answer must equal the recurrence's own, bit for bit (a wrong
+// prefix, a stale entry of another order or rule, or an entry cut short would not).
+TEST_CASE("convolution_weights: kept sequences equal the recurrences' bit for bit", "[weights]") {
+  using adjoin::WeightRule;
+  const double orders[] = {0.31, 0.62};
+  for (const WeightRule rule : {WeightRule::bdf2, WeightRule::grunwald_letnikov}) {
+    auto direct = [&](double g, std::size_t n) {
+      return rule == WeightRule::bdf2 ? adjoin::bdf2_weights(g, n) : adjoin::grunwald_letnikov_weights(g, n);
+    };
+    for (const double g : orders) {
+      // Short (computed directly), long (kept), shorter than kept (a prefix), longer (replaces it).
+      for (const std::size_t n : {std::size_t{100}, std::size_t{5000}, std::size_t{3000}, std::size_t{20000}, std::size_t{257}}) {
+        const std::vector<double> w = adjoin::convolution_weights(rule, g, n);
+        const std::vector<double> exact = direct(g, n);
+        REQUIRE(w.size() == n);
+        CHECK(w == exact);  // (operator==: exact equality of every element)
+      }
+    }
+  }
+  // The rules are kept apart: the same order under the other rule differs from the first weight.
+  CHECK(adjoin::convolution_weights(WeightRule::bdf2, 0.31, 1000)[0] != adjoin::convolution_weights(WeightRule::grunwald_letnikov, 0.31, 1000)[0]);
 }

@@ -10,6 +10,7 @@ void EnergyObserver::begin(const structure::Structure& s, const StructureSolverO
   contact_law_ = s.contacts.at(0).law.model != structure::ContactModel::none;
   count_ = 0;
   terms_ = EnergyTerms{};
+  v_[0] = v_[1] = 0.0;
 }
 
 void EnergyObserver::observe(const StructureState& s) {
@@ -38,19 +39,27 @@ void EnergyObserver::observe(const StructureState& s) {
   }
   previous_ = now;
   e.t = s.t;
-  for (int i = 0; i < 2; ++i) e.kinetic[i] = 0.5 * m_[i] * v[i] * v[i];
+  v_[0] = v[0];
+  v_[1] = v[1];
   if (contact_law_) {
     e.contact = s.contact_work[0];
     e.contact_dissipated = s.contact_dissipated[0];
   }
-  e.residual = e.total_input() - (e.total_kinetic() + e.storey[0] + e.storey[1] + e.link + e.contact);
-  const double base = e.base[0] + e.base[1];
-  if (base != 0.0) e.residual -= base;
   ++count_;
 }
 
+EnergyTerms EnergyObserver::terms() const {
+  EnergyTerms e = terms_;
+  if (count_ == 0) return e;
+  for (int i = 0; i < 2; ++i) e.kinetic[i] = 0.5 * m_[i] * v_[i] * v_[i];
+  e.residual = e.total_input() - (e.total_kinetic() + e.storey[0] + e.storey[1] + e.link + e.contact);
+  const double base = e.base[0] + e.base[1];
+  if (base != 0.0) e.residual -= base;
+  return e;
+}
+
 BuildingEnergy EnergyObserver::balance() const {
-  const EnergyTerms& e = terms_;
+  const EnergyTerms e = terms();
   BuildingEnergy out;
   for (int i = 0; i < 2; ++i) {
     BuildingEnergy::Part p;

@@ -12,9 +12,8 @@ void PeakObserver::begin(const structure::Structure& s, const StructureSolverOpt
   for (Peak* p : {&link_force_, &v_[0], &v_[1], &a_abs_[0], &a_abs_[1], &ag_}) *p = Peak{};
 }
 
-void PeakObserver::observe(const StructureState& s) {
-  phase_.update(s);
-  const double t_switch = phase_.t_switch;
+void PeakObserver::observe(const StructureState& s, const PairPhase& phase) {
+  const double t_switch = phase.t_switch;
   const double xa = s.x[0], xb = s.x[1], va = s.v[0], vb = s.v[1];
   const double a_abs_a = s.a_abs[0], a_abs_b = s.a_abs[1];
   const double force = link_ ? s.link_force[0] : 0.0;
@@ -34,7 +33,7 @@ void PeakObserver::observe(const StructureState& s) {
   link_force_.update(force, std::isnan(t_switch) ? s.t : t_switch);
   // While stuck, the force is the smooth stick force: refine its peaks between samples (the
   // largest stick force is the threshold below which the link would have slipped).
-  if (phase_.phase == Phase::stick) {
+  if (phase.phase == Phase::stick) {
     stuck_force_.update(force, s.t);
     if (stuck_force_.peak().max_abs > link_force_.max_abs) link_force_ = stuck_force_.peak();
   } else {

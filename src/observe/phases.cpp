@@ -9,11 +9,10 @@ void PhaseObserver::begin(const structure::Structure& s, const StructureSolverOp
   intervals_.clear();
 }
 
-void PhaseObserver::observe(const StructureState& s) {
-  phase_.update(s);
-  const Phase now = phase_.phase;
+void PhaseObserver::observe(const StructureState& s, const PairPhase& phase) {
+  const Phase now = phase.phase;
   if (intervals_.empty() || intervals_.back().state != now) {
-    const double t = std::isnan(phase_.t_switch) || intervals_.empty() ? s.t : phase_.t_switch;
+    const double t = std::isnan(phase.t_switch) || intervals_.empty() ? s.t : phase.t_switch;
     if (!intervals_.empty()) intervals_.back().t_end = t;
     intervals_.push_back(PhaseInterval{now, t, s.t});
   } else {

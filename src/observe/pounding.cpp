@@ -50,9 +50,8 @@ void PoundingObserver::end() {
   margin_.t_first_contact = margin_.impacts.front().start;
 }
 
-void PoundingObserver::observe(const StructureState& s) {
-  phase_.update(s);
-  const double t_switch = phase_.t_switch;
+void PoundingObserver::observe(const StructureState& s, const PairPhase& phase) {
+  const double t_switch = phase.t_switch;
   const Sample now{s.t, gap0_ + s.x[1] - s.x[0], s.v[1] - s.v[0], s.a_abs[1] - s.a_abs[0]};
   // A minimum inside the step: the gap's derivative (the relative velocity) turns from
   // negative to non-negative; refined from the derivatives, with the located switch as a kink

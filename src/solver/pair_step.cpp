@@ -24,17 +24,28 @@ PairStepper::PairStepper(const StructureModel& model, StepWorkspace& workspace, 
 // repeats (structure_solver.cpp). Rare branches (the first step's QP, an onset's check, a
 // kink) go through the general code and its work vectors.
 const StructureState& PairStepper::advance(std::size_t step) {
+  if (step == 0) begin_run();
+  switch (pc.n_zener) {  // (the loops over the Zener elements unrolled for the usual counts)
+    case 0: return advance_with<0>(step);
+    case 1: return advance_with<1>(step);
+    case 2: return advance_with<2>(step);
+    default: return advance_with<-1>(step);
+  }
+}
+
+template <int kZener>
+const StructureState& PairStepper::advance_with(std::size_t step) {
   const StructureState& now = *ws.now_p;
   StructureState& next = *ws.next_p;
-  if (step == 0) begin_run();
   const PairConstants& c = pc;
+  const int n_zener = kZener >= 0 ? kZener : c.n_zener;
   PairCarry& cr = carry;
   // begin_step: t_n+1, a_g, the Zener elements' offsets (each reads its own law only).
   next.t = static_cast<double>(step + 1) * c.h;
   next.ag = kStandardGravity * ground.ag(next.t);
-  double offsets[PairConstants::kMaxZener];
+  double offsets[PairConstants::kMaxZener] = {};
   double off[3] = {0.0, 0.0, 0.0};
-  for (int e = 0; e < c.n_zener; ++e) {
+  for (int e = 0; e < n_zener; ++e) {
     offsets[e] = ws.laws[static_cast<std::size_t>(e)]->offset();
     off[c.zener[e].i] += offsets[e];
     off[c.zener[e].j] -= offsets[e];
@@ -116,7 +127,7 @@ const StructureState& PairStepper::advance(std::size_t step) {
   double zener_force[PairConstants::kMaxZener];
   {
     double p3[3] = {p[0], p[1], 0.0};
-    for (int e = 0; e < c.n_zener; ++e) {
+    for (int e = 0; e < n_zener; ++e) {
       const PairZener& z = c.zener[e];
       zener_force[e] = z.stiffness * (xs[z.i] - xs[z.j]) + offsets[e];
       p3[z.i] += zener_force[e];
@@ -150,7 +161,7 @@ const StructureState& PairStepper::advance(std::size_t step) {
     double* force = next.storey_force.data();
     force[0] = c.storey_spring[0] * x[0] + (c.dashpots_a ? c.storey_dashpot[0] * v[0] : 0.0);
     force[1] = c.storey_spring[1] * x[1] + (c.dashpots_b ? c.storey_dashpot[1] * v[1] : 0.0);
-    for (int e = 0; e < c.n_zener; ++e)
+    for (int e = 0; e < n_zener; ++e)
       if (c.zener[e].storey >= 0) force[c.zener[e].storey] += zener_force[e];
     next.link_stroke[0] = x[c.fi] - x[c.fj];
     next.link_velocity[0] = v[c.fi] - v[c.fj];
@@ -159,7 +170,7 @@ const StructureState& PairStepper::advance(std::size_t step) {
   // (check_range's test, inline: |x| <= 1e6 false for NaN, v - v not 0 for an infinite v)
   const int bad = int{!(std::abs(x[0]) <= 1e6)} | int{!(std::abs(x[1]) <= 1e6)} | int{!(v[0] - v[0] == 0.0)} | int{!(v[1] - v[1] == 0.0)};
   if (bad) [[unlikely]] fallbacks.out_of_range(next);
-  for (int e = 0; e < c.n_zener; ++e)
+  for (int e = 0; e < n_zener; ++e)
     ws.laws[static_cast<std::size_t>(e)]->commit(xs[c.zener[e].i] - xs[c.zener[e].j], zener_force[e]);
   for (int k = 0; k < c.n_contacts; ++k) next.contact_gap[k] = c.contact_gap[k] - (xs[c.contact_i[k]] - xs[c.contact_j[k]]);
   // carry_over

@@ -124,6 +124,9 @@ class PairStepper {
   const StructureState& advance(std::size_t step);
 
  private:
+  // advance() for a structure of kZener Zener elements (-1: any number, read from pc).
+  template <int kZener>
+  const StructureState& advance_with(std::size_t step);
   // The step's values the decisions pass on (the general step's ws.onset, crossing, ...).
   struct Step {
     static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

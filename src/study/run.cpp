@@ -74,6 +74,9 @@ class StructureObserverList : public StructureObserver {
     }
   }
   bool may_stop() const { return !stoppers_.empty(); }
+  // The list's one observer when it has one and nothing in it may stop the run (the loop then
+  // calls it directly, not through the list: a two-block run's report is one observer).
+  StructureObserver* only() const { return observers_.size() == 1 && stoppers_.empty() ? observers_.front() : nullptr; }
   void begin(const structure::Structure& s, const StructureSolverOptions& o) override { for (auto* x : observers_) x->begin(s, o); }
   void observe(const StructureState& st) override { for (auto* x : observers_) x->observe(st); }
   void impact(const Impact& e) override { for (auto* x : observers_) x->impact(e); }
@@ -147,6 +150,16 @@ class AccelerationRecorder final : public StructureObserver {
   std::vector<double> ag, a_abs[2];
 };
 
+// The signals a 1 + 1 structure's run keeps for spectra (AccelerationRecorder's): a spec made in
+// code may name others, which io's reader refuses in a scene.
+void check_pair_signals(const RunSpec& spec) {
+  if (!spec.output.spectra) return;
+  for (const std::string& signal : spec.output.spectra->signals)
+    if (signal != "ground" && signal != "A.a1_abs" && signal != "B.a1_abs")
+      throw InputError("output.spectra.signals: \"" + signal +
+                       "\" is not a signal of a two-block run; expected \"ground\", \"A.a1_abs\" or \"B.a1_abs\"");
+}
+
 std::vector<SignalSpectrum> spectra_of(const RunSpec& spec, const AccelerationRecorder& recorded) {
   const SpectraOutput& asked = *spec.output.spectra;
   const Scales& k = spec.scales;
@@ -207,21 +220,15 @@ class ReportObservers {
   virtual void fill(const RunSpec& spec, Report& r) const = 0;
 };
 
-class PairReport final : public ReportObservers {
+// One observer for all of them, so that a step costs one virtual call rather than one per
+// observer, and link 1's phase is read once for the three that need it (peaks, phases,
+// pounding). Each receives the calls it would receive in the run's list, in the same order.
+class PairReport final : public StructureObserver, public ReportObservers {
  public:
   explicit PairReport(const OutputOptions& asked) : asked_(asked) {
     if (asked.spectra) accelerations_ = std::make_unique<AccelerationRecorder>();
   }
-  void join(StructureObserverList& all) override {
-    all.add(&last_, false);
-    if (asked_.peaks) all.add(&peaks_, false);
-    if (asked_.phases) all.add(&phases_, false);
-    // Always watched (it costs a few operations a step): a run without a contact law whose gap
-    // closes is flagged even when the pounding margin is not reported.
-    all.add(&pounding_, false);
-    if (asked_.energy) all.add(&energy_, false);
-    all.add(accelerations_.get(), false);
-  }
+  void join(StructureObserverList& all) override { all.add(this, false); }
   void fill(const RunSpec& spec, Report& r) const override {
     last_.report(r);
     if (asked_.phases) r.phases = phases_.intervals();
@@ -231,8 +238,46 @@ class PairReport final : public ReportObservers {
     if (accelerations_) r.spectra = spectra_of(spec, *accelerations_);
   }
 
+  void begin(const structure::Structure& s, const StructureSolverOptions& o) override {
+    phase_.begin(s, o);
+    last_.begin(s, o);
+    if (asked_.peaks) peaks_.begin(s, o);
+    if (asked_.phases) phases_.begin(s, o);
+    pounding_.begin(s, o);
+    if (asked_.energy) energy_.begin(s, o);
+    if (accelerations_) accelerations_->begin(s, o);
+  }
+  void observe(const StructureState& s) override {
+    phase_.update(s);
+    last_.observe(s);
+    if (asked_.peaks) peaks_.observe(s, phase_);
+    if (asked_.phases) phases_.observe(s, phase_);
+    // Always watched (it costs a few operations a step): a run without a contact law whose gap
+    // closes is flagged even when the pounding margin is not reported.
+    pounding_.observe(s, phase_);
+    if (asked_.energy) energy_.observe(s);
+    if (accelerations_) accelerations_->observe(s);
+  }
+  void impact(const Impact& i) override {
+    last_.impact(i);
+    if (asked_.peaks) peaks_.impact(i);
+    if (asked_.phases) phases_.impact(i);
+    pounding_.impact(i);
+    if (asked_.energy) energy_.impact(i);
+    if (accelerations_) accelerations_->impact(i);
+  }
+  void end() override {
+    last_.end();
+    if (asked_.peaks) peaks_.end();
+    if (asked_.phases) phases_.end();
+    pounding_.end();
+    if (asked_.energy) energy_.end();
+    if (accelerations_) accelerations_->end();
+  }
+
  private:
   const OutputOptions& asked_;
+  PairPhase phase_;  // link 1's phase, shared by the refined observers
   PeakObserver peaks_;
   PhaseObserver phases_;
   PoundingObserver pounding_;
@@ -362,7 +407,9 @@ SolverSummary simulate_spec(const RunSpec& spec, const structure::Structure& s, 
   // A two-block spec runs on the paper's stepper or on the structure stepper as its scheme
   // says, in its model's units (solver/simulate.hpp simulate_as_structure).
   StoppableObserverList stoppable(watched);
-  StructureObserver& observers = watched.may_stop() ? static_cast<StructureObserver&>(stoppable) : watched;
+  StructureObserver& observers = watched.only()       ? *watched.only()
+                                 : watched.may_stop() ? static_cast<StructureObserver&>(stoppable)
+                                                      : watched;
   SolverSummary summary = spec.two_block() ? simulate_as_structure(two_block_options(spec), *spec.model, *spec.ground, observers)
                                            : simulate_structure(with_scheme(spec.solver, spec.solver.scheme), s, *spec.ground, observers);
   if (collapse) *collapse = collapse_watch.collapse();
@@ -377,10 +424,12 @@ Report run(const RunSpec& spec, const RunObservers& extra) {
   // empty and only a building's channels need it here.)
   const structure::Structure& s = spec.structure;
   std::unique_ptr<ReportObservers> made;
-  if (spec.two_block())
+  if (spec.two_block()) {
+    check_pair_signals(spec);
     made = std::make_unique<PairReport>(spec.output);
-  else
+  } else {
     made = std::make_unique<ChannelReport>(s, spec.output);
+  }
   StructureObserverList all;
   made->join(all);
   all.add(extra.structure);

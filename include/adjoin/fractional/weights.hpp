@@ -22,6 +22,10 @@ std::vector<double> grunwald_letnikov_weights(double order, std::size_t count);
 std::vector<double> bdf2_weights(double order, std::size_t count);
 
 // The two rules by name, for code that chooses one at run time (the history engines).
+// Sequences of more than 256 weights are kept for the process, per (rule, order) the longest
+// asked for (up to 64 MB in all, the least recently used dropped first), and later calls copy
+// their prefix: the same numbers bit for bit (each weight depends on the earlier ones only),
+// without the recurrence's cost on every run of a sweep or a ladder. Thread-safe.
 enum class WeightRule { grunwald_letnikov, bdf2 };
 std::vector<double> convolution_weights(WeightRule rule, double order, std::size_t count);
 

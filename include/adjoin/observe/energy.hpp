@@ -66,7 +66,9 @@ class EnergyObserver final : public StructureObserver {
  public:
   void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
   void observe(const StructureState& s) override;
-  const EnergyTerms& terms() const { return terms_; }
+  // The balance at the last sample observed. (Its kinetic energies and residual are made here,
+  // from the last velocities, rather than at every step: they are not sums over the run.)
+  EnergyTerms terms() const;
   // The balance as any structure's (the friction link only if the model has one; the contact
   // pair always).
   BuildingEnergy balance() const;
@@ -80,7 +82,8 @@ class EnergyObserver final : public StructureObserver {
     double t = 0.0, input[2] = {0.0, 0.0}, storey[2] = {0.0, 0.0}, link = 0.0, base[2] = {0.0, 0.0};
   };
   Powers previous_;
-  EnergyTerms terms_;
+  EnergyTerms terms_;  // the sums (input, storeys, base, link) and the last contact work
+  double v_[2] = {0.0, 0.0};  // the last velocities
 };
 
 }  // namespace adjoin

@@ -111,7 +111,9 @@ inline Peak find_peak(const std::vector<ChannelPeak>& peaks, const std::string& 
 class PeakObserver final : public StructureObserver {
  public:
   void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
-  void observe(const StructureState& s) override;
+  void observe(const StructureState& s) override { phase_.update(s); observe(s, phase_); }
+  // The same with link 1's phase at s given (the report's observers share one PairPhase).
+  void observe(const StructureState& s, const PairPhase& phase);
   // In the order above (the refined ones first).
   std::vector<ChannelPeak> peaks() const;
 

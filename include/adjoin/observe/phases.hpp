@@ -23,7 +23,9 @@ struct PhaseInterval {
 class PhaseObserver final : public StructureObserver {
  public:
   void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
-  void observe(const StructureState& s) override;
+  void observe(const StructureState& s) override { phase_.update(s); observe(s, phase_); }
+  // The same with the phase at s given (the report's observers share one PairPhase).
+  void observe(const StructureState& s, const PairPhase& phase);
   const std::vector<PhaseInterval>& intervals() const { return intervals_; }
   // Number of phase changes (intervals - 1).
   std::size_t switches() const { return intervals_.empty() ? 0 : intervals_.size() - 1; }

@@ -51,7 +51,9 @@ struct PoundingMargin {
 class PoundingObserver final : public StructureObserver {
  public:
   void begin(const structure::Structure& s, const StructureSolverOptions& o) override;
-  void observe(const StructureState& s) override;
+  void observe(const StructureState& s) override { phase_.update(s); observe(s, phase_); }
+  // The same with link 1's phase at s given (the report's observers share one PairPhase).
+  void observe(const StructureState& s, const PairPhase& phase);
   void impact(const Impact& i) override;
   void end() override;
   const PoundingMargin& margin() const { return margin_; }
