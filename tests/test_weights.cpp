@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstddef>
 #include <initializer_list>
+#include <thread>
 #include <vector>
 
 #include "adjoin/fractional/weights.hpp"
@@ -120,4 +121,27 @@ TEST_CASE("convolution_weights: kept sequences equal the recurrences' bit for bi
   }
   // The rules are kept apart: the same order under the other rule differs from the first weight.
   CHECK(adjoin::convolution_weights(WeightRule::bdf2, 0.31, 1000)[0] != adjoin::convolution_weights(WeightRule::grunwald_letnikov, 0.31, 1000)[0]);
+}
+
+// The kept sequences are shared by threads (a sweep's runs): threads asking for the same and for
+// different (rule, order, length) at once each get the recurrence's own weights (CI runs this
+// under ThreadSanitizer, which reports any unguarded access to the kept sequences).
+TEST_CASE("convolution_weights: threads asking at once get the recurrences' weights", "[weights][threads]") {
+  using adjoin::WeightRule;
+  constexpr int kThreads = 4;
+  std::vector<int> wrong(kThreads, 0);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < kThreads; ++t)
+    threads.emplace_back([t, &wrong] {
+      for (int round = 0; round < 20; ++round) {
+        const WeightRule rule = (t + round) % 2 == 0 ? WeightRule::bdf2 : WeightRule::grunwald_letnikov;
+        const double order = round % 3 == 0 ? 0.47 : 0.73;
+        const std::size_t n = 300 + static_cast<std::size_t>((t * 7 + round * 13) % 11) * 700;
+        const std::vector<double> exact =
+            rule == WeightRule::bdf2 ? adjoin::bdf2_weights(order, n) : adjoin::grunwald_letnikov_weights(order, n);
+        if (adjoin::convolution_weights(rule, order, n) != exact) ++wrong[static_cast<std::size_t>(t)];
+      }
+    });
+  for (std::thread& th : threads) th.join();
+  for (int t = 0; t < kThreads; ++t) CHECK(wrong[static_cast<std::size_t>(t)] == 0);
 }
