@@ -233,8 +233,8 @@ Built build(WeightRule rule, double order, double tolerance, std::size_t design,
   c.tolerance = tolerance;
   c.window = kWindow;
   c.near = convolution_weights(rule, order, kWindow);
-  c.near_reversed.assign(kWindow, 0.0);
-  for (std::size_t j = 1; j < kWindow; ++j) c.near_reversed[kWindow - j] = c.near[j];
+  c.near_shifted.assign(kWindow, 0.0);  // entry i: the weight of y_{m-n0-1+i}, lag n0 + 1 - i
+  for (std::size_t j = 2; j < kWindow; ++j) c.near_shifted[kWindow + 1 - j] = c.near[j];
   c.design_length = design;
   std::vector<double> xs, cs;
   add_nodes(d, order, kWindow, design, step, cut, exact, &xs, &cs);
@@ -299,7 +299,7 @@ double SoeCompression::weight(std::size_t n) const {
 }
 
 std::size_t SoeCompression::bytes() const {
-  return sizeof(*this) + (near.capacity() + near_reversed.capacity() + decay.capacity() + gain.capacity() + a.capacity() + b.capacity() +
+  return sizeof(*this) + (near.capacity() + near_shifted.capacity() + decay.capacity() + gain.capacity() + a.capacity() + b.capacity() +
                           p.capacity() + r.capacity()) * sizeof(double);
 }
 

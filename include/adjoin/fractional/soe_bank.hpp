@@ -43,31 +43,36 @@ class SoeBank {
   // sum_{j=1}^{m} w_j y_{m-j} of member e, m = size().
   double lag_sum(std::size_t e) const { return lag_[e]; }
   // Member e's value y_m; once every member has given its own, the bank steps.
-  void push(std::size_t e, double y);
-  bool staged(std::size_t e) const { return staged_[e] != 0; }
+  void push(std::size_t e, double y) {
+    if (staged(e) || pushed_ >= count_) refuse();
+    recent_[((e / kLanes) * line_ + end_) * kLanes + e % kLanes] = y;  // the line's next row, the member's lane
+    staged_at_[e] = pushed_ + 1;
+    if (++staged_count_ == members_) step();
+  }
+  bool staged(std::size_t e) const { return staged_at_[e] > pushed_; }
   std::size_t bytes() const;
   const SoeCompression& compression() const { return *c_; }
 
  private:
   void step();
-  void step_block(std::size_t block);
+  [[noreturn]] void refuse() const;  // std::logic_error: a member pushed twice in a step, or past the weights
 
   std::shared_ptr<const SoeCompression> c_;
-  // The compression's coefficients, each repeated over the four lanes (so a vector operation
-  // reads them from memory as they are, without a broadcast).
+  // The compression's coefficients, each repeated over the four lanes (soe_bank.cpp's kernel
+  // reads them as vectors).
   struct Wide {
-    std::vector<double> decay, gain, a, b, p, r, near_reversed;
+    std::vector<double> decay, gain, a, b, p, r, window;  // window: SoeCompression::near_shifted
   };
   Wide wide_;
   std::size_t count_, members_, blocks_;
   std::size_t pushed_ = 0, staged_count_ = 0;
-  std::vector<char> staged_;
-  std::vector<double> incoming_;  // the values staged for the step, one per lane
+  std::vector<std::size_t> staged_at_;  // per member: the step its last value is for, plus one
   std::size_t line_;              // values kept per lane: n0 + 1 + the shift's slack
-  std::size_t end_;               // the line's next free row (as SoeHistory's end_)
+  std::size_t end_;               // the line's next free row (as SoeHistory's end_), where pushes go
   std::vector<double> recent_;    // per block, its line of values: [block][row][lane]
   std::vector<double> s_;         // one-term states: [block][mode][lane]
   std::vector<double> s1_, s2_;   // two-term states: the last and the one before, likewise
+  std::vector<double> far_;       // the far sums of the steps made ahead: [block][step][lane]
   std::vector<double> lag_;       // per lane
 };
 

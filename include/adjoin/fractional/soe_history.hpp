@@ -60,7 +60,9 @@ struct SoeCompression {
   double tolerance = 0.0;
   std::size_t window = 0;     // n0: lags 1..n0-1 are summed directly
   std::vector<double> near;   // the exact w_0..w_{n0-1}
-  std::vector<double> near_reversed;  // 0, w_{n0-1}, ..., w_1: the window's sum runs forwards
+  // 0, 0, w_{n0-1}, ..., w_2: the window's sum runs forwards over y_{m-n0-1}..y_{m-2}, and
+  // w_1 y_{m-1} is added last (src/fractional/soe_kernels.hpp)
+  std::vector<double> near_shifted;
   // One-term modes (count `single`, padded with zeros to a multiple of 4):
   //     s <- s + (gain y_{m-n0} - decay s),
   // mode k's weight at lag n >= n0 being gain_k (1 - decay_k)^(n - n0).
@@ -111,6 +113,9 @@ class SoeHistory final : public ConvolutionHistory {
   std::size_t end_ = 0;
   std::vector<double> s_;           // one-term states
   std::vector<double> s1_, s2_;     // two-term states: the last and the one before
+  // The far sums (lags >= n0) of the steps made ahead (soe_kernels.hpp): far_[k] is that of
+  // step m0 + k, m0 the step at which they were made.
+  std::vector<double> far_;
   double lag_sum_ = 0.0;
 };
 
