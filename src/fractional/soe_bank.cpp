@@ -12,6 +12,12 @@ namespace {
 
 constexpr std::size_t L = SoeBank::kLanes;
 constexpr std::size_t kShift = 223;  // rows kept past the window before the line is shifted back (as SoeHistory)
+// Rows of padding after each block's line: 256 rows of 32 bytes are 8 kB, so without it the rows
+// the blocks read and write in a step were 8 kB apart, all in one set of the 8-way L1 cache (a
+// bank of 40 members has 10 blocks: every push and window missed L1; the pushes alone took 7 ns
+// a member in the 2 x 20 Zener building). With 64 bytes more, each block's rows fall in a set of
+// their own.
+constexpr std::size_t kPad = 2;
 
 using soe_detail::kAhead;
 using soe_detail::V4;
@@ -158,8 +164,9 @@ SoeBank::SoeBank(std::shared_ptr<const SoeCompression> compression, std::size_t 
       blocks_((members + L - 1) / L),
       staged_at_(members, 0),
       line_(c_->window + 1 + kShift),
+      pitch_((line_ + kPad) * L),
       end_(c_->window + 1),  // y_{-n0-1}..y_{-1} = 0: the modes read y_{m-n0-1} from the start
-      recent_(blocks_ * line_ * L, 0.0),
+      recent_(blocks_ * pitch_, 0.0),
       s_(blocks_ * c_->decay.size() * L, 0.0),
       s1_(blocks_ * c_->a.size() * L, 0.0),
       s2_(blocks_ * c_->a.size() * L, 0.0),
@@ -194,11 +201,11 @@ void SoeBank::step() {
   const Coefficients c{wide_.decay.data(), wide_.gain.data(), wide_.a.data(), wide_.b.data(), wide_.p.data(),
                        wide_.r.data(),     wide_.window.data(), c_->decay.size(), c_->a.size(), n0, c_->near[1]};
   step_blocks(c, blocks_, (m - 1) % kAhead, s_.data(), s1_.data(), s2_.data(), recent_.data() + (end_ - n0 - 1) * L,
-              line_ * L, far_.data(), lag_.data());
+              pitch_, far_.data(), lag_.data());
   if (end_ == line_) {  // keep the last n0 + 1 rows of each block, at the front, for the next pushes
     const std::size_t keep = n0 + 1;
     for (std::size_t blk = 0; blk < blocks_; ++blk) {
-      double* line = recent_.data() + blk * line_ * L;
+      double* line = recent_.data() + blk * pitch_;
       std::copy(line + (line_ - keep) * L, line + line_ * L, line);
     }
     end_ = keep;

@@ -45,7 +45,7 @@ class SoeBank {
   // Member e's value y_m; once every member has given its own, the bank steps.
   void push(std::size_t e, double y) {
     if (staged(e) || pushed_ >= count_) refuse();
-    recent_[((e / kLanes) * line_ + end_) * kLanes + e % kLanes] = y;  // the line's next row, the member's lane
+    recent_[(e / kLanes) * pitch_ + end_ * kLanes + e % kLanes] = y;  // the line's next row, the member's lane
     staged_at_[e] = pushed_ + 1;
     if (++staged_count_ == members_) step();
   }
@@ -68,6 +68,7 @@ class SoeBank {
   std::size_t pushed_ = 0, staged_count_ = 0;
   std::vector<std::size_t> staged_at_;  // per member: the step its last value is for, plus one
   std::size_t line_;              // values kept per lane: n0 + 1 + the shift's slack
+  std::size_t pitch_;             // doubles from one block's line to the next (with padding: soe_bank.cpp)
   std::size_t end_;               // the line's next free row (as SoeHistory's end_), where pushes go
   std::vector<double> recent_;    // per block, its line of values: [block][row][lane]
   std::vector<double> s_;         // one-term states: [block][mode][lane]
