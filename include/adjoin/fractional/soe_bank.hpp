@@ -9,9 +9,11 @@
 //
 //     state of mode q of member e:   s[(e / 4) * Q + q][e % 4]
 //
-// so one step updates four members per vector operation with each coefficient loaded once,
-// instead of one member's modes per operation with its own copy of the loop's bookkeeping (about
-// 360 instructions per element and step for a SoeHistory at Q = 59, three times as many as here).
+// so one step updates four members per vector operation, with the coefficients loaded once for
+// the four. The modes are advanced a few steps at a time (soe_kernels.hpp), all blocks in one
+// call. At Q = 60 (N = 2^14, GL weights) a member's step is about 170 instructions with the
+// virtual push and lag_sum (bench/bench_history.cpp, BM_soe_bank40), against 235 for a
+// SoeHistory.
 //
 // Each member's arithmetic is the SoeHistory's, operation for operation (the same partial sums
 // in the same order): a member's lag sums equal those of a SoeHistory pushed the same values,
