@@ -114,25 +114,42 @@ template <class Pass>
   for (std::size_t k = 0; k < kAhead; ++k) sd::store(far + k * L, total[k]);
 }
 
-// One step of every block: the far sums made ahead when k = 0, then each lag sum
-// (far + window) + w_1 y_{m-1}, the window in SoeHistory's eight partial sums. `rows` is the
-// first block's row y_{m-n0-1} (the next block's is `stride` further).
+// The lag sums (far + window) + w_1 y_{m-1} of G blocks, the window in SoeHistory's four
+// partial sums; each weight, loaded once, serves the G blocks. `rows` is the first block's row
+// y_{m-n0-1} (the next block's is `stride` further), `far` its far sum of this step.
+template <std::size_t G>
+[[gnu::always_inline]] inline void lag_blocks(const Coefficients& c, const double* __restrict rows, std::size_t stride,
+                                              const double* __restrict far, double* __restrict lag) {
+  V4 sum[G][4] = {};
+  for (std::size_t i = 0; i < c.n0; i += 4)
+    for (std::size_t u = 0; u < 4; ++u) {
+      const V4 w = sd::load(c.window + (i + u) * L);
+      for (std::size_t g = 0; g < G; ++g) sum[g][u] += sd::load(rows + g * stride + (i + u) * L) * w;
+    }
+  for (std::size_t g = 0; g < G; ++g) {
+    const V4 window = (sum[g][0] + sum[g][1]) + (sum[g][2] + sum[g][3]);
+    sd::store(lag + g * L,
+              (sd::load(far + g * kAhead * L) + window) + sd::splat(c.w1) * sd::load(rows + g * stride + c.n0 * L));
+  }
+}
+
+// One step of every block: the far sums made ahead when k = 0, then the lag sums. `rows` is
+// the first block's row y_{m-n0-1} (the next block's is `stride` further).
 ADJOIN_SIMD_CLONES
 void step_blocks(const Coefficients& c, std::size_t blocks, std::size_t k, double* __restrict s, double* __restrict s1,
                  double* __restrict s2, const double* __restrict rows, std::size_t stride, double* __restrict far,
                  double* __restrict lag) {
-  for (std::size_t blk = 0; blk < blocks; ++blk, rows += stride, far += kAhead * L, lag += L) {
-    if (k == 0) {
+  if (k == 0)
+    for (std::size_t blk = 0; blk < blocks; ++blk) {
       V4 y[kAhead + 1];
-      for (std::size_t i = 0; i <= kAhead; ++i) y[i] = sd::load(rows + i * L);
-      far_ahead_block(c, s + blk * c.single * L, s1 + blk * c.paired * L, s2 + blk * c.paired * L, y, far);
+      for (std::size_t i = 0; i <= kAhead; ++i) y[i] = sd::load(rows + blk * stride + i * L);
+      far_ahead_block(c, s + blk * c.single * L, s1 + blk * c.paired * L, s2 + blk * c.paired * L, y,
+                      far + blk * kAhead * L);
     }
-    V4 sum[8] = {};
-    for (std::size_t i = 0; i < c.n0; i += 8)
-      for (std::size_t u = 0; u < 8; ++u) sum[u] += sd::load(rows + (i + u) * L) * sd::load(c.window + (i + u) * L);
-    const V4 window = ((sum[0] + sum[1]) + (sum[2] + sum[3])) + ((sum[4] + sum[5]) + (sum[6] + sum[7]));
-    sd::store(lag, (sd::load(far + k * L) + window) + sd::splat(c.w1) * sd::load(rows + c.n0 * L));
-  }
+  std::size_t blk = 0;
+  for (; blk + 3 <= blocks; blk += 3)
+    lag_blocks<3>(c, rows + blk * stride, stride, far + (blk * kAhead + k) * L, lag + blk * L);
+  for (; blk < blocks; ++blk) lag_blocks<1>(c, rows + blk * stride, stride, far + (blk * kAhead + k) * L, lag + blk * L);
 }
 
 // One member of a bank, seen as a ConvolutionHistory.
@@ -173,8 +190,8 @@ SoeBank::SoeBank(std::shared_ptr<const SoeCompression> compression, std::size_t 
       far_(blocks_ * kAhead * L, 0.0),
       lag_(blocks_ * L, 0.0) {
   if (members == 0) throw std::invalid_argument("SoeBank: no members");
-  if (c_->window % 8 != 0 || c_->window < kAhead)
-    throw std::logic_error("SoeBank: the window must be a multiple of 8, at least the steps made ahead");
+  if (c_->window % 4 != 0 || c_->window < kAhead)
+    throw std::logic_error("SoeBank: the window must be a multiple of 4, at least the steps made ahead");
   auto spread = [](const std::vector<double>& v) {
     std::vector<double> out(v.size() * L);
     for (std::size_t i = 0; i < out.size(); ++i) out[i] = v[i / L];

@@ -69,16 +69,13 @@ void far_ahead(double* __restrict s, const double* __restrict decay, const doubl
 }
 
 // The lag sum (far + window) + w1 y[n] (soe_kernels.hpp): the window sum_{i<n} y[i] v[i] in
-// eight partial sums, n a multiple of 8. (All in the clone: its fused multiply-adds are the
+// four partial sums, n a multiple of 4. (All in the clone: its fused multiply-adds are the
 // bank's.)
 ADJOIN_SIMD_CLONES
 double lag_of(const double* __restrict y, const double* __restrict v, std::size_t n, double w1, double far) {
-  V4 lo = {}, hi = {};
-  for (std::size_t i = 0; i < n; i += 8) {
-    lo += sd::load(y + i) * sd::load(v + i);
-    hi += sd::load(y + i + 4) * sd::load(v + i + 4);
-  }
-  const double window = ((lo[0] + lo[1]) + (lo[2] + lo[3])) + ((hi[0] + hi[1]) + (hi[2] + hi[3]));
+  V4 sum = {};
+  for (std::size_t i = 0; i < n; i += 4) sum += sd::load(y + i) * sd::load(v + i);
+  const double window = (sum[0] + sum[1]) + (sum[2] + sum[3]);
   return (far + window) + w1 * y[n];
 }
 
@@ -93,8 +90,8 @@ SoeHistory::SoeHistory(std::shared_ptr<const SoeCompression> compression, std::s
       s1_(c_->a.size(), 0.0),
       s2_(c_->a.size(), 0.0),
       far_(kAhead, 0.0) {
-  if (c_->window % 8 != 0 || c_->window < kAhead)
-    throw std::logic_error("SoeHistory: the window must be a multiple of 8, at least the steps made ahead");
+  if (c_->window % 4 != 0 || c_->window < kAhead)
+    throw std::logic_error("SoeHistory: the window must be a multiple of 4, at least the steps made ahead");
 }
 
 void SoeHistory::push(double y) {

@@ -19,8 +19,8 @@
 // modes), SoeBank in four passes over the modes (its lanes are four members).
 //
 // The window: sum_{j=1}^{n0-1} w_j y_{m-j} = [sum over i < n0 of y_{m-n0-1+i} v_i] + w_1 y_{m-1},
-// v = SoeCompression::near_shifted (0, 0, w_{n0-1}, ..., w_2), in eight partial sums (i % 8)
-// combined as ((S0 + S1) + (S2 + S3)) + ((S4 + S5) + (S6 + S7)); the lag sum is
+// v = SoeCompression::near_shifted (0, 0, w_{n0-1}, ..., w_2), in four partial sums (i % 4)
+// combined as (S0 + S1) + (S2 + S3); the lag sum is
 // (F + window) + w_1 y_{m-1}: the newest value enters last, one fused multiply-add from the
 // result (the caller's next value usually depends on this lag sum).
 //
