@@ -108,8 +108,8 @@ BENCHMARK(BM_fft)->RangeMultiplier(2)->Range(1 << 12, 1 << 22)->Unit(benchmark::
 // cut short, as in most runs.
 BENCHMARK(BM_fft)->Arg(1066667)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_soe)->RangeMultiplier(2)->Range(1 << 12, 1 << 22)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_soe_bank40)->RangeMultiplier(4)->Range(1 << 14, 1 << 20)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_soe_alone40)->RangeMultiplier(4)->Range(1 << 14, 1 << 20)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_soe_bank40)->RangeMultiplier(4)->Range(1 << 14, 1 << 22)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_soe_alone40)->RangeMultiplier(4)->Range(1 << 14, 1 << 22)->Unit(benchmark::kMillisecond);
 
 int main(int argc, char** argv) {
   if (const char* flag = std::getenv("ADJOIN_BENCH_DIRECT_2E20"); flag != nullptr && *flag == '1')

@@ -25,8 +25,9 @@
 // result (the caller's next value usually depends on this lag sum).
 //
 // GCC vector extensions: AVX2 registers in the x86-64-v3 clone (ADJOIN_SIMD_CLONES), pairs of
-// SSE2 registers otherwise. GCC warns that passing these vectors by value has another ABI with
-// and without AVX; they only pass between the inlined helpers here.
+// SSE2 registers otherwise. GCC warns that returning these vectors by value has another ABI
+// with and without AVX (and notes it for parameters: the helpers take references); they only
+// pass between the inlined helpers here.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 #include <cstddef>
@@ -44,13 +45,16 @@ constexpr std::size_t kAhead = 4;
   std::memcpy(&v, p, sizeof v);
   return v;
 }
-[[gnu::always_inline]] inline void store(double* p, V4 v) { std::memcpy(p, &v, sizeof v); }
+[[gnu::always_inline]] inline void store(double* p, const V4& v) { std::memcpy(p, &v, sizeof v); }
 [[gnu::always_inline]] inline V4 splat(double x) { return V4{x, x, x, x}; }
 
 // One-term mode, one step.
-[[gnu::always_inline]] inline V4 single_step(V4 s, V4 d, V4 g, V4 y) { return (s - d * s) + g * y; }
+[[gnu::always_inline]] inline V4 single_step(const V4& s, const V4& d, const V4& g, const V4& y) {
+  return (s - d * s) + g * y;
+}
 // Two-term mode, one step (s1: the last state, s2: the one before).
-[[gnu::always_inline]] inline V4 paired_step(V4 s1, V4 s2, V4 a, V4 b, V4 p, V4 r, V4 y, V4 y_before) {
+[[gnu::always_inline]] inline V4 paired_step(const V4& s1, const V4& s2, const V4& a, const V4& b, const V4& p,
+                                             const V4& r, const V4& y, const V4& y_before) {
   return ((r * y_before + p * y) + b * s2) + a * s1;
 }
 
