@@ -11,9 +11,9 @@
 //
 // so one step updates four members per vector operation, with the coefficients loaded once for
 // the four. The modes are advanced a few steps at a time (soe_kernels.hpp), all blocks in one
-// call. At Q = 60 (N = 2^14, GL weights) a member's step is about 170 instructions with the
-// virtual push and lag_sum (bench/bench_history.cpp, BM_soe_bank40), against 235 for a
-// SoeHistory.
+// call. At Q = 56 (GL weights of order 0.53, 2^14 steps) a member's step is about 150
+// instructions with the virtual push and lag_sum and the caller's loop (BM_soe_bank40's loop
+// under callgrind), against 230 for a SoeHistory.
 //
 // Each member's arithmetic is the SoeHistory's, operation for operation (the same partial sums
 // in the same order): a member's lag sums equal those of a SoeHistory pushed the same values,
