@@ -3,42 +3,80 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "../detail/dot.hpp"
 #include "../detail/simd_clones.hpp"
+#include "soe_kernels.hpp"
 
 namespace adjoin {
 namespace {
 
+using soe_detail::kAhead;
+using soe_detail::V4;
+namespace sd = soe_detail;
+
 constexpr std::size_t kShift = 223;  // values kept past the window before the line is shifted back (n0 + 1 + this = 256)
 
-// One step of the one-term modes (n a multiple of 4): s <- s + (g y - d s); returns sum s.
-// Independent partial sums, as in detail/dot.cpp, so the loop runs in vector registers.
+// The modes' far sums of kAhead steps (soe_kernels.hpp), four modes to a vector: lane j of the
+// accumulators adds modes j, j + 4, ... in order. Each vector of modes takes all kAhead steps
+// at once (its states stay in registers), two vectors side by side: one vector's steps form a
+// chain of 2 kAhead dependent operations, and the processor overlaps too few such chains alone.
+// `in` holds the inputs y_{m-n0-1}..y_{m-n0+kAhead-1} of the steps m..m+kAhead-1; far[k] = the
+// far sum of step m + k. n and n2 are multiples of 4.
 ADJOIN_SIMD_CLONES
-double step_single(double* __restrict s, const double* __restrict decay, const double* __restrict gain, std::size_t n,
-                   double y) {
-  double sum[4] = {};
-  for (std::size_t q = 0; q < n; q += 4)
-    for (std::size_t k = 0; k < 4; ++k) {
-      const double v = s[q + k] + (gain[q + k] * y - decay[q + k] * s[q + k]);
-      s[q + k] = v;
+void far_ahead(double* __restrict s, const double* __restrict decay, const double* __restrict gain, std::size_t n,
+               double* __restrict s1, double* __restrict s2, const double* __restrict pa, const double* __restrict pb,
+               const double* __restrict pp, const double* __restrict pr, std::size_t n2, const double* __restrict in,
+               double* __restrict far) {
+  V4 sum[kAhead] = {};
+  std::size_t q = 0;
+  for (; q + 8 <= n; q += 8) {
+    const V4 d0 = sd::load(decay + q), g0 = sd::load(gain + q), d1 = sd::load(decay + q + 4), g1 = sd::load(gain + q + 4);
+    V4 v0 = sd::load(s + q), v1 = sd::load(s + q + 4);
+    for (std::size_t k = 0; k < kAhead; ++k) {
+      const V4 y = sd::splat(in[k + 1]);
+      v0 = sd::single_step(v0, d0, g0, y);
+      v1 = sd::single_step(v1, d1, g1, y);
+      sum[k] += v0;
+      sum[k] += v1;
+    }
+    sd::store(s + q, v0);
+    sd::store(s + q + 4, v1);
+  }
+  if (q < n) {
+    const V4 d = sd::load(decay + q), g = sd::load(gain + q);
+    V4 v = sd::load(s + q);
+    for (std::size_t k = 0; k < kAhead; ++k) {
+      v = sd::single_step(v, d, g, sd::splat(in[k + 1]));
       sum[k] += v;
     }
-  return (sum[0] + sum[1]) + (sum[2] + sum[3]);
+    sd::store(s + q, v);
+  }
+  for (std::size_t k = 0; k < kAhead; ++k) far[k] = (sum[k][0] + sum[k][1]) + (sum[k][2] + sum[k][3]);
+  if (n2 == 0) return;
+  V4 two[kAhead] = {};
+  for (q = 0; q < n2; q += 4) {
+    const V4 a = sd::load(pa + q), b = sd::load(pb + q), p = sd::load(pp + q), r = sd::load(pr + q);
+    V4 last = sd::load(s1 + q), before = sd::load(s2 + q);
+    for (std::size_t k = 0; k < kAhead; ++k) {
+      const V4 v = sd::paired_step(last, before, a, b, p, r, sd::splat(in[k + 1]), sd::splat(in[k]));
+      before = last;
+      last = v;
+      two[k] += v;
+    }
+    sd::store(s1 + q, last);
+    sd::store(s2 + q, before);
+  }
+  for (std::size_t k = 0; k < kAhead; ++k) far[k] += (two[k][0] + two[k][1]) + (two[k][2] + two[k][3]);
 }
 
-// One step of the two-term modes: s <- a s1 + b s2 + p y + r y_before, s2 <- s1, s1 <- s.
+// The lag sum (far + window) + w1 y[n] (soe_kernels.hpp): the window sum_{i<n} y[i] v[i] in
+// four partial sums, n a multiple of 4. (All in the clone: its fused multiply-adds are the
+// bank's.)
 ADJOIN_SIMD_CLONES
-double step_paired(double* __restrict s1, double* __restrict s2, const double* __restrict a, const double* __restrict b,
-                   const double* __restrict p, const double* __restrict r, std::size_t n, double y, double y_before) {
-  double sum[4] = {};
-  for (std::size_t q = 0; q < n; q += 4)
-    for (std::size_t k = 0; k < 4; ++k) {
-      const double v = (a[q + k] * s1[q + k] + b[q + k] * s2[q + k]) + (p[q + k] * y + r[q + k] * y_before);
-      s2[q + k] = s1[q + k];
-      s1[q + k] = v;
-      sum[k] += v;
-    }
-  return (sum[0] + sum[1]) + (sum[2] + sum[3]);
+double lag_of(const double* __restrict y, const double* __restrict v, std::size_t n, double w1, double far) {
+  V4 sum = {};
+  for (std::size_t i = 0; i < n; i += 4) sum += sd::load(y + i) * sd::load(v + i);
+  const double window = (sum[0] + sum[1]) + (sum[2] + sum[3]);
+  return (far + window) + w1 * y[n];
 }
 
 }  // namespace
@@ -50,7 +88,11 @@ SoeHistory::SoeHistory(std::shared_ptr<const SoeCompression> compression, std::s
       end_(c_->window + 1),  // y_{-n0-1}..y_{-1} = 0: the modes read y_{m-n0-1} from the start
       s_(c_->decay.size(), 0.0),
       s1_(c_->a.size(), 0.0),
-      s2_(c_->a.size(), 0.0) {}
+      s2_(c_->a.size(), 0.0),
+      far_(kAhead, 0.0) {
+  if (c_->window % 4 != 0 || c_->window < kAhead)
+    throw std::logic_error("SoeHistory: the window must be a multiple of 4, at least the steps made ahead");
+}
 
 void SoeHistory::push(double y) {
   if (pushed_ >= count_) throw std::logic_error("SoeHistory: more values pushed than weights were given");
@@ -62,20 +104,18 @@ void SoeHistory::push(double y) {
   recent_[end_++] = y;
   const std::size_t m = ++pushed_;  // the next step
   if (m >= count_) { lag_sum_ = 0.0; return; }
-  // Lags n0.. from the modes (their inputs y_{m-n0}, y_{m-n0-1}), lags 1..n0-1 directly.
   const std::size_t n0 = c_->window;
-  const double y_n0 = recent_[end_ - n0], y_after = recent_[end_ - n0 - 1];
-  double far = step_single(s_.data(), c_->decay.data(), c_->gain.data(), s_.size(), y_n0);
-  if (!s1_.empty())
-    far += step_paired(s1_.data(), s2_.data(), c_->a.data(), c_->b.data(), c_->p.data(), c_->r.data(), s1_.size(), y_n0,
-                       y_after);
-  // sum_{j=1}^{n0-1} w_j y_{m-j} as a forward product of y_{m-n0}..y_{m-1} with 0, w_{n0-1}..w_1
-  // (the zeros before y_0 stand in for the values not pushed yet).
-  lag_sum_ = far + detail::dot(recent_.data() + end_ - n0, c_->near_reversed.data(), n0);
+  const double* first = recent_.data() + end_ - n0 - 1;  // y_{m-n0-1}
+  const std::size_t k = (m - 1) % kAhead;
+  if (k == 0)  // the far sums of steps m..m+kAhead-1, from y_{m-n0-1}..y_{m-n0+kAhead-1}
+    far_ahead(s_.data(), c_->decay.data(), c_->gain.data(), s_.size(), s1_.data(), s2_.data(), c_->a.data(),
+              c_->b.data(), c_->p.data(), c_->r.data(), s1_.size(), first, far_.data());
+  lag_sum_ = lag_of(first, c_->near_shifted.data(), n0, c_->near[1], far_[k]);
 }
 
 std::size_t SoeHistory::bytes() const {
-  return sizeof(*this) + c_->bytes() + (recent_.capacity() + s_.capacity() + s1_.capacity() + s2_.capacity()) * sizeof(double);
+  return sizeof(*this) + c_->bytes() +
+         (recent_.capacity() + s_.capacity() + s1_.capacity() + s2_.capacity() + far_.capacity()) * sizeof(double);
 }
 
 }  // namespace adjoin

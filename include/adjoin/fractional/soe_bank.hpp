@@ -9,9 +9,11 @@
 //
 //     state of mode q of member e:   s[(e / 4) * Q + q][e % 4]
 //
-// so one step updates four members per vector operation with each coefficient loaded once,
-// instead of one member's modes per operation with its own copy of the loop's bookkeeping (about
-// 360 instructions per element and step for a SoeHistory at Q = 59, three times as many as here).
+// so one step updates four members per vector operation, with the coefficients loaded once for
+// the four. The modes are advanced a few steps at a time (soe_kernels.hpp), all blocks in one
+// call. At Q = 56 (GL weights of order 0.53, 2^14 steps) a member's step is about 150
+// instructions with the virtual push and lag_sum and the caller's loop (BM_soe_bank40's loop
+// under callgrind), against 230 for a SoeHistory.
 //
 // Each member's arithmetic is the SoeHistory's, operation for operation (the same partial sums
 // in the same order): a member's lag sums equal those of a SoeHistory pushed the same values,
@@ -43,31 +45,37 @@ class SoeBank {
   // sum_{j=1}^{m} w_j y_{m-j} of member e, m = size().
   double lag_sum(std::size_t e) const { return lag_[e]; }
   // Member e's value y_m; once every member has given its own, the bank steps.
-  void push(std::size_t e, double y);
-  bool staged(std::size_t e) const { return staged_[e] != 0; }
+  void push(std::size_t e, double y) {
+    if (staged(e) || pushed_ >= count_) refuse();
+    recent_[(e / kLanes) * pitch_ + end_ * kLanes + e % kLanes] = y;  // the line's next row, the member's lane
+    staged_at_[e] = pushed_ + 1;
+    if (++staged_count_ == members_) step();
+  }
+  bool staged(std::size_t e) const { return staged_at_[e] > pushed_; }
   std::size_t bytes() const;
   const SoeCompression& compression() const { return *c_; }
 
  private:
   void step();
-  void step_block(std::size_t block);
+  [[noreturn]] void refuse() const;  // std::logic_error: a member pushed twice in a step, or past the weights
 
   std::shared_ptr<const SoeCompression> c_;
-  // The compression's coefficients, each repeated over the four lanes (so a vector operation
-  // reads them from memory as they are, without a broadcast).
+  // The compression's coefficients, each repeated over the four lanes (soe_bank.cpp's kernel
+  // reads them as vectors).
   struct Wide {
-    std::vector<double> decay, gain, a, b, p, r, near_reversed;
+    std::vector<double> decay, gain, a, b, p, r, window;  // window: SoeCompression::near_shifted
   };
   Wide wide_;
   std::size_t count_, members_, blocks_;
   std::size_t pushed_ = 0, staged_count_ = 0;
-  std::vector<char> staged_;
-  std::vector<double> incoming_;  // the values staged for the step, one per lane
+  std::vector<std::size_t> staged_at_;  // per member: the step its last value is for, plus one
   std::size_t line_;              // values kept per lane: n0 + 1 + the shift's slack
-  std::size_t end_;               // the line's next free row (as SoeHistory's end_)
+  std::size_t pitch_;             // doubles from one block's line to the next (with padding: soe_bank.cpp)
+  std::size_t end_;               // the line's next free row (as SoeHistory's end_), where pushes go
   std::vector<double> recent_;    // per block, its line of values: [block][row][lane]
   std::vector<double> s_;         // one-term states: [block][mode][lane]
   std::vector<double> s1_, s2_;   // two-term states: the last and the one before, likewise
+  std::vector<double> far_;       // the far sums of the steps made ahead: [block][step][lane]
   std::vector<double> lag_;       // per lane
 };
 

@@ -28,13 +28,13 @@
 // is refined until the largest relative error is within the tolerance, and that largest
 // error is reported as the bound (SoeCompression::error; sampled, so a bound in practice:
 // tests/test_soe_history.cpp checks it at every lag below 8192). At 1e-12 and N = 2^24:
-// Q = 85 to 90 recurrences for orders 0.05 to 0.95, errors 1e-14 to 1e-13, about 5M
-// instructions to make.
+// Q = 77 to 82 recurrences for orders 0.05 to 0.95, errors up to 9.2e-13 (the step is the
+// coarsest of a few tried that verifies), 5M to 10M instructions to make (one or two tries).
 // Lags 1..n0-1 (n0 = 32) use the exact weights: the window keeps the right tail of the
 // integral (large x, where e_n decays like x^(-n/2)) short.
 //
 // Precision: a mode whose decay 1 - lambda is tiny (x ~ 1/N) is stored and stepped as
-// s <- s + (g y - d s) with d = 1 - lambda held to full relative precision, so its effective
+// s <- (s - d s) + g y with d = 1 - lambda held to full relative precision, so its effective
 // decay over N steps is exact to rounding (lambda itself in a double would be off by N eps).
 // BDF2 nodes with x < 0.3 are split into their two real geometric modes for that reason;
 // larger x keep the two-term real recurrence (|lambda| < 0.8 there).
@@ -43,8 +43,11 @@
 // (the step h enters the scheme as h^-order outside them). It is made for a design length N,
 // the run's number of steps rounded up to a power of two (at least 2^10): once per process
 // and (rule, order, tolerance, N), shared by all histories of that length. A short run pays
-// for a short compression (at 1e-12: about 1.4M instructions and Q = 57 to 60 at N = 2^13,
-// against 5M and Q = 85 to 88 at 2^24), and its modes depend on its own length only.
+// for a short compression (at 1e-12: 1.3M to 2.5M instructions and Q = 52 to 57 at N = 2^13,
+// against 5M to 10M and Q = 77 to 82 at 2^24), and its modes depend on its own length only.
+//
+// Stepping (src/fractional/soe_kernels.hpp): the modes' inputs are n0 steps old, so they are
+// advanced a few steps at a time and their far sums kept; each step then adds the window.
 #include <cstddef>
 #include <memory>
 #include <vector>
@@ -60,7 +63,9 @@ struct SoeCompression {
   double tolerance = 0.0;
   std::size_t window = 0;     // n0: lags 1..n0-1 are summed directly
   std::vector<double> near;   // the exact w_0..w_{n0-1}
-  std::vector<double> near_reversed;  // 0, w_{n0-1}, ..., w_1: the window's sum runs forwards
+  // 0, 0, w_{n0-1}, ..., w_2: the window's sum runs forwards over y_{m-n0-1}..y_{m-2}, and
+  // w_1 y_{m-1} is added last (src/fractional/soe_kernels.hpp)
+  std::vector<double> near_shifted;
   // One-term modes (count `single`, padded with zeros to a multiple of 4):
   //     s <- s + (gain y_{m-n0} - decay s),
   // mode k's weight at lag n >= n0 being gain_k (1 - decay_k)^(n - n0).
@@ -111,6 +116,9 @@ class SoeHistory final : public ConvolutionHistory {
   std::size_t end_ = 0;
   std::vector<double> s_;           // one-term states
   std::vector<double> s1_, s2_;     // two-term states: the last and the one before
+  // The far sums (lags >= n0) of the steps made ahead (soe_kernels.hpp): far_[k] is that of
+  // step m0 + k, m0 the step at which they were made.
+  std::vector<double> far_;
   double lag_sum_ = 0.0;
 };
 
