@@ -45,8 +45,9 @@ const StructureState& PairStepper::advance_with(std::size_t step) {
   next.ag = kStandardGravity * ground.ag(next.t);
   double offsets[PairConstants::kMaxZener] = {};
   double off[3] = {0.0, 0.0, 0.0};
+  const double* lag = ws.histories.lag_sums();
   for (int e = 0; e < n_zener; ++e) {
-    offsets[e] = ws.laws[static_cast<std::size_t>(e)]->offset();
+    offsets[e] = c.zener[e].scale * (lag[e] + 0.0);
     off[c.zener[e].i] += offsets[e];
     off[c.zener[e].j] -= offsets[e];
   }
@@ -170,8 +171,13 @@ const StructureState& PairStepper::advance_with(std::size_t step) {
   // (check_range's test, inline: |x| <= 1e6 false for NaN, v - v not 0 for an infinite v)
   const int bad = int{!(std::abs(x[0]) <= 1e6)} | int{!(std::abs(x[1]) <= 1e6)} | int{!(v[0] - v[0] == 0.0)} | int{!(v[1] - v[1] == 0.0)};
   if (bad) [[unlikely]] fallbacks.out_of_range(next);
-  for (int e = 0; e < n_zener; ++e)
-    ws.laws[static_cast<std::size_t>(e)]->commit(xs[c.zener[e].i] - xs[c.zener[e].j], zener_force[e]);
+  if (n_zener > 0) {  // (RodLaw::commit's values, all pushed at once)
+    for (int e = 0; e < n_zener; ++e) {
+      const PairZener& z = c.zener[e];
+      ws.zener_value[static_cast<std::size_t>(e)] = z.value_of_x * (xs[z.i] - xs[z.j]) - z.value_of_f * zener_force[e];
+    }
+    ws.histories.push(ws.zener_value.data());
+  }
   for (int k = 0; k < c.n_contacts; ++k) next.contact_gap[k] = c.contact_gap[k] - (xs[c.contact_i[k]] - xs[c.contact_j[k]]);
   // carry_over
   cr.internal[0] = p[0];
@@ -231,7 +237,9 @@ void PairStepper::begin_run() {
   c.n_zener = static_cast<int>(m.zener.size());
   for (int e = 0; e < c.n_zener; ++e) {
     const auto& el = m.zener[static_cast<std::size_t>(e)];
-    c.zener[e] = {el.pair.i >= 0 ? el.pair.i : 2, el.pair.j >= 0 ? el.pair.j : 2, el.storey, el.stiffness};
+    const auto u = static_cast<std::size_t>(e);
+    c.zener[e] = {el.pair.i >= 0 ? el.pair.i : 2, el.pair.j >= 0 ? el.pair.j : 2, el.storey, el.stiffness, ws.zener_scale[u],
+                  ws.zener_kx[u],                  ws.zener_tf[u]};
   }
   c.n_contacts = static_cast<int>(m.s.contacts.size());
   for (int k = 0; k < c.n_contacts; ++k) {

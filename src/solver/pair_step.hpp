@@ -54,6 +54,7 @@ struct PairZener {
   int i = 2, j = 2;  // floor slots (2: the ground's zero)
   int storey = -1;
   double stiffness = 0.0;
+  double scale = 0.0, value_of_x = 0.0, value_of_f = 0.0;  // the workspace's zener_scale, zener_kx, zener_tf
 };
 struct PairConstants {
   static constexpr int kMaxZener = 4;

@@ -57,6 +57,11 @@ class RodLaw {
   void commit(double x, double f) {
     if (!elastic_) history_->push(k_ * tau_x_ * x - tau_f_ * f);
   }
+  // The law's numbers for a caller that keeps the history elsewhere (fractional/history_set.hpp):
+  // offset() = history_scale() (lag sum + extra); commit pushes value_of_x() x - value_of_f() f.
+  double history_scale() const { return history_scale_; }
+  double value_of_x() const { return k_ * tau_x_; }
+  double value_of_f() const { return tau_f_; }
   std::size_t bytes() const { return elastic_ ? 0 : history_->bytes(); }
   double weight_error() const { return elastic_ ? 0.0 : history_->weight_error(); }
   std::size_t modes() const { return elastic_ ? 0 : history_->modes(); }

@@ -153,21 +153,9 @@ class StructureStepper final : private detail::PairStepper::Fallbacks {
 
   std::tuple<const structure::Structure&, const StructureSolverOptions&> info() const { return {m.s, m.options}; }
   std::size_t steps() const { return m.n_steps; }
-  std::size_t history_bytes() const {
-    std::size_t bytes = 0;
-    for (const auto& law : ws.laws) bytes += law->bytes();
-    return bytes;
-  }
-  double history_error() const {
-    double error = 0.0;
-    for (const auto& law : ws.laws) error = std::max(error, law->weight_error());
-    return error;
-  }
-  std::size_t history_modes() const {
-    std::size_t modes = 0;
-    for (const auto& law : ws.laws) modes = std::max(modes, law->modes());
-    return modes;
-  }
+  std::size_t history_bytes() const { return ws.histories.bytes(); }
+  double history_error() const { return ws.histories.weight_error(); }
+  std::size_t history_modes() const { return ws.histories.modes(); }
   std::size_t viscous_split_steps() const { return ws.viscous_split_steps; }
   // The impacts to report before the state advance() returned (time_loop.hpp's impacts()).
   const std::vector<Impact>& impacts() const { return ws.step_impacts; }
@@ -188,7 +176,9 @@ class StructureStepper final : private detail::PairStepper::Fallbacks {
     first.contact_gap.resize(n_contacts);
     for (std::size_t k = 0; k < m.s.contacts.size(); ++k) first.contact_gap[static_cast<Eigen::Index>(k)] = m.s.contacts[k].gap;
     first.link_switch.assign(m.link_pair.size(), kNaN);
-    for (auto& law : ws.laws) law->commit(0.0, 0.0);
+    // The Zener elements' histories take their values at rest (RodLaw::commit(0, 0)'s).
+    for (std::size_t e = 0; e < m.zener.size(); ++e) ws.zener_value[e] = ws.zener_kx[e] * 0.0 - ws.zener_tf[e] * 0.0;
+    if (!m.zener.empty()) ws.histories.push(ws.zener_value.data());
     ws.cv_now = m.c * first.v;  // C v at t_n
 
     first.a_abs = Eigen::VectorXd::Zero(m.n);
@@ -235,7 +225,8 @@ class StructureStepper final : private detail::PairStepper::Fallbacks {
     next.ag = g * ground.ag(next.t);
     ag_next = next.ag;
     // The Zener elements' history terms: constant through the step (until commit).
-    for (std::size_t e = 0; e < ws.laws.size(); ++e) ws.offsets[static_cast<Eigen::Index>(e)] = ws.laws[e]->offset();
+    const double* lag = ws.histories.lag_sums();
+    for (std::size_t e = 0; e < m.zener.size(); ++e) ws.offsets[static_cast<Eigen::Index>(e)] = ws.zener_scale[e] * (lag[e] + 0.0);
     // (Else it stays zero; with bilinear elements alone it changes only when a slip u_p did.)
     if (!m.zener.empty() || m.nw > 0 || (m.nh > 0 && ws.bilinear_slipped)) {
       ws.bilinear_slipped = false;
@@ -895,9 +886,12 @@ class StructureStepper final : private detail::PairStepper::Fallbacks {
       else next.x.noalias() += ws.sm->a_inv_bc * (0.5 * m.h * ws.contact_impulse - ws.contact_moment);
     }
     m.k0.apply(next.x, ws.p_next);
+    // The Zener elements' forces, and the values their histories take at report() (RodLaw::commit's).
     for (std::size_t e = 0; e < m.zener.size(); ++e) {
       const auto& el = m.zener[e];
-      ws.zener_force[e] = el.stiffness * el.pair.of(next.x) + ws.offsets[static_cast<Eigen::Index>(e)];
+      const double d = el.pair.of(next.x);
+      ws.zener_force[e] = el.stiffness * d + ws.offsets[static_cast<Eigen::Index>(e)];
+      ws.zener_value[e] = ws.zener_kx[e] * d - ws.zener_tf[e] * ws.zener_force[e];
       el.pair.add(ws.p_next, ws.zener_force[e]);
     }
     end_bilinear(now, next);
@@ -1068,7 +1062,7 @@ class StructureStepper final : private detail::PairStepper::Fallbacks {
     }
     fill_links(next, ws.q_grid);
     check_range(next);
-    for (std::size_t e = 0; e < ws.laws.size(); ++e) ws.laws[e]->commit(m.zener[e].pair.of(next.x), ws.zener_force[e]);
+    if (!m.zener.empty()) ws.histories.push(ws.zener_value.data());  // (the values correct() made)
     for (std::size_t k = 0; k < m.s.contacts.size(); ++k)
       next.contact_gap[static_cast<Eigen::Index>(k)] = m.s.contacts[k].gap - m.contact_pair[k].of(next.x);
     for (int ci = 0; ci < m.nc; ++ci) {

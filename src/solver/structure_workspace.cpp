@@ -2,40 +2,30 @@
 
 #include <cmath>
 
-#include "adjoin/fractional/soe_bank.hpp"
-
 namespace adjoin::detail {
 namespace {
 
-// With soe, the elements of one order share one SoeBank (soe_bank.hpp): their histories are
-// stepped together, four elements per vector operation. Every law commits once per step
-// (start() and advance()), which the bank needs.
-std::vector<std::unique_ptr<RodLaw>> soe_laws(const StructureModel& m) {
-  std::vector<std::unique_ptr<RodLaw>> laws;
+// The Zener elements' histories (with soe, the elements of one order share a SoeBank: stepped
+// together, four elements per vector operation) and their laws' numbers.
+void make_zener_laws(const StructureModel& m, StepWorkspace& ws) {
   std::vector<double> orders;
-  for (const ZenerElement& e : m.zener)
-    if (!e.rod.elastic) orders.push_back(e.rod.order);
-  auto histories = make_soe_histories(m.weight_rule(), orders, m.n_steps + 2, m.options.history_tolerance);
-  std::size_t next = 0;
   for (const ZenerElement& e : m.zener) {
-    if (e.rod.elastic) {
-      laws.push_back(std::make_unique<RodLaw>(e.rod, e.k, m.h, 1.0, nullptr));
-      continue;
-    }
-    const double w0 = convolution_weights(m.weight_rule(), e.rod.order, 1)[0];
-    laws.push_back(std::make_unique<RodLaw>(e.rod, e.k, m.h, w0, std::move(histories[next++])));
+    const double w0 = e.rod.elastic ? 1.0 : convolution_weights(m.weight_rule(), e.rod.order, 1)[0];
+    const RodLaw law(e.rod, e.k, m.h, w0, nullptr);
+    ws.zener_scale.push_back(law.history_scale());
+    ws.zener_kx.push_back(law.value_of_x());
+    ws.zener_tf.push_back(law.value_of_f());
+    orders.push_back(e.rod.elastic ? std::nan("") : e.rod.order);
   }
-  return laws;
+  ws.histories = HistorySet(m.options.history, m.weight_rule(), orders, m.n_steps + 2, m.options.history_tolerance);
+  ws.zener_value.assign(m.zener.size(), 0.0);
 }
 
 }  // namespace
 
 StepWorkspace::StepWorkspace(const StructureModel& m) {
   const int n = m.n, nf = m.nf, nc = m.nc;
-  if (m.options.history == HistoryEngine::soe)
-    laws = soe_laws(m);
-  else
-    for (const ZenerElement& e : m.zener) laws.push_back(std::make_unique<RodLaw>(e.rod, e.k, m.h, m.options.history, m.weights_of(e)));
+  make_zener_laws(m, *this);
   zener_force.assign(m.zener.size(), 0.0);
   contact_memory.resize(static_cast<std::size_t>(nc));
   box_qp_trapezoidal = std::make_unique<BoxQp>(m.trapezoidal->qp_matrix);

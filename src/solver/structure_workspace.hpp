@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "adjoin/fractional/history_set.hpp"
 #include "adjoin/structure/state.hpp"
 #include "bilinear_lanes.hpp"
 #include "box_qp.hpp"
@@ -22,8 +23,13 @@ struct StepWorkspace {
   explicit StepWorkspace(const StructureModel& m);
 
   // ---- the elements' and dampers' memory ----
-  std::vector<std::unique_ptr<RodLaw>> laws;  // per Zener element of the model, its history
-  std::vector<double> zener_force;            // ... and its force at t_n+1 (then t_n)
+  // The Zener elements' histories, stepped together (fractional/history_set.hpp), and their laws
+  // (rod_law.hpp) side by side: element e's force is its stiffness x + zener_scale[e] (its lag
+  // sum + 0), and it pushes zener_kx[e] x - zener_tf[e] f, as RodLaw's offset() and commit().
+  HistorySet histories;
+  std::vector<double> zener_scale, zener_kx, zener_tf;
+  std::vector<double> zener_value;  // the step's values pushed
+  std::vector<double> zener_force;  // per Zener element, its force at t_n+1 (then t_n)
   std::vector<ContactMemory> contact_memory, memory_before;  // per contact pair with a law; before the step
   std::unique_ptr<BoxQp> box_qp_trapezoidal, box_qp_backward;  // the dampers' QP of each step matrix
   SubsetInverses stuck_systems;  // B_s M^-1 B_s' per stuck set, inverted when first met

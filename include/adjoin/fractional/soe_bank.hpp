@@ -44,12 +44,24 @@ class SoeBank {
   std::size_t size() const { return pushed_; }
   // sum_{j=1}^{m} w_j y_{m-j} of member e, m = size().
   double lag_sum(std::size_t e) const { return lag_[e]; }
+  const double* lag_sums() const { return lag_.data(); }  // every member's, in member order
   // Member e's value y_m; once every member has given its own, the bank steps.
   void push(std::size_t e, double y) {
     if (staged(e) || pushed_ >= count_) refuse();
     recent_[(e / kLanes) * pitch_ + end_ * kLanes + e % kLanes] = y;  // the line's next row, the member's lane
     staged_at_[e] = pushed_ + 1;
     if (++staged_count_ == members_) step();
+  }
+  // Every member's value y_m at once (members() of them, in member order), then the step: the
+  // same as push(e, y[e]) for each e, without the per-member bookkeeping.
+  void push_all(const double* y) {
+    if (staged_count_ != 0 || pushed_ >= count_) refuse();
+    double* row = recent_.data() + end_ * kLanes;  // block 0's row; each next block's is pitch_ on
+    std::size_t e = 0;
+    for (; e + kLanes <= members_; e += kLanes, row += pitch_)
+      for (std::size_t l = 0; l < kLanes; ++l) row[l] = y[e + l];
+    for (std::size_t l = 0; e + l < members_; ++l) row[l] = y[e + l];
+    step();
   }
   bool staged(std::size_t e) const { return staged_at_[e] > pushed_; }
   std::size_t bytes() const;
