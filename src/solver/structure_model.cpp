@@ -98,14 +98,12 @@ void StructureModel::assemble_elements(Assembly& a) {
   mass.resize(n);
   c = Eigen::MatrixXd::Zero(n, n);
   a.k0_dense = Eigen::MatrixXd::Zero(n, n);
-  // A Zener element: its order's weights (computed once per order) and its effective stiffness.
-  // (The soe engine keeps no weights: its law is made from the rule and order, and only w_0 is
-  // needed here.)
+  // A Zener element and its effective stiffness, which needs its quadrature's first weight w_0
+  // only (the workspace's histories hold the rest: fractional/history_set.hpp).
   auto zener_element = [&](const Pair& p, int storey, const structure::Zener& z) {
-    auto& w = weights[z.order];
-    if (w.empty()) w = convolution_weights(weight_rule(), z.order, options.history == HistoryEngine::soe ? 1 : n_steps + 2);
     const Rod rod = rod_of(z);
-    return ZenerElement{p, storey, rod, z.k, RodLaw::effective_stiffness(rod, z.k, h, w.empty() ? 1.0 : w[0])};
+    const double w0 = convolution_weights(weight_rule(), z.order, 1)[0];
+    return ZenerElement{p, storey, rod, z.k, RodLaw::effective_stiffness(rod, z.k, h, w0)};
   };
   auto add_building = [&](const structure::Building& b, int offset) {
     const int nb = b.floors();

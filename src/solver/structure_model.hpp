@@ -6,7 +6,6 @@
 // rule itself. Nothing in it changes during a run; what does (the state, the Zener elements'
 // histories, the work vectors) is the StepWorkspace (structure_workspace.hpp).
 #include <Eigen/Dense>
-#include <map>
 #include <utility>
 #include <vector>
 
@@ -115,8 +114,6 @@ class StructureModel {
   WeightRule weight_rule() const {
     return options.quadrature == StructureSolverOptions::Quadrature::bdf2 ? WeightRule::bdf2 : WeightRule::grunwald_letnikov;
   }
-  // The quadrature weights of a Zener element's order (for its law; w_0 only with soe).
-  const std::vector<double>& weights_of(const ZenerElement& e) const { return weights.at(e.rod.order); }
 
   // ---- the run's inputs ----
   const StructureSolverOptions& options;
@@ -129,7 +126,6 @@ class StructureModel {
   Eigen::VectorXd mass, inv_mass;
   Eigen::MatrixXd c;  // C, the inherent damping and the dashpots
   std::vector<ZenerElement> zener;
-  std::map<double, std::vector<double>> weights;  // the Zener elements' quadrature weights, per order
   std::vector<Pair> link_pair;  // per link, then per ground slider (an isolated base's, a base friction's): (dof, ground)
   std::vector<double> base_slip_force;  // per ground slider (Structure::ground_sliders()), its slip force
   std::vector<int> friction;    // link indices (a base's slider: links.size() + its base's index)
