@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "adjoin/fractional/history.hpp"
-#include "adjoin/fractional/soe_bank.hpp"
+#include "adjoin/fractional/history_set.hpp"
 #include "adjoin/fractional/soe_history.hpp"
 #include "adjoin/fractional/weights.hpp"
 
@@ -61,7 +61,7 @@ void run(benchmark::State& state, adjoin::HistoryEngine engine) {
       static_cast<double>(bytes) / static_cast<double>(steps);
 }
 
-// 40 histories of order 0.53 stepped together, as the 2 x 20 Zener pair's (soe_bank.hpp), against
+// 40 histories of order 0.53 stepped together, as the 2 x 20 Zener pair's (a HistorySet, history_set.hpp, banked by soe_bank.hpp), against
 // 40 SoeHistories: time_per_element_step = run time / (N * 40).
 void run_many(benchmark::State& state, bool bank) {
   const auto steps = static_cast<std::size_t>(state.range(0));
@@ -70,14 +70,23 @@ void run_many(benchmark::State& state, bool bank) {
   const std::vector<double> orders(kMembers, 0.53);
   std::vector<double> input(1024);  // (a table: 40 sines a step would cost more than the histories)
   for (std::size_t i = 0; i < input.size(); ++i) input[i] = std::sin(1e-2 * static_cast<double>(i));
+  std::vector<double> y_all(kMembers);
   for (auto _ : state) {
-    std::vector<std::unique_ptr<adjoin::ConvolutionHistory>> histories;
-    if (bank) {
-      histories = adjoin::make_soe_histories(adjoin::WeightRule::grunwald_letnikov, orders, steps + 1, 1e-12);
-    } else {
-      for (std::size_t e = 0; e < kMembers; ++e)
-        histories.push_back(adjoin::make_history(adjoin::HistoryEngine::soe, adjoin::WeightRule::grunwald_letnikov, 0.53, steps + 1, 1e-12));
+    if (bank) {  // (the structure stepper's way: all lag sums read, all values given at once)
+      adjoin::HistorySet set(adjoin::HistoryEngine::soe, adjoin::WeightRule::grunwald_letnikov, orders, steps + 1, 1e-12);
+      for (std::size_t m = 0; m <= steps; ++m) {
+        for (std::size_t e = 0; e < kMembers; ++e) y_all[e] = input[(m + e) & 1023] - 0.1 * set.lag_sums()[e];
+        set.push(y_all.data());
+      }
+      benchmark::DoNotOptimize(y_all.data());
+      state.PauseTiming();
+      set = adjoin::HistorySet();
+      state.ResumeTiming();
+      continue;
     }
+    std::vector<std::unique_ptr<adjoin::ConvolutionHistory>> histories;
+    for (std::size_t e = 0; e < kMembers; ++e)
+      histories.push_back(adjoin::make_history(adjoin::HistoryEngine::soe, adjoin::WeightRule::grunwald_letnikov, 0.53, steps + 1, 1e-12));
     double y = 0.0;
     for (std::size_t m = 0; m <= steps; ++m)
       for (std::size_t e = 0; e < kMembers; ++e) {

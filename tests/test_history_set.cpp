@@ -58,14 +58,11 @@ TEST_CASE("a HistorySet's lag sums equal each element's own history bit for bit"
   CHECK(set.weight_error() == error);
   CHECK(set.modes() == modes);
   if (engine == HistoryEngine::soe) {
-    // The same banks and histories as make_soe_histories makes of these orders (its members
-    // share their bank's bytes).
+    // One bank of the six elements of order 0.5, one of the two of 0.3, a SoeHistory for 0.7.
     CHECK(set.modes() > 0);
-    std::vector<double> present;
-    for (const double g : orders)
-      if (!std::isnan(g)) present.push_back(g);
-    std::size_t grouped = 0;
-    for (const auto& h : make_soe_histories(rule, present, count, 1e-12)) grouped += h->bytes();
+    auto c = [&](double g) { return soe_compression(rule, g, 1e-12, count); };
+    const std::size_t grouped =
+        SoeBank(c(0.5), count, 6).bytes() + SoeBank(c(0.3), count, 2).bytes() + SoeHistory(c(0.7), count).bytes();
     CHECK(set.bytes() == grouped);
   } else {
     CHECK(set.bytes() == bytes);

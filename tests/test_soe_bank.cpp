@@ -2,7 +2,7 @@
 // against a SoeHistory pushed the same values (bit for bit: the same arithmetic, lane by lane),
 // for both rules, with and without two-term modes, for banks that fill their last block of
 // four and banks that do not, through the line's shifts and to the end of the weights; members
-// of equal order grouped by make_soe_histories; misuse refused; a building whose Zener storeys
+// of equal order grouped by HistorySet against the exact weights; misuse refused; a building whose Zener storeys
 // share a bank against the direct engine.
 #include <catch2/catch.hpp>
 
@@ -11,6 +11,7 @@
 #include <stdexcept>
 
 #include "adjoin/fractional/direct_history.hpp"
+#include "adjoin/fractional/history_set.hpp"
 #include "adjoin/fractional/soe_bank.hpp"
 #include "adjoin/fractional/weights.hpp"
 #include "adjoin/io/building_scene.hpp"
@@ -82,38 +83,37 @@ TEST_CASE("SoeBank refuses a member pushing twice in a step and pushes past the 
   CHECK_THROWS_AS(SoeBank(c, 3, 0), std::invalid_argument);
 }
 
-TEST_CASE("make_soe_histories shares a bank among equal orders and follows the exact weights", "[soe][bank]") {
+TEST_CASE("a HistorySet shares a bank among equal orders and follows the exact weights", "[soe][bank]") {
   const std::vector<double> orders{0.5, 0.3, 0.5, 0.5, 0.7, 0.3};
   const std::size_t count = 3000;
-  auto histories = make_soe_histories(WeightRule::bdf2, orders, count, 1e-12);
+  HistorySet histories(HistoryEngine::soe, WeightRule::bdf2, orders, count, 1e-12);
   REQUIRE(histories.size() == orders.size());
   std::vector<DirectHistory> exact;
   for (double a : orders) exact.emplace_back(bdf2_weights(a, count));
   // A bank's bytes are shared among its members: the compression and its coefficients once,
   // so forty members of one order hold less than forty SoeHistories.
   const std::size_t alone = SoeHistory(soe_compression(WeightRule::bdf2, 0.5, 1e-12, count), count).bytes();
-  std::size_t forty = 0;
-  for (const auto& h : make_soe_histories(WeightRule::bdf2, std::vector<double>(40, 0.5), count, 1e-12)) forty += h->bytes();
+  const std::size_t forty = HistorySet(HistoryEngine::soe, WeightRule::bdf2, std::vector<double>(40, 0.5), count, 1e-12).bytes();
   INFO("bytes: one SoeHistory " << alone << ", forty banked " << forty);
   CHECK(forty < 40 * alone);
   std::mt19937_64 rng(11);
   double worst = 0.0;
+  std::vector<double> y(orders.size());
   for (std::size_t m = 0; m + 1 < count; ++m) {
     for (std::size_t i = 0; i < orders.size(); ++i) {
-      const double y = value(i, m, rng);
-      histories[i]->push(y);
-      exact[i].push(y);
+      y[i] = value(i, m, rng);
+      exact[i].push(y[i]);
     }
+    histories.push(y.data());
     for (std::size_t i = 0; i < orders.size(); ++i) {
-      REQUIRE(histories[i]->size() == m + 1);
       // Relative to the sum of |w_j y_{m-j}| <= the weights' bound times it.
-      worst = std::max(worst, std::abs(histories[i]->lag_sum() - exact[i].lag_sum()) / (1.0 + std::abs(exact[i].lag_sum())));
+      worst = std::max(worst, std::abs(histories.lag_sums()[i] - exact[i].lag_sum()) / (1.0 + std::abs(exact[i].lag_sum())));
     }
   }
   INFO("largest difference " << worst);
   CHECK(worst < 1e-11);
-  CHECK(histories[0]->modes() > 0);
-  CHECK(histories[1]->weight_error() <= 1e-12);
+  CHECK(histories.modes() > 0);
+  CHECK(histories.weight_error() <= 1e-12);
 }
 
 TEST_CASE("a building whose Zener storeys share a bank follows the direct engine", "[soe][bank][building]") {

@@ -1,7 +1,6 @@
 #include "adjoin/fractional/soe_bank.hpp"
 
 #include <algorithm>
-#include <map>
 #include <stdexcept>
 
 #include "../detail/simd_clones.hpp"
@@ -152,26 +151,6 @@ void step_blocks(const Coefficients& c, std::size_t blocks, std::size_t k, doubl
   for (; blk < blocks; ++blk) lag_blocks<1>(c, rows + blk * stride, stride, far + (blk * kAhead + k) * L, lag + blk * L);
 }
 
-// One member of a bank, seen as a ConvolutionHistory.
-class BankMember final : public ConvolutionHistory {
- public:
-  BankMember(std::shared_ptr<SoeBank> bank, std::size_t e) : bank_(std::move(bank)), e_(e) {}
-  double lag_sum() const override { return bank_->lag_sum(e_); }
-  void push(double y) override { bank_->push(e_, y); }
-  std::size_t size() const override { return bank_->size() + (bank_->staged(e_) ? 1 : 0); }
-  // The bank's bytes shared among its members (the first takes the remainder).
-  std::size_t bytes() const override {
-    const std::size_t all = bank_->bytes(), n = bank_->members();
-    return all / n + (e_ == 0 ? all % n : 0);
-  }
-  double weight_error() const override { return bank_->compression().error; }
-  std::size_t modes() const override { return bank_->compression().modes(); }
-
- private:
-  std::shared_ptr<SoeBank> bank_;
-  std::size_t e_;
-};
-
 }  // namespace
 
 SoeBank::SoeBank(std::shared_ptr<const SoeCompression> compression, std::size_t count, std::size_t members)
@@ -236,28 +215,6 @@ std::size_t SoeBank::bytes() const {
           wide_.r.capacity() + wide_.window.capacity()) *
              sizeof(double) +
          staged_at_.capacity() * sizeof(std::size_t);
-}
-
-std::vector<std::unique_ptr<ConvolutionHistory>> make_soe_histories(WeightRule rule, const std::vector<double>& orders,
-                                                                    std::size_t count, double tolerance) {
-  // Members by compression (equal orders share one: soe_compression caches it).
-  std::vector<std::shared_ptr<const SoeCompression>> compressions;
-  std::map<const SoeCompression*, std::vector<std::size_t>> groups;
-  for (std::size_t i = 0; i < orders.size(); ++i) {
-    compressions.push_back(soe_compression(rule, orders[i], tolerance, count));
-    groups[compressions.back().get()].push_back(i);
-  }
-  std::vector<std::unique_ptr<ConvolutionHistory>> histories(orders.size());
-  for (const auto& [key, members] : groups) {
-    const auto& c = compressions[members.front()];
-    if (members.size() == 1) {
-      histories[members.front()] = std::make_unique<SoeHistory>(c, count);
-      continue;
-    }
-    auto bank = std::make_shared<SoeBank>(c, count, members.size());
-    for (std::size_t e = 0; e < members.size(); ++e) histories[members[e]] = std::make_unique<BankMember>(bank, e);
-  }
-  return histories;
 }
 
 }  // namespace adjoin

@@ -19,15 +19,14 @@
 // in the same order): a member's lag sums equal those of a SoeHistory pushed the same values,
 // bit for bit (tests/test_soe_bank.cpp).
 //
-// Use: every member pushes one value per step (ConvolutionHistory::push on its member history);
-// the step is taken when the last member has pushed, and only then are the members' lag sums
-// those of the next step. The structure stepper reads every lag sum at a step's start and pushes
-// every member at its end, so this holds there.
+// Use: every member pushes one value per step (push, or all at once by push_all); the step is
+// taken when the last member has pushed, and only then are the members' lag sums those of the
+// next step. HistorySet (history_set.hpp) groups a structure's elements into banks by order and
+// pushes each bank at once.
 #include <cstddef>
 #include <memory>
 #include <vector>
 
-#include "adjoin/fractional/history.hpp"
 #include "adjoin/fractional/soe_history.hpp"
 
 namespace adjoin {
@@ -90,12 +89,5 @@ class SoeBank {
   std::vector<double> far_;       // the far sums of the steps made ahead: [block][step][lane]
   std::vector<double> lag_;       // per lane
 };
-
-// Histories of the weights of `rule` at orders[i], each accepting `count` pushes, for sequences
-// pushed together once per step (see SoeBank: every history pushes once before any lag sum is
-// read again). Histories of equal order share one SoeBank; an order met once gets a SoeHistory.
-// The histories keep their banks alive.
-std::vector<std::unique_ptr<ConvolutionHistory>> make_soe_histories(WeightRule rule, const std::vector<double>& orders,
-                                                                    std::size_t count, double tolerance);
 
 }  // namespace adjoin
