@@ -102,6 +102,46 @@ TEST_CASE("the pair step: a record scene with many switches and restarts gives t
   CHECK(c.switches >= 50);
 }
 
+TEST_CASE("the pair step: the weak scene, stuck throughout, is the general step's bit for bit", "[pair_step]") {
+  // Every step stuck: each decided at the step's end by the stuck force's margin
+  // (PairStepper::decide_at_end), none by the trial.
+  for (const char* engine : {"fft", "soe"}) {
+    const Scene scene = test::paper_scene("weak", {std::string("solver.history=") + engine});
+    const Structure s = structure_of(scene);
+    const ScaledGround ground(*scene.ground, 1.0 / kStandardGravity);
+    const Compared c = compare(options_of(scene, Scheme::implicit), s, ground);
+    INFO(engine << ": first difference at point " << c.first_difference << " of " << c.points);
+    CHECK(c.same);
+    CHECK(c.points == scene.solver.steps() + 1);
+  }
+}
+
+TEST_CASE("the pair step: a pair with inherent damping and a storey dashpot gives the general step's trajectory bit for bit", "[pair_step]") {
+  // Not the plain two-block pair (PairSlots<false>: the slots read from the constants): the
+  // strong scene's structure with 5 % modal damping in A (C's diagonal in the trial and the
+  // stick's correction) and a linear dashpot in B's storey (its storey force).
+  const Scene scene = test::paper_scene("strong", {"solver.history=fft"});
+  Structure s = structure_of(scene);
+  s.a.damping.model = structure::DampingModel::modal;
+  s.a.damping.ratio = 0.05;
+  structure::StoreyDevice dashpot;
+  dashpot.type = structure::DeviceType::dashpot;
+  dashpot.storeys = {1};
+  dashpot.c = 0.05;  // (the scene's units: B's mass 1 / rho, its stiffness eps)
+  s.b->devices.push_back(dashpot);
+  const ScaledGround ground(*scene.ground, 1.0 / kStandardGravity);
+  for (Scheme scheme : {Scheme::implicit, Scheme::implicit_damped}) {
+    const StructureSolverOptions o = options_of(scene, scheme);
+    const detail::StructureModel model(o, s);
+    REQUIRE(detail::takes_pair_step(model));
+    REQUIRE(model.dashpots_b);
+    const Compared c = compare(o, s, ground);
+    INFO("scheme " << static_cast<int>(scheme) << ": first difference at point " << c.first_difference << " of " << c.points);
+    CHECK(c.same);
+    CHECK(c.switches >= 4);
+  }
+}
+
 TEST_CASE("the pair step is taken by one-floor pairs joined by one friction damper only", "[pair_step]") {
   const Scene scene = test::paper_scene("strong");
   Structure s = structure_of(scene);

@@ -356,9 +356,10 @@ void FftHistory::push(double y) {
   if (m >= w_.size()) { lag_sum_ = 0.0; return; }  // past step N: never read
 
   // Every window that closes here: L divides m, for L = B, rB, r^2 B, ... (a power-of-two
-  // ladder, so the first L that does not divide m ends the search).
+  // ladder, so the first L that does not divide m ends the search). L is a power of two, so
+  // the test is a mask (m % L, a 64-bit division, cost about 40 cycles a step).
   const auto& levels = spectra_->levels;
-  for (std::size_t i = 0; i < levels.size() && m % levels[i].block == 0; ++i) add_window(i, m);
+  for (std::size_t i = 0; i < levels.size() && (m & (levels[i].block - 1)) == 0; ++i) add_window(i, m);
 
   // Near lags j = 1..min(n, m): near_[i] = w_{n-i} with n = near_.size(), against
   // y_{m-n+i}.

@@ -11,6 +11,16 @@ namespace adjoin::detail {
 
 namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// Whether the pair's slots are PairSlots<true>'s (decide(), the rare path, reads pc's own).
+bool plain_pair(const PairConstants& c) {
+  if (c.fi != 0 || c.fj != 1 || c.pi != 0 || c.pj != 1 || c.dashpots_a || c.dashpots_b) return false;
+  if (c.n_contacts != 1 || c.contact_i[0] != 0 || c.contact_j[0] != 1) return false;
+  if (c.n_zener != 0 && c.n_zener != 2) return false;
+  for (int e = 0; e < c.n_zener; ++e)
+    if (c.zener[e].i != e || c.zener[e].j != 2 || c.zener[e].storey != e) return false;
+  return true;
+}
 }  // namespace
 
 PairStepper::PairStepper(const StructureModel& model, StepWorkspace& workspace, const GroundMotion& ground_motion, Fallbacks& general)
@@ -26,18 +36,19 @@ PairStepper::PairStepper(const StructureModel& model, StepWorkspace& workspace, 
 const StructureState& PairStepper::advance(std::size_t step) {
   if (step == 0) begin_run();
   switch (pc.n_zener) {  // (the loops over the Zener elements unrolled for the usual counts)
-    case 0: return advance_with<0>(step);
-    case 1: return advance_with<1>(step);
-    case 2: return advance_with<2>(step);
-    default: return advance_with<-1>(step);
+    case 0: return pc.plain ? advance_with<0, true>(step) : advance_with<0, false>(step);
+    case 1: return advance_with<1, false>(step);
+    case 2: return pc.plain ? advance_with<2, true>(step) : advance_with<2, false>(step);
+    default: return advance_with<-1, false>(step);
   }
 }
 
-template <int kZener>
+template <int kZener, bool kPlain>
 const StructureState& PairStepper::advance_with(std::size_t step) {
   const StructureState& now = *ws.now_p;
   StructureState& next = *ws.next_p;
   const PairConstants& c = pc;
+  const PairSlots<kPlain> sl{c};
   const int n_zener = kZener >= 0 ? kZener : c.n_zener;
   PairCarry& cr = carry;
   // begin_step: t_n+1, a_g, the Zener elements' offsets (each reads its own law only).
@@ -48,8 +59,8 @@ const StructureState& PairStepper::advance_with(std::size_t step) {
   const double* lag = ws.histories.lag_sums();
   for (int e = 0; e < n_zener; ++e) {
     offsets[e] = c.zener[e].scale * (lag[e] + 0.0);
-    off[c.zener[e].i] += offsets[e];
-    off[c.zener[e].j] -= offsets[e];
+    off[sl.zi(e)] += offsets[e];
+    off[sl.zj(e)] -= offsets[e];
   }
   const bool restart = ws.restart_left > 0;
   if (restart) --ws.restart_left;
@@ -74,69 +85,28 @@ const StructureState& PairStepper::advance_with(std::size_t step) {
     s.vf[k] = 0.0 + th.block[k][0] * rhs[k];
     s.cvf[k] = 0.0 + th.block[k][1] * rhs[k];
   }
-  // local_solve: the damper's step force.
-  s.w_free = s.vf[c.fi] - s.vf[c.fj];
+  // local_solve: the damper's step force, and correct: the step's end under it.
+  s.w_free = s.vf[sl.fi()] - s.vf[sl.fj()];
   DamperState decided = DamperState::stick;
-  double q_step = 0.0;
+  End end;
+  end.stick_known = false;
   if (step == 0) {
     ws.w_free[0] = s.w_free;
     ws.box_qp = restart ? ws.box_qp_backward.get() : ws.box_qp_trapezoidal.get();
     const BoxQpResult& r = ws.box_qp->solve(ws.w_free, m.limit, ws.states);
-    q_step = r.q[0];
     decided = r.state[0];
-  } else {
-    q_step = decide(now, th, restart, offsets, s, decided);
+    end_state<kZener, kPlain>(now, th, restart, step, s, r.q[0], decided, offsets, end);
+  } else if (!decide_at_end<kZener, kPlain>(now, th, restart, step, offsets, s, decided, end)) {
+    const double q_step = decide(now, th, restart, offsets, s, decided);
+    end_state<kZener, kPlain>(now, th, restart, step, s, q_step, decided, offsets, end);
   }
   cr.state = decided;
-  // correct: the end velocities from the damper's column, the stuck floors joined, x, P.
-  double* v = next.v.data();
-  double cv[2];
-  {
-    double r[4];
-    for (int k = 0; k < 4; ++k) r[k] = 0.0 + th.response[k] * q_step;
-    for (int k = 0; k < 2; ++k) {
-      v[k] = s.vf[k] - c.h * r[k];
-      cv[k] = s.cvf[k] - c.h * r[2 + k];
-    }
-  }
-  if (decided == DamperState::stick) {  // stick_exact: the mass-weighted mean, twice; C v follows
-    const double before[2] = {v[0], v[1]};
-    const double mi = c.mass[c.fi], mj = c.mass[c.fj];
-    for (int pass = 0; pass < 2; ++pass) {
-      const double mean = (mi * v[c.fi] + mj * v[c.fj]) / (mi + mj);
-      v[c.fi] = v[c.fj] = mean;
-    }
-    for (int k = 0; k < 2; ++k) {
-      const double dv = v[k] - before[k];
-      if (dv != 0.0) cv[k] += c.c_diag[k] * dv;
-    }
-  }
-  double* x = next.x.data();
-  if (restart) {
-    for (int k = 0; k < 2; ++k) x[k] = x0[k] + c.h * v[k];
-  } else {
-    for (int k = 0; k < 2; ++k) x[k] = x0[k] + c.half_h * (v0[k] + v[k]);
-    if (step > 0 && !std::isnan(s.kink_theta)) [[unlikely]] {
-      ws.states[0] = decided;
-      ws.kink_theta[0] = s.kink_theta;
-      ws.kink_jump[0] = s.kink_jump;
-      fallbacks.kinks(&next.x);
-    }
-  }
-  double p[2] = {(0.0 + c.k0_di0 * x[0]) + c.k0_up0 * x[1], (0.0 + c.k0_lo0 * x[0]) + c.k0_di1 * x[1]};
-  const double xs[3] = {x[0], x[1], 0.0};
-  double zener_force[PairConstants::kMaxZener];
-  {
-    double p3[3] = {p[0], p[1], 0.0};
-    for (int e = 0; e < n_zener; ++e) {
-      const PairZener& z = c.zener[e];
-      zener_force[e] = z.stiffness * (xs[z.i] - xs[z.j]) + offsets[e];
-      p3[z.i] += zener_force[e];
-      p3[z.j] -= zener_force[e];
-    }
-    p[0] = p3[0];
-    p[1] = p3[1];
-  }
+  const double* x = end.x;
+  const double* v = end.v;
+  const double* xs = end.xs;
+  double* p = end.p;
+  const double* cv = end.cv;
+  const double* zener_force = end.zener_force;
   // locate_switches
   const Phase before = now.link_phase[0];
   const Phase after = decided == DamperState::stick ? Phase::stick
@@ -151,21 +121,22 @@ const StructureState& PairStepper::advance_with(std::size_t step) {
   // report: the grid point's damper force, accelerations, storey and link forces; the Zener
   // histories committed.
   double stick_grid = 0.0;
-  const double q = grid_force(cv, p, after, &stick_grid);
+  const double q = end.stick_known ? std::clamp(end.stick, -c.limit, c.limit) : grid_force(cv, p, after, &stick_grid);
+  if (end.stick_known) stick_grid = end.stick;
   {
     const double ag = next.ag;
     double btq[2];
-    btq[c.pi] = 0.0 + q;  // (damper_bt's sums)
-    btq[c.pj] = 0.0 - q;
+    btq[sl.pi()] = 0.0 + q;  // (damper_bt's sums)
+    btq[sl.pj()] = 0.0 - q;
     double* a_abs = next.a_abs.data();
     for (int k = 0; k < 2; ++k) a_abs[k] = (c.mass[k] * ag - cv[k] - p[k] - btq[k]) * c.inv_mass[k] - ag;
     double* force = next.storey_force.data();
-    force[0] = c.storey_spring[0] * x[0] + (c.dashpots_a ? c.storey_dashpot[0] * v[0] : 0.0);
-    force[1] = c.storey_spring[1] * x[1] + (c.dashpots_b ? c.storey_dashpot[1] * v[1] : 0.0);
+    force[0] = c.storey_spring[0] * x[0] + (sl.dashpots_a() ? c.storey_dashpot[0] * v[0] : 0.0);
+    force[1] = c.storey_spring[1] * x[1] + (sl.dashpots_b() ? c.storey_dashpot[1] * v[1] : 0.0);
     for (int e = 0; e < n_zener; ++e)
-      if (c.zener[e].storey >= 0) force[c.zener[e].storey] += zener_force[e];
-    next.link_stroke[0] = x[c.fi] - x[c.fj];
-    next.link_velocity[0] = v[c.fi] - v[c.fj];
+      if (sl.storey(e) >= 0) force[sl.storey(e)] += zener_force[e];
+    next.link_stroke[0] = x[sl.fi()] - x[sl.fj()];
+    next.link_velocity[0] = v[sl.fi()] - v[sl.fj()];
     next.link_force[0] = q;
   }
   // (check_range's test, inline: |x| <= 1e6 false for NaN, v - v not 0 for an infinite v)
@@ -174,11 +145,11 @@ const StructureState& PairStepper::advance_with(std::size_t step) {
   if (n_zener > 0) {  // (RodLaw::commit's values, all pushed at once)
     for (int e = 0; e < n_zener; ++e) {
       const PairZener& z = c.zener[e];
-      ws.zener_value[static_cast<std::size_t>(e)] = z.value_of_x * (xs[z.i] - xs[z.j]) - z.value_of_f * zener_force[e];
+      ws.zener_value[static_cast<std::size_t>(e)] = z.value_of_x * (xs[sl.zi(e)] - xs[sl.zj(e)]) - z.value_of_f * zener_force[e];
     }
     ws.histories.push(ws.zener_value.data());
   }
-  for (int k = 0; k < c.n_contacts; ++k) next.contact_gap[k] = c.contact_gap[k] - (xs[c.contact_i[k]] - xs[c.contact_j[k]]);
+  for (int k = 0; k < sl.contacts(); ++k) next.contact_gap[k] = c.contact_gap[k] - (xs[sl.ci(k)] - xs[sl.cj(k)]);
   // carry_over
   cr.internal[0] = p[0];
   cr.internal[1] = p[1];
@@ -191,6 +162,127 @@ const StructureState& PairStepper::advance_with(std::size_t step) {
   cr.w_prev = now.link_velocity[0];
   std::swap(ws.now_p, ws.next_p);
   return *ws.now_p;
+}
+
+// correct: the step's end under the damper's step force q_step and its state `decided`: the
+// end velocities from the damper's column, the stuck floors joined (their mass-weighted mean,
+// twice; C v follows), x (with a slip's kink, the general code's), P with the Zener forces.
+template <int kZener, bool kPlain>
+void PairStepper::end_state(const StructureState& now, const PairTheta& th, bool restart, std::size_t step, const Step& s,
+                            double q_step, DamperState decided, const double* offsets, End& e) {
+  const PairConstants& c = pc;
+  const PairSlots<kPlain> sl{c};
+  const int n_zener = kZener >= 0 ? kZener : c.n_zener;
+  StructureState& next = *ws.next_p;
+  double* v = next.v.data();
+  double* cv = e.cv;
+  {
+    double r[4];
+    for (int k = 0; k < 4; ++k) r[k] = 0.0 + th.response[k] * q_step;
+    for (int k = 0; k < 2; ++k) {
+      v[k] = s.vf[k] - c.h * r[k];
+      cv[k] = s.cvf[k] - c.h * r[2 + k];
+    }
+  }
+  e.dv[0] = e.dv[1] = 0.0;
+  if (decided == DamperState::stick) {  // stick_exact
+    const double before[2] = {v[0], v[1]};
+    const int fi = sl.fi(), fj = sl.fj();
+    const double mi = c.mass[fi], mj = c.mass[fj];
+    for (int pass = 0; pass < 2; ++pass) {
+      const double mean = (mi * v[fi] + mj * v[fj]) / (mi + mj);
+      v[fi] = v[fj] = mean;
+    }
+    for (int k = 0; k < 2; ++k) {
+      const double dv = v[k] - before[k];
+      e.dv[k] = dv;
+      if (dv != 0.0) cv[k] += c.c_diag[k] * dv;
+    }
+  }
+  const double* x0 = now.x.data();
+  const double* v0 = now.v.data();
+  double* x = next.x.data();
+  if (restart) {
+    for (int k = 0; k < 2; ++k) x[k] = x0[k] + c.h * v[k];
+  } else {
+    for (int k = 0; k < 2; ++k) x[k] = x0[k] + c.half_h * (v0[k] + v[k]);
+    if (step > 0 && !std::isnan(s.kink_theta)) [[unlikely]] {
+      ws.states[0] = decided;
+      ws.kink_theta[0] = s.kink_theta;
+      ws.kink_jump[0] = s.kink_jump;
+      fallbacks.kinks(&next.x);
+    }
+  }
+  e.x = x;
+  e.v = v;
+  double* p = e.p;
+  p[0] = (0.0 + c.k0_di0 * x[0]) + c.k0_up0 * x[1];
+  p[1] = (0.0 + c.k0_lo0 * x[0]) + c.k0_di1 * x[1];
+  e.xs[0] = x[0];
+  e.xs[1] = x[1];
+  e.xs[2] = 0.0;
+  double p3[3] = {p[0], p[1], 0.0};
+  for (int k = 0; k < n_zener; ++k) {
+    const PairZener& z = c.zener[k];
+    e.zener_force[k] = z.stiffness * (e.xs[sl.zi(k)] - e.xs[sl.zj(k)]) + offsets[k];
+    p3[sl.zi(k)] += e.zener_force[k];
+    p3[sl.zj(k)] -= e.zener_force[k];
+  }
+  p[0] = p3[0];
+  p[1] = p3[1];
+}
+
+// The usual steps decided at the step's end itself, without decide()'s trial:
+//  - a slipping damper that slips on: the trial's force is the step force, so the trial's end
+//    is the step's end (the same operations, the same numbers), and its relative velocity
+//    decides;
+//  - a stuck damper (inside the cone at t_n) whose stuck force at the step's end lies inside
+//    the cone by more than stuck_margin: the trial's end differs from the step's only by the
+//    stick's mean velocity (a few roundings), so the trial's stuck force lies inside the cone
+//    too, and decide() would keep the damper stuck with the trial's force.
+// Each decides as decide() would and leaves the step's end in e; false (nothing decided: a
+// switch, or too close to one to tell) leaves the step to decide() and end_state.
+template <int kZener, bool kPlain>
+bool PairStepper::decide_at_end(const StructureState& now, const PairTheta& th, bool restart, std::size_t step,
+                                const double* offsets, const Step& s, DamperState& decided, End& e) {
+  const PairConstants& c = pc;
+  const Phase ph = now.link_phase[0];
+  if (ph == Phase::stick) {
+    if (std::abs(carry.stick_now) > c.limit) return false;
+    end_state<kZener, kPlain>(now, th, restart, step, s, th.single * s.w_free, DamperState::stick, offsets, e);
+    const double stick = c.stuck_single * relative_accel(e.cv, e.p, 0.0);
+    if (!(std::abs(stick) + stuck_margin<kZener, kPlain>(now, e) <= c.limit)) return false;  // (false for NaN)
+    e.stick_known = true;
+    e.stick = stick;
+    decided = DamperState::stick;
+    return true;
+  }
+  const double d = ph == Phase::slip_right ? 1.0 : -1.0;
+  end_state<kZener, kPlain>(now, th, restart, step, s, d * c.limit, carry.state, offsets, e);
+  const PairSlots<kPlain> sl{c};
+  if (!((e.v[sl.fi()] - e.v[sl.fj()]) * d > 0.0)) return false;
+  decided = carry.state;
+  return true;
+}
+
+// A bound on |stick1 - stick| for decide_at_end: the trial's end (x1, C v1, P1) against the
+// step's end (x, C v, P) of a stuck step. Their velocities differ by e.dv (the mean), which
+// moves C v by C dv and x by up to h dv, hence P by up to |K| h dv (K: K0's row and the Zener
+// stiffnesses); the trial's P also holds the contacts' B' f (zero without a contact law). Each
+// end is formed with roundings of its terms (relative 1.1e-16 each), bounded here by 1e-12 of
+// the terms' sizes: a bound generous by about four orders of magnitude.
+template <int kZener, bool kPlain>
+double PairStepper::stuck_margin(const StructureState& now, const End& e) const {
+  const PairConstants& c = pc;
+  const int n_zener = kZener >= 0 ? kZener : c.n_zener;
+  const double dv = std::max(std::abs(e.dv[0]), std::abs(e.dv[1]));
+  const double* x0 = now.x.data();
+  const double* v0 = now.v.data();
+  const double size_x = std::abs(x0[0]) + std::abs(x0[1]) + std::abs(e.x[0]) + std::abs(e.x[1]) +
+                        c.h * (std::abs(v0[0]) + std::abs(v0[1]) + std::abs(e.v[0]) + std::abs(e.v[1]));
+  double terms = std::abs(e.cv[0]) + std::abs(e.cv[1]) + std::abs(e.p[0]) + std::abs(e.p[1]);
+  for (int k = 0; k < n_zener; ++k) terms += std::abs(e.zener_force[k]);
+  return c.stuck_scale * ((c.c_abs + c.k_abs * c.h) * dv + c.contact_abs + 1e-12 * (terms + c.k_abs * size_x));
 }
 
 // The constants (PairConstants) and the carried state (PairCarry) from the model and from
@@ -229,6 +321,12 @@ void PairStepper::begin_run() {
   c.dashpots_b = m.dashpots_b;
   c.limit = m.limit[0];
   c.stuck_single = ws.stuck_systems.single();
+  // (stuck_margin's constants)
+  c.stuck_scale = std::abs(c.stuck_single) * (c.inv_mass[0] + c.inv_mass[1]);
+  c.c_abs = std::max(std::abs(c.c_diag[0]), std::abs(c.c_diag[1]));
+  c.k_abs = std::max(std::abs(c.k0_di0) + std::abs(c.k0_up0), std::abs(c.k0_lo0) + std::abs(c.k0_di1));
+  for (const auto& el : m.zener) c.k_abs += 2.0 * std::abs(el.stiffness);
+  c.contact_abs = std::abs(c.contact_bt[0]) + std::abs(c.contact_bt[1]);
   c.g00 = m.g_all(0, 0);
   c.fi = m.fi[0];
   c.fj = m.fj[0];
@@ -256,6 +354,7 @@ void PairStepper::begin_run() {
       c.trial_sign[k][a] = list[a].second;
     }
   }
+  c.plain = plain_pair(c);
   PairCarry& cr = carry;
   for (int k = 0; k < 2; ++k) {
     cr.internal[k] = ws.internal[k];

@@ -64,6 +64,9 @@ struct PairConstants {
   double k0_di0 = 0.0, k0_di1 = 0.0, k0_up0 = 0.0, k0_lo0 = 0.0;  // K0's
   double mass[2] = {}, inv_mass[2] = {}, c_diag[2] = {};          // M, M^-1, C's diagonal (trapezoidal blocks)
   double limit = 0.0, stuck_single = 0.0, g00 = 0.0;              // F, (B M^-1 B')^-1, B M^-1 B'
+  // PairStepper::stuck_margin's: |stuck_single| (1/m_0 + 1/m_1), max |C_kk|, the largest row
+  // sum of |K0| plus twice the Zener stiffnesses, sum |contact_bt|.
+  double stuck_scale = 0.0, c_abs = 0.0, k_abs = 0.0, contact_abs = 0.0;
   double contact_bt[2] = {};
   double storey_spring[2] = {}, storey_dashpot[2] = {};
   bool dashpots_a = false, dashpots_b = false;
@@ -71,6 +74,7 @@ struct PairConstants {
   int pi = 0, pj = 1;  // ... as damper dofs (B' q's rows)
   int n_zener = 0;
   PairZener zener[kMaxZener];
+  bool plain = false;  // the slots are PairSlots<true>'s
   // The contacts without a law (the only ones here): their gaps reported, gap - x_i + x_j.
   int n_contacts = 0;
   double contact_gap[kMaxZener] = {};
@@ -79,6 +83,27 @@ struct PairConstants {
   int n_trial_zener[2] = {};
   int trial_zener[2][kMaxZener] = {};
   double trial_sign[2][kMaxZener] = {};
+};
+
+// The slots the pair step reads: constants for the plain pair (PairConstants::plain, the
+// two-block scenes' 1 + 1 structure: the damper from floor 0 to floor 1, Zener element e the
+// storey of floor e, one contact pair between the floors, no dashpot), from pc otherwise. The
+// same operations either way, on registers instead of indexed loads for the plain pair.
+template <bool kPlain>
+struct PairSlots {
+  const PairConstants& c;
+  int fi() const { return kPlain ? 0 : c.fi; }
+  int fj() const { return kPlain ? 1 : c.fj; }
+  int pi() const { return kPlain ? 0 : c.pi; }
+  int pj() const { return kPlain ? 1 : c.pj; }
+  int zi(int e) const { return kPlain ? e : c.zener[e].i; }
+  int zj(int e) const { return kPlain ? 2 : c.zener[e].j; }
+  int storey(int e) const { return kPlain ? e : c.zener[e].storey; }
+  int contacts() const { return kPlain ? 1 : c.n_contacts; }
+  int ci(int k) const { return kPlain ? 0 : c.contact_i[k]; }
+  int cj(int k) const { return kPlain ? 1 : c.contact_j[k]; }
+  bool dashpots_a() const { return kPlain ? false : c.dashpots_a; }
+  bool dashpots_b() const { return kPlain ? false : c.dashpots_b; }
 };
 
 // The pair step's state carried from t_n to t_n+1 in scalars (the general step's work vectors
@@ -126,7 +151,7 @@ class PairStepper {
 
  private:
   // advance() for a structure of kZener Zener elements (-1: any number, read from pc).
-  template <int kZener>
+  template <int kZener, bool kPlain>
   const StructureState& advance_with(std::size_t step);
   // The step's values the decisions pass on (the general step's ws.onset, crossing, ...).
   struct Step {
@@ -134,9 +159,28 @@ class PairStepper {
     double vf[2] = {}, cvf[2] = {}, w_free = 0.0;
     double onset = kNaN, crossing = kNaN, kink_theta = kNaN, kink_jump = 0.0;
   };
+  // The step's end (correct's): written into the next state (x, v) and here.
+  // (No initialisers: end_state writes every field a step reads, and zeroing them cost about
+  // 20 instructions a step.)
+  struct End {
+    const double* x;  // next.x's, next.v's entries
+    const double* v;
+    double cv[2], p[2], xs[3], dv[2];
+    double zener_force[PairConstants::kMaxZener];
+    bool stick_known;  // the damper's stuck force at the end is `stick` (decide_at_end's)
+    double stick;
+  };
   // The constants (PairConstants) and the carried state (PairCarry) from the model and from
   // the state start() left in the workspace; at the first step of a run.
   void begin_run();
+  template <int kZener, bool kPlain>
+  [[gnu::always_inline]] inline void end_state(const StructureState& now, const PairTheta& th, bool restart, std::size_t step,
+                                               const Step& s, double q_step, DamperState decided, const double* offsets, End& e);
+  template <int kZener, bool kPlain>
+  [[gnu::always_inline]] inline bool decide_at_end(const StructureState& now, const PairTheta& th, bool restart, std::size_t step,
+                                                   const double* offsets, const Step& s, DamperState& decided, End& e);
+  template <int kZener, bool kPlain>
+  [[gnu::always_inline]] inline double stuck_margin(const StructureState& now, const End& e) const;
   // decide_dampers for the one damper; returns its step force, its state in `decided`.
   // (These are inlined into advance(), which alone calls them (pair_step.cpp): as calls
   // they cost about 200 instructions a step of a two-block run; there is no FMA contraction in
