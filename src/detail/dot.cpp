@@ -5,8 +5,9 @@ namespace adjoin::detail {
 
 
 // sum_{i<n} a[i] b[i], with sixteen independent partial sums: the compiler keeps them in four
-// AVX2 registers, four chains of fused multiply-adds (eight sums made two, whose latency set
-// the pace: the fft history's 128-lag window took about 80 cycles, now about 40).
+// AVX2 registers, four chains of fused multiply-adds (eight sums made two chains, sixteen deep
+// for the fft history's 128-lag window, whose latency set the pace; the weak scene's fft run
+// went from 1.06 to 0.91 of 7307fe9's time, docs/explanation/benchmarks.md).
 ADJOIN_SIMD_CLONES
 double dot(const double* __restrict a, const double* __restrict b, std::size_t n) {
   double s[16] = {};

@@ -357,7 +357,8 @@ void FftHistory::push(double y) {
 
   // Every window that closes here: L divides m, for L = B, rB, r^2 B, ... (a power-of-two
   // ladder, so the first L that does not divide m ends the search). L is a power of two, so
-  // the test is a mask (m % L, a 64-bit division, cost about 40 cycles a step).
+  // the test is a mask rather than m % L, a 64-bit division every step (no gain measured
+  // beyond the noise, but none lost).
   const auto& levels = spectra_->levels;
   for (std::size_t i = 0; i < levels.size() && (m & (levels[i].block - 1)) == 0; ++i) add_window(i, m);
 
