@@ -33,7 +33,7 @@ void run(benchmark::State& state, const std::vector<std::string>& law) {
   if (!gap) keys.emplace_back("model.gap0=0.3");
   const Scene scene = load_scene(std::string(ADJOIN_SOURCE_DIR) + "/records/scenes/paper-strong.toml", keys);
   Nothing observer;
-  for (auto _ : state) simulate_as_structure(two_block_options(scene), *scene.model, *scene.ground, observer);
+  for (auto _ : state) simulate_as_structure(two_block_options(scene), scene.structure, *scene.ground, observer);
 }
 
 const std::vector<std::string> kLinear{"model.contact.model=linear", "model.contact.stiffness=1000", "model.contact.restitution=0.65"};

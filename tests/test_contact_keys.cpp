@@ -209,7 +209,7 @@ t_end = 1.0
 )";
   const Scene scene = parse_scene(si, "si.toml");
   // X0 = m1 g / k1 = 0.24516625 m, F0 = m1 g = 1961330 N: F0 / X0^1.5 = 16156959.8168 N/m^1.5.
-  CHECK(scene.model->contact.stiffness == Approx(2.0e9 / 16156959.816820417).epsilon(1e-12));
+  CHECK(two_block_model(scene).contact.stiffness == Approx(2.0e9 / 16156959.816820417).epsilon(1e-12));
   const structure::Structure s = structure_of(scene);
   REQUIRE(s.contacts.size() == 1);
   CHECK(s.contacts[0].gap == Approx(0.1).epsilon(1e-14));
@@ -217,7 +217,7 @@ t_end = 1.0
   CHECK(s.contacts[0].law.stiffness == Approx(2.0e9).epsilon(1e-12));
   CHECK(s.contacts[0].law.restitution == 0.65);
   const Scene linear = parse_scene(si, "si.toml", {"model.contact.model=linear", "model.contact.stiffness=4e8"});
-  CHECK(linear.model->contact.stiffness == Approx(50.0).epsilon(1e-14));  // 4e8 N/m / k1
+  CHECK(two_block_model(linear).contact.stiffness == Approx(50.0).epsilon(1e-14));  // 4e8 N/m / k1
   CHECK(structure_of(linear).contacts[0].law.stiffness == Approx(4.0e8).epsilon(1e-14));
 }
 
@@ -234,13 +234,13 @@ TEST_CASE("contact keys: a two-block sweep edits model.contact keys on an axis",
       "[[axis]]\nkey = \"model.contact.restitution\"\nvalues = [0.5, 0.9]\n";
   const SweepSpec spec = parse_sweep(text, (folder / "sweep.toml").string());
   const Scene first = sweep_scene(spec, 0);
-  CHECK(first.model->contact.model == ContactModel::linear);
-  CHECK(first.model->contact.stiffness == 1000.0);
-  CHECK(first.model->contact.restitution == 0.5);
-  CHECK(std::isnan(first.model->contact.damping));  // the axis' restitution replaced it
+  CHECK(two_block_model(first).contact.model == ContactModel::linear);
+  CHECK(two_block_model(first).contact.stiffness == 1000.0);
+  CHECK(two_block_model(first).contact.restitution == 0.5);
+  CHECK(std::isnan(two_block_model(first).contact.damping));  // the axis' restitution replaced it
   const Scene last = sweep_scene(spec, 3);
-  CHECK(last.model->contact.stiffness == 2000.0);
-  CHECK(last.model->contact.restitution == 0.9);
+  CHECK(two_block_model(last).contact.stiffness == 2000.0);
+  CHECK(two_block_model(last).contact.restitution == 0.9);
 
   const std::string bad = "base = \"base.toml\"\n"
                           "[[axis]]\nkey = \"model.contact.restitution\"\nvalues = [0.5, 1.5]\n";

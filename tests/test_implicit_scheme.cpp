@@ -44,14 +44,14 @@ TEST_CASE("implicit, weak excitation: stick throughout, exactly one velocity", "
       REQUIRE(s.v[0] == s.v[1]);
       max_q = std::max(max_q, std::abs(s.link_force[0]));
     }
-    CHECK(max_q < scene.model->mu);
-    CHECK(max_q > 0.5 * scene.model->mu);
+    CHECK(max_q < two_block_model(scene).mu);
+    CHECK(max_q > 0.5 * two_block_model(scene).mu);
   }
 }
 
 TEST_CASE("implicit, strong excitation: the paper's phase structure, exact final stick", "[implicit]") {
   const Scene scene = paper_scene("strong", {"solver.scheme=implicit"});
-  const double mu = scene.model->mu;
+  const double mu = two_block_model(scene).mu;
   const Report report = run(scene);
   const auto& phases = report.phases;
   REQUIRE(phases.size() >= 4);
@@ -72,7 +72,7 @@ TEST_CASE("implicit, strong excitation: the paper's phase structure, exact final
   double c = std::nan("");
   for (std::size_t i = 1; i < states.size(); ++i) {
     const StructureState& s = states[i];
-    REQUIRE(scene.model->gap0 + s.x[1] - s.x[0] > 0.0);
+    REQUIRE(two_block_model(scene).gap0 + s.x[1] - s.x[0] > 0.0);
     REQUIRE(std::abs(s.link_force[0]) <= mu);
     if (s.link_phase[0] == Phase::stick) REQUIRE(s.v[0] == s.v[1]);  // stick holds exactly: no chatter
     // In slip, q sits on the limit, except in the step where the slip reverses (its average).
@@ -165,8 +165,8 @@ TEST_CASE("implicit stays stable and accurate where the paper scheme must stop",
 
 TEST_CASE("shortcuts agree with the general path: mu = 0 and elastic rods", "[implicit][shortcuts]") {
   auto run = [](std::vector<std::string> o, bool elastic_rod2 = false) {
-    Scene scene = paper_scene("strong", o);
-    if (elastic_rod2) scene.model->rod2 = Rod::Elastic();
+    if (elastic_rod2) o.push_back("model.rod2.elastic=true");
+    const Scene scene = paper_scene("strong", o);
     test::StateRecorder r;
     adjoin::run(scene, {&r});
     return r.states;

@@ -160,11 +160,11 @@ TEST_CASE("the paper's two blocks are the smallest structure", "[modal][scene]")
   REQUIRE(s.b);
   CHECK(s.a.floors() == 1);
   CHECK(s.links.size() == 1);
-  CHECK(s.links[0].slip_force == Approx(scene.model->mu));
-  CHECK(s.contacts[0].gap == Approx(scene.model->gap0));
+  CHECK(s.links[0].slip_force == Approx(two_block_model(scene).mu));
+  CHECK(s.contacts[0].gap == Approx(two_block_model(scene).gap0));
   // Relaxed periods: 2 pi sqrt(m1/k1) = 2 pi in T0, and block 2 sqrt((1/rho)/eps).
   CHECK(building_modes(s.a).periods[0] == Approx(2 * M_PI).epsilon(1e-12));
-  CHECK(building_modes(*s.b).periods[0] == Approx(2 * M_PI * std::sqrt(1.0 / (scene.model->rho * scene.model->eps))).epsilon(1e-12));
+  CHECK(building_modes(*s.b).periods[0] == Approx(2 * M_PI * std::sqrt(1.0 / (two_block_model(scene).rho * two_block_model(scene).eps))).epsilon(1e-12));
 }
 
 TEST_CASE("the example building scene reads, with the period and the slip ratio resolved", "[modal][scene]") {

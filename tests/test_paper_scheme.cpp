@@ -44,8 +44,8 @@ TEST_CASE("weak excitation: stick throughout, x1 == x2, |q| < mu", "[paper]") {
     max_q = std::max(max_q, std::abs(s.link_force[0]));
     max_x = std::max(max_x, std::abs(s.x[0]));
   }
-  CHECK(max_q < scene.model->mu);
-  CHECK(max_q > 0.5 * scene.model->mu);  // the damper is loaded, just not enough to slip
+  CHECK(max_q < two_block_model(scene).mu);
+  CHECK(max_q > 0.5 * two_block_model(scene).mu);  // the damper is loaded, just not enough to slip
   CHECK(max_x > 0.05);                  // and the blocks do move
   CHECK(report.contacts.at(0).min_gap > 0.0);
   CHECK(report.link_energy(0) == 0.0);
@@ -53,7 +53,7 @@ TEST_CASE("weak excitation: stick throughout, x1 == x2, |q| < mu", "[paper]") {
 
 TEST_CASE("strong excitation: short stick, alternating slips, final stick", "[paper]") {
   const Scene scene = paper_scene("strong");
-  const double mu = scene.model->mu;
+  const double mu = two_block_model(scene).mu;
   const Report report = run(scene);
   const auto& phases = report.phases;
   REQUIRE(phases.size() >= 4);
@@ -86,7 +86,7 @@ TEST_CASE("strong excitation: short stick, alternating slips, final stick", "[pa
   bool have_c = false;
   for (std::size_t i = 0; i < states.size(); ++i) {
     const StructureState& s = states[i];
-    REQUIRE(scene.model->gap0 + s.x[1] - s.x[0] > 0.0);  // no pounding
+    REQUIRE(two_block_model(scene).gap0 + s.x[1] - s.x[0] > 0.0);  // no pounding
     max_f = std::max({max_f, std::abs(s.storey_force[0]), std::abs(s.storey_force[1])});
     if (s.t > 14.0) late_f = std::max({late_f, std::abs(s.storey_force[0]), std::abs(s.storey_force[1])});
     if (s.link_phase[0] != Phase::stick) {

@@ -58,16 +58,16 @@ int line_of(const std::string& text, const std::string& needle) {
 TEST_CASE("the paper-strong scene reads back as the paper's parameters", "[scene]") {
   const Scene s = parse_scene(kStrong, "paper-strong.toml");
   CHECK(s.name == "paper-strong");
-  CHECK(s.model->rho == 0.5);
-  CHECK(s.model->eps == 2.0);
-  CHECK(s.model->mu == 0.3);
-  CHECK(s.model->gap0 == 2.0);
-  CHECK(s.model->rod1.order == 0.23);
-  CHECK(s.model->rod1.tau_x == 1.183);
-  CHECK(s.model->rod1.tau_f == 0.004);
-  CHECK(s.model->rod2.order == 0.53);
-  CHECK(s.model->rod2.tau_x == 4.0);
-  CHECK(s.model->rod2.tau_f == 0.2);
+  CHECK(two_block_model(s).rho == 0.5);
+  CHECK(two_block_model(s).eps == 2.0);
+  CHECK(two_block_model(s).mu == 0.3);
+  CHECK(two_block_model(s).gap0 == 2.0);
+  CHECK(two_block_model(s).rod1.order == 0.23);
+  CHECK(two_block_model(s).rod1.tau_x == 1.183);
+  CHECK(two_block_model(s).rod1.tau_f == 0.004);
+  CHECK(two_block_model(s).rod2.order == 0.53);
+  CHECK(two_block_model(s).rod2.tau_x == 4.0);
+  CHECK(two_block_model(s).rod2.tau_f == 0.2);
   CHECK(s.solver.h == 0.002);
   CHECK(s.solver.steps() == 8000);
   CHECK(s.solver.scheme == Scheme::paper);
@@ -83,7 +83,7 @@ TEST_CASE("overrides (--set) replace any key by dotted path, with TOML values", 
   const Scene s = parse_scene(kStrong, "x.toml",
                               {"solver.h=0.001", "model.rod2.tau_f=0.25", "name=renamed", "output.timeseries=false"});
   CHECK(s.solver.h == 0.001);
-  CHECK(s.model->rod2.tau_f == 0.25);
+  CHECK(two_block_model(s).rod2.tau_f == 0.25);
   CHECK(s.name == "renamed");
   CHECK_FALSE(s.output.timeseries);
   // An override can add a key the file lacks.
@@ -127,11 +127,11 @@ t_end = )" + num(16.0 * T0) + "\n";
   CHECK(a.scales.si);
   CHECK(a.scales.time == Approx(T0));
   CHECK(a.scales.length == Approx(X0));
-  CHECK(a.model->rho == Approx(b.model->rho));
-  CHECK(a.model->mu == Approx(b.model->mu).epsilon(1e-14));
-  CHECK(a.model->gap0 == Approx(b.model->gap0).epsilon(1e-14));
-  CHECK(a.model->rod1.tau_x == Approx(b.model->rod1.tau_x).epsilon(1e-14));
-  CHECK(a.model->rod2.tau_f == Approx(b.model->rod2.tau_f).epsilon(1e-14));
+  CHECK(two_block_model(a).rho == Approx(two_block_model(b).rho));
+  CHECK(two_block_model(a).mu == Approx(two_block_model(b).mu).epsilon(1e-14));
+  CHECK(two_block_model(a).gap0 == Approx(two_block_model(b).gap0).epsilon(1e-14));
+  CHECK(two_block_model(a).rod1.tau_x == Approx(two_block_model(b).rod1.tau_x).epsilon(1e-14));
+  CHECK(two_block_model(a).rod2.tau_f == Approx(two_block_model(b).rod2.tau_f).epsilon(1e-14));
   CHECK(a.solver.steps() == b.solver.steps());
   test::StateRecorder ra, rb;
   run(a, {&ra});
@@ -233,31 +233,31 @@ TEST_CASE("the adjoin program exits 2 with error: for bad scenes and 3 for numer
 TEST_CASE("[model.contact] reads a contact law at the gap model.gap0, dimensionless as given", "[scene][contact]") {
   const std::string implicit = replace(kStrong, "scheme = \"paper\"", "scheme = \"implicit\"");
   Scene s = parse_scene(implicit, "x.toml");
-  CHECK(s.model->contact.model == structure::ContactModel::none);  // absent: today's behaviour
+  CHECK(two_block_model(s).contact.model == structure::ContactModel::none);  // absent: today's behaviour
   s = parse_scene(implicit + "\n[model.contact]\nmodel = \"linear\"\nstiffness = 500.0\nrestitution = 0.65\ntension_cut = true\n", "x.toml");
-  CHECK(s.model->contact.model == structure::ContactModel::linear);
-  CHECK(s.model->contact.stiffness == 500.0);  // in units of k1
-  CHECK(s.model->contact.restitution == 0.65);
-  CHECK(s.model->contact.tension_cut);
-  CHECK(std::isnan(s.model->contact.damping));
+  CHECK(two_block_model(s).contact.model == structure::ContactModel::linear);
+  CHECK(two_block_model(s).contact.stiffness == 500.0);  // in units of k1
+  CHECK(two_block_model(s).contact.restitution == 0.65);
+  CHECK(two_block_model(s).contact.tension_cut);
+  CHECK(std::isnan(two_block_model(s).contact.damping));
   // --set builds the table and edits it; a model drops the keys it does not take, and
   // restitution and damping replace each other.
   s = parse_scene(implicit, "x.toml", {"model.contact.model=jankowski", "model.contact.stiffness=1000", "model.contact.damping=0.2"});
-  CHECK(s.model->contact.model == structure::ContactModel::jankowski);
-  CHECK(s.model->contact.stiffness == 1000.0);  // in units of k1 / X0^(1/2)
-  CHECK(s.model->contact.damping == 0.2);
+  CHECK(two_block_model(s).contact.model == structure::ContactModel::jankowski);
+  CHECK(two_block_model(s).contact.stiffness == 1000.0);  // in units of k1 / X0^(1/2)
+  CHECK(two_block_model(s).contact.damping == 0.2);
   const std::string file = scratch_file("contact-scene.toml",
                                               implicit + "\n[model.contact]\nmodel = \"linear\"\nstiffness = 500.0\ndamping = 0.1\n");
   s = load_scene(file, {"model.contact.restitution=0.8"});
-  CHECK(s.model->contact.restitution == 0.8);
-  CHECK(std::isnan(s.model->contact.damping));
+  CHECK(two_block_model(s).contact.restitution == 0.8);
+  CHECK(std::isnan(two_block_model(s).contact.damping));
   s = load_scene(file, {"model.contact.model=impact", "model.contact.restitution=0.5"});
-  CHECK(s.model->contact.model == structure::ContactModel::impact);
-  CHECK(s.model->contact.restitution == 0.5);
+  CHECK(two_block_model(s).contact.model == structure::ContactModel::impact);
+  CHECK(two_block_model(s).contact.restitution == 0.5);
   s = load_scene(file, {"model.contact.model=hertz"});
-  CHECK(s.model->contact.model == structure::ContactModel::hertz);
-  CHECK(s.model->contact.stiffness == 500.0);
-  CHECK(load_scene(file, {"model.contact.model=none"}).model->contact.model == structure::ContactModel::none);
+  CHECK(two_block_model(s).contact.model == structure::ContactModel::hertz);
+  CHECK(two_block_model(s).contact.stiffness == 500.0);
+  CHECK(two_block_model(load_scene(file, {"model.contact.model=none"})).contact.model == structure::ContactModel::none);
 }
 
 TEST_CASE("[model.contact] of an SI scene: stiffness in N/m or N/m^1.5, scaled by k1 or F0 / X0^1.5", "[scene][contact][units]") {
@@ -267,15 +267,15 @@ TEST_CASE("[model.contact] of an SI scene: stiffness in N/m or N/m^1.5, scaled b
   const std::string scene = replace(replace(si, "../synthetic/cp-ec8b-seed1.txt", record), "[model.rod1]", "[model.contact]\nmodel = \"linear\"\nstiffness = 4.0e8\nrestitution = 0.65\n\n[model.rod1]");
   const std::string file = scratch_file("si-contact.toml", scene);
   Scene s = load_scene(file);
-  CHECK(s.model->contact.model == structure::ContactModel::linear);
-  CHECK(s.model->contact.stiffness == Approx(50.0).epsilon(1e-14));  // 4e8 / 8e6
-  CHECK(s.model->contact.restitution == 0.65);
+  CHECK(two_block_model(s).contact.model == structure::ContactModel::linear);
+  CHECK(two_block_model(s).contact.stiffness == Approx(50.0).epsilon(1e-14));  // 4e8 / 8e6
+  CHECK(two_block_model(s).contact.restitution == 0.65);
   s = load_scene(file, {"model.contact.model=hertz", "model.contact.stiffness=2.0e9"});
   // F0 / X0^1.5 = 1961330 / 0.24516625^1.5 = 16156959.8168 N/m^1.5.
-  CHECK(s.model->contact.stiffness == Approx(123.78566405282965).epsilon(1e-12));
+  CHECK(two_block_model(s).contact.stiffness == Approx(123.78566405282965).epsilon(1e-12));
   s = load_scene(file, {"model.contact.model=jankowski", "model.contact.stiffness=2.0e9", "model.contact.damping=0.25"});
-  CHECK(s.model->contact.stiffness == Approx(123.78566405282965).epsilon(1e-12));
-  CHECK(s.model->contact.damping == 0.25);  // dimensionless in both unit systems
+  CHECK(two_block_model(s).contact.stiffness == Approx(123.78566405282965).epsilon(1e-12));
+  CHECK(two_block_model(s).contact.damping == 0.25);  // dimensionless in both unit systems
 }
 
 TEST_CASE("[model.contact] mistakes name the key and what is expected", "[scene][contact][errors]") {

@@ -57,8 +57,8 @@ BuildingScene frames_with_contact(const std::string& name, const std::string& co
 // A two-block run of `scene` with gap0 = gap (scene units) and the contact law `law`.
 ContactReport two_block_run(const Scene& scene, double gap, const structure::ContactLaw& law = {}) {
   Scene s = scene;
-  s.model->gap0 = gap / s.scales.length;
-  s.model->contact = law;
+  s.structure.contacts[0].gap = gap / s.scales.length;  // (the blocks' pair, dimensionless)
+  s.structure.contacts[0].law = law;
   return run(s).contacts.at(0);
 }
 
@@ -97,7 +97,7 @@ TEST_CASE("seismic joint of the paper's strong scene: bisection and direct s_max
   CHECK_FALSE(j.building);
   // The scene's own run (gap0 = 2) reports the margin min_gap = gap0 - s_max.
   const ContactReport own = run(scene).contacts.at(0);
-  CHECK(scene.model->gap0 - own.min_gap == Approx(j.s_max).epsilon(1e-12));
+  CHECK(two_block_model(scene).gap0 - own.min_gap == Approx(j.s_max).epsilon(1e-12));
   CHECK(j.t_critical == Approx(own.t_min_gap).epsilon(1e-12));
 
   // A gap of joint + tol never touches; joint - 10 tol does, without a contact law and with
@@ -121,7 +121,7 @@ TEST_CASE("seismic joint of the paper's strong scene: bisection and direct s_max
   SeismicJointOptions coarse;
   coarse.tol = 1e-3;
   Scene with_law = scene;
-  with_law.model->contact = linear;
+  with_law.structure.contacts[0].law = linear;
   const SeismicJoint c = seismic_joint(with_law, coarse);
   CHECK(c.agree);
   CHECK(c.tol == 1e-3);

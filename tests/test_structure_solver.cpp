@@ -687,7 +687,7 @@ TEST_CASE("the paper's system with a light block: the restart after a switch kee
   }
   INFO("dx " << dx << " dq " << dq);
   CHECK(dx < 1e-12 * scale_x);
-  CHECK(dq < 1e-12 * scene.model->mu);
+  CHECK(dq < 1e-12 * two_block_model(scene).mu);
   CHECK(switches == 10);
   o.restart = Restart::never;
   Recorder trapezoidal;

@@ -106,8 +106,8 @@ set = {"ground.u0" = 0.5}
   CHECK(spec.coordinates(39) == std::vector<std::size_t>{3, 4, 1});
   CHECK(spec.describe(13) == "model.mu=0.2, model.eps=1, motion=b");
   const Scene scene = sweep_scene(spec, 13);
-  CHECK(scene.model->mu == Approx(0.2).epsilon(1e-15));
-  CHECK(scene.model->eps == Approx(1.0).epsilon(1e-14));
+  CHECK(two_block_model(scene).mu == Approx(0.2).epsilon(1e-15));
+  CHECK(two_block_model(scene).eps == Approx(1.0).epsilon(1e-14));
   CHECK(scene.solver.h == 0.01);
   CHECK(scene.ground->describe().find("u0=0.5") != std::string::npos);
 }
@@ -257,9 +257,9 @@ values = [{name = "fractional"}, {name = "elastic", set = {"model.rod2.elastic" 
 )"));
   REQUIRE(spec.runs() == 6);
   CHECK(sweep_columns(spec)[1].type == ColumnType::string);
-  CHECK(sweep_scene(spec, 0).model->rod1.elastic == false);
-  CHECK(sweep_scene(spec, 4).model->rod1.elastic == true);
-  CHECK(sweep_scene(spec, 4).model->rod2.elastic == true);
+  CHECK(two_block_model(sweep_scene(spec, 0)).rod1.elastic == false);
+  CHECK(two_block_model(sweep_scene(spec, 4)).rod1.elastic == true);
+  CHECK(two_block_model(sweep_scene(spec, 4)).rod2.elastic == true);
   const auto rows = run_sweep(spec, {});
   const auto value = [&](std::size_t i, const std::string& column) {
     return std::stod(sweep_cells(spec, rows[i])[column_of(spec, column)]);
@@ -621,8 +621,8 @@ set = {"model.rod1.elastic" = true}
   for (double t : {0.3, 1.7, 4.2}) CHECK(swept.ground->ag(t) == run.ground->ag(t));
   CHECK(swept.ground->describe() == run.ground->describe());
   // model.rod1.elastic = true drops the rod's order and relaxation times, as --set does.
-  CHECK(sweep_scene(spec, 1).model->rod1.elastic);
-  CHECK(load_scene(kStrong, {"model.rod1.elastic=true"}).model->rod1.elastic);
+  CHECK(two_block_model(sweep_scene(spec, 1)).rod1.elastic);
+  CHECK(two_block_model(load_scene(kStrong, {"model.rod1.elastic=true"})).rod1.elastic);
 }
 
 TEST_CASE("a run's scene from the base parsed once is the scene, and the message, of adjoin run --set", "[sweep]") {
@@ -667,10 +667,10 @@ values = [{name = "mu", set = {"model.mu" = 0.45, "solver.h" = 0.01, "name" = "s
     if (expected.rfind(kStrong + ":", 0) == 0) ++base_lines;
     if (run && swept) {
       CHECK(swept->name == run->name);
-      CHECK(swept->model->mu == run->model->mu);
-      CHECK(swept->model->eps == run->model->eps);
-      CHECK(swept->model->rod1.order == run->model->rod1.order);
-      CHECK(swept->model->rod2.tau_x == run->model->rod2.tau_x);
+      CHECK(two_block_model(*swept).mu == two_block_model(*run).mu);
+      CHECK(two_block_model(*swept).eps == two_block_model(*run).eps);
+      CHECK(two_block_model(*swept).rod1.order == two_block_model(*run).rod1.order);
+      CHECK(two_block_model(*swept).rod2.tau_x == two_block_model(*run).rod2.tau_x);
       CHECK(swept->solver.h == run->solver.h);
       CHECK(swept->solver.t_end == run->solver.t_end);
       for (double t : {0.3, 1.7}) CHECK(swept->ground->ag(t) == run->ground->ag(t));

@@ -38,7 +38,7 @@ TEST_CASE("weak scene: q at every grid point and final.q converge at order 2 to 
   const Scene base = paper_scene("weak");
   const auto* sine = dynamic_cast<const DecayingSine*>(base.ground.get());
   REQUIRE(sine);
-  const LinearReference exact(*base.model, sine->u0(), sine->omega(), sine->k(), true);
+  const LinearReference exact(two_block_model(base), sine->u0(), sine->omega(), sine->k(), true);
   std::vector<double> max_q_error, final_q_error, threshold_error;
   // mu*: the smallest mu that never slips = max |q| of the exact solution, found on a 1e-3 grid
   // and refined by golden-section search around it.

@@ -27,7 +27,7 @@ void check_same_balance(const std::vector<std::string>& overrides) {
   INFO("paper-strong with " << overrides.size() << " overrides");
   Scene scene = load_scene(kStrong, overrides);
   scene.output.energy = true;
-  const structure::Structure s = structure::two_block_structure(*scene.model);
+  const structure::Structure& s = scene.structure;
   detail::ChannelObserver channels(s);
   const Report r = run(scene, {&channels});
   const BuildingEnergy mine = r.energy, theirs = channels.energy();

@@ -57,7 +57,6 @@ class RestartingStreams final : public StructureObserver {
 };
 
 bool has_contact_law(const Scene& scene) {
-  if (scene.two_block()) return scene.model->contact.model != structure::ContactModel::none;
   const auto& contacts = scene.structure.contacts;
   return std::any_of(contacts.begin(), contacts.end(),
                      [](const structure::Contact& c) { return c.law.model != structure::ContactModel::none; });
@@ -124,7 +123,7 @@ RunFiles run_to(const Scene& scene, RunOutputs& set, const RunWarning& warn) {
     streams.timeseries->set_flag_outside_model(true);
     SolverOptions again = two_block_options(scene);
     again.h = files.report.solver.h;
-    simulate_as_structure(again, *scene.model, *scene.ground, restarting);
+    simulate_as_structure(again, scene.structure, *scene.ground, restarting);
   }
   if (!files.report.spectra.empty()) set.open("spectra.csv") << (scene.two_block() ? spectra_csv(two_block_signal_names(files.report.spectra))
                                                                                         : spectra_csv(files.report));

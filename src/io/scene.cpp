@@ -25,6 +25,7 @@
 #include "adjoin/io/text_file.hpp"
 #include "adjoin/io/two_block_names.hpp"
 #include "adjoin/solver/simulate.hpp"
+#include "adjoin/structure/two_block.hpp"
 
 namespace adjoin {
 namespace {
@@ -268,7 +269,7 @@ structure::ContactLaw read_contact(const SceneReader& r, const Scales& scales) {
 void check_memory(const SceneReader& r, const Scene& scene) {
   const double steps = static_cast<double>(scene.solver.steps());
   // (A building's base has no model: its memory is checked with its structure, study/run.hpp.)
-  double need = scene.model ? estimated_history_bytes(two_block_options(scene), *scene.model) : 4096.0;
+  double need = scene.two_block() ? estimated_history_bytes(two_block_options(scene), scene.structure) : 4096.0;
   if (scene.output.spectra) need += 3.0 * 8.0 * (steps + 1.0);
   const std::string problem = memory_problem(
       need, "the " + to_string(scene.solver.history) + " history" +
@@ -299,9 +300,11 @@ void read_step_and_horizon(const SceneReader& r, Scene& scene) {
     // their relaxed rods (block 1 alone, block 2 alone, or both stuck together), for the
     // response to decay through the rods' and the damper's dissipation.
     // (A building's base has no model: its reader says its own rule, io/building_scene.cpp.)
-    const double omega2 = scene.model ? std::min({1.0, scene.model->rho * scene.model->eps,
-                                                  scene.model->rho * (1.0 + scene.model->eps) / (1.0 + scene.model->rho)})
-                                      : 1.0;
+    double omega2 = 1.0;
+    if (scene.two_block()) {
+      const Model m = two_block_model(scene);
+      omega2 = std::min({1.0, m.rho * m.eps, m.rho * (1.0 + m.eps) / (1.0 + m.rho)});
+    }
     const double period = 2.0 * std::numbers::pi / std::sqrt(omega2);
     o.t_end = scene.ground->duration() + 5.0 * period;
     char rule[160];
@@ -358,7 +361,7 @@ void read_model(const SceneReader& r, Scene& scene) {
   const std::vector<std::string> dimensionless_only = {"model.rho", "model.eps", "model.mu"};
   const std::vector<std::string> si_only = {"model.m1", "model.m2", "model.k1", "model.k2",
                                             "model.slip_force"};
-  Model& m = scene.model.emplace();
+  Model m;
   if (units == "dimensionless") {
     for (const auto& k : si_only)
       if (r.has(k)) r.fail(k, k + " belongs to SI scenes; this scene has model.units = \"dimensionless\" (use model.rho, model.eps, model.mu)");
@@ -436,12 +439,13 @@ void read_model(const SceneReader& r, Scene& scene) {
     }
     r.fail(key, error);
   }
-
+  scene.structure = structure::two_block_structure(m);
+  scene.two_block_scene = true;
 }
 
 // [solver]: the scheme, the history engine, the step and the horizon.
 void read_solver(const SceneReader& r, Scene& scene) {
-  const structure::ContactModel contact = scene.model ? scene.model->contact.model : structure::ContactModel::none;
+  const structure::ContactModel contact = scene.two_block() ? scene.structure.contacts[0].law.model : structure::ContactModel::none;
   std::string error, key;
   StructureSolverOptions& o = scene.solver;
   const std::string scheme = r.string("solver.scheme", to_string(o.scheme));
@@ -457,7 +461,7 @@ void read_solver(const SceneReader& r, Scene& scene) {
   if (contact != structure::ContactModel::none && o.scheme == Scheme::paper)
     r.fail("solver.scheme", "solver.scheme = " + escaped_excerpt(scheme) + ": the contact laws need the implicit scheme (model.contact.model = \"" +
                                 to_string(contact) + "\"); remove solver.scheme (the default is \"implicit\") or choose an implicit one");
-  if (scene.model && scene.model->base_friction > 0.0 && o.scheme == Scheme::paper)
+  if (scene.two_block() && scene.structure.a.ground_friction > 0.0 && o.scheme == Scheme::paper)
     r.fail("solver.scheme", "solver.scheme = " + escaped_excerpt(scheme) + ": the base friction (model.base_friction) runs on the implicit schemes only; "
                             "remove solver.scheme (the default is \"implicit\") or choose an implicit one");
 

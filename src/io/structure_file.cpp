@@ -570,7 +570,7 @@ structure::Structure detail::structure_from_tree(toml::table& root, const std::s
 }
 
 structure::Structure structure_of(const Scene& scene) {
-  return scene.model ? structure::two_block_structure(*scene.model, scene.scales) : scene.structure;
+  return scene.two_block() ? structure::two_block_structure(two_block_model(scene), scene.scales) : scene.structure;
 }
 
 }  // namespace adjoin

@@ -167,7 +167,7 @@ std::string summary_json(const Scene& scene, const Report& r, const ErrorEstimat
       j["energy"]["contact_dissipated"] = e.contact_dissipated * k.energy;
     }
     // (SPEC §7; the residual already subtracts it)
-    if (scene.model->base_friction > 0.0) j["energy"]["base_friction"] = e.base_friction * k.energy;
+    if (scene.structure.a.ground_friction > 0.0) j["energy"]["base_friction"] = e.base_friction * k.energy;
   } else {
     j["energy"] = nullptr;
   }
@@ -280,11 +280,11 @@ std::string brief_report(const Scene& scene, const Report& r, const ErrorEstimat
                   si ? " [J]" : " (per unit m1)", e.input * k.energy, e.kinetic * k.energy, e.rod1 * k.energy,
                   e.rod2 * k.energy, e.friction * k.energy);
     s << line;
-    if (scene.model->contact.model != structure::ContactModel::none) {
+    if (scene.structure.contacts[0].law.model != structure::ContactModel::none) {
       std::snprintf(line, sizeof line, "contact %.6g, ", e.contact * k.energy);
       s << line;
     }
-    if (scene.model->base_friction > 0.0) {  // (SPEC §7)
+    if (scene.structure.a.ground_friction > 0.0) {  // (SPEC §7)
       std::snprintf(line, sizeof line, "base friction %.6g, ", e.base_friction * k.energy);
       s << line;
     }

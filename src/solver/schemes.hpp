@@ -3,6 +3,7 @@
 // source file; these run it through the one time loop, from rest over the grid of `options`,
 // reporting every grid point to `observer`.
 #include "adjoin/ground/ground_motion.hpp"
+#include "adjoin/structure/building.hpp"
 #include "adjoin/structure/parameters.hpp"
 #include "adjoin/structure/observer.hpp"
 #include "adjoin/solver/options.hpp"
@@ -18,8 +19,9 @@ SolverSummary run_paper_scheme(const SolverOptions& options, const Model& model,
 // "implicit", "implicit-damped" and "implicit-gl", with or without a contact law: the two blocks
 // as a structure on the structure solver, reported as its states (a contact law's energy
 // checked first).
-SolverSummary run_two_block_on_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                                         StructureObserver& observer);
+// `structure`: a model's 1 + 1 structure (structure/two_block.hpp).
+SolverSummary run_two_block_on_structure(const SolverOptions& options, const structure::Structure& structure,
+                                         const GroundMotion& ground, StructureObserver& observer);
 
 // The friction force a stuck damper must carry: q = (rho f2 - f1) / (rho + 1).
 inline double stick_force(const Model& model, double f1, double f2) {

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <optional>
 #include <string>
 
 #include "adjoin/core/errors.hpp"
@@ -13,13 +14,16 @@
 namespace adjoin {
 
 double estimated_history_bytes(const SolverOptions& options, const Model& model) {
+  return estimated_history_bytes(options, structure::two_block_structure(model));
+}
+
+double estimated_history_bytes(const SolverOptions& options, const structure::Structure& s) {
   // Per rod with memory and per step: direct sums keep the weights and the past values (2
   // doubles); the fft engine also keeps its blocks' spectra (measured about 57 bytes; 64
   // allowed). Elastic rods keep nothing; soe keeps a constant few kilobytes (in the 4096).
   const double per_rod_step = options.history == HistoryEngine::fft ? 64.0 : options.history == HistoryEngine::soe ? 0.0 : 16.0;
   // The rods with memory: the 1 + 1 structure's Zener storeys (one device each).
-  const structure::Structure s = structure::two_block_structure(model);
-  const double rods = static_cast<double>(s.a.devices.size() + s.b->devices.size());
+  const double rods = static_cast<double>(s.a.devices.size() + (s.b ? s.b->devices.size() : 0));
   return rods * per_rod_step * (static_cast<double>(options.steps()) + 2.0) + 4096.0;
 }
 
@@ -60,16 +64,30 @@ SolverSummary named(SolverSummary summary, const SolverOptions& options) {
   return summary;
 }
 
-}  // namespace
-
 // Each scheme is a stepper driven by the one time loop (time_loop.hpp), which also times the
-// run (set-up included).
-SolverSummary simulate_as_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                                    StructureObserver& observer) {
+// run (set-up included). `s` is `model`'s 1 + 1 structure: the implicit schemes run it, the
+// paper's scheme the model.
+SolverSummary run(const SolverOptions& options, const Model& model, const structure::Structure& s, const GroundMotion& ground,
+                  StructureObserver& observer) {
   check_run(options, model);
   return named(options.scheme == Scheme::paper ? detail::run_paper_scheme(options, model, ground, observer)
-                                               : detail::run_two_block_on_structure(options, model, ground, observer),
+                                               : detail::run_two_block_on_structure(options, s, ground, observer),
                options);
+}
+
+}  // namespace
+
+SolverSummary simulate_as_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
+                                    StructureObserver& observer) {
+  return run(options, model, structure::two_block_structure(model), ground, observer);
+}
+
+SolverSummary simulate_as_structure(const SolverOptions& options, const structure::Structure& structure,
+                                    const GroundMotion& ground, StructureObserver& observer) {
+  std::string why;
+  const std::optional<Model> model = structure::two_block_model(structure, &why);
+  if (!model) throw InputError("the two-block solver (simulate_as_structure) was given " + why);
+  return run(options, *model, structure, ground, observer);
 }
 
 StructureSolverOptions with_scheme(StructureSolverOptions o, Scheme scheme) {

@@ -62,12 +62,11 @@ class ContactEnergyCheck final : public StructureObserver {
 
 }  // namespace
 
-SolverSummary run_two_block_on_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
-                                         StructureObserver& observer) {
-  const bool contact = model.contact.model != structure::ContactModel::none;
-  if (contact && !(model.gap0 >= 0.0))
+SolverSummary run_two_block_on_structure(const SolverOptions& options, const structure::Structure& s,
+                                         const GroundMotion& ground, StructureObserver& observer) {
+  const bool contact = s.contacts[0].law.model != structure::ContactModel::none;
+  if (contact && !(s.contacts[0].gap >= 0.0))
     throw InputError("model.gap0 must be >= 0 with a contact law (the blocks may not start overlapping)");
-  const structure::Structure s = structure::two_block_structure(model);
   StructureSolverOptions o;
   o.h = options.h;
   o.t_end = options.t_end;

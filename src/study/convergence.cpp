@@ -167,19 +167,20 @@ struct Reference {
 std::optional<Reference> analytic_reference(const RunSpec& scene, double coarse, const RunSpec& finest_run) {
   const auto* sine = dynamic_cast<const DecayingSine*>(scene.ground.get());
   if (!scene.two_block() || !sine) return std::nullopt;
+  const Model model = two_block_model(scene);
   bool stuck = false;
-  if (scene.model->mu > 0.0) {
+  if (model.mu > 0.0) {
     CoarseGrid probe(1);
     run(finest_run, {&probe});
     stuck = probe.all_stuck;
   }
-  if (scene.model->mu != 0.0 && !stuck) return std::nullopt;
-  const LinearReference exact(*scene.model, sine->u0(), sine->omega(), sine->k(), stuck);
+  if (model.mu != 0.0 && !stuck) return std::nullopt;
+  const LinearReference exact(model, sine->u0(), sine->omega(), sine->k(), stuck);
   const std::size_t n = static_cast<std::size_t>(std::ceil(scene.solver.t_end / coarse * (1 - 1e-12))) + 1;
   Reference ref;
   for (std::size_t j = 0; j < n; ++j) {
     const LinearResponse r = exact.at(static_cast<double>(j) * coarse);
-    if (stuck && std::abs(r.link_force) >= scene.model->mu) return std::nullopt;  // the exact solution slips
+    if (stuck && std::abs(r.link_force) >= model.mu) return std::nullopt;  // the exact solution slips
     ref.x.push_back(Eigen::Vector2d(r.x[0], r.x[1]));
   }
   ref.description = stuck ? "analytic: exact solution with the damper stuck throughout (Laplace inversion)"

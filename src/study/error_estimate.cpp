@@ -120,7 +120,7 @@ RunSpec companion_of(const RunSpec& spec, std::size_t n) {
 void check_rung_memory(const RunSpec& rung, double tolerance) {
   if (rung.two_block()) {
     const double memory = 0.8 * physical_memory_bytes();
-    if (memory > 0.0 && estimated_history_bytes(two_block_options(rung), *rung.model) > memory)
+    if (memory > 0.0 && estimated_history_bytes(two_block_options(rung), rung.structure) > memory)
       throw NumericalError("solver.tolerance = " + std::to_string(tolerance) + " would need solver.h = " +
                                std::to_string(rung.solver.h) +
                                " (dimensionless), whose history does not fit in memory; loosen solver.tolerance or set solver.h",

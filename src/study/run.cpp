@@ -16,8 +16,11 @@
 
 namespace adjoin {
 
-structure::Structure solver_structure(const RunSpec& spec) {
-  return spec.model ? structure::two_block_structure(*spec.model) : spec.structure;
+Model two_block_model(const RunSpec& spec) {
+  std::string why;
+  const std::optional<Model> model = structure::two_block_model(spec.structure, &why);
+  if (!model) throw InputError((spec.file.empty() ? spec.name : spec.file.string()) + ": " + why);
+  return *model;
 }
 
 SolverOptions two_block_options(const RunSpec& spec) {
@@ -405,23 +408,20 @@ SolverSummary simulate_spec(const RunSpec& spec, const structure::Structure& s, 
   watched.add_flat(&observer);
   watched.add(spec.watch, false);  // (it refuses a run by throwing, never by done())
   // A two-block spec runs on the paper's stepper or on the structure stepper as its scheme
-  // says, in its model's units (solver/simulate.hpp simulate_as_structure).
+  // says, in the model's units (solver/simulate.hpp simulate_as_structure).
   StoppableObserverList stoppable(watched);
   StructureObserver& observers = watched.only()       ? *watched.only()
                                  : watched.may_stop() ? static_cast<StructureObserver&>(stoppable)
                                                       : watched;
-  SolverSummary summary = spec.two_block() ? simulate_as_structure(two_block_options(spec), *spec.model, *spec.ground, observers)
+  SolverSummary summary = spec.two_block() ? simulate_as_structure(two_block_options(spec), s, *spec.ground, observers)
                                            : simulate_structure(with_scheme(spec.solver, spec.solver.scheme), s, *spec.ground, observers);
   if (collapse) *collapse = collapse_watch.collapse();
   return summary;
 }
 
-// Every spec runs here: its structure (a two-block spec's: the 1 + 1 structure of its model,
-// made by simulate_spec's stepper) through simulate_spec with one list of observers (the report's, then the caller's), and the
-// report made of them.
+// Every spec runs here: its structure through simulate_spec with one list of observers (the
+// report's, then the caller's), and the report made of them.
 Report run(const RunSpec& spec, const RunObservers& extra) {
-  // (A two-block spec's structure is made by its stepper from its model: spec.structure is
-  // empty and only a building's channels need it here.)
   const structure::Structure& s = spec.structure;
   std::unique_ptr<ReportObservers> made;
   if (spec.two_block()) {

@@ -293,18 +293,18 @@ SeismicJoint two_block_joint(const RunSpec& scene, const SeismicJointOptions& op
   // Each trial is the scene's run (run()) with the gap edited, without a contact law, reporting
   // only its peaks and its pounding margin, unwatched (the joint shows its own progress).
   RunSpec trial = scene;
-  Model& model = *trial.model;
+  structure::Contact& pair = trial.structure.contacts.at(0);  // the blocks' (dimensionless)
   trial.watch = nullptr;
   trial.output = OutputOptions{};
   trial.output.phases = trial.output.energy = false;
   trial.accuracy.error_estimate = false;
-  if (model.contact.model != structure::ContactModel::none)
-    j.notes.push_back(std::string("the scene's contact law (") + structure::to_string(model.contact.model) +
+  if (pair.law.model != structure::ContactModel::none)
+    j.notes.push_back(std::string("the scene's contact law (") + structure::to_string(pair.law.model) +
                       ") is not used: with a gap of at least the joint the blocks never touch");
-  model.contact = structure::ContactLaw{};
+  pair.law = structure::ContactLaw{};
   std::vector<std::string> law_note = j.notes;
   const RunAt run_at = [&](double gap) {
-    model.gap0 = gap / k.length;
+    pair.gap = gap / k.length;
     const Report r = run(trial);
     PairTrial p;
     p.min_gap = r.contacts.at(0).min_gap * k.length;

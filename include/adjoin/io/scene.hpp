@@ -43,8 +43,8 @@ std::vector<std::string> implied_unsets(const std::string& key, const std::strin
 Scene parse_scene(const std::string& text, const std::string& name,
                   const std::vector<std::string>& overrides = {}, const std::vector<std::string>& removed = {});
 
-// The [ground], [solver] and [output] of a building scene (SPEC §5) as a Scene whose model is a
-// unit two-block system (1 kg, 1 N/m, elastic, no damper): times in seconds, a_g in g.
+// The [ground], [solver] and [output] of a building scene (SPEC §5) as a Scene without a
+// structure (its reader adds it), in SI scales of 1: times in seconds, a_g in g.
 // `overrides` are --set edits of those sections, `unsets` keys of them removed first.
 // io/building_scene.hpp uses it.
 Scene parse_building_base(const std::string& text, const std::string& name, const std::vector<std::string>& overrides = {},

@@ -21,6 +21,7 @@
 #include <string>
 
 #include "adjoin/ground/ground_motion.hpp"
+#include "adjoin/structure/building.hpp"
 #include "adjoin/structure/parameters.hpp"
 #include "adjoin/structure/observer.hpp"
 #include "adjoin/solver/options.hpp"
@@ -35,11 +36,17 @@ namespace adjoin {
 // for the implicit schemes, false for the paper scheme (it does not locate its switches).
 SolverSummary simulate_as_structure(const SolverOptions& options, const Model& model, const GroundMotion& ground,
                                     StructureObserver& observer);
+// The same run given the model's 1 + 1 structure in its dimensionless units (a run
+// description's, study/run_spec.hpp); any other structure is an InputError saying what it has
+// that the model has not (structure/two_block.hpp two_block_model()).
+SolverSummary simulate_as_structure(const SolverOptions& options, const structure::Structure& structure,
+                                    const GroundMotion& ground, StructureObserver& observer);
 
 // An upper bound of the memory simulate_as_structure() will hold (SolverSummary::history_bytes:
 // the rods' history engines, which grow with the number of steps), known before the run, so
 // that a run too large for the machine can be refused up front rather than fail after minutes.
 double estimated_history_bytes(const SolverOptions& options, const Model& model);
+double estimated_history_bytes(const SolverOptions& options, const structure::Structure& structure);
 
 // The machine's physical memory in bytes (0 if unknown).
 double physical_memory_bytes();

@@ -4,6 +4,7 @@
 // (if mu > 0) and one contact pair at floor 1 with gap gap0 and the model's contact law.
 // `scales` turns the dimensionless model into SI (masses m1, m1/rho, stiffnesses k1, eps k1,
 // tau in s^order); the default gives it in the model's dimensionless units.
+#include <optional>
 #include <string>
 
 #include "adjoin/structure/parameters.hpp"
@@ -13,6 +14,13 @@
 namespace adjoin::structure {
 
 Structure two_block_structure(const Model& model, const Scales& scales = Scales::Dimensionless());
+
+// The inverse in the model's dimensionless units: the model whose 1 + 1 structure `s` is (block
+// 1's mass and stiffness 1), or none, with the reason in `why` (optional), when `s` is not such
+// a structure. A run description holds the structure only (study/run_spec.hpp); the paper's
+// scheme and closed forms, which are written for the model, read it back with this.
+// two_block_model(two_block_structure(m)) is m, but for rho (1 / (1 / rho)) at rounding level.
+std::optional<Model> two_block_model(const Structure& s, std::string* why = nullptr);
 
 // The channel (structure/channels.hpp) of the 1 + 1 structure that SPEC §3's name `name`
 // presents (SPEC §4): x1 = A.x1, x2 = B.x1, drift = link1.stroke (x1 - x2), f1 = A.shear1,

@@ -27,7 +27,8 @@ struct RunObservers {
 Report run(const RunSpec& spec, const RunObservers& extra = {});
 
 // Integrates `s` (the spec's structure or an edit of it of the same size; for a two-block spec,
-// its model's 1 + 1 structure, `s` unused) with the spec's ground and solver options, the spec's memory checked first (check_memory) and its steps
+// a model's 1 + 1 structure, on the scheme it names) with the spec's ground and solver options,
+// the spec's memory checked first (check_memory) and its steps
 // shown to the spec's watch: a building run whose observers the caller chooses (the seismic
 // joint's bisection). A building with storey heights is watched for collapse (SPEC §7): a
 // storey's |drift / h| past its collapse_drift_ratio ends the run there, an outcome, which

@@ -61,16 +61,17 @@ struct AccuracyOptions {
 class RunWatch;  // study/run_watch.hpp
 
 // One run, whatever the scene: a building pair (SPEC §5) in SI units, or the paper's two blocks
-// (SPEC §1, a scene written with the two-block keys) in their dimensionless units, whose
-// structure is the 1 + 1 structure of `model` (structure/two_block.hpp; solver_structure() below).
+// (SPEC §1, a scene written with the two-block keys) as their 1 + 1 structure
+// (structure/two_block.hpp) in the model's dimensionless units.
 struct RunSpec {
   std::string name;
   std::filesystem::path file;  // where it was read from (empty if built in code)
-  // The structure (SPEC §5), SI. Empty for a two-block spec: its structure is its model's.
+  // The structure (SPEC §5) in the solver's numbers: SI, or a two-block spec's dimensionless.
   structure::Structure structure;
-  // A two-block spec: the paper's model, dimensionless and valid (the `paper` scheme's input;
-  // io presents such a run under the two-block names of SPEC §3). Empty for a building.
-  std::optional<Model> model;
+  // A two-block spec: `structure` is the paper's model's 1 + 1 structure (two_block_model()
+  // reads the model back), the `paper` scheme may run it, and io presents its results under the
+  // two-block names of SPEC §3. False: a building pair.
+  bool two_block_scene = false;
   Scales scales;  // the solver's numbers <-> the scene's units (a building's: SI, all 1)
   // a_g against time: in g and seconds for a building; for a two-block spec in the model's
   // dimensionless units (SPEC §1).
@@ -87,11 +88,12 @@ struct RunSpec {
   // estimates each run's time, refuses the clearly unintended, shows progress.
   RunWatch* watch = nullptr;
 
-  bool two_block() const { return model.has_value(); }
+  bool two_block() const { return two_block_scene; }
 };
 
-// The structure a spec runs: its own, or a two-block spec's 1 + 1 structure of its model.
-structure::Structure solver_structure(const RunSpec& spec);
+// A two-block spec's model (SPEC §1), read back from its structure; an InputError for a spec
+// whose structure is not the 1 + 1 structure of a model.
+Model two_block_model(const RunSpec& spec);
 // The two-block solver's options of a two-block spec (solver/simulate.hpp).
 SolverOptions two_block_options(const RunSpec& spec);
 
