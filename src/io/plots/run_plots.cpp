@@ -181,26 +181,33 @@ RunFigureData figure_data(const fs::path& dir, const PlotStyle& style) {
 
 // ---- the figures: each a script, or nothing when its input is not in the folder
 
-// x1 and x2 against t (the paper's Fig. 3 / 6).
-std::optional<std::string> displacements(const RunFigureData& d) {
-  const auto& run = d.run;
-  const bool si = d.si;
-  const auto& t = d.t;
-  const auto& x1 = d.x1;
-  const auto& x2 = d.x2;
-  const auto& xrange = d.xrange;
-  const auto& tlabel = d.tlabel;
-  const auto& bands = d.bands;
-  const bool stick = d.stick;
+// Two histories against t with the stick bands: `what` in the title, the y axis' label (its SI
+// unit added in an SI scene) and each curve's title.
+struct TwoCurves {
+  const char* what;
+  const char* ylabel;
+  const char* si_unit;
+  const std::vector<double>& first;
+  const std::vector<double>& second;
+  const char* first_title;
+  const char* second_title;
+  bool second_dashed;  // (two displacements overlap where the blocks stick)
+};
+
+std::string two_curves(const RunFigureData& d, const TwoCurves& f) {
   std::ostringstream s;
   s << kGnuplotPreamble;
-  gnuplot_datablock(s, "d", {t, x1, x2});
-  s << title_line(run.scene, "block displacements relative to the base") << xrange << tlabel
-    << "set ylabel 'displacement x_1, x_2" << unit(si, "m") << "'\n"
-    << "set key " << key_corner(t, {x1, x2}) << "\n" << bands
-    << "plot $d using 1:2 with lines lt 1 title 'x_1', $d using 1:3 with lines lt 2 dt 2 title 'x_2'"
-    << (stick ? std::string(", ") + kStickKey : "") << "\n";
+  gnuplot_datablock(s, "d", {d.t, f.first, f.second});
+  s << title_line(d.run.scene, f.what) << d.xrange << d.tlabel << "set ylabel '" << f.ylabel << unit(d.si, f.si_unit) << "'\n"
+    << "set key " << key_corner(d.t, {f.first, f.second}) << "\n" << d.bands << "plot $d using 1:2 with lines lt 1 title '"
+    << f.first_title << "', $d using 1:3 with lines lt 2" << (f.second_dashed ? " dt 2" : "") << " title '"
+    << f.second_title << "'" << (d.stick ? std::string(", ") + kStickKey : "") << "\n";
   return s.str();
+}
+
+// x1 and x2 against t (the paper's Fig. 3 / 6).
+std::optional<std::string> displacements(const RunFigureData& d) {
+  return two_curves(d, {"block displacements relative to the base", "displacement x_1, x_2", "m", d.x1, d.x2, "x_1", "x_2", true});
 }
 
 // Ground acceleration, damper force, relative velocity: three panels on one t axis (Fig. 4 / 7).
@@ -255,24 +262,7 @@ std::optional<std::string> excitation(const RunFigureData& d) {
 
 // f1 and f2 against t (Fig. 5 / 8).
 std::optional<std::string> rod_forces(const RunFigureData& d) {
-  const auto& run = d.run;
-  const bool si = d.si;
-  const auto& t = d.t;
-  const auto& f1 = d.f1;
-  const auto& f2 = d.f2;
-  const auto& xrange = d.xrange;
-  const auto& tlabel = d.tlabel;
-  const auto& bands = d.bands;
-  const bool stick = d.stick;
-  std::ostringstream s;
-  s << kGnuplotPreamble;
-  gnuplot_datablock(s, "d", {t, f1, f2});
-  s << title_line(run.scene, "forces in the viscoelastic rods") << xrange << tlabel
-    << "set ylabel 'rod force f_1, f_2" << unit(si, "N") << "'\n"
-    << "set key " << key_corner(t, {f1, f2}) << "\n" << bands
-    << "plot $d using 1:2 with lines lt 1 title 'f_1 (rod 1)', $d using 1:3 with lines lt 2 title 'f_2 (rod 2)'"
-    << (stick ? std::string(", ") + kStickKey : "") << "\n";
-  return s.str();
+  return two_curves(d, {"forces in the viscoelastic rods", "rod force f_1, f_2", "N", d.f1, d.f2, "f_1 (rod 1)", "f_2 (rod 2)", false});
 }
 
 // The gap with its minimum and the contact line.
