@@ -6,19 +6,18 @@
 
 namespace adjoin {
 
-DirectHistory::DirectHistory(std::vector<double> weights) : w_(std::move(weights)) {
-  y_.reserve(w_.empty() ? 0 : w_.size() - 1);
-}
+DirectHistory::DirectHistory(std::vector<double> weights)
+    : w_(std::move(weights)), y_(w_.empty() ? 0 : w_.size() - 1, 0.0) {}
 
-void DirectHistory::push(double y) {
-  if (y_.size() >= w_.size())
+double DirectHistory::push(double y) {
+  if (size_ >= w_.size())
     throw std::logic_error("DirectHistory: more values pushed than weights were given");
-  y_.push_back(y);
   // Next step m = size(): sum_{j=1}^{m} w_j y_{m-j}. Unused past the last weight.
-  const std::size_t m = y_.size();
-  if (m >= w_.size()) { lag_sum_ = 0.0; return; }
+  const std::size_t m = ++size_;
+  if (m >= w_.size()) return lag_sum_ = 0.0;
+  y_[m - 1] = y;
   // y_q w_{m-q} for q = 0 .. m-1 (partial sums in vector registers: detail/dot.hpp).
-  lag_sum_ = detail::dot_reversed(y_.data(), w_.data() + m, m);
+  return lag_sum_ = detail::dot_reversed(y_.data(), w_.data() + m, m);
 }
 
 std::size_t DirectHistory::bytes() const {

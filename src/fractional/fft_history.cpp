@@ -348,12 +348,12 @@ void FftHistory::add_window(std::size_t index, std::size_t m) {
   for (std::size_t t = 0; t < outputs; ++t) out[t] += real[t];
 }
 
-void FftHistory::push(double y) {
+double FftHistory::push(double y) {
   if (y_.size() >= w_.size())
     throw std::logic_error("FftHistory: more values pushed than weights were given");
   y_.push_back(y);
   const std::size_t m = y_.size();
-  if (m >= w_.size()) { lag_sum_ = 0.0; return; }  // past step N: never read
+  if (m >= w_.size()) return lag_sum_ = 0.0;  // past step N: never read
 
   // Every window that closes here: L divides m, for L = B, rB, r^2 B, ... (a power-of-two
   // ladder, so the first L that does not divide m ends the search). L is a power of two, so
@@ -366,7 +366,7 @@ void FftHistory::push(double y) {
   // y_{m-n+i}.
   const std::size_t n = near_.size();
   const std::size_t i0 = m >= n ? 0 : n - m;
-  lag_sum_ = future_[m] + detail::dot(near_.data() + i0, y_.data() + (m + i0 - n), n - i0);
+  return lag_sum_ = future_[m] + detail::dot(near_.data() + i0, y_.data() + (m + i0 - n), n - i0);
 }
 
 std::size_t FftHistory::bytes() const {

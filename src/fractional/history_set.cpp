@@ -14,7 +14,7 @@ HistorySet& HistorySet::operator=(HistorySet&&) noexcept = default;
 
 HistorySet::HistorySet(HistoryEngine engine, WeightRule rule, const std::vector<double>& orders, std::size_t count,
                        double tolerance)
-    : single_(orders.size()), lag_(orders.size(), 0.0) {
+    : lag_(orders.size(), 0.0) {
   // soe: the elements of one compression (one order) share a bank; an order met once gets its
   // own SoeHistory (a bank of one would step three empty lanes).
   std::map<const SoeCompression*, std::vector<std::size_t>> groups;
@@ -22,8 +22,7 @@ HistorySet::HistorySet(HistoryEngine engine, WeightRule rule, const std::vector<
   for (std::size_t e = 0; e < orders.size(); ++e) {
     if (std::isnan(orders[e])) continue;
     if (engine != HistoryEngine::soe) {
-      single_[e] = make_history(engine, rule, orders[e], count, tolerance);
-      single_elements_.push_back(e);
+      singles_.push_back({e, make_history(engine, rule, orders[e], count, tolerance)});
       continue;
     }
     auto c = soe_compression(rule, orders[e], tolerance, count);
@@ -32,8 +31,7 @@ HistorySet::HistorySet(HistoryEngine engine, WeightRule rule, const std::vector<
   }
   for (auto& [key, elements] : groups) {
     if (elements.size() == 1) {
-      single_[elements.front()] = std::make_unique<SoeHistory>(compressions[key], count);
-      single_elements_.push_back(elements.front());
+      singles_.push_back({elements.front(), std::make_unique<SoeHistory>(compressions[key], count)});
       continue;
     }
     Bank b;
@@ -43,14 +41,15 @@ HistorySet::HistorySet(HistoryEngine engine, WeightRule rule, const std::vector<
     b.y.assign(elements.size(), 0.0);
     banks_.push_back(std::move(b));
   }
-  std::sort(single_elements_.begin(), single_elements_.end());
+  std::sort(singles_.begin(), singles_.end(), [](const Single& a, const Single& b) { return a.element < b.element; });
 }
 
 void HistorySet::push(const double* y) {
-  for (const std::size_t e : single_elements_) {
-    single_[e]->push(y[e]);
-    lag_[e] = single_[e]->lag_sum();
-  }
+  for (const Single& s : singles_) lag_[s.element] = s.history->push(y[s.element]);
+  if (!banks_.empty()) push_banks(y);
+}
+
+void HistorySet::push_banks(const double* y) {
   for (Bank& b : banks_) {
     const std::size_t n = b.elements.size(), first = b.elements.front();
     if (b.contiguous) {  // (every Zener storey of one order: the usual case)
@@ -66,21 +65,21 @@ void HistorySet::push(const double* y) {
 
 std::size_t HistorySet::bytes() const {
   std::size_t total = 0;
-  for (const std::size_t e : single_elements_) total += single_[e]->bytes();
+  for (const Single& s : singles_) total += s.history->bytes();
   for (const Bank& b : banks_) total += b.bank->bytes();
   return total;
 }
 
 double HistorySet::weight_error() const {
   double error = 0.0;
-  for (const std::size_t e : single_elements_) error = std::max(error, single_[e]->weight_error());
+  for (const Single& s : singles_) error = std::max(error, s.history->weight_error());
   for (const Bank& b : banks_) error = std::max(error, b.bank->compression().error);
   return error;
 }
 
 std::size_t HistorySet::modes() const {
   std::size_t modes = 0;
-  for (const std::size_t e : single_elements_) modes = std::max(modes, single_[e]->modes());
+  for (const Single& s : singles_) modes = std::max(modes, s.history->modes());
   for (const Bank& b : banks_) modes = std::max(modes, b.bank->compression().modes());
   return modes;
 }

@@ -94,7 +94,7 @@ SoeHistory::SoeHistory(std::shared_ptr<const SoeCompression> compression, std::s
     throw std::logic_error("SoeHistory: the window must be a multiple of 4, at least the steps made ahead");
 }
 
-void SoeHistory::push(double y) {
+double SoeHistory::push(double y) {
   if (pushed_ >= count_) throw std::logic_error("SoeHistory: more values pushed than weights were given");
   if (end_ == recent_.size()) {  // keep the last n0 + 1 values, at the front
     const std::size_t keep = c_->window + 1;
@@ -103,14 +103,14 @@ void SoeHistory::push(double y) {
   }
   recent_[end_++] = y;
   const std::size_t m = ++pushed_;  // the next step
-  if (m >= count_) { lag_sum_ = 0.0; return; }
+  if (m >= count_) return lag_sum_ = 0.0;
   const std::size_t n0 = c_->window;
   const double* first = recent_.data() + end_ - n0 - 1;  // y_{m-n0-1}
   const std::size_t k = (m - 1) % kAhead;
   if (k == 0)  // the far sums of steps m..m+kAhead-1, from y_{m-n0-1}..y_{m-n0+kAhead-1}
     far_ahead(s_.data(), c_->decay.data(), c_->gain.data(), s_.size(), s1_.data(), s2_.data(), c_->a.data(),
               c_->b.data(), c_->p.data(), c_->r.data(), s1_.size(), first, far_.data());
-  lag_sum_ = lag_of(first, c_->near_shifted.data(), n0, c_->near[1], far_[k]);
+  return lag_sum_ = lag_of(first, c_->near_shifted.data(), n0, c_->near[1], far_[k]);
 }
 
 std::size_t SoeHistory::bytes() const {

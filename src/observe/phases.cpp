@@ -9,15 +9,10 @@ void PhaseObserver::begin(const structure::Structure& s, const StructureSolverOp
   intervals_.clear();
 }
 
-void PhaseObserver::observe(const StructureState& s, const PairPhase& phase) {
-  const Phase now = phase.phase;
-  if (intervals_.empty() || intervals_.back().state != now) {
-    const double t = std::isnan(phase.t_switch) || intervals_.empty() ? s.t : phase.t_switch;
-    if (!intervals_.empty()) intervals_.back().t_end = t;
-    intervals_.push_back(PhaseInterval{now, t, s.t});
-  } else {
-    intervals_.back().t_end = s.t;
-  }
+void PhaseObserver::change(const StructureState& s, const PairPhase& phase) {
+  const double t = std::isnan(phase.t_switch) || intervals_.empty() ? s.t : phase.t_switch;
+  if (!intervals_.empty()) intervals_.back().t_end = t;
+  intervals_.push_back(PhaseInterval{phase.phase, t, s.t});
 }
 
 }  // namespace adjoin

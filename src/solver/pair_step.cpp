@@ -33,16 +33,6 @@ PairStepper::PairStepper(const StructureModel& model, StepWorkspace& workspace, 
 // reported written straight into `next`. Each phase is named by the general step's function it
 // repeats (structure_solver.cpp). Rare branches (the first step's QP, an onset's check, a
 // kink) go through the general code and its work vectors.
-const StructureState& PairStepper::advance(std::size_t step) {
-  if (step == 0) begin_run();
-  switch (pc.n_zener) {  // (the loops over the Zener elements unrolled for the usual counts)
-    case 0: return pc.plain ? advance_with<0, true>(step) : advance_with<0, false>(step);
-    case 1: return advance_with<1, false>(step);
-    case 2: return pc.plain ? advance_with<2, true>(step) : advance_with<2, false>(step);
-    default: return advance_with<-1, false>(step);
-  }
-}
-
 template <int kZener, bool kPlain>
 const StructureState& PairStepper::advance_with(std::size_t step) {
   const StructureState& now = *ws.now_p;
@@ -355,6 +345,12 @@ void PairStepper::begin_run() {
     }
   }
   c.plain = plain_pair(c);
+  switch (c.n_zener) {  // (the loops over the Zener elements unrolled for the usual counts)
+    case 0: advance_ = c.plain ? &PairStepper::advance_with<0, true> : &PairStepper::advance_with<0, false>; break;
+    case 1: advance_ = &PairStepper::advance_with<1, false>; break;
+    case 2: advance_ = c.plain ? &PairStepper::advance_with<2, true> : &PairStepper::advance_with<2, false>; break;
+    default: advance_ = &PairStepper::advance_with<-1, false>;
+  }
   PairCarry& cr = carry;
   for (int k = 0; k < 2; ++k) {
     cr.internal[k] = ws.internal[k];

@@ -149,12 +149,17 @@ class PairStepper {
   PairStepper(const StructureModel& model, StepWorkspace& workspace, const GroundMotion& ground_motion, Fallbacks& general);
   // The step from t_n to t_n+1 (n = step) from ws.now_p into ws.next_p, as the structure
   // stepper's advance(); swaps them and returns the state at t_n+1.
-  const StructureState& advance(std::size_t step);
+  const StructureState& advance(std::size_t step) {
+    if (step == 0) begin_run();
+    return (this->*advance_)(step);
+  }
 
  private:
   // advance() for a structure of kZener Zener elements (-1: any number, read from pc).
   template <int kZener, bool kPlain>
   const StructureState& advance_with(std::size_t step);
+  // The run's advance_with (begin_run's choice: once a run, not a switch at every step).
+  const StructureState& (PairStepper::*advance_)(std::size_t) = nullptr;
   // The step's values the decisions pass on (the general step's ws.onset, crossing, ...).
   struct Step {
     static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

@@ -145,7 +145,9 @@ class AccelerationRecorder final : public StructureObserver {
   void begin(const structure::Structure&, const StructureSolverOptions& o) override {
     for (auto* v : {&ag, &a_abs[0], &a_abs[1]}) { v->clear(); v->reserve(o.steps() + 1); }
   }
-  void observe(const StructureState& s) override {
+  // (Out of line: inlined into PairReport::observe, its push_backs' reallocation paths made
+  // that save and restore six registers at every step of every run, spectra asked or not.)
+  [[gnu::noinline]] void observe(const StructureState& s) override {
     ag.push_back(s.ag);
     a_abs[0].push_back(s.a_abs[0]);
     a_abs[1].push_back(s.a_abs[1]);
@@ -228,7 +230,8 @@ class ReportObservers {
 // pounding). Each receives the calls it would receive in the run's list, in the same order.
 class PairReport final : public StructureObserver, public ReportObservers {
  public:
-  explicit PairReport(const OutputOptions& asked) : asked_(asked) {
+  explicit PairReport(const OutputOptions& asked)
+      : asked_(asked), peaks_on_(asked.peaks), phases_on_(asked.phases), energy_on_(asked.energy) {
     if (asked.spectra) accelerations_ = std::make_unique<AccelerationRecorder>();
   }
   void join(StructureObserverList& all) override { all.add(this, false); }
@@ -253,12 +256,12 @@ class PairReport final : public StructureObserver, public ReportObservers {
   void observe(const StructureState& s) override {
     phase_.update(s);
     last_.observe(s);
-    if (asked_.peaks) peaks_.observe(s, phase_);
-    if (asked_.phases) phases_.observe(s, phase_);
+    if (peaks_on_) peaks_.observe(s, phase_);
+    if (phases_on_) phases_.observe(s, phase_);
     // Always watched (it costs a few operations a step): a run without a contact law whose gap
     // closes is flagged even when the pounding margin is not reported.
     pounding_.observe(s, phase_);
-    if (asked_.energy) energy_.observe(s);
+    if (energy_on_) energy_.observe(s);
     if (accelerations_) accelerations_->observe(s);
   }
   void impact(const Impact& i) override {
@@ -280,6 +283,7 @@ class PairReport final : public StructureObserver, public ReportObservers {
 
  private:
   const OutputOptions& asked_;
+  const bool peaks_on_, phases_on_, energy_on_;  // asked_'s, read at each step without its indirection
   PairPhase phase_;  // link 1's phase, shared by the refined observers
   PeakObserver peaks_;
   PhaseObserver phases_;

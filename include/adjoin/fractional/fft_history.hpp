@@ -44,7 +44,7 @@ class FftHistory final : public ConvolutionHistory {
   FftHistory& operator=(const FftHistory&) = delete;
 
   double lag_sum() const override { return lag_sum_; }
-  void push(double y) override;
+  double push(double y) override;
   std::size_t size() const override { return y_.size(); }
   std::size_t bytes() const override;
 

@@ -32,8 +32,9 @@ class ConvolutionHistory {
   virtual ~ConvolutionHistory() = default;
   // sum_{j=1}^{m} w_j y_{m-j} with m = size().
   virtual double lag_sum() const = 0;
-  // Appends y_m (m = size()) and prepares the next lag sum.
-  virtual void push(double y) = 0;
+  // Appends y_m (m = size()) and prepares the next lag sum, which it returns (lag_sum() from
+  // now on: a caller that pushes and then reads the sum, HistorySet, saves a virtual call).
+  virtual double push(double y) = 0;
   virtual std::size_t size() const = 0;
   // Bytes held by the engine (for the memory benchmarks).
   virtual std::size_t bytes() const = 0;

@@ -39,8 +39,13 @@ class HistorySet {
   std::size_t modes() const;     // the largest of the elements'
 
  private:
-  std::vector<std::unique_ptr<ConvolutionHistory>> single_;  // per element outside a bank (null otherwise)
-  std::vector<std::size_t> single_elements_;                 // the elements that have one
+  // The elements outside a bank, each with its own history, in element order (pushed by one
+  // virtual call each, which returns the lag sum).
+  struct Single {
+    std::size_t element;
+    std::unique_ptr<ConvolutionHistory> history;
+  };
+  std::vector<Single> singles_;
   struct Bank {
     std::unique_ptr<SoeBank> bank;
     std::vector<std::size_t> elements;  // the bank's members' elements, in member order
@@ -49,6 +54,10 @@ class HistorySet {
   };
   std::vector<Bank> banks_;
   std::vector<double> lag_;
+
+  // push()'s part for the banks (a function of its own: its copies need registers that push
+  // would otherwise save and restore at every step of a run without a bank).
+  void push_banks(const double* y);
 };
 
 }  // namespace adjoin

@@ -100,7 +100,7 @@ class SoeHistory final : public ConvolutionHistory {
   SoeHistory(std::shared_ptr<const SoeCompression> compression, std::size_t count);
 
   double lag_sum() const override { return lag_sum_; }
-  void push(double y) override;
+  double push(double y) override;
   std::size_t size() const override { return pushed_; }
   std::size_t bytes() const override;
   double weight_error() const override { return c_->error; }
